@@ -1,0 +1,30 @@
+# Shared helpers for the layer CMakeLists.
+
+# Warnings used by every target of the project.
+function(ffr_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wno-unused-parameter)
+endfunction()
+
+# ffr_library(NAME ALIAS_NAME SOURCE_DIR) : a library whose sources are every *.cpp under SOURCE_DIR.
+# New files are picked up on the next build (CONFIGURE_DEPENDS), so parallel work only adds files.
+function(ffr_glob_sources out dir)
+  file(GLOB_RECURSE srcs CONFIGURE_DEPENDS ${dir}/*.cpp ${dir}/*.c)
+  set(${out} ${srcs} PARENT_SCOPE)
+endfunction()
+
+# ffr_test(NAME SOURCES... LIBS libs... [LABELS labels...] [TIMEOUT s])
+# One GoogleTest executable, registered with gtest_discover_tests, run from the test's own source dir.
+function(ffr_test name)
+  cmake_parse_arguments(T "" "TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  add_executable(${name} ${T_SOURCES})
+  target_link_libraries(${name} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
+  target_compile_definitions(${name} PRIVATE
+    FFR_SOURCE_DIR="${PROJECT_SOURCE_DIR}" FFR_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/tests)
+  ffr_warnings(${name})
+  if(NOT T_TIMEOUT)
+    set(T_TIMEOUT 300)
+  endif()
+  gtest_discover_tests(${name} WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}
+    PROPERTIES TIMEOUT ${T_TIMEOUT} LABELS "${T_LABELS}" DISCOVERY_TIMEOUT 60)
+endfunction()

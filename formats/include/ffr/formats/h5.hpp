@@ -1,0 +1,156 @@
+#pragma once
+// A thin, strict layer over the HDF5 C API, shared by the SID and results files.
+//
+// Writing: every array dataset is chunked and carries HDF5's Fletcher-32 checksum filter;
+// scalars and short strings are stored compact, inside their object header, which the
+// latest file-format version protects with its own checksum. So a byte damaged anywhere in
+// the data is refused on read instead of read as a wrong number.
+//
+// Reading: every access checks existence, type class, rank and every dimension against
+// what the caller expects *before* allocating, and all failures throw FormatError naming the
+// file and the dataset. The HDF5 library's own error printing is switched off: this layer
+// never prints.
+
+#include <hdf5.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace ffr::formats {
+
+/// Any problem with a file: names the file and, where there is one, the dataset or attribute.
+class FormatError : public std::runtime_error {
+ public:
+  FormatError(std::string file, std::string object, const std::string& what);
+  const std::string& file() const { return file_; }
+  const std::string& object() const { return object_; }
+
+ private:
+  std::string file_, object_;
+};
+
+namespace h5 {
+
+using Shape = std::vector<std::uint64_t>;
+std::string shape_string(const Shape& s);
+
+/// Owns one hid_t and closes it with the right H5*close.
+class Handle {
+ public:
+  Handle() = default;
+  explicit Handle(hid_t id) : id_(id) {}
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& o) noexcept : id_(o.id_) { o.id_ = H5I_INVALID_HID; }
+  Handle& operator=(Handle&& o) noexcept;
+  ~Handle();
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+};
+
+/// Writes one new HDF5 file. Paths are absolute ("/sid/J/M0"); parent groups are created.
+class Writer {
+ public:
+  /// Creates (truncates) `path`. `display_name` is used in error messages.
+  explicit Writer(const std::filesystem::path& path, std::string display_name = {});
+  ~Writer();
+  Writer(const Writer&) = delete;
+  Writer& operator=(const Writer&) = delete;
+
+  /// Row-major (C order) doubles of the given shape; rank >= 1.
+  void write(const std::string& path, const double* data, const Shape& shape);
+  void write(const std::string& path, const std::int64_t* data, const Shape& shape);
+  void write_scalar(const std::string& path, double v);
+  void write_string(const std::string& path, const std::string& s);
+  void write_strings(const std::string& path, const std::vector<std::string>& s);
+
+  void attr(const std::string& object, const std::string& name, const std::string& v);
+  void attr(const std::string& object, const std::string& name, double v);
+  void attr(const std::string& object, const std::string& name, std::int64_t v);
+
+  void ensure_group(const std::string& path);
+  /// Flushes and closes; after this the writer is unusable. Called by the destructor too.
+  void close();
+
+ private:
+  hid_t open_object(const std::string& object);
+  [[noreturn]] void fail(const std::string& object, const std::string& what) const;
+  Handle file_;
+  std::string name_;
+};
+
+/// Reads an existing HDF5 file strictly.
+class Reader {
+ public:
+  /// Opens read-only. Throws FormatError if missing, unreadable, not HDF5, or truncated.
+  explicit Reader(const std::filesystem::path& path, std::string display_name = {});
+
+  const std::string& name() const { return name_; }
+  /// Size of the file on disk in bytes: an upper bound for any dataset (we never compress).
+  std::uint64_t file_bytes() const { return file_bytes_; }
+
+  bool exists(const std::string& path) const;
+  bool is_group(const std::string& path) const;
+  /// Names of the members of a group, sorted.
+  std::vector<std::string> members(const std::string& group) const;
+
+  /// Shape of a dataset (throws if missing). A scalar dataset has an empty shape.
+  Shape shape(const std::string& path) const;
+
+  /// Reads a float64 dataset into `out`, which must hold product(expected) values; the
+  /// dataset's shape must equal `expected` exactly. Values must be finite unless allow_nonfinite.
+  void read(const std::string& path, const Shape& expected, double* out, bool allow_nonfinite = false) const;
+  void read(const std::string& path, const Shape& expected, std::int64_t* out) const;
+  /// Like read(), but checks shape and size against the file before allocating the result.
+  std::vector<double> read_array(const std::string& path, const Shape& expected, bool allow_nonfinite = false) const;
+  double read_scalar(const std::string& path) const;
+  std::string read_string(const std::string& path) const;
+  /// A 1-D string dataset of exactly n entries.
+  std::vector<std::string> read_strings(const std::string& path, std::uint64_t n) const;
+
+  bool has_attr(const std::string& object, const std::string& name) const;
+  std::string attr_string(const std::string& object, const std::string& name) const;
+  double attr_double(const std::string& object, const std::string& name) const;
+  std::int64_t attr_int(const std::string& object, const std::string& name) const;
+  /// All attributes of an object as text (numbers formatted with full precision).
+  std::vector<std::pair<std::string, std::string>> attrs(const std::string& object) const;
+
+  [[noreturn]] void fail(const std::string& object, const std::string& what) const;
+
+ private:
+  Handle open_dataset(const std::string& path) const;
+  void check_shape(const std::string& path, hid_t space, const Shape& expected) const;
+  Handle file_;
+  std::string name_;
+  std::uint64_t file_bytes_ = 0;
+};
+
+/// Temporary file next to `target`, renamed over it by commit(); removed if never committed.
+/// This is how every output of the project is written, so nothing is left half-written.
+class AtomicFile {
+ public:
+  explicit AtomicFile(std::filesystem::path target);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  const std::filesystem::path& temp_path() const { return temp_; }
+  const std::filesystem::path& target() const { return target_; }
+  /// fsyncs the temporary file and renames it over the target.
+  void commit();
+
+ private:
+  std::filesystem::path target_, temp_;
+  bool committed_ = false;
+};
+
+/// The text of the innermost HDF5 error on the current error stack ("" if none).
+std::string last_error_text();
+
+}  // namespace h5
+}  // namespace ffr::formats

@@ -1,0 +1,57 @@
+#pragma once
+// The FE mesh as the preprocessor sees it: nodes, element blocks per physical group, and
+// node sets per physical group. Built from gmsh (mesh/gmsh_import) or by hand in tests.
+//
+// Node order inside every element follows gmsh's convention for that element type (the
+// gmsh reference manual, "Node ordering"); every element kernel relies on it.
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace ffr::preproc {
+
+using Index = std::int64_t;
+
+enum class ElementType {
+  Point1,
+  Line2, Line3,
+  Tri3, Tri6, Quad4, Quad8, Quad9,
+  Tet4, Tet10, Hex8, Hex20, Hex27, Wedge6, Wedge15, Wedge18, Pyramid5, Pyramid13, Pyramid14,
+};
+
+int num_nodes(ElementType t);
+int dimension(ElementType t);     ///< 0 point, 1 line, 2 surface, 3 volume
+const char* name(ElementType t);  ///< "TET10", "QUAD4", ...
+/// gmsh element type number -> ElementType; throws std::invalid_argument for unsupported ones.
+ElementType from_gmsh(int gmsh_type);
+int to_gmsh(ElementType t);
+
+struct ElementBlock {
+  ElementType type = ElementType::Tet4;
+  std::string group;              ///< physical group name the elements belong to
+  std::vector<Index> conn;        ///< size() * num_nodes(type) indices into Mesh::x, gmsh order
+  std::vector<std::size_t> tags;  ///< gmsh element tags, for error messages (may be empty)
+  Index size() const { return static_cast<Index>(conn.size()) / num_nodes(type); }
+  const Index* element(Index e) const { return conn.data() + e * num_nodes(type); }
+};
+
+struct Mesh {
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> x;  ///< node coordinates, body frame
+  std::vector<std::size_t> node_tags;                           ///< gmsh node tag per node (may be empty)
+  std::vector<ElementBlock> blocks;
+  std::map<std::string, std::vector<Index>> node_groups;        ///< physical group -> sorted node indices
+
+  Index num_nodes() const { return x.rows(); }
+  Index num_elements() const;
+  /// Gathers the coordinates of element e of block b as an (nn x 3) matrix.
+  Eigen::MatrixX3d element_coords(const ElementBlock& b, Index e) const;
+  /// The gmsh tag of element e of block b if known, else its 1-based position.
+  std::size_t element_tag(const ElementBlock& b, Index e) const;
+  std::size_t node_tag(Index n) const;
+};
+
+}  // namespace ffr::preproc
