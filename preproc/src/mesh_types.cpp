@@ -49,7 +49,7 @@ Index Mesh::num_elements() const {
 }
 
 Eigen::MatrixX3d Mesh::element_coords(const ElementBlock& b, Index e) const {
-  const int nn = num_nodes(b.type);
+  const int nn = ffr::preproc::num_nodes(b.type);
   Eigen::MatrixX3d xe(nn, 3);
   const Index* c = b.element(e);
   for (int i = 0; i < nn; ++i) xe.row(i) = x.row(c[i]);

@@ -35,8 +35,8 @@ struct ElementBlock {
   std::string group;              ///< physical group name the elements belong to
   std::vector<Index> conn;        ///< size() * num_nodes(type) indices into Mesh::x, gmsh order
   std::vector<std::size_t> tags;  ///< gmsh element tags, for error messages (may be empty)
-  Index size() const { return static_cast<Index>(conn.size()) / num_nodes(type); }
-  const Index* element(Index e) const { return conn.data() + e * num_nodes(type); }
+  Index size() const { return static_cast<Index>(conn.size()) / ffr::preproc::num_nodes(type); }
+  const Index* element(Index e) const { return conn.data() + e * ffr::preproc::num_nodes(type); }
 };
 
 struct Mesh {
