@@ -140,7 +140,7 @@ TEST(SolidQuality, IdealShapesScoreOneAndDistortionLowersIt) {
 
 TEST(SolidElement, ClosedFormConsistentMass) {
   // Textbook consistent masses (Zienkiewicz & Taylor, The Finite Element Method, vol. 1):
-  // TET4: M_ab = rho V (1 + delta_ab) / 20; rectangular HEX8: M_ab = rho V / 8 prod_k (1 + xi_ak xi_bk / 3).
+  // TET4: M_ab = rho V (1 + delta_ab) / 20; rectangular HEX8: M_ab = rho V / 64 prod_k (1 + xi_ak xi_bk / 3).
   const double rho = 3.0;
   Eigen::MatrixX3d tet(4, 3);
   tet << 0.1, 0.2, 0.0, 1.3, 0.1, 0.2, 0.4, 0.9, 0.1, 0.3, 0.4, 1.1;
@@ -155,10 +155,11 @@ TEST(SolidElement, ClosedFormConsistentMass) {
     for (int b = 0; b < 8; ++b)
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
-          double h = i == j ? rho * size.prod() / 8 : 0.0;
+          double h = i == j ? rho * size.prod() / 64 : 0.0;
           for (int k = 0; k < 3; ++k) h *= 1 + ref(a, k) * ref(b, k) / 3;
           EXPECT_NEAR(Mh(3 * a + i, 3 * b + j), h, 1e-14 * rho * size.prod());
-          if (a < 4 && b < 4)
+          if (a < 4 && b < 4) {
             EXPECT_NEAR(Mt(3 * a + i, 3 * b + j), i == j ? rho * Vt * (1 + (a == b)) / 20 : 0.0, 1e-14 * rho * Vt);
+          }
         }
 }
