@@ -137,3 +137,29 @@ TEST(SolidQuality, IdealShapesScoreOneAndDistortionLowersIt) {
   EXPECT_LT(solid_quality(ElementType::Hex20, flipped).min_scaled_jacobian, 0);
   EXPECT_LT(solid_quality(ElementType::Hex20, flipped).max_det_j, 0);
 }
+
+TEST(SolidElement, ClosedFormConsistentMass) {
+  // Textbook consistent masses (Zienkiewicz & Taylor, The Finite Element Method, vol. 1):
+  // TET4: M_ab = rho V (1 + delta_ab) / 20; rectangular HEX8: M_ab = rho V / 64 prod_k (1 + xi_ak xi_bk / 3).
+  const double rho = 3.0;
+  Eigen::MatrixX3d tet(4, 3);
+  tet << 0.1, 0.2, 0.0, 1.3, 0.1, 0.2, 0.4, 0.9, 0.1, 0.3, 0.4, 1.1;
+  const double Vt = polyhedron_moments(tet, corner_faces(ElementType::Tet4)).V;
+  const Eigen::MatrixXd Mt = solid_element(ElementType::Tet4, tet, {1, 0.3, rho}).M;
+  Eigen::MatrixX3d box = reference_corners(ElementType::Hex8);
+  const Eigen::Vector3d size(2.0, 0.5, 1.5);
+  for (int a = 0; a < 8; ++a) box.row(a) = 0.5 * box.row(a).cwiseProduct(size.transpose());
+  const Eigen::MatrixXd Mh = solid_element(ElementType::Hex8, box, {1, 0.3, rho}).M;
+  const Eigen::MatrixX3d ref = reference_corners(ElementType::Hex8);
+  for (int a = 0; a < 8; ++a)
+    for (int b = 0; b < 8; ++b)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          double h = i == j ? rho * size.prod() / 64 : 0.0;
+          for (int k = 0; k < 3; ++k) h *= 1 + ref(a, k) * ref(b, k) / 3;
+          EXPECT_NEAR(Mh(3 * a + i, 3 * b + j), h, 1e-14 * rho * size.prod());
+          if (a < 4 && b < 4) {
+            EXPECT_NEAR(Mt(3 * a + i, 3 * b + j), i == j ? rho * Vt * (1 + (a == b)) / 20 : 0.0, 1e-14 * rho * Vt);
+          }
+        }
+}

@@ -32,16 +32,22 @@ inline Lame lame(const Material& m) {
 /// the isotropic B^T D B written per node pair (energy lambda/2 (div u)^2 + mu eps:eps).
 template <class KM, class GM>
 inline void add_isotropic_stiffness(KM& K, const GM& G, Lame L, double dv) {
+  // Scalar loops: this is the innermost kernel of the assembly (HEX20: 27 points x 210 pairs).
   const int n = static_cast<int>(G.rows());
+  const double l = L.lambda * dv, m = L.mu * dv;
   for (int a = 0; a < n; ++a) {
-    const Eigen::RowVector3d ga = G.row(a);
+    const double ax = G(a, 0), ay = G(a, 1), az = G(a, 2);
     for (int b = a; b < n; ++b) {
-      const Eigen::RowVector3d gb = G.row(b);
-      Eigen::Matrix3d k = L.lambda * ga.transpose() * gb + L.mu * gb.transpose() * ga;
-      k.diagonal().array() += L.mu * ga.dot(gb);
-      k *= dv;
-      K.template block<3, 3>(3 * a, 3 * b) += k;
-      if (b != a) K.template block<3, 3>(3 * b, 3 * a) += k.transpose();
+      const double bx = G(b, 0), by = G(b, 1), bz = G(b, 2);
+      const double d = m * (ax * bx + ay * by + az * bz);
+      const double k[3][3] = {{l * ax * bx + m * bx * ax + d, l * ax * by + m * bx * ay, l * ax * bz + m * bx * az},
+                              {l * ay * bx + m * by * ax, l * ay * by + m * by * ay + d, l * ay * bz + m * by * az},
+                              {l * az * bx + m * bz * ax, l * az * by + m * bz * ay, l * az * bz + m * bz * az + d}};
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          K(3 * a + i, 3 * b + j) += k[i][j];
+          if (b != a) K(3 * b + j, 3 * a + i) += k[i][j];
+        }
     }
   }
 }
