@@ -2,7 +2,10 @@
 // (an RBE2 by construction, an RBE3 because the least-squares fit of a rigid motion is that
 // motion), held interfaces remove the DOFs, and an averaged interface node moves with the
 // mean of its group.
+#include "ffr/formats/h5.hpp"
 #include "ffr/preproc/model/constraints.hpp"
+
+#include <Eigen/Geometry>
 #include "support.hpp"
 
 #include <gtest/gtest.h>
@@ -56,8 +59,9 @@ TEST(Constraints, RigidAndAveragedSpidersCarryRigidMotion) {
     const auto t = preproc::build_transform(model, {preproc::InterfaceState::Free, preproc::InterfaceState::Boundary});
     const Eigen::MatrixXd R = preproc::rigid_body_modes(model, t);
     for (int j = 0; j < 6; ++j) {
-      const Eigen::Vector3d u = j < 3 ? Eigen::Vector3d::Unit(j) : Eigen::Vector3d::Zero();
-      const Eigen::Vector3d th = j >= 3 ? Eigen::Vector3d::Unit(j - 3) : Eigen::Vector3d::Zero();
+      Eigen::Vector3d u = Eigen::Vector3d::Zero(), th = Eigen::Vector3d::Zero();
+      if (j < 3) u(j) = 1.0;
+      else th(j - 3) = 1.0;
       const Eigen::VectorXd full = t.T * R.col(j);
       EXPECT_LT((full - rigid_full(model, u, th)).cwiseAbs().maxCoeff(), 1e-12) << coupling << " rigid mode " << j;
     }

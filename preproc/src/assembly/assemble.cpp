@@ -2,6 +2,7 @@
 #include "ffr/preproc/assembly/assembly.hpp"
 #include "pattern.hpp"
 
+#include <Eigen/Geometry>
 #include <atomic>
 #include <chrono>
 #include <exception>

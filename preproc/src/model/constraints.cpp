@@ -2,6 +2,7 @@
 
 #include "ffr/formats/h5.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/Dense>
 
 #include <unordered_map>

@@ -1,5 +1,6 @@
 #include "ffr/preproc/reduce/invariants.hpp"
 
+#include <Eigen/Geometry>
 #include <mutex>
 #include <thread>
 
