@@ -91,6 +91,8 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   const Assembled fe = assemble(model, aopt);
   stage("assembly: " + std::to_string(fe.elements) + " elements, nnz(K) = " + std::to_string(fe.K.nonZeros()) +
         ", mass " + fmt(fe.mass, 6) + " " + part.units.mass + " [" + fmt(sw.lap()) + " s]");
+  if (!fe.worst_element.empty())
+    stage("  quality: worst scaled Jacobian " + fmt(fe.worst_scaled_jacobian) + " (" + fe.worst_element + ")");
 
   // 4. Modes.
   ReductionLog rlog;

@@ -1,5 +1,6 @@
 #include "ffr/formats/h5.hpp"
 #include "ffr/preproc/assembly/assembly.hpp"
+#include "ffr/preproc/elements/solid.hpp"
 #include "pattern.hpp"
 
 #include <Eigen/Geometry>
@@ -18,6 +19,7 @@ struct Computed {
   ElementRef ref;
   std::vector<Index> dofs;
   ElementMatrices em;
+  double scaled_jacobian = 1.0;  ///< solids only
 };
 
 // Rigid-rotation field of an element's DOFs about axis a through O (for the rotary part).
@@ -74,6 +76,10 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
         const auto& blk = model.mesh->blocks[model.blocks[static_cast<std::size_t>(c.ref.block)].block];
         pattern.add_node_scalar(out.Ms, blk.element(c.ref.index), num_nodes(blk.type), c.em.M);
       }
+      if (c.scaled_jacobian < out.worst_scaled_jacobian) {
+        out.worst_scaled_jacobian = c.scaled_jacobian;
+        out.worst_element = describe(model, c.ref);
+      }
       for (const auto& s : c.em.samples) {
         out.mass += s.w;
         out.rdm += s.w * s.c;
@@ -98,9 +104,13 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
       batch.clear();
       try {
         for (std::size_t i = begin; i < end; ++i) {
-          Computed c{refs[i], element_dofs(model, refs[i]), {}};
+          Computed c{refs[i], element_dofs(model, refs[i]), {}, 1.0};
           try {
             c.em = kernel(model, refs[i]);
+            if (refs[i].block >= 0 && model.blocks[static_cast<std::size_t>(refs[i].block)].kind == ElementKind::Solid) {
+              const auto& blk = model.mesh->blocks[model.blocks[static_cast<std::size_t>(refs[i].block)].block];
+              c.scaled_jacobian = solid_quality(blk.type, model.mesh->element_coords(blk, refs[i].index)).min_scaled_jacobian;
+            }
           } catch (const ElementError& e) {
             throw formats::FormatError(model.part ? model.part->geometry.string() : "mesh", describe(model, refs[i]),
                                        e.what());
@@ -135,6 +145,15 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   }
   for (auto& t : pool) t.join();
   if (error) std::rethrow_exception(error);
+  // Rigid-body integrals of the solids from Ms, exactly (c is interpolated isoparametrically).
+  if (out.Ms.nonZeros() > 0) {
+    const Eigen::VectorXd ones = Eigen::VectorXd::Ones(out.Ms.rows());
+    const Eigen::MatrixX3d X = model.mesh->x;
+    const Eigen::MatrixX3d MX = out.Ms * X;
+    out.mass += ones.dot(out.Ms * ones);
+    out.rdm += MX.transpose() * ones;
+    out.rrdm += X.transpose() * MX;
+  }
   if (opt.progress) opt.progress(1.0);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

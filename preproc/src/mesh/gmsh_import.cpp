@@ -54,11 +54,15 @@ void add_part_groups(const PartSpec& part) {
   }
 }
 
-// If there is no physical group at all, all entities of the top dimension form "all".
+// "all": every entity of the highest dimension, unless the geometry names a group "all".
 void add_default_group() {
   gmsh::vectorpair groups;
   gmsh::model::getPhysicalGroups(groups);
-  if (!groups.empty()) return;
+  for (const auto& [d, t] : groups) {
+    std::string name;
+    gmsh::model::getPhysicalName(d, t, name);
+    if (name == "all") return;
+  }
   for (int dim = 3; dim >= 1; --dim) {
     gmsh::vectorpair ents;
     gmsh::model::getEntities(ents, dim);
@@ -166,8 +170,11 @@ Mesh load_mesh(const PartSpec& part, MeshReport* report, const MeshLog& log) {
   gmsh_call(file, "cannot extract mesh", [&] { mesh = extract(file); });
 
   if (report) {
+    // An element can be in several groups ("all" and a named one): count each once.
+    std::map<std::string, std::set<std::size_t>> tags;
+    for (const auto& b : mesh.blocks) tags[name(b.type)].insert(b.tags.begin(), b.tags.end());
     report->element_counts.clear();
-    for (const auto& b : mesh.blocks) report->element_counts[name(b.type)] += b.size();
+    for (const auto& [t, s] : tags) report->element_counts[t] = static_cast<Index>(s.size());
     report->nodes = mesh.num_nodes();
     report->meshed = !is_msh;
     report->gmsh_log = detail::GmshSession::log_text();

@@ -137,18 +137,24 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
       o.deflation = rigid_body_modes(model, t);
       o.factor.min_pivot_ratio = 0;  // definite by construction; tiny pivots only in the deflated space
     }
-    EigenSolver solver(o);
-    attach_progress(solver, log);
     say(std::string(free ? "free-free" : "clamped") + " eigen-solve: " + std::to_string(t.num_ind()) + " DOF, " +
         (spec.max_frequency_hz ? "up to " + std::to_string(*spec.max_frequency_hz) + " Hz" : std::to_string(o.nev) + " modes") +
         ", " + spec.backend);
+    // Analyse first and report the factor's size, so a factor that will not fit is refused
+    // (by factorize, with the numbers) after the user has seen what it would need.
+    CholmodFactor factor(o.factor);
+    const SparseMatrix C = shifted_upper(K, M, sigma);
+    say(factor_line(factor.analyze(C)));
+    EigenSolver solver(o);
+    attach_progress(solver, log);
     try {
-      solver.compute(K, M);
+      factor.factorize_shifted(K, M, sigma);
+      solver.compute(K, M, factor);
     } catch (const NotPositiveDefiniteError& e) {
       mechanism(model, "the stiffness is singular at " + node_text(model, t, e.column));
     }
     record(r, solver);
-    say(factor_line(r.factor));
+    r.factor = factor.info().stats;
     check_no_zero_modes(model, solver.result().lambda, part, free ? "beyond the six rigid-body modes" : "with the interface held");
     basis = solver.result().X;
     r.lambda = solver.result().lambda;
@@ -168,13 +174,14 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
     say("craig-bampton: " + std::to_string(boundary.size()) + " boundary DOF, " +
         std::to_string(split.interior.size()) + " interior DOF");
     CholmodFactor factor;
+    say(factor_line(factor.analyze(split.Kii)));
     try {
       factor.factorize(split.Kii);
     } catch (const NotPositiveDefiniteError& e) {
       mechanism(model, "with the frame interface '" + spec.frame + "' held, the stiffness is singular at " +
                            node_text(model, t, split.interior[static_cast<std::size_t>(e.column)]));
     }
-    say(factor_line(factor.info().stats));
+    r.factor = factor.info().stats;
     // Static constraint modes: interior response to a unit motion of each boundary DOF.
     const Eigen::MatrixXd Psi_i = -factor.solve(Eigen::MatrixXd(split.Kib));
     Eigen::MatrixXd modes_i;

@@ -34,7 +34,7 @@ struct AssemblyOptions {
 
 struct Assembled {
   SparseMatrix K, M;                 ///< num_dofs x num_dofs, full symmetric storage
-  double mass = 0;                   ///< exact sums over the mass samples
+  double mass = 0;                   ///< exact: solids through Ms, the rest through mass samples
   Eigen::Vector3d rdm = Eigen::Vector3d::Zero();
   Eigen::Matrix3d rrdm = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d rotary_I = Eigen::Matrix3d::Zero();  ///< sum of M_rotary under rigid rotation
@@ -44,6 +44,9 @@ struct Assembled {
   bool has_structural = false;       ///< any shell, beam or attached mass (needs the sample pass)
   Index elements = 0;
   double seconds = 0;
+  /// Worst solid element by the scaled Jacobian (1 ideal, <= 0 inverted), for the mesh report.
+  double worst_scaled_jacobian = 1.0;
+  std::string worst_element;
 };
 
 /// Assembles K and M. Element errors (inverted, degenerate, bad properties) become

@@ -5,8 +5,8 @@
 //    serendipity TET10/HEX20/WEDGE15/QUAD8 elements).
 // Physical groups become element blocks and node sets under their names; part-file
 // "groups" (extension for STEP/BREP without physical groups) are added before meshing.
-// If the geometry defines no physical group at all, every entity of the highest dimension
-// forms the group "all".
+// Every entity of the highest dimension also forms the group "all" (unless the geometry
+// defines a group of that name), so STEP/BREP parts need no physical groups for materials.
 
 #include "ffr/preproc/mesh/mesh.hpp"
 #include "ffr/preproc/part/part.hpp"
