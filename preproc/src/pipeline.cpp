@@ -7,6 +7,7 @@
 #include "ffr/preproc/reduce/invariants.hpp"
 #include "ffr/preproc/reduce/node_data.hpp"
 #include "ffr/preproc/reduce/reduction.hpp"
+#include "ffr/preproc/reduce/stiffening.hpp"
 #include "ffr/preproc/visual/visual.hpp"
 #include "ffr/version.hpp"
 
@@ -123,6 +124,13 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   members_from_integrals(sid);
   sid.Ke = red.Ke;
   sid.De = damping_matrix(part.damping, sid.Me, sid.Ke);
+  if (part.stiffening || !part.preload.empty()) {
+    StiffeningResult st = compute_stiffening(model, fe, red.Phi, part.stiffening, [&](const std::string& s) { stage("  " + s); });
+    if (part.stiffening) sid.stiffening = std::move(st.stiffening);
+    if (!part.preload.empty()) sid.ksigma = st.ksigma;
+    stage("stiffening: " + std::to_string(st.load_cases) + " unit load cases" +
+          (part.preload.empty() ? std::string() : ", prestress from the preload") + " [" + fmt(sw.lap()) + " s]");
+  }
   for (std::size_t i = 0; i < model.interfaces.size(); ++i)
     sid.interfaces.push_back({model.interfaces[i].name, static_cast<formats::Index>(i), model.interfaces[i].coupling,
                               model.interfaces[i].group});

@@ -56,8 +56,10 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   Assembled out;
   out.elements = static_cast<Index>(refs.size());
   out.K = pattern.make_matrix();
-  out.M = pattern.make_matrix();
-  out.Ms = pattern.make_node_matrix();
+  if (!opt.stiffness_only) {
+    out.M = pattern.make_matrix();
+    out.Ms = pattern.make_node_matrix();
+  }
   for (const auto& pb : model.blocks) out.has_structural = out.has_structural || pb.kind != ElementKind::Solid;
   out.has_structural = out.has_structural || !model.masses.empty();
 
@@ -71,6 +73,7 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
     std::lock_guard<std::mutex> lock(scatter_mutex);
     for (auto& c : batch) {
       pattern.add(out.K, c.dofs, c.em.K, model);
+      if (opt.stiffness_only) continue;
       pattern.add(out.M, c.dofs, c.em.M, model);
       if (c.ref.block >= 0 && model.blocks[static_cast<std::size_t>(c.ref.block)].kind == ElementKind::Solid) {
         const auto& blk = model.mesh->blocks[model.blocks[static_cast<std::size_t>(c.ref.block)].block];
@@ -107,7 +110,7 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
           Computed c{refs[i], element_dofs(model, refs[i]), {}, 1.0};
           try {
             c.em = kernel(model, refs[i]);
-            if (refs[i].block >= 0 && model.blocks[static_cast<std::size_t>(refs[i].block)].kind == ElementKind::Solid) {
+            if (!opt.stiffness_only && refs[i].block >= 0 && model.blocks[static_cast<std::size_t>(refs[i].block)].kind == ElementKind::Solid) {
               const auto& blk = model.mesh->blocks[model.blocks[static_cast<std::size_t>(refs[i].block)].block];
               c.scaled_jacobian = solid_quality(blk.type, model.mesh->element_coords(blk, refs[i].index)).min_scaled_jacobian;
             }
@@ -115,7 +118,7 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
             throw formats::FormatError(model.part ? model.part->geometry.string() : "mesh", describe(model, refs[i]),
                                        e.what());
           }
-          if (static_cast<std::size_t>(c.em.K.rows()) != c.dofs.size() || c.em.M.rows() != c.em.K.rows())
+          if (static_cast<std::size_t>(c.em.K.rows()) != c.dofs.size() || (!opt.stiffness_only && c.em.M.rows() != c.em.K.rows()))
             throw std::logic_error("kernel returned matrices of the wrong size for " + describe(model, refs[i]));
           batch.push_back(std::move(c));
         }

@@ -161,6 +161,22 @@ DampingSpec read_damping(const JsonNode& n) {
   return d;
 }
 
+PreloadSpec read_preload(const JsonNode& n) {
+  n.allow_only({"gravity", "loads"});
+  PreloadSpec p;
+  if (auto g = n.find("gravity")) p.gravity = g->vec3();
+  if (auto ls = n.find("loads"))
+    for (const auto& l : ls->items()) {
+      l.allow_only({"interface", "force", "moment"});
+      PreloadSpec::Load load;
+      load.interface = l.at("interface").string();
+      if (auto f = l.find("force")) load.force = f->vec3();
+      if (auto m = l.find("moment")) load.moment = m->vec3();
+      p.loads.push_back(load);
+    }
+  return p;
+}
+
 }  // namespace
 
 const InterfaceSpec* PartSpec::find_interface(const std::string& name) const {
@@ -174,7 +190,7 @@ PartSpec load_part(const std::filesystem::path& path) {
   const JsonNode root = doc.root();
   if (!root.is_object()) root.fail("a part file is a JSON object");
   root.allow_only({"geometry", "mesh", "units", "groups", "materials", "shells", "beams", "point_masses",
-                   "interfaces", "reduction", "stiffening", "output_nodes", "damping", "visual", "comment"});
+                   "interfaces", "reduction", "stiffening", "preload", "output_nodes", "damping", "visual", "comment"});
   PartSpec p;
   p.file = path;
   const JsonNode g = root.at("geometry");
@@ -212,6 +228,7 @@ PartSpec load_part(const std::filesystem::path& path) {
   p.reduction = read_reduction(root.at("reduction"));
   if (auto d = root.find("damping")) p.damping = read_damping(*d);
   p.stiffening = root.boolean_or("stiffening", false);
+  if (auto pl = root.find("preload")) p.preload = read_preload(*pl);
   p.visual = root.boolean_or("visual", true);
   if (auto os = root.find("output_nodes"))
     for (const auto& n : os->items()) {
@@ -241,6 +258,9 @@ PartSpec load_part(const std::filesystem::path& path) {
   for (std::size_t i = 0; i < p.point_masses.size(); ++i)
     if (!p.point_masses[i].interface.empty() && !p.find_interface(p.point_masses[i].interface))
       root.at("point_masses").items()[i].at("interface").fail("no interface named '" + p.point_masses[i].interface + "'");
+  for (std::size_t i = 0; i < p.preload.loads.size(); ++i)
+    if (!p.find_interface(p.preload.loads[i].interface))
+      root.at("preload").at("loads").items()[i].at("interface").fail("no interface named '" + p.preload.loads[i].interface + "'");
   return p;
 }
 

@@ -28,7 +28,9 @@ std::vector<ElementRef> all_elements(const FeModel& model);
 struct AssemblyOptions {
   int threads = 0;                                   ///< 0: hardware concurrency
   std::function<void(double fraction)> progress;     ///< called from the calling thread
-  /// Substitute kernel (tests); empty = element_matrices().
+  /// Only K (no mass, no Ms, no quality): for geometric-stiffness assemblies.
+  bool stiffness_only = false;
+  /// Substitute kernel (stiffening, tests); empty = element_matrices().
   std::function<ElementMatrices(const FeModel&, const ElementRef&)> kernel;
 };
 

@@ -86,6 +86,17 @@ struct DampingSpec {
   double ratio = 0, alpha = 0, beta = 0;
 };
 
+/// Extension: a static preload whose stress prestresses the body (SID ksigma).
+struct PreloadSpec {
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  ///< acceleration of gravity [length/time^2]
+  struct Load {
+    std::string interface;
+    Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
+  };
+  std::vector<Load> loads;
+  bool empty() const { return gravity.isZero() && loads.empty(); }
+};
+
 struct OutputNodeSpec {
   std::string name;
   Eigen::Vector3d at = Eigen::Vector3d::Zero();
@@ -105,6 +116,7 @@ struct PartSpec {
   ReductionSpec reduction;
   DampingSpec damping;
   bool stiffening = false;
+  PreloadSpec preload;
   bool visual = true;
   std::vector<OutputNodeSpec> output_nodes;
 
