@@ -192,3 +192,22 @@ TEST(EigenSolver, SmallProblemsFallBackToDense) {
                      1e-12);
   EXPECT_EQ(s.info().backend_used, EigenBackend::Dense);
 }
+
+TEST(EigenSolver, ReusesACallerFactorOfTheShiftedMatrix) {
+  // Craig-Bampton style: the caller factorized K once (static solves) and reuses it.
+  const auto p = ffr::test::rod(300, 1.0, Ends::FixedFixed);
+  CholmodFactor f;
+  f.factorize_shifted(p.K, p.M, 0.0);
+  EigenOptions o;
+  o.nev = 6;
+  EigenSolver s(o);
+  auto ref = ffr::test::rod_eigenvalues(300, 1.0, Ends::FixedFixed);
+  ref.resize(6);
+  expect_eigenvalues(s.compute(p.K, p.M, f).lambda, ref, 1e-10);
+  EXPECT_EQ(s.info().factor.factorize_seconds, f.info().stats.factorize_seconds);
+  // A factor of another shift is refused.
+  o.sigma = -1.0;
+  EigenSolver t(o);
+  EXPECT_THROW(t.compute(p.K, p.M, f), std::invalid_argument);
+  EXPECT_EQ(t.info().status, EigenStatus::BadInput);
+}

@@ -79,12 +79,27 @@ int grow_nev(int nev, double top, double lambda_max, double sigma) {
 EigenSolver::EigenSolver(EigenOptions options) : options_(std::move(options)) {}
 
 const EigenResult& EigenSolver::compute(const SparseMatrix& K, const SparseMatrix& M) {
-  return run(K, M, nullptr);
+  return run_recorded(K, M, nullptr);
 }
 
 const EigenResult& EigenSolver::compute(const SparseMatrix& K, const SparseMatrix& M,
                                         const CholmodFactor& factor) {
-  return run(K, M, &factor);
+  return run_recorded(K, M, &factor);
+}
+
+// Whatever escapes run() (including exceptions of Spectra or of a CHOLMOD solve in the
+// middle of the Lanczos loop) leaves a status and message in info().
+const EigenResult& EigenSolver::run_recorded(const SparseMatrix& K, const SparseMatrix& M,
+                                             const CholmodFactor* given) {
+  try {
+    return run(K, M, given);
+  } catch (const std::exception& e) {
+    if (info_.status == EigenStatus::NotRun || info_.status == EigenStatus::Success) {
+      info_.status = EigenStatus::NotConverged;
+      info_.message = e.what();
+    }
+    throw;
+  }
 }
 
 const EigenResult& EigenSolver::run(const SparseMatrix& K, const SparseMatrix& M,
@@ -133,7 +148,9 @@ const EigenResult& EigenSolver::run(const SparseMatrix& K, const SparseMatrix& M
   }
 
   // ---- factorization of K - sigma M
-  CholmodFactor own(o.factor);
+  FactorOptions fo = o.factor;
+  fo.check_symmetry = false;  // K and M were validated above
+  CholmodFactor own(fo);
   const CholmodFactor* factor = given;
   const auto tf = Clock::now();
   try {

@@ -46,7 +46,8 @@ struct FactorOptions {
   /// diagonal, not to max L_jj^2 as CHOLMOD's rcond, so that DOFs of very different scale
   /// (rotations next to translations) do not trigger it. 0 disables the check.
   double min_pivot_ratio = 1e-7;
-  /// Check that a full-storage input is numerically symmetric (O(nnz) probe).
+  /// Validate every input (square, finite, accepted storage, symmetry probe; O(nnz)). Off
+  /// only when the caller has validated the matrices already.
   bool check_symmetry = true;
 };
 

@@ -130,6 +130,8 @@ class EigenSolver {
   const EigenOptions& options() const { return options_; }
 
  private:
+  const EigenResult& run_recorded(const SparseMatrix& K, const SparseMatrix& M,
+                                  const CholmodFactor* given);
   const EigenResult& run(const SparseMatrix& K, const SparseMatrix& M,
                          const CholmodFactor* given);
   EigenOptions options_;
