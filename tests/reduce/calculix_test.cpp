@@ -54,7 +54,7 @@ void compare(const formats::Sid& sid, Eigen::Index k, const test::CcxModes& ccx,
 TEST(CalculiX, ClampedModesOnTheIdenticalMesh) {
   Fixture fx;
   const formats::Sid sid = fx.reduce(R"({"method": "clamped", "interface": "root", "modes": 6})");
-  const auto ccx = test::calculix_frequency(fx.mesh(), fx.mat, "clamp", 6, fx.dir.path());
+  const auto ccx = test::calculix_frequency(fx.mesh(), fx.mat, "body", "clamp", 6, fx.dir.path());
   ASSERT_EQ(ccx.frequency_hz.size(), 6u);
   for (Eigen::Index k = 0; k < 6; ++k) compare(sid, k, ccx, k);
 }
@@ -63,7 +63,7 @@ TEST(CalculiX, FreeFreeModesOnTheIdenticalMesh) {
   Fixture fx;
   const formats::Sid sid = fx.reduce(R"({"method": "free", "modes": 6})");
   // CalculiX returns the six rigid-body modes first (near-zero frequencies), then the elastic ones.
-  const auto ccx = test::calculix_frequency(fx.mesh(), fx.mat, "", 12, fx.dir.path());
+  const auto ccx = test::calculix_frequency(fx.mesh(), fx.mat, "body", "", 12, fx.dir.path());
   ASSERT_EQ(ccx.frequency_hz.size(), 12u);
   for (int j = 0; j < 6; ++j) EXPECT_LT(ccx.frequency_hz[static_cast<std::size_t>(j)], 1e-3 * ccx.frequency_hz[6]);
   for (Eigen::Index k = 0; k < 6; ++k) {

@@ -96,8 +96,8 @@ std::vector<std::vector<double>> table_after(const std::string& text, const std:
 
 }  // namespace
 
-CcxModes calculix_frequency(const preproc::Mesh& mesh, const preproc::Material& mat, const std::string& fixed_group,
-                            int modes, const std::filesystem::path& workdir) {
+CcxModes calculix_frequency(const preproc::Mesh& mesh, const preproc::Material& mat, const std::string& group,
+                            const std::string& fixed_group, int modes, const std::filesystem::path& workdir) {
   std::ofstream f(workdir / "job.inp");
   f.precision(17);
   f << "*NODE\n";
@@ -105,7 +105,7 @@ CcxModes calculix_frequency(const preproc::Mesh& mesh, const preproc::Material& 
     f << n + 1 << ", " << mesh.x(n, 0) << ", " << mesh.x(n, 1) << ", " << mesh.x(n, 2) << "\n";
   std::size_t eid = 1;
   for (const auto& b : mesh.blocks) {
-    if (preproc::dimension(b.type) != 3) continue;
+    if (preproc::dimension(b.type) != 3 || b.group != group) continue;  // each element once
     const auto t = ccx_type(b.type);
     f << "*ELEMENT, TYPE=" << t.name << ", ELSET=EALL\n";
     for (preproc::Index e = 0; e < b.size(); ++e) {

@@ -49,9 +49,9 @@ struct CcxModes {
   Eigen::MatrixXd participation;
 };
 
-/// Runs ccx *FREQUENCY on the solid elements of `mesh` (C3D4/C3D10/C3D8/C3D20), with the
-/// nodes of `fixed_group` held (empty: free-free), one isotropic material.
-CcxModes calculix_frequency(const preproc::Mesh& mesh, const preproc::Material& mat, const std::string& fixed_group,
-                            int modes, const std::filesystem::path& workdir);
+/// Runs ccx *FREQUENCY on the solid elements of `group` in `mesh` (C3D4/C3D10/C3D8/C3D20),
+/// with the nodes of `fixed_group` held (empty: free-free), one isotropic material.
+CcxModes calculix_frequency(const preproc::Mesh& mesh, const preproc::Material& mat, const std::string& group,
+                            const std::string& fixed_group, int modes, const std::filesystem::path& workdir);
 
 }  // namespace ffr::test
