@@ -3,8 +3,9 @@
 // their gradients use the centre Jacobian J0 and the factor det J0 / det J, so
 // int B_alpha dA = 0 and the element passes the patch test for any convex shape. The modes make
 // in-plane bending of a parallelogram exact (no parasitic shear: no membrane "locking" in
-// in-plane bending). Drilling rotations follow Hughes–Brezzi (hb_drilling.hpp); the penalty
-// row includes the incompatible modes, so the pure-bending rotation field is matched exactly.
+// in-plane bending). Drilling rotations follow Hughes–Brezzi (hb_drilling.hpp: full penalty
+// on the element mean of omega - rz, a soft one on its fluctuation); omega includes the
+// incompatible modes, so the pure-bending rotation field is matched exactly.
 // The four mode amplitudes alpha are condensed out: K = Kdd - Kda Kaa^-1 Kad.
 //
 // Local DOFs per node (u, v, rz); alpha = (a_u1, a_u2, a_v1, a_v2).
@@ -29,6 +30,7 @@ LocalPart quad4_membrane(const Eigen::Matrix<double, 4, 2>& xy, const Material& 
   std::vector<Eigen::Matrix<double, 3, nt>> Bfull;
 
   LocalPart part;
+  std::vector<Eigen::Matrix<double, 1, nt>> rows;  // omega - rz at the Gauss points
   const Rule2 rule = quad_gauss2();
   for (std::size_t g = 0; g < rule.xi.size(); ++g) {
     const double xi = rule.xi[g].x(), eta = rule.xi[g].y();
@@ -61,11 +63,24 @@ LocalPart quad4_membrane(const Eigen::Matrix<double, 4, 2>& xy, const Material& 
       add_skew(r, cu, cv, dPx(0, k), dPx(1, k));
     }
     const double dA = det * rule.w[g];
-    K += dA * (B.transpose() * D * B + gamma * r.transpose() * r);
+    K += dA * B.transpose() * D * B;
+    rows.push_back(r);
     Bfull.push_back(B);
     part.xi.push_back(rule.xi[g]);
     part.area.push_back(dA);
   }
+
+  // Drilling penalty: the element mean of omega - rz with gamma, the rest with gamma_s.
+  double area = 0;
+  Eigen::Matrix<double, 1, nt> mean = Eigen::Matrix<double, 1, nt>::Zero();
+  for (std::size_t g = 0; g < rows.size(); ++g) {
+    mean += part.area[g] * rows[g];
+    area += part.area[g];
+  }
+  mean /= area;
+  K += gamma * area * mean.transpose() * mean;
+  for (std::size_t g = 0; g < rows.size(); ++g)
+    K += kDrillingFluctuationFactor * gamma * part.area[g] * (rows[g] - mean).transpose() * (rows[g] - mean);
 
   const Eigen::Matrix<double, na, na> Kaa = K.bottomRightCorner<na, na>();
   const Eigen::Matrix<double, na, nd> Kad = K.bottomLeftCorner<na, nd>();
