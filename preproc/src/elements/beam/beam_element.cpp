@@ -15,17 +15,17 @@ const std::string kWho = "beam LINE2";
 }
 
 Eigen::Matrix3d beam_frame(const Eigen::MatrixX3d& xe, const Eigen::Vector3d& y_axis) {
-  if (xe.rows() != 2) detail::fail(kWho, "expected 2 node rows, got " + std::to_string(xe.rows()));
-  detail::check_finite(kWho, xe, "node coordinates");
+  if (xe.rows() != 2) structural::fail(kWho, "expected 2 node rows, got " + std::to_string(xe.rows()));
+  structural::check_finite(kWho, xe, "node coordinates");
   const Eigen::Vector3d d = (xe.row(1) - xe.row(0)).transpose();
   const double L = d.norm();
   if (!(L > 1e-12 * std::max(1.0, xe.cwiseAbs().maxCoeff())))
-    detail::fail(kWho, "zero length (coincident nodes)");
-  if (!y_axis.allFinite() || y_axis.norm() == 0) detail::fail(kWho, "y_axis must be a non-zero vector");
+    structural::fail(kWho, "zero length (coincident nodes)");
+  if (!y_axis.allFinite() || y_axis.norm() == 0) structural::fail(kWho, "y_axis must be a non-zero vector");
   const Eigen::Vector3d ex = d / L;
   Eigen::Vector3d ey = y_axis - y_axis.dot(ex) * ex;
   if (ey.norm() <= 1e-6 * y_axis.norm())
-    detail::fail(kWho, "y_axis is parallel to the element axis; it must fix the section's y direction");
+    structural::fail(kWho, "y_axis is parallel to the element axis; it must fix the section's y direction");
   ey.normalize();
   Eigen::Matrix3d R;
   R.row(0) = ex.transpose();
@@ -37,13 +37,13 @@ Eigen::Matrix3d beam_frame(const Eigen::MatrixX3d& xe, const Eigen::Vector3d& y_
 namespace beam {
 
 void check_input(const Eigen::MatrixX3d& xe, const BeamSection& s) {
-  detail::check_positive(kWho, "section A", s.A);
-  detail::check_positive(kWho, "section Iy", s.Iy);
-  detail::check_positive(kWho, "section Iz", s.Iz);
-  detail::check_positive(kWho, "section J", s.J);
-  detail::check_non_negative(kWho, "shear factor ky", s.ky);
-  detail::check_non_negative(kWho, "shear factor kz", s.kz);
-  detail::check_material(kWho, s.material);
+  structural::check_positive(kWho, "section A", s.A);
+  structural::check_positive(kWho, "section Iy", s.Iy);
+  structural::check_positive(kWho, "section Iz", s.Iz);
+  structural::check_positive(kWho, "section J", s.J);
+  structural::check_non_negative(kWho, "shear factor ky", s.ky);
+  structural::check_non_negative(kWho, "shear factor kz", s.kz);
+  structural::check_material(kWho, s.material);
   beam_frame(xe, s.y_axis);
 }
 
@@ -112,7 +112,7 @@ ElementMatrices beam_element(const Eigen::MatrixX3d& xe, const BeamSection& s) {
       MassSample smp;
       smp.w = s.material.rho * s.A * p.L * beam::kGauss4W[g] / 4;
       smp.c = x1 + R.transpose() * (Eigen::Vector3d(beam::kGauss4X[g] * p.L, 0, 0) + r);
-      const Eigen::Matrix<double, 3, 12> Nl = H.topRows<3>() - detail::skew(r) * H.bottomRows<3>();
+      const Eigen::Matrix<double, 3, 12> Nl = H.topRows<3>() - structural::skew(r) * H.bottomRows<3>();
       smp.N = R.transpose() * Nl * T;
       out.M.noalias() += smp.w * smp.N.transpose() * smp.N;
       out.samples.push_back(std::move(smp));

@@ -9,7 +9,7 @@ namespace ffr::preproc {
 BeamResultants beam_resultants(const Eigen::MatrixX3d& xe, const BeamSection& s, const Eigen::VectorXd& d_e) {
   beam::check_input(xe, s);
   if (d_e.size() != 12)
-    detail::fail("beam LINE2", "displacement vector has " + std::to_string(d_e.size()) + " entries, expected 12");
+    structural::fail("beam LINE2", "displacement vector has " + std::to_string(d_e.size()) + " entries, expected 12");
   BeamResultants r;
   r.R = beam_frame(xe, s.y_axis);
   const beam::ShapeParams p = beam::shape_params(xe, s);

@@ -16,17 +16,17 @@ namespace ffr::preproc {
 ElementMatrices attached_mass(const Eigen::Vector3d& p_node, double mass, const Eigen::Vector3d& e,
                               const Eigen::Matrix3d& I) {
   const std::string who = "attached mass";
-  detail::check_positive(who, "mass", mass);
-  if (!p_node.allFinite() || !e.allFinite()) detail::fail(who, "position or com_offset contains NaN or infinity");
-  if (!I.allFinite()) detail::fail(who, "inertia contains NaN or infinity");
+  structural::check_positive(who, "mass", mass);
+  if (!p_node.allFinite() || !e.allFinite()) structural::fail(who, "position or com_offset contains NaN or infinity");
+  if (!I.allFinite()) structural::fail(who, "inertia contains NaN or infinity");
   const double scale = std::max(I.cwiseAbs().maxCoeff(), 1e-300);
-  if ((I - I.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale) detail::fail(who, "inertia must be symmetric");
+  if ((I - I.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale) structural::fail(who, "inertia must be symmetric");
 
   const Eigen::Matrix3d S = 0.5 * I.trace() * Eigen::Matrix3d::Identity() - I;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(0.5 * (S + S.transpose()));
   const Eigen::Vector3d lam = eig.eigenvalues();
   if (lam.minCoeff() < -1e-9 * std::max(scale, 0.0))
-    detail::fail(who, "inertia is not that of a physical body (principal moments must be >= 0 and satisfy the "
+    structural::fail(who, "inertia is not that of a physical body (principal moments must be >= 0 and satisfy the "
                       "triangle inequalities Ia + Ib >= Ic)");
 
   ElementMatrices out;
@@ -42,7 +42,7 @@ ElementMatrices attached_mass(const Eigen::Vector3d& p_node, double mass, const 
       smp.c = p_node + e + s;
       smp.N.resize(3, 6);
       smp.N.leftCols<3>() = Eigen::Matrix3d::Identity();
-      smp.N.rightCols<3>() = -detail::skew(e + s);  // theta x (e + s)
+      smp.N.rightCols<3>() = -structural::skew(e + s);  // theta x (e + s)
       out.M.noalias() += smp.w * smp.N.transpose() * smp.N;
       out.samples.push_back(std::move(smp));
     }

@@ -9,14 +9,14 @@ std::string who(ElementType type) { return std::string("shell ") + name(type); }
 void check_input(ElementType type, const Eigen::MatrixX3d& xe, const ShellSection& s) {
   const std::string w = who(type);
   if (type == ElementType::Tri6 || type == ElementType::Quad8 || type == ElementType::Quad9)
-    detail::fail(w, "second-order shell elements are not supported; mesh shell groups with order 1 (TRI3/QUAD4)");
+    structural::fail(w, "second-order shell elements are not supported; mesh shell groups with order 1 (TRI3/QUAD4)");
   if (type != ElementType::Tri3 && type != ElementType::Quad4)
-    detail::fail(w, "not a shell element type (expected TRI3 or QUAD4)");
+    structural::fail(w, "not a shell element type (expected TRI3 or QUAD4)");
   if (xe.rows() != num_nodes(type))
-    detail::fail(w, "expected " + std::to_string(num_nodes(type)) + " node rows, got " + std::to_string(xe.rows()));
-  detail::check_finite(w, xe, "node coordinates");
-  detail::check_positive(w, "thickness", s.thickness);
-  detail::check_material(w, s.material);
+    structural::fail(w, "expected " + std::to_string(num_nodes(type)) + " node rows, got " + std::to_string(xe.rows()));
+  structural::check_finite(w, xe, "node coordinates");
+  structural::check_positive(w, "thickness", s.thickness);
+  structural::check_material(w, s.material);
 }
 
 LocalShell local_shell(ElementType type, const Eigen::MatrixX3d& xe, const ShellSection& s) {

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-namespace ffr::preproc::detail {
+namespace ffr::preproc::structural {
 
 [[noreturn]] inline void fail(const std::string& who, const std::string& what) {
   throw ElementError(who + ": " + what);
@@ -48,4 +48,4 @@ inline Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
   return s;
 }
 
-}  // namespace ffr::preproc::detail
+}  // namespace ffr::preproc::structural

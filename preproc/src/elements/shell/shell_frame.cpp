@@ -8,8 +8,8 @@
 
 namespace ffr::preproc::shell {
 
-using detail::fail;
-using detail::num;
+using structural::fail;
+using structural::num;
 
 namespace {
 

@@ -51,7 +51,7 @@ void shell_mass(ElementType type, const Eigen::MatrixX3d& xe, const ShellFrame& 
       smp.w = rho * dA * 0.5 * t;
       smp.c = x + z * nrm;
       smp.N = Eigen::MatrixXd::Zero(3, ndof);
-      const Eigen::Matrix3d lever = -detail::skew(z * nrm);  // theta x e = -ẽ theta
+      const Eigen::Matrix3d lever = -structural::skew(z * nrm);  // theta x e = -ẽ theta
       for (int i = 0; i < n; ++i) {
         smp.N.block<3, 3>(0, 6 * i) = N(i) * Eigen::Matrix3d::Identity();
         smp.N.block<3, 3>(0, 6 * i + 3) = N(i) * lever;

@@ -17,7 +17,7 @@ ShellResultants shell_resultants(ElementType type, const Eigen::MatrixX3d& xe, c
                                  const Eigen::VectorXd& d_e) {
   shell::check_input(type, xe, section);
   if (d_e.size() != 6 * xe.rows())
-    detail::fail(shell::who(type), "displacement vector has " + std::to_string(d_e.size()) + " entries, expected " +
+    structural::fail(shell::who(type), "displacement vector has " + std::to_string(d_e.size()) + " entries, expected " +
                                        std::to_string(6 * xe.rows()));
   const shell::LocalShell l = shell::local_shell(type, xe, section);
   const Eigen::VectorXd dl = l.T * d_e;
@@ -44,10 +44,10 @@ ShellResultants shell_resultants(ElementType type, const Eigen::MatrixX3d& xe, c
 Eigen::MatrixXd shell_geometric_stiffness(ElementType type, const Eigen::MatrixX3d& xe, const ShellResultants& r) {
   const std::string w = shell::who(type);
   if (type != ElementType::Tri3 && type != ElementType::Quad4)
-    detail::fail(w, "geometric stiffness needs a TRI3 or QUAD4 element");
-  if (xe.rows() != num_nodes(type)) detail::fail(w, "wrong number of node rows");
+    structural::fail(w, "geometric stiffness needs a TRI3 or QUAD4 element");
+  if (xe.rows() != num_nodes(type)) structural::fail(w, "wrong number of node rows");
   if (r.N.size() != r.xi.size() || r.area.size() != r.xi.size())
-    detail::fail(w, "inconsistent resultants (points, areas and forces differ in number)");
+    structural::fail(w, "inconsistent resultants (points, areas and forces differ in number)");
   const shell::ShellFrame f = shell::make_frame(type, xe, w);
   const int n = static_cast<int>(xe.rows());
 
