@@ -3,11 +3,13 @@
 // body axes, nodes in gmsh order. Pure functions of the geometry and the section.
 //
 // QUAD4 = membrane (bilinear + Wilson/Taylor incompatible modes, Hughes–Brezzi drilling
-//         rotation) + Reissner–Mindlin plate (bilinear bending, MITC4 transverse shear of
+//         rotation: gamma = G on the element mean of (omega - rz), 0.01 G on its fluctuation,
+//         see src/elements/shell/hb_drilling.hpp) + Reissner–Mindlin plate (bilinear bending, MITC4 transverse shear of
 //         Bathe–Dvorkin), built on the element's mean plane; a warped quad is joined to its
 //         projected nodes by rigid links (u_proj = u + theta x (x_proj - x)), which keeps the
 //         six rigid-body modes exact.
-// TRI3  = Felippa's OPT membrane with drilling freedoms + the DKT plate (Batoz–Bathe–Ho).
+// TRI3  = Felippa's OPT membrane with drilling freedoms + the DKT plate (Batoz–Bathe–Ho);
+//         the mass samples interpolate translations and rotations linearly.
 //
 // Mass (see element.hpp): samples at 2 x 2 (QUAD4) or 3 (TRI3) surface points times 2 Gauss
 // points through the thickness; each sample moves with u = sum N_i (u_i + theta_i x z n)
