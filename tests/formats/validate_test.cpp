@@ -91,8 +91,6 @@ std::vector<Violation> violations() {
        }},
       {"rrdm - rdm rdm^T / m positive semi-definite", kRotary, [](Sid& s) { s.integrals.rdm *= 10; }},
       {"rotary.I positive semi-definite", kRotary, [](Sid& s) { s.rotary.I(0, 0) = -1; }},
-      {"rotary.I principal moments: triangle inequality", kRotary,
-       [](Sid& s) { s.rotary.I = Eigen::Vector3d(0.1, 0.1, 0.3).asDiagonal(); }},
       {"rotary.PsiIPsi positive semi-definite", kRotary, [](Sid& s) { s.rotary.PsiIPsi(1, 1) = -1; }},
       {"frequency_hz >= 0", kRotary, [](Sid& s) { s.refmod.frequency_hz[0] = -1; }},
       {"node names unique and non-empty", kRotary, [](Sid& s) { s.nodes[1].name = s.nodes[0].name; }},
