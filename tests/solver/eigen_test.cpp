@@ -211,3 +211,30 @@ TEST(EigenSolver, ReusesACallerFactorOfTheShiftedMatrix) {
   EXPECT_THROW(t.compute(p.K, p.M, f), std::invalid_argument);
   EXPECT_EQ(t.info().status, EigenStatus::BadInput);
 }
+
+TEST(EigenSolver, FailedChecksAndNonConvergenceAreReported) {
+  const auto p = ffr::test::box(11, 1.0, 9, 0.8, 7, 0.6, Ends::FixedFixed);
+  EigenOptions o;
+  o.nev = 6;
+  o.residual_tol = 1e-20;  // below what double precision can reach
+  EigenSolver s(o);
+  try {
+    s.compute(p.K, p.M);
+    FAIL();
+  } catch (const EigenSolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("relative residual"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(s.info().status, EigenStatus::CheckFailed);
+  EXPECT_EQ(s.result().lambda.size(), 6);  // still readable for diagnosis
+  // Minimal Krylov space and a single restart: neither backend can converge 20 pairs.
+  for (EigenBackend b : {EigenBackend::Spectra, EigenBackend::Arpack}) {
+    EigenOptions q;
+    q.nev = 20;
+    q.ncv = 21;
+    q.max_restarts = 1;
+    q.backend = b;
+    EigenSolver t(q);
+    EXPECT_THROW(t.compute(p.K, p.M), EigenSolverError) << to_string(b);
+    EXPECT_EQ(t.info().status, EigenStatus::NotConverged) << to_string(b);
+  }
+}

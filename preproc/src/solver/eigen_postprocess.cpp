@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace ffr::preproc::detail {
 
@@ -78,6 +79,34 @@ void finish_eigenpairs(const SparseMatrix& K, SymmetricStorage sK, const SparseM
   out.deflation_error =
       (m > 0 && !deflation.empty()) ? (deflation.MR.transpose() * X).cwiseAbs().maxCoeff() : 0.0;
   out.X = std::move(X);
+}
+
+std::string check_eigenpairs(const EigenResult& r, const EigenOptions& o, double zero_scale) {
+  std::ostringstream why;
+  for (Eigen::Index j = 0; j < r.lambda.size(); ++j) {
+    // A zero eigenvalue (undeflated rigid-body mode) has K x and lambda M x both at the
+    // rounding level of the product, so its relative residual is noise over noise; the
+    // backward error is the meaningful measure there.
+    const bool zero = std::abs(r.lambda[j]) <= zero_scale;
+    const double checked = zero ? r.backward_error[j] : r.relative_residual[j];
+    if (!(checked <= o.residual_tol)) {
+      why << "eigenpair " << j << " (lambda = " << r.lambda[j] << ") has "
+          << (zero ? "backward error " : "relative residual ") << checked << " > "
+          << o.residual_tol;
+      return why.str();
+    }
+    if (!(r.lambda[j] > o.sigma)) {
+      why << "eigenvalue " << r.lambda[j] << " is not above the shift " << o.sigma;
+      return why.str();
+    }
+  }
+  if (!(r.orthonormality_error <= o.orthonormality_tol))
+    why << "M-orthonormality error max|X^T M X - I| = " << r.orthonormality_error << " > "
+        << o.orthonormality_tol;
+  else if (!(r.deflation_error <= o.orthonormality_tol))
+    why << "M-orthogonality to the deflation basis max|R^T M X| = " << r.deflation_error << " > "
+        << o.orthonormality_tol;
+  return why.str();
 }
 
 }  // namespace ffr::preproc::detail

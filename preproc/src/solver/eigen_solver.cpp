@@ -281,34 +281,10 @@ const EigenResult& EigenSolver::run(const SparseMatrix& K, const SparseMatrix& M
     throw EigenSolverError(os.str());
   }
 
-  std::ostringstream why;
-  const EigenResult& r = result_;
-  const double zero_scale = kZeroEigenvalue * sym_norm1(K, sK) / sym_norm1(M, sM);
-  for (Eigen::Index j = 0; j < r.lambda.size(); ++j) {
-    // A zero eigenvalue (undeflated rigid-body mode) has K x and lambda M x both at the
-    // rounding level of the product, so its relative residual is 0/0-like noise; the
-    // backward error is the meaningful measure there.
-    const bool zero = std::abs(r.lambda[j]) <= zero_scale;
-    const double checked = zero ? r.backward_error[j] : r.relative_residual[j];
-    if (!(checked <= o.residual_tol)) {
-      why << "eigenpair " << j << " (lambda = " << r.lambda[j] << ") has "
-          << (zero ? "backward error " : "relative residual ") << checked << " > "
-          << o.residual_tol;
-      break;
-    }
-    if (!(r.lambda[j] > o.sigma)) {
-      why << "eigenvalue " << r.lambda[j] << " is not above the shift " << o.sigma;
-      break;
-    }
-  }
-  if (why.str().empty() && !(r.orthonormality_error <= o.orthonormality_tol))
-    why << "M-orthonormality error max|X^T M X - I| = " << r.orthonormality_error << " > "
-        << o.orthonormality_tol;
-  if (why.str().empty() && !(r.deflation_error <= o.orthonormality_tol))
-    why << "M-orthogonality to the deflation basis max|R^T M X| = " << r.deflation_error << " > "
-        << o.orthonormality_tol;
-  if (!why.str().empty()) {
-    const std::string msg = "eigen-solver check failed: " + why.str();
+  const std::string why = detail::check_eigenpairs(
+      result_, o, kZeroEigenvalue * sym_norm1(K, sK) / sym_norm1(M, sM));
+  if (!why.empty()) {
+    const std::string msg = "eigen-solver check failed: " + why;
     fail(EigenStatus::CheckFailed, msg);
     throw EigenSolverError(msg);
   }
