@@ -46,8 +46,7 @@ void finish_eigenpairs(const SparseMatrix& K, SymmetricStorage sK, const SparseM
                        int keep, double lambda_max, EigenResult& out);
 
 /// "" if every pair passes (see EigenSolver's header for the criteria), else the reason.
-/// zero_scale: eigenvalues with |lambda| below it are numerically zero.
-std::string check_eigenpairs(const EigenResult& r, const EigenOptions& o, double zero_scale);
+std::string check_eigenpairs(const EigenResult& r, const EigenOptions& o);
 
 /// Flips each column so that its first component with |x_i| >= kSignThreshold max|x| is > 0.
 void normalize_signs(Eigen::MatrixXd& X);

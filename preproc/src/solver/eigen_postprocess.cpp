@@ -81,18 +81,14 @@ void finish_eigenpairs(const SparseMatrix& K, SymmetricStorage sK, const SparseM
   out.X = std::move(X);
 }
 
-std::string check_eigenpairs(const EigenResult& r, const EigenOptions& o, double zero_scale) {
+std::string check_eigenpairs(const EigenResult& r, const EigenOptions& o) {
   std::ostringstream why;
   for (Eigen::Index j = 0; j < r.lambda.size(); ++j) {
-    // A zero eigenvalue (undeflated rigid-body mode) has K x and lambda M x both at the
-    // rounding level of the product, so its relative residual is noise over noise; the
-    // backward error is the meaningful measure there.
-    const bool zero = std::abs(r.lambda[j]) <= zero_scale;
-    const double checked = zero ? r.backward_error[j] : r.relative_residual[j];
-    if (!(checked <= o.residual_tol)) {
-      why << "eigenpair " << j << " (lambda = " << r.lambda[j] << ") has "
-          << (zero ? "backward error " : "relative residual ") << checked << " > "
-          << o.residual_tol;
+    if (!(r.relative_residual[j] <= o.residual_tol) &&
+        !(r.backward_error[j] <= kRoundoffBackwardError)) {
+      why << "eigenpair " << j << " (lambda = " << r.lambda[j] << ") has relative residual "
+          << r.relative_residual[j] << " > " << o.residual_tol << " and backward error "
+          << r.backward_error[j] << " above the rounding level " << kRoundoffBackwardError;
       return why.str();
     }
     if (!(r.lambda[j] > o.sigma)) {
