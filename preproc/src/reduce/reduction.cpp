@@ -70,10 +70,6 @@ EigenOptions eigen_options(const ReductionSpec& spec, const PartSpec& part, doub
   if (spec.max_frequency_hz) o.lambda_max = lambda_of_hz(*spec.max_frequency_hz, part);
   o.sigma = sigma;
   o.backend = spec.backend == "arpack" ? EigenBackend::Arpack : EigenBackend::Spectra;
-  // A relative residual of 1e-6 bounds the eigenvalue error by ~1e-12 and the mode error by
-  // 1e-6 / gap: far below any discretisation error; tighter bounds fail on ill-conditioned
-  // (slender, stiff) parts for no gain.
-  o.residual_tol = 1e-6;
   return o;
 }
 
