@@ -130,6 +130,7 @@ std::vector<Violation> violations() {
       {"normal modes: Ke = diag(omega^2)", kFree, [](Sid& s) { s.Ke(0, 1) = s.Ke(1, 0) = 1e-3 * s.Ke(3, 3); }},
       {"normal and constraint modes: Ke coupling = 0", kRotaryCB,
        [](Sid& s) { s.Ke(0, 2) = s.Ke(2, 0) = 1e-3 * s.Ke(2, 2); }},
+      {"damping model 'ratio z': De = diag(2 z omega)", kFree, [](Sid& s) { s.De(1, 1) *= 1.01; }},
       {"free: Ct.M0 = 0", kFree, [](Sid& s) { s.Ct.M0(0, 1) = 1e-3; }},
       {"free: Cr.M0 = 0", kFree, [](Sid& s) { s.Cr.M0(2, 2) = 1e-3; }},
       {"reference is free, clamped:<interface> or craig-bampton", kClamped,

@@ -2,6 +2,8 @@
 // the eigen-solve (ValidateOptions::modal_rtol).
 #include "context.hpp"
 
+#include <string>
+
 namespace ffr::formats::validation {
 
 void check_modal(Context& cx) {
@@ -49,6 +51,31 @@ void check_modal(Context& cx) {
     for (auto k : normal)
       for (auto i : constraint) w.add(s.Ke(k, i), index({k, i}));
     cx.record(cb, "/sid/Ke/M0", w, sc.Ke, tol);
+  }
+
+  // A stated modal damping ratio: De = diag(2 zeta omega_k) on the mass-normalised normal modes.
+  const std::string dr = "damping model 'ratio z': De = diag(2 z omega)";
+  const std::string& dm = s.provenance.damping_model;
+  double zeta = -1;
+  if (dm.rfind("ratio ", 0) == 0) {
+    try {
+      zeta = std::stod(dm.substr(6));
+    } catch (const std::exception&) {
+      zeta = -1;
+    }
+  }
+  if (zeta < 0 || normal.empty()) {
+    cx.skip(dr, "/sid/De/M0", "damping model is '" + dm + "'");
+  } else {
+    Worst w;
+    double scale = 0;
+    for (auto k : normal)
+      for (auto i : normal) {
+        const double want = k == i ? 2 * zeta * omega[k] * s.Me(k, k) : 0.0;
+        w.add(s.De(k, i) - want, index({k, i}));
+        scale = std::max(scale, std::abs(want));
+      }
+    cx.record(dr, "/sid/De/M0 /provenance@damping_model", w, scale > 0 ? scale : 1.0, tol);
   }
 
   const std::string& ref = s.refmod.reference;
