@@ -19,7 +19,7 @@ using namespace ffr;
 
 namespace {
 
-struct Run {
+struct SimRun {
   int status = -1;
   std::string output;
   std::vector<double> t, tip;  // tip deflection in the body's y (in the plane of rotation)
@@ -48,7 +48,7 @@ Transfinite Curve{1} = 41; Physical Curve("beam") = {1}; Physical Point("root") 
   return sid;
 }
 
-Run simulate(double W, bool stiffening, double end) {
+SimRun simulate(double W, bool stiffening, double end) {
   test::TempDir dir("spinup");
   const test::SpinUp s{W, 15.0};
   std::ostringstream t, v;
@@ -67,7 +67,7 @@ Run simulate(double W, bool stiffening, double end) {
     "solver": {"end": )" << end << R"(, "step": 0.002},
     "outputs": [{"name": "tip", "type": "node_deformation", "body": "beam", "node": "tip"}]})";
   test::write_text(dir / "model.json", model.str());
-  Run out;
+  SimRun out;
   const auto r = test::run(test::bin("ffr-sim").string() + " " + (dir / "model.json").string() + " -o " +
                            (dir / "out.h5").string());
   out.status = r.status;
@@ -89,7 +89,7 @@ class SpinUpManeuver : public ::testing::TestWithParam<double> {};
 
 TEST_P(SpinUpManeuver, BoundedAndFollowsKanesEquations) {
   const double W = GetParam();
-  const Run run = simulate(W, true, 20.0);
+  const SimRun run = simulate(W, true, 20.0);
   ASSERT_EQ(run.status, 0) << run.output;
   const auto ref = test::kane_tip_deflection({}, {W, 15.0}, run.t, true);
   double peak = 0, worst = 0, late = 0;
@@ -108,14 +108,14 @@ TEST_P(SpinUpManeuver, BoundedAndFollowsKanesEquations) {
 INSTANTIATE_TEST_SUITE_P(Kane1987, SpinUpManeuver, ::testing::Values(4.0, 6.0, 10.0));
 
 TEST(SpinUpManeuver, WithoutStiffeningItDivergesAtSixRadPerSecond) {
-  const Run stiff = simulate(6.0, true, 20.0);
+  const SimRun stiff = simulate(6.0, true, 20.0);
   ASSERT_EQ(stiff.status, 0) << stiff.output;
   double bounded = 0;
   for (double v : stiff.tip) bounded = std::max(bounded, std::abs(v));
   // The reference diverges too (checked, so the claim is about the equations, not the code).
   const auto ref = test::kane_tip_deflection({}, {6.0, 15.0}, {20.0}, false);
   EXPECT_GT(std::abs(ref[0]), 10 * bounded);
-  const Run soft = simulate(6.0, false, 20.0);
+  const SimRun soft = simulate(6.0, false, 20.0);
   if (soft.status == 0) {
     double grown = 0;
     for (double v : soft.tip) grown = std::max(grown, std::abs(v));
