@@ -98,13 +98,17 @@ std::vector<std::vector<double>> table_after(const std::string& text, const std:
 
 CcxModes run_ccx(const std::filesystem::path& workdir);
 
+void write_nodes(std::ostream& f, const preproc::Mesh& mesh) {
+  f << "*NODE\n";
+  for (preproc::Index n = 0; n < mesh.num_nodes(); ++n)
+    f << n + 1 << ", " << mesh.x(n, 0) << ", " << mesh.x(n, 1) << ", " << mesh.x(n, 2) << "\n";
+}
+
 CcxModes calculix_frequency(const preproc::Mesh& mesh, const preproc::Material& mat, const std::string& group,
                             const std::string& fixed_group, int modes, const std::filesystem::path& workdir) {
   std::ofstream f(workdir / "job.inp");
   f.precision(17);
-  f << "*NODE\n";
-  for (preproc::Index n = 0; n < mesh.num_nodes(); ++n)
-    f << n + 1 << ", " << mesh.x(n, 0) << ", " << mesh.x(n, 1) << ", " << mesh.x(n, 2) << "\n";
+  write_nodes(f, mesh);
   std::size_t eid = 1;
   for (const auto& b : mesh.blocks) {
     if (preproc::dimension(b.type) != 3 || b.group != group) continue;  // each element once
@@ -133,9 +137,7 @@ CcxModes calculix_frequency_structural(const preproc::Mesh& mesh, const preproc:
                                        const std::filesystem::path& workdir) {
   std::ofstream f(workdir / "job.inp");
   f.precision(17);
-  f << "*NODE\n";
-  for (preproc::Index n = 0; n < mesh.num_nodes(); ++n)
-    f << n + 1 << ", " << mesh.x(n, 0) << ", " << mesh.x(n, 1) << ", " << mesh.x(n, 2) << "\n";
+  write_nodes(f, mesh);
   std::size_t eid = 1;
   for (const auto& b : mesh.blocks) {
     if (b.group != group) continue;
