@@ -4,8 +4,10 @@
 #include "ffr/formats/validate.hpp"
 #include "ffr/preproc/part/part.hpp"
 #include "ffr/preproc/pipeline.hpp"
+#include "ffr/preproc/threads.hpp"
 
 #include <chrono>
+#include <cstdlib>
 #include <iostream>
 #include <unistd.h>
 
@@ -24,12 +26,14 @@ options:
   -o, --output FILE     the SID file to write (required)
   --vtk FILE            also write the mesh with every mode shape for ParaView (.vtk)
   --backend NAME        eigen-solver: spectra (default) or arpack (overrides the part file)
+  --threads N           worker threads of assembly and invariants (default: all cores);
+                        BLAS threads follow OPENBLAS_NUM_THREADS
   --quiet               no progress output (errors are still printed)
   --help, --version
 
 exit status: 0 ok, 2 bad input (the message names the file and the field), 1 other failure.
 )",
-    "ffr-reduce PART.json -o OUT.sid.h5 [--vtk MODES.vtk] [--backend spectra|arpack] [--quiet]"};
+    "ffr-reduce PART.json -o OUT.sid.h5 [--vtk MODES.vtk] [--backend spectra|arpack] [--threads N] [--quiet]"};
 
 }  // namespace
 
@@ -40,6 +44,12 @@ int main(int argc, char** argv) {
     if (auto o = args.option("-o")) out = o;
     const auto vtk = args.option("--vtk");
     const auto backend = args.option("--backend");
+    if (const auto threads = args.option("--threads")) {
+      char* end = nullptr;
+      const long n = std::strtol(threads->c_str(), &end, 10);
+      if (threads->empty() || *end || n < 1 || n > 1024) throw ffr::cli::UsageError("--threads must be a count >= 1");
+      ffr::preproc::set_max_threads(static_cast<unsigned>(n));
+    }
     const auto pos = args.positionals();
     if (pos.size() != 1) throw ffr::cli::UsageError("expected one part file");
     if (!out) throw ffr::cli::UsageError("missing -o OUT.sid.h5");

@@ -1,5 +1,7 @@
 #include "ffr/preproc/reduce/invariants.hpp"
 
+#include "ffr/preproc/threads.hpp"
+
 #include <Eigen/Geometry>
 #include <mutex>
 #include <thread>
@@ -100,7 +102,7 @@ void compute_integrals(const FeModel& model, const Assembled& fe, const Eigen::M
   for (const auto& r : all_elements(model))
     if (r.block < 0 || model.blocks[static_cast<std::size_t>(r.block)].kind != ElementKind::Solid) refs.push_back(r);
   if (!refs.empty()) {
-    const unsigned nt = std::max(1u, std::min<unsigned>(std::thread::hardware_concurrency(), static_cast<unsigned>(refs.size())));
+    const unsigned nt = std::max(1u, std::min<unsigned>(max_threads(), static_cast<unsigned>(refs.size())));
     std::vector<Accum> parts(nt, Accum(nq));
     std::vector<std::thread> pool;
     std::exception_ptr error;

@@ -7,6 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -93,6 +94,25 @@ void record(ReductionResult& r, const EigenSolver& s) {
   r.backend = to_string(s.info().backend_used);
 }
 
+// Wall seconds since t0 (and restart the clock).
+double lap(std::chrono::steady_clock::time_point& t0) {
+  const auto now = std::chrono::steady_clock::now();
+  const double s = std::chrono::duration<double>(now - t0).count();
+  t0 = now;
+  return s;
+}
+
+// One line with the parts of the eigen-solve, for anyone looking for where the time goes.
+std::string timing_line(double constraints, double analyze, double factorize, const EigenInfo* eig) {
+  std::ostringstream o;
+  o.precision(3);
+  o << "timing: constraints " << constraints << " s, analyze " << analyze << " s, factorize " << factorize << " s";
+  if (eig)
+    o << ", lanczos " << eig->lanczos_seconds << " s, solves " << eig->operator_applications << ", checks "
+      << eig->verify_seconds << " s";
+  return o.str();
+}
+
 std::string factor_line(const FactorStatistics& f) {
   std::ostringstream o;
   o.precision(3);
@@ -116,6 +136,7 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
     throw FormatError(part.file.string(), "geometry", o.str());
   }
 
+  auto clock = std::chrono::steady_clock::now();
   const DofTransform t = build_transform(model, states_for(model, spec));
   const SparseMatrix K = t.identity ? fe.K : detail::congruence(t.T, fe.K);
   const SparseMatrix M = t.identity ? fe.M : detail::congruence(t.T, fe.M);
@@ -138,17 +159,22 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
         ", " + spec.backend);
     // Analyse first and report the factor's size, so a factor that will not fit is refused
     // (by factorize, with the numbers) after the user has seen what it would need.
+    const double t_constraints = lap(clock);
     CholmodFactor factor(o.factor);
     const SparseMatrix C = shifted_upper(K, M, sigma);
     say(factor_line(factor.analyze(C)));
+    const double t_analyze = lap(clock);
+    double t_factorize = 0;
     EigenSolver solver(o);
     attach_progress(solver, log);
     try {
       factor.factorize_shifted(K, M, sigma);
+      t_factorize = lap(clock);
       solver.compute(K, M, factor);
     } catch (const NotPositiveDefiniteError& e) {
       mechanism(model, "the stiffness is singular at " + node_text(model, t, e.column));
     }
+    say(timing_line(t_constraints, t_analyze, t_factorize, &solver.info()));
     record(r, solver);
     r.factor = factor.info().stats;
     check_no_zero_modes(model, solver.result().lambda, part, free ? "beyond the six rigid-body modes" : "with the interface held");
@@ -169,14 +195,17 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
     const auto split = detail::split(K, M, boundary);
     say("craig-bampton: " + std::to_string(boundary.size()) + " boundary DOF, " +
         std::to_string(split.interior.size()) + " interior DOF");
+    const double t_constraints = lap(clock);
     CholmodFactor factor;
     say(factor_line(factor.analyze(split.Kii)));
+    const double t_analyze = lap(clock);
     try {
       factor.factorize(split.Kii);
     } catch (const NotPositiveDefiniteError& e) {
       mechanism(model, "with the frame interface '" + spec.frame + "' held, the stiffness is singular at " +
                            node_text(model, t, split.interior[static_cast<std::size_t>(e.column)]));
     }
+    const double t_factorize = lap(clock);
     r.factor = factor.info().stats;
     // Static constraint modes: interior response to a unit motion of each boundary DOF.
     const Eigen::MatrixXd Psi_i = -factor.solve(Eigen::MatrixXd(split.Kib));
@@ -186,10 +215,13 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
       EigenSolver solver(eigen_options(spec, part, 0.0));
       attach_progress(solver, log);
       solver.compute(split.Kii, split.Mii, factor);
+      say(timing_line(t_constraints, t_analyze, t_factorize, &solver.info()));
       record(r, solver);
       check_no_zero_modes(model, solver.result().lambda, part, "with the frame interface held");
       modes_i = solver.result().X;
       lambda_n = solver.result().lambda;
+    } else {
+      say(timing_line(t_constraints, t_analyze, t_factorize, nullptr));
     }
     const Index nb = static_cast<Index>(boundary.size());
     const Index nn = modes_i.cols();
