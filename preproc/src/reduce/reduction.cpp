@@ -121,9 +121,12 @@ std::string factor_line(const FactorStatistics& f) {
   return o.str();
 }
 
-}  // namespace
+// Frees a matrix's storage (assigning an empty matrix keeps Eigen's allocation).
+void release(SparseMatrix& A) { SparseMatrix().swap(A); }
 
-ReductionResult reduce(const FeModel& model, const Assembled& fe, const ReductionSpec& spec, const ReductionLog& log) {
+// fe_owned: the same object as fe, when its K and M may be freed after use.
+ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled* fe_owned, const ReductionSpec& spec,
+                            const ReductionLog& log) {
   const PartSpec& part = *model.part;
   auto say = [&](const std::string& s) { if (log.message) log.message(s); };
 
@@ -138,8 +141,19 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
 
   auto clock = std::chrono::steady_clock::now();
   const DofTransform t = build_transform(model, states_for(model, spec));
-  const SparseMatrix K = t.identity ? fe.K : detail::congruence(t.T, fe.K);
-  const SparseMatrix M = t.identity ? fe.M : detail::congruence(t.T, fe.M);
+  // The eigen-solves need only the upper triangles (half the memory, and the products with
+  // them read half the bytes); Craig-Bampton partitions K into blocks and keeps full storage.
+  const bool cb = spec.method == ReductionSpec::Method::CraigBampton;
+  const SymmetricStorage storage = cb ? SymmetricStorage::Full : SymmetricStorage::UpperOnly;
+  auto reduced = [&](const SparseMatrix& A) -> SparseMatrix {
+    if (!t.identity) return detail::congruence(t.T, A, !cb);
+    if (cb) return A;
+    return A.triangularView<Eigen::Upper>();
+  };
+  const SparseMatrix K = reduced(fe.K);
+  if (fe_owned) release(fe_owned->K);
+  const SparseMatrix M = reduced(fe.M);
+  if (fe_owned) release(fe_owned->M);
 
   ReductionResult r;
   nlohmann::json params;
@@ -161,14 +175,15 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
     // (by factorize, with the numbers) after the user has seen what it would need.
     const double t_constraints = lap(clock);
     CholmodFactor factor(o.factor);
-    const SparseMatrix C = shifted_upper(K, M, sigma);
+    SparseMatrix C = shifted_upper(K, M, sigma);
     say(factor_line(factor.analyze(C)));
     const double t_analyze = lap(clock);
     double t_factorize = 0;
     EigenSolver solver(o);
     attach_progress(solver, log);
     try {
-      factor.factorize_shifted(K, M, sigma);
+      factor.factorize_shifted_upper(C, sigma);
+      release(C);  // the factor holds what is needed from here on
       t_factorize = lap(clock);
       solver.compute(K, M, factor);
     } catch (const NotPositiveDefiniteError& e) {
@@ -244,7 +259,8 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
     params = {{"method", "craig-bampton"}, {"interfaces", spec.interfaces}, {"frame", spec.frame},
               {"orthonormalized", spec.orthonormalize}};
     if (spec.orthonormalize) {
-      const Eigen::MatrixXd Kr = basis.transpose() * (K * basis), Mr = basis.transpose() * (M * basis);
+      const Eigen::MatrixXd Kr = basis.transpose() * sym_multiply(K, storage, basis);
+      const Eigen::MatrixXd Mr = basis.transpose() * sym_multiply(M, storage, basis);
       Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(Kr, Mr);
       if (ges.info() != Eigen::Success) throw std::runtime_error("orthonormalization of the Craig-Bampton basis failed");
       basis = basis * ges.eigenvectors();
@@ -256,10 +272,21 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
   if (spec.max_frequency_hz) params["max_frequency_hz"] = *spec.max_frequency_hz;
   r.parameters_json = params.dump();
 
-  r.Ke = basis.transpose() * (K * basis);
-  r.Me = basis.transpose() * (M * basis);
+  r.Ke = basis.transpose() * sym_multiply(K, storage, basis);
+  r.Me = basis.transpose() * sym_multiply(M, storage, basis);
   r.Phi = t.identity ? basis : Eigen::MatrixXd(t.T * basis);
   return r;
+}
+
+}  // namespace
+
+ReductionResult reduce(const FeModel& model, const Assembled& fe, const ReductionSpec& spec, const ReductionLog& log) {
+  return reduce_impl(model, fe, nullptr, spec, log);
+}
+
+ReductionResult reduce_consuming_matrices(const FeModel& model, Assembled& fe, const ReductionSpec& spec,
+                                          const ReductionLog& log) {
+  return reduce_impl(model, fe, &fe, spec, log);
 }
 
 }  // namespace ffr::preproc
