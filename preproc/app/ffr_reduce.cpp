@@ -25,7 +25,8 @@ at the end, so a failed run leaves no file.
 options:
   -o, --output FILE     the SID file to write (required)
   --vtk FILE            also write the mesh with every mode shape for ParaView (.vtk)
-  --backend NAME        eigen-solver: spectra (default) or arpack (overrides the part file)
+  --backend NAME        eigen-solver: block (default; block Lanczos, falls back to spectra),
+                        spectra or arpack (overrides the part file)
   --threads N           worker threads of assembly and invariants (default: all cores);
                         BLAS threads follow OPENBLAS_NUM_THREADS
   --quiet               no progress output (errors are still printed)
@@ -33,7 +34,7 @@ options:
 
 exit status: 0 ok, 2 bad input (the message names the file and the field), 1 other failure.
 )",
-    "ffr-reduce PART.json -o OUT.sid.h5 [--vtk MODES.vtk] [--backend spectra|arpack] [--threads N] [--quiet]"};
+    "ffr-reduce PART.json -o OUT.sid.h5 [--vtk MODES.vtk] [--backend block|spectra|arpack] [--threads N] [--quiet]"};
 
 }  // namespace
 
@@ -56,7 +57,8 @@ int main(int argc, char** argv) {
 
     ffr::preproc::PartSpec part = ffr::preproc::load_part(pos[0]);
     if (backend) {
-      if (*backend != "spectra" && *backend != "arpack") throw ffr::cli::UsageError("--backend must be spectra or arpack");
+      if (*backend != "spectra" && *backend != "arpack" && *backend != "block")
+        throw ffr::cli::UsageError("--backend must be block, spectra or arpack");
       part.reduction.backend = *backend;
     }
     const bool tty = ::isatty(STDERR_FILENO);

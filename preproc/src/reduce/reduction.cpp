@@ -70,7 +70,9 @@ EigenOptions eigen_options(const ReductionSpec& spec, const PartSpec& part, doub
   o.nev = spec.modes > 0 ? spec.modes : 10;
   if (spec.max_frequency_hz) o.lambda_max = lambda_of_hz(*spec.max_frequency_hz, part);
   o.sigma = sigma;
-  o.backend = spec.backend == "arpack" ? EigenBackend::Arpack : EigenBackend::Spectra;
+  o.backend = spec.backend == "arpack" ? EigenBackend::Arpack
+              : spec.backend == "block" ? EigenBackend::Block
+                                        : EigenBackend::Spectra;
   return o;
 }
 

@@ -89,6 +89,21 @@ void ShiftInvertOp::perform_op(const double* x_in, double* y_out) const {
   if (observer_) observer_(applications_);
 }
 
+Eigen::MatrixXd ShiftInvertOp::apply_block(const Eigen::MatrixXd& X) const {
+  Eigen::MatrixXd Y;
+  if (deflation_) {
+    Eigen::MatrixXd F = X;
+    for (Eigen::Index j = 0; j < F.cols(); ++j) deflation_->project_dual(F.col(j).data());
+    Y = factor_.solve(F);
+    for (Eigen::Index j = 0; j < Y.cols(); ++j) deflation_->project(Y.col(j).data());
+  } else {
+    Y = factor_.solve(X);
+  }
+  applications_ += X.cols();
+  if (observer_) observer_(applications_);
+  return Y;
+}
+
 void MassOp::perform_op(const double* x_in, double* y_out) const {
   const Eigen::Index n = M_.cols();
   const auto bytes = static_cast<std::size_t>(n) * sizeof(double);

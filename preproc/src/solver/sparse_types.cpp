@@ -1,10 +1,12 @@
 #include "ffr/preproc/solver/sparse_types.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace ffr::preproc {
 
@@ -39,18 +41,36 @@ Eigen::MatrixXd sym_multiply(const SparseMatrix& A, SymmetricStorage storage,
   const RowMajorMatrix Xr = X;
   RowMajorMatrix Yr = RowMajorMatrix::Zero(A.rows(), X.cols());
   if (storage == SymmetricStorage::UpperOnly) {
+    // Raw loops over contiguous rows of width m (Eigen's dynamic-size row expressions cost
+    // more than the arithmetic for the 4..30 columns of the eigen-solvers).
+    const Eigen::Index m = X.cols();
+    const double* x = Xr.data();
+    double* y = Yr.data();
+    const auto* outer = A.outerIndexPtr();
+    const auto* nnz = A.innerNonZeroPtr();
+    const auto* rows = A.innerIndexPtr();
+    const double* vals = A.valuePtr();
+    std::vector<double> acc(static_cast<std::size_t>(m));
     for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
-      auto yj = Yr.row(j);
-      const auto xj = Xr.row(j);
-      for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
-        const Eigen::Index i = it.row();
+      const double* xj = x + j * m;
+      std::fill(acc.begin(), acc.end(), 0.0);
+      const auto end = nnz ? outer[j] + nnz[j] : outer[j + 1];
+      for (auto k = outer[j]; k < end; ++k) {
+        const Eigen::Index i = rows[k];
+        const double a = vals[k];
         if (i < j) {
-          Yr.row(i) += it.value() * xj;  // the stored A(i, j)
-          yj += it.value() * Xr.row(i);  // its mirror A(j, i)
+          double* yi = y + i * m;
+          const double* xi = x + i * m;
+          for (Eigen::Index c = 0; c < m; ++c) {
+            yi[c] += a * xj[c];     // the stored A(i, j)
+            acc[c] += a * xi[c];    // its mirror A(j, i)
+          }
         } else if (i == j) {
-          yj += it.value() * xj;
+          for (Eigen::Index c = 0; c < m; ++c) acc[c] += a * xj[c];
         }
       }
+      double* yj = y + j * m;
+      for (Eigen::Index c = 0; c < m; ++c) yj[c] += acc[c];
     }
   } else {
     Yr.noalias() = A * Xr;  // row j of X scattered along column j of A: one pass

@@ -77,7 +77,7 @@ struct ReductionSpec {
   int modes = 0;                        ///< number of eigenmodes
   std::optional<double> max_frequency_hz;
   bool orthonormalize = false;          ///< craig-bampton: orthonormalize the whole basis
-  std::string backend = "spectra";      ///< "spectra" or "arpack"
+  std::string backend = "block";      ///< "block", "spectra" or "arpack"
 };
 
 struct DampingSpec {

@@ -55,6 +55,8 @@ class ShiftInvertOp {
   void set_shift(double sigma);
   /// y_out = P (K - sigma M)^{-1} P^T x_in.
   void perform_op(const double* x_in, double* y_out) const;
+  /// The same for every column of X at once (one pass of the factor for the whole block).
+  Eigen::MatrixXd apply_block(const Eigen::MatrixXd& X) const;
 
   std::int64_t applications() const { return applications_; }
   /// Called after every application with the running count (progress reporting).
