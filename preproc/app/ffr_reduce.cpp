@@ -29,12 +29,15 @@ options:
                         spectra or arpack (overrides the part file)
   --threads N           worker threads of assembly and invariants (default: all cores);
                         BLAS threads follow OPENBLAS_NUM_THREADS
+  --max-memory GIB      refuse (before computing it) a factorization that needs more than this
+                        many GiB; default: the memory available on the machine
   --quiet               no progress output (errors are still printed)
   --help, --version
 
 exit status: 0 ok, 2 bad input (the message names the file and the field), 1 other failure.
 )",
-    "ffr-reduce PART.json -o OUT.sid.h5 [--vtk MODES.vtk] [--backend block|spectra|arpack] [--threads N] [--quiet]"};
+    "ffr-reduce PART.json -o OUT.sid.h5 [--vtk MODES.vtk] [--backend block|spectra|arpack] [--threads N] "
+    "[--max-memory GIB] [--quiet]"};
 
 }  // namespace
 
@@ -51,6 +54,7 @@ int main(int argc, char** argv) {
       if (threads->empty() || *end || n < 1 || n > 1024) throw ffr::cli::UsageError("--threads must be a count >= 1");
       ffr::preproc::set_max_threads(static_cast<unsigned>(n));
     }
+    const auto max_memory = args.number("--max-memory");
     const auto pos = args.positionals();
     if (pos.size() != 1) throw ffr::cli::UsageError("expected one part file");
     if (!out) throw ffr::cli::UsageError("missing -o OUT.sid.h5");
@@ -60,6 +64,10 @@ int main(int argc, char** argv) {
       if (*backend != "spectra" && *backend != "arpack" && *backend != "block")
         throw ffr::cli::UsageError("--backend must be block, spectra or arpack");
       part.reduction.backend = *backend;
+    }
+    if (max_memory) {
+      if (!(*max_memory > 0)) throw ffr::cli::UsageError("--max-memory must be a positive number of GiB");
+      part.reduction.memory_limit_bytes = static_cast<std::uint64_t>(*max_memory * 1024.0 * 1024.0 * 1024.0);
     }
     const bool tty = ::isatty(STDERR_FILENO);
     const auto t0 = std::chrono::steady_clock::now();

@@ -73,6 +73,7 @@ EigenOptions eigen_options(const ReductionSpec& spec, const PartSpec& part, doub
   o.backend = spec.backend == "arpack" ? EigenBackend::Arpack
               : spec.backend == "block" ? EigenBackend::Block
                                         : EigenBackend::Spectra;
+  o.factor.memory_limit_bytes = spec.memory_limit_bytes;
   return o;
 }
 
@@ -213,7 +214,9 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     say("craig-bampton: " + std::to_string(boundary.size()) + " boundary DOF, " +
         std::to_string(split.interior.size()) + " interior DOF");
     const double t_constraints = lap(clock);
-    CholmodFactor factor;
+    FactorOptions fo;
+    fo.memory_limit_bytes = spec.memory_limit_bytes;
+    CholmodFactor factor(fo);
     say(factor_line(factor.analyze(split.Kii)));
     const double t_analyze = lap(clock);
     try {
