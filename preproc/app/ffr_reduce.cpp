@@ -4,8 +4,10 @@
 #include "ffr/formats/validate.hpp"
 #include "ffr/preproc/part/part.hpp"
 #include "ffr/preproc/pipeline.hpp"
+#include "ffr/preproc/threads.hpp"
 
 #include <chrono>
+#include <cstdlib>
 #include <iostream>
 #include <unistd.h>
 
@@ -23,7 +25,10 @@ at the end, so a failed run leaves no file.
 options:
   -o, --output FILE     the SID file to write (required)
   --vtk FILE            also write the mesh with every mode shape for ParaView (.vtk)
-  --backend NAME        eigen-solver: spectra (default) or arpack (overrides the part file)
+  --backend NAME        eigen-solver: block (default; block Lanczos, falls back to spectra),
+                        spectra or arpack (overrides the part file)
+  --threads N           worker threads of assembly and invariants (default: all cores);
+                        BLAS threads follow OPENBLAS_NUM_THREADS
   --max-memory GIB      refuse (before computing it) a factorization that needs more than this
                         many GiB; default: the memory available on the machine
   --quiet               no progress output (errors are still printed)
@@ -31,7 +36,8 @@ options:
 
 exit status: 0 ok, 2 bad input (the message names the file and the field), 1 other failure.
 )",
-    "ffr-reduce PART.json -o OUT.sid.h5 [--vtk MODES.vtk] [--backend spectra|arpack] [--max-memory GIB] [--quiet]"};
+    "ffr-reduce PART.json -o OUT.sid.h5 [--vtk MODES.vtk] [--backend block|spectra|arpack] [--threads N] "
+    "[--max-memory GIB] [--quiet]"};
 
 }  // namespace
 
@@ -42,6 +48,12 @@ int main(int argc, char** argv) {
     if (auto o = args.option("-o")) out = o;
     const auto vtk = args.option("--vtk");
     const auto backend = args.option("--backend");
+    if (const auto threads = args.option("--threads")) {
+      char* end = nullptr;
+      const long n = std::strtol(threads->c_str(), &end, 10);
+      if (threads->empty() || *end || n < 1 || n > 1024) throw ffr::cli::UsageError("--threads must be a count >= 1");
+      ffr::preproc::set_max_threads(static_cast<unsigned>(n));
+    }
     const auto max_memory = args.number("--max-memory");
     const auto pos = args.positionals();
     if (pos.size() != 1) throw ffr::cli::UsageError("expected one part file");
@@ -49,7 +61,8 @@ int main(int argc, char** argv) {
 
     ffr::preproc::PartSpec part = ffr::preproc::load_part(pos[0]);
     if (backend) {
-      if (*backend != "spectra" && *backend != "arpack") throw ffr::cli::UsageError("--backend must be spectra or arpack");
+      if (*backend != "spectra" && *backend != "arpack" && *backend != "block")
+        throw ffr::cli::UsageError("--backend must be block, spectra or arpack");
       part.reduction.backend = *backend;
     }
     if (max_memory) {

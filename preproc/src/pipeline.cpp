@@ -89,7 +89,7 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   // 3. Assembly.
   AssemblyOptions aopt;
   aopt.progress = [&](double f) { progress("assembly " + std::to_string(static_cast<int>(100 * f)) + " %"); };
-  const Assembled fe = assemble(model, aopt);
+  Assembled fe = assemble(model, aopt);
   stage("assembly: " + std::to_string(fe.elements) + " elements, nnz(K) = " + std::to_string(fe.K.nonZeros()) +
         ", mass " + fmt(fe.mass, 6) + " " + part.units.mass + " [" + fmt(sw.lap()) + " s]");
   if (!fe.worst_element.empty())
@@ -99,7 +99,11 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   ReductionLog rlog;
   rlog.message = [&](const std::string& s) { stage("  " + s); };
   rlog.progress = progress;
-  ReductionResult red = reduce(model, fe, part.reduction, rlog);
+  // Only the stiffening's static solves use K and M after the reduction; otherwise they are
+  // freed before the factorization, the memory peak of the run.
+  const bool keep_matrices = part.stiffening || !part.preload.empty();
+  ReductionResult red = keep_matrices ? reduce(model, fe, part.reduction, rlog)
+                                      : reduce_consuming_matrices(model, fe, part.reduction, rlog);
   {
     std::string f;
     for (Index i = 0; i < std::min<Index>(red.lambda.size(), 6); ++i)

@@ -77,7 +77,7 @@ Physical Volume("body") = {1, 2};
   EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
 }
 
-TEST(ReduceCli, SpectraAndArpackGiveTheSameModes) {
+TEST(ReduceCli, SpectraArpackAndBlockGiveTheSameModes) {
   test::TempDir dir("backends");
   const std::string part = R"({"geometry": "bar.geo", "mesh": {"size": 0.005, "order": 2},
     "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],
@@ -91,6 +91,11 @@ TEST(ReduceCli, SpectraAndArpackGiveTheSameModes) {
   const auto d = test::run(test::bin("ffr-diff").string() + " " + (dir / "spectra.sid.h5").string() + " " +
                            (dir / "out.sid.h5").string() + " --rtol 1e-6");
   EXPECT_EQ(d.status, 0) << d.output;
+  r = reduce(dir, part, "--backend block");  // the default: block Lanczos
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto db = test::run(test::bin("ffr-diff").string() + " " + (dir / "spectra.sid.h5").string() + " " +
+                            (dir / "out.sid.h5").string() + " --rtol 1e-6");
+  EXPECT_EQ(db.status, 0) << db.output;
   // And the file is valid per ffr-info.
   const auto info = test::run(test::bin("ffr-info").string() + " " + (dir / "out.sid.h5").string());
   EXPECT_EQ(info.status, 0) << info.output;

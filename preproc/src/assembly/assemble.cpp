@@ -1,6 +1,7 @@
 #include "ffr/formats/h5.hpp"
 #include "ffr/preproc/assembly/assembly.hpp"
 #include "ffr/preproc/elements/solid.hpp"
+#include "ffr/preproc/threads.hpp"
 #include "pattern.hpp"
 
 #include <atomic>
@@ -115,8 +116,7 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
     }
   };
 
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned nthreads = opt.threads > 0 ? static_cast<unsigned>(opt.threads) : hw;
+  const unsigned nthreads = opt.threads > 0 ? static_cast<unsigned>(opt.threads) : max_threads();
   std::vector<std::thread> pool;
   for (unsigned t = 1; t < nthreads; ++t) pool.emplace_back(worker);
   if (opt.progress) {

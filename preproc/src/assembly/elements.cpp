@@ -87,4 +87,18 @@ ElementMatrices element_matrices(const FeModel& model, const ElementRef& ref) {
   return attached_mass(x, m.mass, m.offset, m.inertia);
 }
 
+ElementMatrices element_mass(const FeModel& model, const ElementRef& ref) {
+  if (ref.block >= 0) {
+    const auto& pb = model.blocks[static_cast<std::size_t>(ref.block)];
+    if (pb.kind == ElementKind::Shell) {
+      const auto& blk = model.mesh->blocks[pb.block];
+      const Eigen::MatrixX3d xe = model.mesh->element_coords(blk, ref.index);
+      const ShellSection sec = detail::shell_section(model.part->shells[pb.property]);
+      return detail::composite(blk.type, xe, 6,
+                               [&](ElementType t, const Eigen::MatrixX3d& x) { return shell_mass_element(t, x, sec); });
+    }
+  }
+  return element_matrices(model, ref);  // beams and attached masses are cheap as they are
+}
+
 }  // namespace ffr::preproc

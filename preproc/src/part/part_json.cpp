@@ -133,8 +133,9 @@ ReductionSpec read_reduction(const JsonNode& n) {
   if (r.modes == 0 && !r.max_frequency_hz && r.method != ReductionSpec::Method::CraigBampton)
     n.fail("give \"modes\" (a count) or \"max_frequency_hz\"");
   r.orthonormalize = n.boolean_or("orthonormalize", false);
-  r.backend = n.string_or("backend", "spectra");
-  if (r.backend != "spectra" && r.backend != "arpack") n.at("backend").fail("backend must be \"spectra\" or \"arpack\"");
+  r.backend = n.string_or("backend", "block");
+  if (r.backend != "spectra" && r.backend != "arpack" && r.backend != "block")
+    n.at("backend").fail("backend must be \"block\", \"spectra\" or \"arpack\"");
   if (r.method == ReductionSpec::Method::Clamped) r.interface = n.at("interface").string();
   if (r.method == ReductionSpec::Method::CraigBampton) {
     for (const auto& i : n.at("interfaces").items()) r.interfaces.push_back(i.string());

@@ -1,5 +1,8 @@
 #include "ffr/preproc/reduce/invariants.hpp"
 
+#include "ffr/preproc/threads.hpp"
+
+#include <array>
 #include <mutex>
 #include <thread>
 
@@ -51,23 +54,66 @@ void solid_part(const FeModel& model, const Assembled& fe, const Eigen::MatrixXd
   }
 }
 
+// The sample sums of the shells, beams and attached masses as matrix products: samples are
+// collected row-wise (U_a = rows a of u = N Phi_e, one row per sample) and flushed in
+// batches, instead of 3 x nq rank-one updates per sample.
+class SampleBatch {
+ public:
+  explicit SampleBatch(Index nq) {
+    for (auto& u : U_) u.resize(kRows, nq);
+    w_.resize(kRows);
+    c_.resize(kRows, 3);
+  }
+  /// One sample: mass w at c, moving with U (3 x nq) per unit modal coordinate.
+  void add(double w, const Eigen::Vector3d& c, const Eigen::Ref<const Eigen::MatrixXd>& U, Accum& acc) {
+    if (n_ == kRows) flush(acc);
+    for (int a = 0; a < 3; ++a) U_[a].row(n_) = U.row(a);
+    w_(n_) = w;
+    c_.row(n_) = c.transpose();
+    ++n_;
+  }
+  void flush(Accum& acc) {
+    if (n_ == 0) return;
+    const auto w = w_.head(n_);
+    for (int b = 0; b < 3; ++b) {
+      const auto Ub = U_[b].topRows(n_);
+      acc.Pdm.row(b) += w.transpose() * Ub;
+      for (int a = 0; a < 3; ++a)
+        acc.rPdm[a].row(b) += (w.array() * c_.col(a).head(n_).array()).matrix().transpose() * Ub;
+      const Eigen::MatrixXd WUb = w.asDiagonal() * Ub;
+      for (int a = 0; a <= b; ++a) acc.PPdm[a][b].noalias() += U_[a].topRows(n_).transpose() * WUb;
+    }
+    n_ = 0;
+  }
+
+ private:
+  static constexpr Index kRows = 512;
+  std::array<Eigen::MatrixXd, 3> U_;
+  Eigen::VectorXd w_;
+  Eigen::MatrixX3d c_;
+  Index n_ = 0;
+};
+
 // Shells, beams and attached masses: exact sums over their mass samples, plus the rotary part.
 void structural_part(const FeModel& model, const Eigen::MatrixXd& Phi, const std::vector<ElementRef>& refs,
                      std::size_t begin, std::size_t end, Accum& acc) {
   const Index nq = Phi.cols();
-  Eigen::Matrix3Xd U(3, nq);
+  SampleBatch batch(nq);
   for (std::size_t r = begin; r < end; ++r) {
     const auto& ref = refs[r];
-    const ElementMatrices em = element_matrices(model, ref);
+    const ElementMatrices em = element_mass(model, ref);
     const auto dofs = element_dofs(model, ref);
     Eigen::MatrixXd Phi_e(static_cast<Index>(dofs.size()), nq);
     for (std::size_t i = 0; i < dofs.size(); ++i) Phi_e.row(static_cast<Index>(i)) = Phi.row(dofs[i]);
-    for (const auto& s : em.samples) {
-      U.noalias() = s.N * Phi_e;
-      acc.Pdm += s.w * U;
-      for (int a = 0; a < 3; ++a) {
-        acc.rPdm[a] += (s.w * s.c(a)) * U;
-        for (int b = a; b < 3; ++b) acc.PPdm[a][b].noalias() += s.w * U.row(a).transpose() * U.row(b);
+    if (!em.samples.empty()) {
+      // u of every sample at once: stacked N (3 S x ndof) times Phi_e.
+      const Index S = static_cast<Index>(em.samples.size());
+      Eigen::MatrixXd N(3 * S, Phi_e.rows());
+      for (Index s = 0; s < S; ++s) N.middleRows(3 * s, 3) = em.samples[static_cast<std::size_t>(s)].N;
+      const Eigen::MatrixXd U = N * Phi_e;
+      for (Index s = 0; s < S; ++s) {
+        const auto& smp = em.samples[static_cast<std::size_t>(s)];
+        batch.add(smp.w, smp.c, U.middleRows(3 * s, 3), acc);
       }
     }
     if (em.M_rotary.size() > 0) {
@@ -77,6 +123,7 @@ void structural_part(const FeModel& model, const Eigen::MatrixXd& Phi, const std
       acc.PsiIPsi += Phi_e.transpose() * em.M_rotary * Phi_e;
     }
   }
+  batch.flush(acc);
 }
 
 }  // namespace
@@ -90,7 +137,7 @@ void compute_integrals(const FeModel& model, const Assembled& fe, const Eigen::M
   for (const auto& r : all_elements(model))
     if (r.block < 0 || model.blocks[static_cast<std::size_t>(r.block)].kind != ElementKind::Solid) refs.push_back(r);
   if (!refs.empty()) {
-    const unsigned nt = std::max(1u, std::min<unsigned>(std::thread::hardware_concurrency(), static_cast<unsigned>(refs.size())));
+    const unsigned nt = std::max(1u, std::min<unsigned>(max_threads(), static_cast<unsigned>(refs.size())));
     std::vector<Accum> parts(nt, Accum(nq));
     std::vector<std::thread> pool;
     std::exception_ptr error;

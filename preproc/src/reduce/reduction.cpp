@@ -7,6 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -69,7 +70,9 @@ EigenOptions eigen_options(const ReductionSpec& spec, const PartSpec& part, doub
   o.nev = spec.modes > 0 ? spec.modes : 10;
   if (spec.max_frequency_hz) o.lambda_max = lambda_of_hz(*spec.max_frequency_hz, part);
   o.sigma = sigma;
-  o.backend = spec.backend == "arpack" ? EigenBackend::Arpack : EigenBackend::Spectra;
+  o.backend = spec.backend == "arpack" ? EigenBackend::Arpack
+              : spec.backend == "block" ? EigenBackend::Block
+                                        : EigenBackend::Spectra;
   o.factor.memory_limit_bytes = spec.memory_limit_bytes;
   return o;
 }
@@ -94,6 +97,25 @@ void record(ReductionResult& r, const EigenSolver& s) {
   r.backend = to_string(s.info().backend_used);
 }
 
+// Wall seconds since t0 (and restart the clock).
+double lap(std::chrono::steady_clock::time_point& t0) {
+  const auto now = std::chrono::steady_clock::now();
+  const double s = std::chrono::duration<double>(now - t0).count();
+  t0 = now;
+  return s;
+}
+
+// One line with the parts of the eigen-solve, for anyone looking for where the time goes.
+std::string timing_line(double constraints, double analyze, double factorize, const EigenInfo* eig) {
+  std::ostringstream o;
+  o.precision(3);
+  o << "timing: constraints " << constraints << " s, analyze " << analyze << " s, factorize " << factorize << " s";
+  if (eig)
+    o << ", lanczos " << eig->lanczos_seconds << " s, solves " << eig->operator_applications << ", checks "
+      << eig->verify_seconds << " s";
+  return o.str();
+}
+
 std::string factor_line(const FactorStatistics& f) {
   std::ostringstream o;
   o.precision(3);
@@ -102,9 +124,12 @@ std::string factor_line(const FactorStatistics& f) {
   return o.str();
 }
 
-}  // namespace
+// Frees a matrix's storage (assigning an empty matrix keeps Eigen's allocation).
+void release(SparseMatrix& A) { SparseMatrix().swap(A); }
 
-ReductionResult reduce(const FeModel& model, const Assembled& fe, const ReductionSpec& spec, const ReductionLog& log) {
+// fe_owned: the same object as fe, when its K and M may be freed after use.
+ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled* fe_owned, const ReductionSpec& spec,
+                            const ReductionLog& log) {
   const PartSpec& part = *model.part;
   auto say = [&](const std::string& s) { if (log.message) log.message(s); };
 
@@ -117,9 +142,21 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
     throw FormatError(part.file.string(), "geometry", o.str());
   }
 
+  auto clock = std::chrono::steady_clock::now();
   const DofTransform t = build_transform(model, states_for(model, spec));
-  const SparseMatrix K = t.identity ? fe.K : detail::congruence(t.T, fe.K);
-  const SparseMatrix M = t.identity ? fe.M : detail::congruence(t.T, fe.M);
+  // The eigen-solves need only the upper triangles (half the memory, and the products with
+  // them read half the bytes); Craig-Bampton partitions K into blocks and keeps full storage.
+  const bool cb = spec.method == ReductionSpec::Method::CraigBampton;
+  const SymmetricStorage storage = cb ? SymmetricStorage::Full : SymmetricStorage::UpperOnly;
+  auto reduced = [&](const SparseMatrix& A) -> SparseMatrix {
+    if (!t.identity) return detail::congruence(t.T, A, !cb);
+    if (cb) return A;
+    return A.triangularView<Eigen::Upper>();
+  };
+  const SparseMatrix K = reduced(fe.K);
+  if (fe_owned) release(fe_owned->K);
+  const SparseMatrix M = reduced(fe.M);
+  if (fe_owned) release(fe_owned->M);
 
   ReductionResult r;
   nlohmann::json params;
@@ -139,17 +176,23 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
         ", " + spec.backend);
     // Analyse first and report the factor's size, so a factor that will not fit is refused
     // (by factorize, with the numbers) after the user has seen what it would need.
+    const double t_constraints = lap(clock);
     CholmodFactor factor(o.factor);
-    const SparseMatrix C = shifted_upper(K, M, sigma);
+    SparseMatrix C = shifted_upper(K, M, sigma);
     say(factor_line(factor.analyze(C)));
+    const double t_analyze = lap(clock);
+    double t_factorize = 0;
     EigenSolver solver(o);
     attach_progress(solver, log);
     try {
-      factor.factorize_shifted(K, M, sigma);
+      factor.factorize_shifted_upper(C, sigma);
+      release(C);  // the factor holds what is needed from here on
+      t_factorize = lap(clock);
       solver.compute(K, M, factor);
     } catch (const NotPositiveDefiniteError& e) {
       mechanism(model, "the stiffness is singular at " + node_text(model, t, e.column));
     }
+    say(timing_line(t_constraints, t_analyze, t_factorize, &solver.info()));
     record(r, solver);
     r.factor = factor.info().stats;
     check_no_zero_modes(model, solver.result().lambda, part, free ? "beyond the six rigid-body modes" : "with the interface held");
@@ -170,16 +213,19 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
     const auto split = detail::split(K, M, boundary);
     say("craig-bampton: " + std::to_string(boundary.size()) + " boundary DOF, " +
         std::to_string(split.interior.size()) + " interior DOF");
+    const double t_constraints = lap(clock);
     FactorOptions fo;
     fo.memory_limit_bytes = spec.memory_limit_bytes;
     CholmodFactor factor(fo);
     say(factor_line(factor.analyze(split.Kii)));
+    const double t_analyze = lap(clock);
     try {
       factor.factorize(split.Kii);
     } catch (const NotPositiveDefiniteError& e) {
       mechanism(model, "with the frame interface '" + spec.frame + "' held, the stiffness is singular at " +
                            node_text(model, t, split.interior[static_cast<std::size_t>(e.column)]));
     }
+    const double t_factorize = lap(clock);
     r.factor = factor.info().stats;
     // Static constraint modes: interior response to a unit motion of each boundary DOF.
     const Eigen::MatrixXd Psi_i = -factor.solve(Eigen::MatrixXd(split.Kib));
@@ -189,10 +235,13 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
       EigenSolver solver(eigen_options(spec, part, 0.0));
       attach_progress(solver, log);
       solver.compute(split.Kii, split.Mii, factor);
+      say(timing_line(t_constraints, t_analyze, t_factorize, &solver.info()));
       record(r, solver);
       check_no_zero_modes(model, solver.result().lambda, part, "with the frame interface held");
       modes_i = solver.result().X;
       lambda_n = solver.result().lambda;
+    } else {
+      say(timing_line(t_constraints, t_analyze, t_factorize, nullptr));
     }
     const Index nb = static_cast<Index>(boundary.size());
     const Index nn = modes_i.cols();
@@ -215,7 +264,8 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
     params = {{"method", "craig-bampton"}, {"interfaces", spec.interfaces}, {"frame", spec.frame},
               {"orthonormalized", spec.orthonormalize}};
     if (spec.orthonormalize) {
-      const Eigen::MatrixXd Kr = basis.transpose() * (K * basis), Mr = basis.transpose() * (M * basis);
+      const Eigen::MatrixXd Kr = basis.transpose() * sym_multiply(K, storage, basis);
+      const Eigen::MatrixXd Mr = basis.transpose() * sym_multiply(M, storage, basis);
       Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(Kr, Mr);
       if (ges.info() != Eigen::Success) throw std::runtime_error("orthonormalization of the Craig-Bampton basis failed");
       basis = basis * ges.eigenvectors();
@@ -227,10 +277,21 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
   if (spec.max_frequency_hz) params["max_frequency_hz"] = *spec.max_frequency_hz;
   r.parameters_json = params.dump();
 
-  r.Ke = basis.transpose() * (K * basis);
-  r.Me = basis.transpose() * (M * basis);
+  r.Ke = basis.transpose() * sym_multiply(K, storage, basis);
+  r.Me = basis.transpose() * sym_multiply(M, storage, basis);
   r.Phi = t.identity ? basis : Eigen::MatrixXd(t.T * basis);
   return r;
+}
+
+}  // namespace
+
+ReductionResult reduce(const FeModel& model, const Assembled& fe, const ReductionSpec& spec, const ReductionLog& log) {
+  return reduce_impl(model, fe, nullptr, spec, log);
+}
+
+ReductionResult reduce_consuming_matrices(const FeModel& model, Assembled& fe, const ReductionSpec& spec,
+                                          const ReductionLog& log) {
+  return reduce_impl(model, fe, &fe, spec, log);
 }
 
 }  // namespace ffr::preproc

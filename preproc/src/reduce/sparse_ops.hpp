@@ -2,14 +2,67 @@
 // Small sparse helpers of the reductions.
 #include "ffr/preproc/model/sparse.hpp"
 
+#include <algorithm>
 #include <vector>
 
 namespace ffr::preproc::detail {
 
-/// T^T A T.
-inline SparseMatrix congruence(const SparseMatrix& T, const SparseMatrix& A) {
+/// If T is a selection (every column one entry 1.0, rows strictly increasing from column to
+/// column): the row of each column. Else empty. Holding nodes and picking interior DOFs give
+/// such T, and then T^T A T is a principal submatrix.
+inline std::vector<std::int64_t> selected_rows(const SparseMatrix& T) {
+  std::vector<std::int64_t> rows;
+  if (T.cols() == 0 || T.nonZeros() != T.cols()) return rows;
+  rows.reserve(static_cast<std::size_t>(T.cols()));
+  for (std::int64_t j = 0; j < T.cols(); ++j) {
+    SparseMatrix::InnerIterator it(T, j);
+    if (!it || it.value() != 1.0 || (!rows.empty() && it.row() <= rows.back())) return {};
+    rows.push_back(it.row());
+    if (++it) return {};
+  }
+  return rows;
+}
+
+/// A(rows, rows) (sorted, distinct rows), or only its upper triangle: one pass over the kept
+/// columns, no products (a sparse product T^T A T costs ~10x more time and two temporaries).
+inline SparseMatrix principal_submatrix(const SparseMatrix& A, const std::vector<std::int64_t>& rows, bool upper_only) {
+  std::vector<std::int64_t> new_of_old(static_cast<std::size_t>(A.rows()), -1);
+  for (std::size_t j = 0; j < rows.size(); ++j) new_of_old[static_cast<std::size_t>(rows[j])] = static_cast<std::int64_t>(j);
+  const auto n = static_cast<std::int64_t>(rows.size());
+  SparseMatrix S(n, n);
+  std::int64_t nnz = 0;
+  for (std::int64_t j = 0; j < n; ++j)
+    for (SparseMatrix::InnerIterator it(A, rows[static_cast<std::size_t>(j)]); it; ++it) {
+      const std::int64_t i = new_of_old[static_cast<std::size_t>(it.row())];
+      nnz += i >= 0 && (!upper_only || i <= j);
+    }
+  S.resizeNonZeros(nnz);
+  auto* outer = S.outerIndexPtr();
+  auto* inner = S.innerIndexPtr();
+  double* val = S.valuePtr();
+  std::int64_t k = 0;
+  outer[0] = 0;
+  for (std::int64_t j = 0; j < n; ++j) {
+    // Rows keep their order (new_of_old is increasing), so every column stays sorted.
+    for (SparseMatrix::InnerIterator it(A, rows[static_cast<std::size_t>(j)]); it; ++it) {
+      const std::int64_t i = new_of_old[static_cast<std::size_t>(it.row())];
+      if (i < 0 || (upper_only && i > j)) continue;
+      inner[k] = i;
+      val[k++] = it.value();
+    }
+    outer[j + 1] = k;
+  }
+  return S;
+}
+
+/// T^T A T (or its upper triangle), by extraction when T is a selection.
+inline SparseMatrix congruence(const SparseMatrix& T, const SparseMatrix& A, bool upper_only = false) {
+  const auto rows = selected_rows(T);
+  if (!rows.empty()) return principal_submatrix(A, rows, upper_only);
   const SparseMatrix AT = A * T;
-  return SparseMatrix(T.transpose() * AT);
+  SparseMatrix C(T.transpose() * AT);
+  if (upper_only) C = C.triangularView<Eigen::Upper>();
+  return C;
 }
 
 /// Selection matrix S (n x idx.size()) with S(idx[j], j) = 1.

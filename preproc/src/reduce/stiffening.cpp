@@ -1,6 +1,7 @@
 #include "ffr/preproc/reduce/stiffening.hpp"
 
 #include "ffr/preproc/elements/solid.hpp"
+#include "ffr/preproc/threads.hpp"
 #include "geometric_kernels.hpp"
 #include "static_solver.hpp"
 
@@ -58,7 +59,7 @@ Eigen::MatrixXd inertial_loads(const FeModel& model, const Assembled& fe, const 
 std::vector<Eigen::MatrixXd> project_geometric(const FeModel& model, const Eigen::MatrixXd& U, const Eigen::MatrixXd& Phi) {
   const Index nq = Phi.cols(), nL = U.cols();
   const auto refs = all_elements(model);
-  const unsigned nt = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned nt = max_threads();
   std::vector<std::vector<Eigen::MatrixXd>> part(nt, std::vector<Eigen::MatrixXd>(static_cast<std::size_t>(nL), Eigen::MatrixXd::Zero(nq, nq)));
   std::exception_ptr error;
   std::mutex m;

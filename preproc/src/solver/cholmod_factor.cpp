@@ -271,6 +271,21 @@ void CholmodFactor::factorize_shifted(const SparseMatrix& A, const SparseMatrix&
   impl_->opt.check_symmetry = check;
 }
 
+void CholmodFactor::factorize_shifted_upper(const SparseMatrix& C, double sigma) {
+  const SymmetricStorage s = detect_storage(C);
+  if (s != SymmetricStorage::UpperOnly && s != SymmetricStorage::Diagonal)
+    throw std::invalid_argument("factorize_shifted_upper: C must hold the upper triangle only");
+  const bool check = impl_->opt.check_symmetry;
+  impl_->opt.check_symmetry = false;  // upper-only: symmetric by construction
+  try {
+    impl_->factorize(C, sigma);
+  } catch (...) {
+    impl_->opt.check_symmetry = check;
+    throw;
+  }
+  impl_->opt.check_symmetry = check;
+}
+
 Eigen::MatrixXd CholmodFactor::solve(const Eigen::Ref<const Eigen::MatrixXd>& B) const {
   Impl& m = *impl_;
   if (!factorized()) throw std::logic_error("CholmodFactor::solve: no valid factorization");

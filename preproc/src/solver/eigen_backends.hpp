@@ -27,6 +27,21 @@ struct BackendOutcome {
   std::string message;     ///< why not, if !success
 };
 
+struct BlockRequest {
+  int nev = 0;
+  int block = 0;            ///< vectors per block
+  Eigen::Index max_basis = 0;  ///< basis size before a thick restart (>= nev + 2 block)
+  int max_restarts = 0;
+  double tol = 0;
+  double sigma = 0;
+  unsigned long long seed = 0;  ///< of the pseudo-random start block
+};
+
+/// Block shift-invert Lanczos (block_lanczos_backend.cpp). On failure (breakdown, no
+/// convergence, a problem too small for the basis) returns success = false with a message.
+BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseMatrix& M, SymmetricStorage sM,
+                                 const Deflation& deflation, const BlockRequest& req);
+
 /// Spectra 1.0 SymGEigsShiftSolver<ShiftInvertOp, MassOp, GEigsMode::ShiftInvert>.
 BackendOutcome run_spectra(ShiftInvertOp& op, MassOp& bop, const LanczosRequest& req);
 

@@ -26,4 +26,14 @@ ElementMatrices shell_element(ElementType type, const Eigen::MatrixX3d& xe, cons
   return out;
 }
 
+ElementMatrices shell_mass_element(ElementType type, const Eigen::MatrixX3d& xe, const ShellSection& section) {
+  shell::check_input(type, xe, section);
+  const int ndof = 6 * static_cast<int>(xe.rows());
+  ElementMatrices out;
+  out.dofs_per_node = 6;
+  out.K = Eigen::MatrixXd::Zero(ndof, ndof);
+  shell::shell_mass(type, xe, shell::make_frame(type, xe, shell::who(type)), section, out);
+  return out;
+}
+
 }  // namespace ffr::preproc

@@ -21,6 +21,9 @@ struct ElementRef {
 
 /// The real element kernels for each ElementKind (and attached masses).
 ElementMatrices element_matrices(const FeModel& model, const ElementRef& ref);
+/// M, M_rotary and the mass samples as element_matrices() gives them; K may be zero (shells
+/// skip their stiffness kernels). For the inertia integrals.
+ElementMatrices element_mass(const FeModel& model, const ElementRef& ref);
 /// Full DOFs of an element in the order of its matrices.
 std::vector<Index> element_dofs(const FeModel& model, const ElementRef& ref);
 std::vector<ElementRef> all_elements(const FeModel& model);

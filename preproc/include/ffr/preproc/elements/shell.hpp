@@ -37,6 +37,11 @@ struct ShellSection {
 /// degenerate, non-convex or excessively warped geometry.
 ElementMatrices shell_element(ElementType type, const Eigen::MatrixX3d& xe, const ShellSection& section);
 
+/// The mass part of shell_element() alone: the same M, M_rotary and samples; K is a zero
+/// matrix of the right size (the stiffness kernels are not run). For the inertia integrals,
+/// which need only the samples, at a quarter of the cost.
+ElementMatrices shell_mass_element(ElementType type, const Eigen::MatrixX3d& xe, const ShellSection& section);
+
 /// Linear stress resultants of a displacement d_e (6 n, body axes) at the element's in-plane
 /// integration points, in the element's local axes (rows of R).
 struct ShellResultants {

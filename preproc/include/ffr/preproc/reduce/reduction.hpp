@@ -43,4 +43,10 @@ struct ReductionResult {
 ReductionResult reduce(const FeModel& model, const Assembled& fe, const ReductionSpec& spec,
                        const ReductionLog& log = {});
 
+/// The same, for a caller that needs fe.K and fe.M no more: they are freed as soon as the
+/// constrained matrices are built, so they do not sit in memory next to the factor (the
+/// peak of the whole run). The other members of `fe` are left as they are.
+ReductionResult reduce_consuming_matrices(const FeModel& model, Assembled& fe, const ReductionSpec& spec,
+                                          const ReductionLog& log = {});
+
 }  // namespace ffr::preproc

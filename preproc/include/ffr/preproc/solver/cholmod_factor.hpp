@@ -101,6 +101,11 @@ class CholmodFactor {
   /// column patterns (no intermediate full-size sum).
   void factorize_shifted(const SparseMatrix& A, const SparseMatrix& B, double sigma);
 
+  /// The same for C = shifted_upper(A, B, sigma) the caller already holds (e.g. built for
+  /// analyze): C is not formed a second time, so only one copy lives during the numeric
+  /// factorization. Throws std::invalid_argument if C has entries below the diagonal.
+  void factorize_shifted_upper(const SparseMatrix& C, double sigma);
+
   /// X = A^{-1} B for a dense block of right-hand sides (one column per load case). Columns
   /// are solved in chunks so the extra memory stays O(n * chunk).
   Eigen::MatrixXd solve(const Eigen::Ref<const Eigen::MatrixXd>& B) const;

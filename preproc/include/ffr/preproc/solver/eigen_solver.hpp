@@ -45,6 +45,8 @@ enum class EigenBackend {
   Spectra,  ///< Spectra 1.0 SymGEigsShiftSolver, shift-invert mode (default)
   Arpack,   ///< ARPACK-ng dsaupd/dseupd, reverse communication, mode 3
   Dense,    ///< Eigen's dense GeneralizedSelfAdjointEigenSolver; small problems only
+  Block,    ///< block shift-invert Lanczos (blocks of solves with the factor); falls back to
+            ///< Spectra if it does not converge or the problem is too small for its basis
 };
 const char* to_string(EigenBackend b);
 
@@ -66,6 +68,9 @@ struct EigenOptions {
   /// Lanczos basis size; 0 = max(2 nev + 1, nev + 20), capped by the problem size.
   int ncv = 0;
   int max_restarts = 1000;
+  /// Block backend: vectors per block (0 = 4); its basis size before a restart is ncv if
+  /// set, else max(4 nev + 2 block, nev + 4 block).
+  int block_size = 0;
   double lanczos_tol = 1e-12;  ///< Ritz convergence tolerance handed to Spectra/ARPACK
   double residual_tol = 1e-8;  ///< limit on the relative residual of every returned pair
   double orthonormality_tol = 1e-10;  ///< limit on max|X^T M X - I|

@@ -1,0 +1,156 @@
+// Third Lanczos backend: block shift-invert Lanczos in the M inner product, with full
+// reorthogonalization and thick (Krylov-Schur-like) restarts.
+//
+// Why a block method: single-vector Lanczos applies (K - sigma M)^{-1} one vector at a
+// time, and each application streams the whole Cholesky factor through memory twice
+// (forward and backward substitution). For the factors of 10^5..10^6-DOF parts that is
+// bandwidth-bound and dominated the reduction (measured: tools/bench/reduce/README.md). A
+// block of p vectors streams the factor once for all p (CHOLMOD's supernodal solve turns
+// into dense matrix-matrix kernels), so the cost per vector drops several-fold, while the
+// block Krylov space needs only slightly more vectors than the single-vector one.
+//
+// Operator A = P (K - sigma M)^{-1} P^T M, self-adjoint in the M inner product, with
+// eigenvalues theta = 1 / (lambda - sigma) > 0 (sigma below the wanted spectrum). With an
+// M-orthonormal basis Q_k and A Q_k = Q_k T_k + Q_{k+1} B e_k^T (block Lanczos relation),
+// the Ritz pairs (theta_i, Q_k s_i) of T_k have residual norms ||B s_i(last block)||_M
+// (Golub & Van Loan, "Matrix Computations", 4th ed., sec. 10.3.6, block Lanczos), which is
+// the convergence test: ||r_i|| <= tol * theta_i, as in Spectra and ARPACK.
+//
+// Numerics: every new block is M-orthogonalized against the whole basis twice (classical
+// Gram-Schmidt twice, "twice is enough") and normalized by Cholesky QR done twice
+// (CholQR2). A breakdown (a block without full rank after orthogonalization) is reported as
+// a failure; the caller then falls back to Spectra, so the backend never has to handle it.
+
+#include "eigen_backends.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+namespace ffr::preproc::detail {
+namespace {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+// W <- W R^{-1} and MW <- MW R^{-1} with W^T MW = R^T R. False if the block is (nearly)
+// rank-deficient in the M norm.
+bool cholesky_qr(MatrixXd& W, MatrixXd& MW, MatrixXd& R) {
+  MatrixXd G = W.transpose() * MW;
+  G = 0.5 * (G + G.transpose());
+  Eigen::LLT<MatrixXd> llt(G);
+  if (llt.info() != Eigen::Success) return false;
+  R = llt.matrixU();
+  const VectorXd d = R.diagonal().cwiseAbs();
+  if (!(d.minCoeff() > 1e-7 * d.maxCoeff())) return false;  // condition of G above ~1e14
+  const auto U = R.triangularView<Eigen::Upper>();
+  W = U.solve<Eigen::OnTheRight>(W);
+  MW = U.solve<Eigen::OnTheRight>(MW);
+  return true;
+}
+
+}  // namespace
+
+BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseMatrix& M, SymmetricStorage sM,
+                                 const Deflation& deflation, const BlockRequest& req) {
+  BackendOutcome out;
+  const Index n = op.rows();
+  const int nev = req.nev, p = req.block;
+  const Index m_max = req.max_basis;
+  auto fail = [&](const std::string& why) {
+    out.success = false;
+    out.message = "block Lanczos: " + why;
+    return out;
+  };
+  if (nev < 1 || p < 1 || m_max < nev + 2 * p || 2 * m_max > n)
+    return fail("basis size " + std::to_string(m_max) + " does not fit nev = " + std::to_string(nev) + ", block " +
+                std::to_string(p) + ", n = " + std::to_string(n));
+
+  MatrixXd Q(n, m_max);                    // M-orthonormal basis, columns [0, k)
+  MatrixXd T = MatrixXd::Zero(m_max, m_max);  // Q^T M A Q, filled block column by block column
+  MatrixXd W(n, p), MW(n, p), R;
+
+  // Start block: deterministic pseudo-random columns, outside the deflation space.
+  std::mt19937_64 rng(req.seed);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  for (Index j = 0; j < p; ++j) {
+    for (Index i = 0; i < n; ++i) W(i, j) = u(rng);
+    deflation.project(W.col(j).data());
+  }
+  for (int pass = 0; pass < 2; ++pass) {
+    MW = sym_multiply(M, sM, W);
+    if (!cholesky_qr(W, MW, R)) return fail("the start block has no full rank");
+  }
+  Q.leftCols(p) = W;
+  Index k = p;         // basis size
+  MatrixXd MV = MW;    // M times the last block of the basis
+
+  Eigen::SelfAdjointEigenSolver<MatrixXd> es;
+  for (;;) {
+    // Expand: W = A V for the last block V = Q(:, k-p:k).
+    W = op.apply_block(MV);
+    auto basis = Q.leftCols(k);
+    MatrixXd h = MatrixXd::Zero(k, p);
+    for (int pass = 0; pass < 2; ++pass) {
+      MW = sym_multiply(M, sM, W);
+      const MatrixXd c = basis.transpose() * MW;
+      W.noalias() -= basis * c;
+      h += c;
+    }
+    // MW is now M W up to M basis c of the second pass, which is at the rounding level.
+    T.block(0, k - p, k, p) = h;
+    MatrixXd B;  // W_old = W_new B
+    if (!cholesky_qr(W, MW, B)) return fail("breakdown (the Krylov space became invariant)");
+    MatrixXd R2;
+    if (!cholesky_qr(W, MW, R2)) return fail("breakdown in the second orthogonalization");
+    B = R2 * B;
+
+    // Ritz values of the symmetrized projection (largest theta first).
+    const MatrixXd Tk = 0.5 * (T.topLeftCorner(k, k) + T.topLeftCorner(k, k).transpose());
+    es.compute(Tk);
+    if (es.info() != Eigen::Success) return fail("Ritz eigen-decomposition failed");
+    const VectorXd theta = es.eigenvalues().reverse();
+    const MatrixXd S = es.eigenvectors().rowwise().reverse();
+    const MatrixXd coupling = B * S.bottomRows(p);  // residual of Ritz pair i: column i, M-norm
+    int converged = 0;
+    for (int i = 0; i < nev; ++i)
+      if (theta[i] > 0 && coupling.col(i).norm() <= req.tol * theta[i]) ++converged;
+    out.converged = converged;
+    if (converged == nev) {
+      out.X = basis * S.leftCols(nev);
+      out.lambda.resize(nev);
+      for (int i = 0; i < nev; ++i) out.lambda[i] = req.sigma + 1.0 / theta[i];
+      out.success = true;
+      return out;
+    }
+    if (k + p <= m_max) {  // room left: append the new block (and B below the diagonal)
+      Q.middleCols(k, p) = W;
+      T.block(k, k - p, p, p) = B;
+      k += p;
+      MV = MW;
+      continue;
+    }
+    // Thick restart: keep the leading Ritz vectors, then the new block; T becomes the arrow
+    // matrix [diag(theta); coupling] in the kept columns (A y_i = theta_i y_i + W B s_i,last).
+    if (++out.iterations > req.max_restarts)
+      return fail("not converged after " + std::to_string(req.max_restarts) + " restarts (" +
+                  std::to_string(converged) + " of " + std::to_string(nev) + " pairs)");
+    const Index keep = std::min<Index>(k - p, nev + p);
+    const MatrixXd Y = basis * S.leftCols(keep);
+    Q.leftCols(keep) = Y;
+    Q.middleCols(keep, p) = W;
+    T.setZero();
+    for (Index i = 0; i < keep; ++i) T(i, i) = theta[i];
+    T.block(keep, 0, p, keep) = coupling.leftCols(keep);
+    T.block(0, keep, keep, p) = coupling.leftCols(keep).transpose();
+    k = keep + p;
+    MV = MW;
+  }
+}
+
+}  // namespace ffr::preproc::detail

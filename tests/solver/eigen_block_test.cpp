@@ -1,0 +1,71 @@
+// The block Lanczos backend against closed-form spectra (pencils.hpp: finite-element rods and
+// boxes whose discrete eigenvalues are known exactly) and against the dense backend, plus
+// its two ways out: the frequency-limit query and the fall back to Spectra for problems too
+// small for its basis.
+#include "ffr/preproc/solver/eigen_solver.hpp"
+#include "pencils.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace ffr::preproc;
+using ffr::test::Ends;
+
+TEST(EigenBlock, BoxAgreesWithClosedFormAndDense) {
+  // Same box as EigenBackends.SpectraArpackAndDenseAgree: 960 DOF, simple spectrum.
+  const auto p = ffr::test::box(13, 1.0, 11, 0.85, 9, 0.65, Ends::FixedFixed);
+  const auto ref = ffr::test::box_eigenvalues(13, 1.0, 11, 0.85, 9, 0.65, Ends::FixedFixed, 20);
+  EigenOptions o;
+  o.nev = 20;
+  o.sigma = -5.0;
+  o.backend = EigenBackend::Block;
+  EigenSolver sb(o);
+  const EigenResult rb = sb.compute(p.K, p.M);
+  EXPECT_EQ(sb.info().backend_used, EigenBackend::Block);
+  o.backend = EigenBackend::Dense;
+  const EigenResult rd = EigenSolver(o).compute(p.K, p.M);
+  ASSERT_EQ(rb.lambda.size(), 20);
+  for (int k = 0; k < 20; ++k) {
+    EXPECT_NEAR(rb.lambda[k], ref[k], 1e-10 * ref[k]) << k;
+    const Eigen::VectorXd d = rb.X.col(k) - rd.X.col(k);
+    EXPECT_LT(std::sqrt(d.dot(p.M * d)), 1e-8) << "mode " << k;
+  }
+  EXPECT_LT(rb.max_relative_residual, 1e-10);
+  EXPECT_LT(rb.orthonormality_error, 1e-12);
+  // Blocks of 4: the solve count is a multiple of 4.
+  EXPECT_EQ(sb.info().operator_applications % 4, 0);
+}
+
+TEST(EigenBlock, FreeRodWithDeflationAndFrequencyLimit) {
+  const int n = 400;
+  const auto p = ffr::test::rod(n, 1.0, Ends::FreeFree);
+  const auto ref = ffr::test::rod_eigenvalues(n, 1.0, Ends::FreeFree);
+  EigenOptions o;
+  o.backend = EigenBackend::Block;
+  o.nev = 30;  // a first guess above the 25 modes below the limit: one round, cut to 25
+  o.sigma = -1.0;
+  o.deflation = Eigen::MatrixXd::Ones(n + 1, 1);  // the rigid translation
+  o.lambda_max = 0.5 * (ref[25] + ref[26]);       // elastic modes 1..25
+  EigenSolver s(o);
+  const EigenResult& r = s.compute(p.K, p.M);
+  EXPECT_EQ(s.info().backend_used, EigenBackend::Block);
+  EXPECT_EQ(s.info().rounds, 1);
+  ASSERT_EQ(r.lambda.size(), 25);
+  for (int k = 0; k < 25; ++k) EXPECT_NEAR(r.lambda[k], ref[k + 1], 1e-10 * ref[k + 1]) << k;
+  EXPECT_LT(r.deflation_error, 1e-12);
+}
+
+TEST(EigenBlock, TooSmallForTheBasisFallsBackToSpectra) {
+  // 60 DOF cannot hold two bases of max(4 * 10 + 8, 10 + 16) = 48 vectors.
+  const int n = 60;
+  const auto p = ffr::test::rod(n, 1.0, Ends::FixedFree);
+  const auto ref = ffr::test::rod_eigenvalues(n, 1.0, Ends::FixedFree);
+  EigenOptions o;
+  o.backend = EigenBackend::Block;
+  o.nev = 10;
+  o.sigma = -1.0;
+  EigenSolver s(o);
+  const EigenResult& r = s.compute(p.K, p.M);
+  EXPECT_EQ(s.info().backend_used, EigenBackend::Spectra);
+  ASSERT_EQ(r.lambda.size(), 10);
+  for (int k = 0; k < 10; ++k) EXPECT_NEAR(r.lambda[k], ref[k], 1e-10 * ref[k]) << k;
+}
