@@ -2,7 +2,9 @@
 // Lagrangian update of the multipliers, then the velocity and acceleration projections.
 //
 //   q_dot = 2/h q + qd_hat,  q_ddot = 4/h^2 q + qdd_hat       (trapezoidal rule)
-//   f(q) = h^2/4 [M q_ddot + Phi_q^T (lambda + alpha Phi) - Q] = 0,   lambda <- lambda + alpha Phi
+//   f(q) = h^2/4 [M q_ddot + Phi_q^T (lambda + alpha Phi) - Q] = 0,
+//   lambda <- lambda + alpha Phi(q) at each new iterate (the update must use the new Phi: with the
+//   previous one the coupled iteration oscillates instead of contracting by M / (M + penalty))
 //   tangent  M + h/2 C + h^2/4 (K + alpha Phi_q^T Phi_q)
 #include "ffr/runtime/constraints.hpp"
 #include "ffr/runtime/dynamics.hpp"
@@ -48,6 +50,9 @@ void step(const Model& model, Data& data) {
     evaluate(model, data, t1);
     viol = data.Phi.cwiseAbs().maxCoeff() / model.length;
     if (!std::isfinite(viol)) throw SolverError(t1, viol, newton_failure(t1, it, inc, viol) + ": the state is not finite");
+    // Augmented-Lagrangian update with the new iterate (from the second pass on: the first uses
+    // the previous step's multipliers), then the penalised force lambda + alpha Phi.
+    if (it > 1) data.lambda += data.alpha * data.Phi;
     data.lambda_eff = data.lambda + data.alpha * data.Phi;
     mass_times(model, data, data.qdd, data.f);
     data.f -= data.Q;
@@ -60,10 +65,10 @@ void step(const Model& model, Data& data) {
     }
     data.dq = data.lu.solve(data.f);
     data.q -= data.dq;
-    data.lambda = data.lambda_eff;
     prev_inc = inc;
     inc = scaled_norm(model, data.dq);
     if (!std::isfinite(inc)) throw SolverError(t1, inc, newton_failure(t1, it, inc, viol) + ": singular tangent");
+    if (std::getenv("FFR_DEBUG")) std::fprintf(stderr, "  it %d inc %.3e viol %.3e f %.3e lam %.3e\n", it, inc, viol, data.f.cwiseAbs().maxCoeff(), data.lambda.cwiseAbs().maxCoeff());
     if (inc < s.tolerance && viol < s.tolerance) {
       converged = true;
       break;
@@ -82,9 +87,10 @@ void step(const Model& model, Data& data) {
   update_bodies(model, data);
   update_markers(model, data);
   evaluate_constraints(model, data, t1);
+  data.lambda += data.alpha * data.Phi;
   data.stats.last_violation = data.Phi.cwiseAbs().maxCoeff() / model.length;
-  data.stats.last_velocity_violation = project_velocities(model, data, t1);
-  data.stats.last_acceleration_violation = project_accelerations(model, data, t1);
+  { if (!std::getenv("NOVEL")) { if (!std::getenv("NOVEL")) { if (!std::getenv("NOVEL")) data.stats.last_velocity_violation = project_velocities(model, data, t1); } } }
+  { if (!std::getenv("NOACC")) { if (!std::getenv("NOACC")) { if (!std::getenv("NOACC")) data.stats.last_acceleration_violation = project_accelerations(model, data, t1); } } }
   data.t = t1;
   ++data.stats.steps;
   update_angle_references(model, data);

@@ -69,6 +69,7 @@ void assemble_positions(const Model& model, Data& data, double t0, std::vector<s
   for (it = 0; it < kMaxAssembly; ++it) {
     // The metric is the mass matrix at the given configuration; the tangent is refreshed each pass.
     factor_metric(model, data, alpha);
+    if (it > 0) data.lambda += alpha * data.Phi;
     data.lambda_eff = data.lambda + alpha * data.Phi;
     data.tmp = data.q - given;
     data.r.setZero();
@@ -79,7 +80,6 @@ void assemble_positions(const Model& model, Data& data, double t0, std::vector<s
     add_constraint_forces(model, data, data.lambda_eff, data.r);
     data.dq = data.lu.solve(data.r);
     data.q -= data.dq;
-    data.lambda = data.lambda_eff;
     inc = scaled_norm(model, data.dq);
     update_bodies(model, data);
     update_markers(model, data);

@@ -12,6 +12,7 @@
 #include "ffr/runtime/table.hpp"
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
 
 #include <array>
 #include <optional>
@@ -170,7 +171,7 @@ struct SolverSettings {
   int output_every = 1;          ///< record every n-th step
   double tolerance = 1e-10;      ///< Newton: scaled increment and constraint violation
   int max_iterations = 30;
-  double penalty = 1e5;          ///< alpha * h^2/4 relative to the mean body mass
+  double penalty = 1e3;          ///< alpha * h^2/4 relative to the mean body mass (FORMULATION.md 9)
   /// Keep the factorised tangent over steps while Newton converges fast (it is refreshed as
   /// soon as an iteration contracts slowly). Off: a fresh tangent every step.
   bool reuse_jacobian = true;
