@@ -1,0 +1,157 @@
+#include "ffr/formats/json_input.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace ffr::formats {
+
+std::string JsonNode::describe() const {
+  std::string s = j_->dump();
+  if (s.size() > 40) s = s.substr(0, 37) + "...";
+  return s;
+}
+
+void JsonNode::fail(const std::string& what) const {
+  throw FormatError(*file_, path_.empty() ? "(top level)" : path_, what);
+}
+
+JsonNode JsonNode::at(const std::string& key) const {
+  if (!j_->is_object()) fail("expected an object, found " + describe());
+  auto it = j_->find(key);
+  const std::string p = path_.empty() ? key : path_ + "." + key;
+  if (it == j_->end()) throw FormatError(*file_, p, "missing required field");
+  return JsonNode(&*it, p, file_);
+}
+
+std::optional<JsonNode> JsonNode::find(const std::string& key) const {
+  if (!j_->is_object()) fail("expected an object, found " + describe());
+  auto it = j_->find(key);
+  if (it == j_->end() || it->is_null()) return std::nullopt;
+  return JsonNode(&*it, path_.empty() ? key : path_ + "." + key, file_);
+}
+
+std::vector<JsonNode> JsonNode::items() const {
+  if (!j_->is_array()) fail("expected an array, found " + describe());
+  std::vector<JsonNode> out;
+  for (std::size_t i = 0; i < j_->size(); ++i)
+    out.emplace_back(&(*j_)[i], path_ + "[" + std::to_string(i) + "]", file_);
+  return out;
+}
+
+void JsonNode::allow_only(std::initializer_list<const char*> keys) const {
+  if (!j_->is_object()) fail("expected an object, found " + describe());
+  for (auto it = j_->begin(); it != j_->end(); ++it) {
+    bool ok = false;
+    for (const char* k : keys) ok = ok || it.key() == k;
+    if (!ok) {
+      std::string list;
+      for (const char* k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
+      throw FormatError(*file_, path_.empty() ? it.key() : path_ + "." + it.key(),
+                        "unknown field (allowed here: " + list + ")");
+    }
+  }
+}
+
+double JsonNode::number() const {
+  if (!j_->is_number()) fail("expected a number, found " + describe());
+  const double v = j_->get<double>();
+  if (!std::isfinite(v)) fail("expected a finite number");
+  return v;
+}
+
+double JsonNode::positive() const {
+  const double v = number();
+  if (!(v > 0)) fail("expected a positive number, found " + describe());
+  return v;
+}
+
+double JsonNode::non_negative() const {
+  const double v = number();
+  if (v < 0) fail("expected a number >= 0, found " + describe());
+  return v;
+}
+
+long long JsonNode::integer() const {
+  if (!j_->is_number_integer() && !(j_->is_number_float() && std::floor(j_->get<double>()) == j_->get<double>()))
+    fail("expected an integer, found " + describe());
+  return j_->get<long long>();
+}
+
+bool JsonNode::boolean() const {
+  if (!j_->is_boolean()) fail("expected true or false, found " + describe());
+  return j_->get<bool>();
+}
+
+std::string JsonNode::string() const {
+  if (!j_->is_string()) fail("expected a string, found " + describe());
+  return j_->get<std::string>();
+}
+
+std::vector<double> JsonNode::numbers() const {
+  std::vector<double> out;
+  for (const auto& n : items()) out.push_back(n.number());
+  return out;
+}
+
+Eigen::Vector3d JsonNode::vec3() const {
+  if (!j_->is_array() || j_->size() != 3) fail("expected [x, y, z], found " + describe());
+  const auto v = numbers();
+  return {v[0], v[1], v[2]};
+}
+
+Eigen::Matrix3d JsonNode::mat3() const {
+  if (!j_->is_array() || j_->size() != 3) fail("expected a 3x3 matrix [[..],[..],[..]], found " + describe());
+  Eigen::Matrix3d m;
+  const auto rows = items();
+  for (int r = 0; r < 3; ++r) m.row(r) = rows[r].vec3().transpose();
+  return m;
+}
+
+double JsonNode::number_or(const std::string& key, double dflt) const {
+  auto n = find(key);
+  return n ? n->number() : dflt;
+}
+
+bool JsonNode::boolean_or(const std::string& key, bool dflt) const {
+  auto n = find(key);
+  return n ? n->boolean() : dflt;
+}
+
+std::string JsonNode::string_or(const std::string& key, const std::string& dflt) const {
+  auto n = find(key);
+  return n ? n->string() : dflt;
+}
+
+JsonDocument JsonDocument::parse(const std::string& text, const std::string& display_name) {
+  JsonDocument d;
+  d.file_ = std::make_shared<const std::string>(display_name);
+  try {
+    d.json_ = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.byte is the 1-based offset of the error; turn it into line and column.
+    std::size_t line = 1, col = 1;
+    for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+      if (text[i] == '\n') { ++line; col = 1; } else { ++col; }
+    }
+    std::string msg = e.what();
+    const auto pos = msg.find("parse error");
+    if (pos != std::string::npos) msg = msg.substr(pos);
+    throw FormatError(display_name, "", "malformed JSON at line " + std::to_string(line) + ", column " +
+                                            std::to_string(col) + " (" + msg + ")");
+  }
+  return d;
+}
+
+JsonDocument JsonDocument::load(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw FormatError(path.string(), "", "no such file");
+  if (std::filesystem::is_directory(path, ec)) throw FormatError(path.string(), "", "is a directory, not a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FormatError(path.string(), "", "cannot open for reading");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parse(ss.str(), path.string());
+}
+
+}  // namespace ffr::formats
