@@ -21,7 +21,7 @@ void size_marker(MarkerData& md, int nb) {
 Data::Data(const Model& model) {
   const int n = model.ncoord, m = model.nconstraints;
   q = qd = qdd = VectorXd::Zero(n);
-  lambda = lambda_eff = VectorXd::Zero(m);
+  lambda = lambda_eff = lambda0 = VectorXd::Zero(m);
   Q = f = dq = r = tmp = vstar = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);
   sigma = c = VectorXd::Zero(m);
   K = C = W = T = MatrixXd::Zero(n, n);

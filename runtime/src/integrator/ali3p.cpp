@@ -38,9 +38,10 @@ void step(const Model& model, Data& data) {
   data.qd_hat = -(2.0 / h) * data.q0 - data.qd0;
   data.qdd_hat = -(4.0 / h2) * data.q0 - (4.0 / h) * data.qd0 - data.qdd0;
   data.q.noalias() += h * data.qd0 + (0.5 * h2) * data.qdd0;
+  data.lambda0 = data.lambda;
 
   bool refactor = !data.tangent_valid || !s.reuse_jacobian;
-  bool fresh = false;
+  data.tangent_fresh_step = false;
   double inc = 0, prev_inc = 0, viol = 0;
   int it = 0;
   bool converged = false;
@@ -61,7 +62,7 @@ void step(const Model& model, Data& data) {
     if (refactor) {
       refresh_tangent(model, data, t1);
       refactor = false;
-      fresh = true;
+      data.tangent_fresh_step = true;
     }
     data.dq = data.lu.solve(data.f);
     data.q -= data.dq;
@@ -73,8 +74,16 @@ void step(const Model& model, Data& data) {
       converged = true;
       break;
     }
-    // A stale tangent that contracts slowly is refreshed (once per step).
-    if (!fresh && it >= 2 && inc > 0.25 * prev_inc) refactor = true;
+    // A stale tangent that contracts slowly is refreshed, and the step restarted from the
+    // predictor: the stale iterations may have pushed the multipliers far off, where the
+    // tangent (without the constraints' second derivatives) converges poorly.
+    if (!data.tangent_fresh_step && it >= 2 && inc > 0.25 * prev_inc) {
+      refactor = true;
+      data.q = data.q0;
+      data.q.noalias() += h * data.qd0 + (0.5 * h2) * data.qdd0;
+      data.lambda = data.lambda0;
+      inc = 0;
+    }
   }
   data.stats.newton_iterations += it > s.max_iterations ? s.max_iterations : it;
   data.stats.last_iterations = it;

@@ -121,6 +121,7 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
   update_markers(model, data);
   evaluate_constraints(model, data, t0);
   factor_metric(model, data, 0.25 * h * h * data.alpha);
+  data.tangent_fresh_step = true;  // the metric is M here: no refresh with C and K
   const VectorXd given = data.qd;
   const double vres = project_velocities(model, data, t0);
   if (vres > model.settings.tolerance)

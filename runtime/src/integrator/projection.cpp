@@ -13,18 +13,19 @@
 namespace ffr::runtime {
 namespace {
 
-constexpr int kMaxProjection = 60;
+constexpr int kMaxProjection = 40;
 
-double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias, double time_scale) {
+// One projection with the current factorisation; x is left projected (or as far as it got).
+double project_once(const Model& model, Data& data, VectorXd& x, const VectorXd& bias, double unit) {
   const double h = model.settings.step;
   const double h4 = 0.25 * h * h;
-  const double unit = time_scale / model.length;
-  data.vstar = x;
+  const double target = 1e-2 * model.settings.tolerance;
   data.sigma.setZero();
   constraint_times(model, data, x, data.c);
   data.c += bias;
   double res = data.c.cwiseAbs().maxCoeff() * unit;
-  for (int k = 0; k < kMaxProjection && res > model.settings.tolerance * 1e-2; ++k) {
+  const double res0 = res;
+  for (int k = 0; k < kMaxProjection && res > target; ++k) {
     data.tmp = x - data.vstar;
     data.r.noalias() = data.W * data.tmp;
     data.c = h4 * (data.sigma + data.alpha * data.c);
@@ -36,7 +37,24 @@ double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias
     data.sigma += data.alpha * data.c;
     const double prev = res;
     res = data.c.cwiseAbs().maxCoeff() * unit;
-    if (res > 0.9 * prev && k > 2) break;  // stagnated at round-off
+    if (!(res < 1e3 * std::max(res0, target))) return res;  // diverging: stale factorisation
+    if (k > 3 && res > 0.5 * prev) break;                    // stagnating at round-off
+  }
+  return res;
+}
+
+// Projects x (saved first) and, if a stale factorisation cannot do it, refreshes the tangent at
+// the current state and starts again.
+double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias, double time_scale, double t) {
+  const double unit = time_scale / model.length;
+  data.vstar = x;
+  double res = project_once(model, data, x, bias, unit);
+  if (res > model.settings.tolerance && data.tangent_fresh_step == false) {
+    x = data.vstar;
+    refresh_tangent(model, data, t);
+    data.tangent_fresh_step = true;
+    data.vstar = x;
+    res = project_once(model, data, x, bias, unit);
   }
   return res;
 }
@@ -45,7 +63,7 @@ double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias
 
 double project_velocities(const Model& model, Data& data, double t) {
   const double h = model.settings.step;
-  return project(model, data, data.qd, data.Phit, h);
+  return project(model, data, data.qd, data.Phit, h, t);
 }
 
 double project_accelerations(const Model& model, Data& data, double t) {
@@ -54,7 +72,7 @@ double project_accelerations(const Model& model, Data& data, double t) {
   update_bodies(model, data);
   update_markers(model, data);
   evaluate_constraints(model, data, t);
-  return project(model, data, data.qdd, data.gamma, h * h);
+  return project(model, data, data.qdd, data.gamma, h * h, t);
 }
 
 }  // namespace ffr::runtime

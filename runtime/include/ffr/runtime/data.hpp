@@ -69,10 +69,12 @@ struct Data {
   MatrixXd K, C;                ///< -dQ/dq, -dQ/dqd (analytic)
   VectorXd Phi, Phit, gamma;    ///< constraint value, partial time derivative, acceleration bias
   VectorXd lambda_eff;          ///< lambda + alpha Phi
+  VectorXd lambda0;             ///< multipliers at the start of the step
   MatrixXd W;                   ///< M + h/2 C + h^2/4 K at the last factorisation (projection metric)
   MatrixXd T;                   ///< tangent W + h^2/4 Phi_q^T alpha Phi_q
   Eigen::PartialPivLU<MatrixXd> lu;
   bool tangent_valid = false;
+  bool tangent_fresh_step = false; ///< factorised during the current step (or set-up)
 
   // Integrator work.
   VectorXd q0, qd0, qdd0;       ///< state at the start of the step
