@@ -87,9 +87,11 @@ TEST(SliderCrank, FlexibleRodMatchesIvpTestSetReference) {
   std::printf("t = 0.1: phi2 %.12f (ref %.12f)  x3 %.12f (ref %.12f)\n", r.phi2, ref_phi2, r.x3, ref_x3);
   for (int k = 0; k < 4; ++k) std::printf("  q%d %.9e (ref %.9e, rel %.2e)\n", k + 1, r.q[k], ref_q[k], r.q[k] / ref_q[k] - 1);
   std::printf("  %d Newton iterations, worst constraint violation %.2e\n", r.iterations, r.worst_violation);
-  EXPECT_NEAR(r.phi2, ref_phi2, 1e-6);
-  EXPECT_NEAR(r.x3, ref_x3, 1e-6);
-  EXPECT_NEAR(r.q[0] / ref_q[0], 1.0, 1e-2);  // midpoint deflection
-  EXPECT_NEAR(r.q[1] / ref_q[1], 1.0, 2e-2);
-  EXPECT_LT(r.worst_violation, 1e-10);
+  EXPECT_NEAR(r.phi2, ref_phi2, 1e-7);
+  EXPECT_NEAR(r.x3, ref_x3, 1e-7);
+  EXPECT_NEAR(r.q[0] / ref_q[0], 1.0, 3e-4);  // midpoint deflection
+  EXPECT_NEAR(r.q[2] / ref_q[2], 1.0, 1e-2);  // axial: high-frequency content, trapezoidal phase error
+  EXPECT_NEAR(r.q[3] / ref_q[3], 1.0, 1e-2);
+  EXPECT_NEAR(r.q[1] / ref_q[1], 1.0, 1e-3);
+  EXPECT_LT(r.worst_violation, 1e-12);
 }

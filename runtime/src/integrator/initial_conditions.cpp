@@ -127,7 +127,8 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
   if (vres > model.settings.tolerance)
     throw SolverError(t0, vres, "the initial velocities cannot be made consistent with the joints and motions");
   const double dv = (data.qd - given).cwiseAbs().maxCoeff();
-  if (dv > 1e-9 * std::max(1.0, given.cwiseAbs().maxCoeff()))
+  // Below this the change is the rounding of the given numbers, not worth a note.
+  if (dv > 1e-8 * std::max(1.0, given.cwiseAbs().maxCoeff()))
     notes.push_back("initial velocities adjusted to satisfy the joints and motions: largest change " +
                     largest_change(model, data.qd, given, "m/s"));
 

@@ -169,7 +169,7 @@ struct SolverSettings {
   double end = 1.0;
   double step = 1e-3;
   int output_every = 1;          ///< record every n-th step
-  double tolerance = 1e-10;      ///< Newton: scaled increment and constraint violation
+  double tolerance = 1e-12;      ///< Newton: scaled increment and constraint violation
   int max_iterations = 30;
   double penalty = 1e3;          ///< alpha * h^2/4 relative to the mean body mass (FORMULATION.md 9)
   /// Keep the factorised tangent over steps while Newton converges fast (it is refreshed as
