@@ -298,7 +298,10 @@ bool Reader::exists(const std::string& path) const {
   while (pos <= path.size()) {
     const auto next = path.find('/', pos);
     partial = path.substr(0, next);
-    if (H5Lexists(file_.get(), partial.c_str(), H5P_DEFAULT) <= 0) return false;
+    const htri_t e = H5Lexists(file_.get(), partial.c_str(), H5P_DEFAULT);
+    // An error (not "no") means the parent group's metadata cannot be read: damaged file.
+    if (e < 0) fail(partial, "cannot read the group's metadata: the file is damaged (" + last_error_text() + ")");
+    if (e == 0) return false;
     if (next == std::string::npos) break;
     pos = next + 1;
   }
@@ -506,7 +509,9 @@ std::vector<std::string> Reader::read_strings(const std::string& path, std::uint
 
 bool Reader::has_attr(const std::string& object, const std::string& name) const {
   if (!exists(object)) return false;
-  return H5Aexists_by_name(file_.get(), object.c_str(), name.c_str(), H5P_DEFAULT) > 0;
+  const htri_t e = H5Aexists_by_name(file_.get(), object.c_str(), name.c_str(), H5P_DEFAULT);
+  if (e < 0) fail(object, "cannot read the attributes: the file's metadata is damaged (" + last_error_text() + ")");
+  return e > 0;
 }
 
 std::string Reader::attr_string(const std::string& object, const std::string& name) const {

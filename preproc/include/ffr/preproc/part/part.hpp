@@ -1,0 +1,131 @@
+#pragma once
+// The part file (input of ffr-reduce), validated. Field names follow ../shared/contract.md;
+// extensions are documented in preproc/PART_FILE.md.
+
+#include "ffr/preproc/elements/element.hpp"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ffr::preproc {
+
+/// A consistent unit system: inputs are read in it and the SID is written in it.
+struct Units {
+  std::string length = "m", mass = "kg", time = "s";
+};
+
+/// Extension: a named group made from geometric entities, for geometry without physical
+/// groups (STEP, BREP): entities of dimension `dim` listed by tag or inside a bounding box.
+struct GroupDef {
+  std::string name;
+  int dim = 2;
+  std::vector<int> entities;
+  std::optional<std::array<double, 6>> box;  ///< xmin, ymin, zmin, xmax, ymax, zmax
+};
+
+struct MeshSpec {
+  double size = 0;   ///< target element size (0: gmsh default)
+  int order = 1;     ///< 1 or 2
+  bool optimize = true;
+};
+
+struct SolidProps {
+  std::string group;
+  Material mat;
+};
+
+struct ShellProps {
+  std::string group;
+  double thickness = 0;
+  Material mat;
+};
+
+struct BeamProps {
+  std::string group;
+  Material mat;
+  double A = 0, Iy = 0, Iz = 0, J = 0;
+  std::optional<double> ky, kz;  ///< shear factors; none = Euler–Bernoulli-like (rigid in shear)
+  Eigen::Vector3d y_axis = Eigen::Vector3d::UnitZ();
+};
+
+struct PointMassSpec {
+  std::string name;
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();
+  double mass = 0;
+  Eigen::Vector3d com_offset = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  ///< about its own centre
+  std::string interface;                               ///< hang on this interface instead of a node
+};
+
+struct InterfaceSpec {
+  std::string name, group;
+  std::string coupling = "rigid";  ///< "rigid" (RBE2-like) or "averaged" (RBE3-like)
+  std::optional<Eigen::Vector3d> at;
+};
+
+struct ReductionSpec {
+  enum class Method { Free, Clamped, CraigBampton };
+  Method method = Method::Free;
+  std::string interface;                ///< clamped: the held interface
+  std::vector<std::string> interfaces;  ///< craig-bampton: all interfaces
+  std::string frame;                    ///< craig-bampton: the held (frame) interface
+  int modes = 0;                        ///< number of eigenmodes
+  std::optional<double> max_frequency_hz;
+  bool orthonormalize = false;          ///< craig-bampton: orthonormalize the whole basis
+  std::string backend = "spectra";      ///< "spectra" or "arpack"
+};
+
+struct DampingSpec {
+  enum class Kind { None, Ratio, Rayleigh };
+  Kind kind = Kind::None;
+  double ratio = 0, alpha = 0, beta = 0;
+};
+
+/// Extension: a static preload whose stress prestresses the body (SID ksigma).
+struct PreloadSpec {
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  ///< acceleration of gravity [length/time^2]
+  struct Load {
+    std::string interface;
+    Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
+  };
+  std::vector<Load> loads;
+  bool empty() const { return gravity.isZero() && loads.empty(); }
+};
+
+struct OutputNodeSpec {
+  std::string name;
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();
+};
+
+struct PartSpec {
+  std::filesystem::path file;      ///< the part file itself
+  std::filesystem::path geometry;  ///< resolved against the part file's folder
+  Units units;
+  MeshSpec mesh;
+  std::vector<GroupDef> groups;
+  std::vector<SolidProps> materials;
+  std::vector<ShellProps> shells;
+  std::vector<BeamProps> beams;
+  std::vector<PointMassSpec> point_masses;
+  std::vector<InterfaceSpec> interfaces;
+  ReductionSpec reduction;
+  DampingSpec damping;
+  bool stiffening = false;
+  PreloadSpec preload;
+  bool visual = true;
+  std::vector<OutputNodeSpec> output_nodes;
+
+  const InterfaceSpec* find_interface(const std::string& name) const;
+};
+
+/// Reads and validates a part file. Throws ffr::formats::FormatError naming the file and the
+/// field for every problem (missing file, malformed JSON, unknown field, wrong type or sign,
+/// an interface name used but not defined, ...). Group names are checked later against the mesh.
+PartSpec load_part(const std::filesystem::path& path);
+
+}  // namespace ffr::preproc

@@ -1,0 +1,174 @@
+#include "pattern.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace ffr::preproc::detail {
+
+namespace {
+// Entities touched by an element, in the order of its DOFs (unique).
+std::vector<Index> element_entities(const FeModel& model, const ElementRef& ref) {
+  std::vector<Index> ents;
+  const Index N = model.mesh->num_nodes();
+  if (ref.block >= 0) {
+    const auto& blk = model.mesh->blocks[model.blocks[static_cast<std::size_t>(ref.block)].block];
+    const Index* c = blk.element(ref.index);
+    ents.assign(c, c + num_nodes(blk.type));
+  } else {
+    const auto& m = model.masses[static_cast<std::size_t>(ref.index)];
+    ents.push_back(m.interface >= 0 ? N + m.interface : m.node);
+  }
+  return ents;
+}
+}  // namespace
+
+Pattern build_pattern(const FeModel& model, const std::vector<ElementRef>& refs) {
+  Pattern p;
+  const Index N = model.mesh->num_nodes();
+  const Index E = N + static_cast<Index>(model.interfaces.size());
+  p.num_dofs = model.num_dofs;
+  p.num_nodes = N;
+  p.ent_dof0.resize(static_cast<std::size_t>(E));
+  p.ent_ndof.resize(static_cast<std::size_t>(E));
+  for (Index n = 0; n < N; ++n) {
+    p.ent_dof0[static_cast<std::size_t>(n)] = model.node_dof[static_cast<std::size_t>(n)];
+    p.ent_ndof[static_cast<std::size_t>(n)] = model.node_ndof[static_cast<std::size_t>(n)];
+  }
+  for (std::size_t k = 0; k < model.interfaces.size(); ++k) {
+    p.ent_dof0[static_cast<std::size_t>(N) + k] = model.interfaces[k].dof;
+    p.ent_ndof[static_cast<std::size_t>(N) + k] = 6;
+  }
+
+  // Adjacency: every entity with DOFs is adjacent to itself; elements connect their entities.
+  std::vector<std::vector<Index>> adj(static_cast<std::size_t>(E));
+  for (Index e = 0; e < E; ++e)
+    if (p.ent_ndof[static_cast<std::size_t>(e)] > 0) adj[static_cast<std::size_t>(e)].push_back(e);
+  for (const auto& ref : refs) {
+    const auto ents = element_entities(model, ref);
+    for (Index a : ents)
+      for (Index b : ents)
+        if (a != b) adj[static_cast<std::size_t>(a)].push_back(b);
+  }
+  p.adj_ptr.assign(static_cast<std::size_t>(E) + 1, 0);
+  for (Index e = 0; e < E; ++e) {
+    auto& v = adj[static_cast<std::size_t>(e)];
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    p.adj_ptr[static_cast<std::size_t>(e) + 1] = p.adj_ptr[static_cast<std::size_t>(e)] + static_cast<Index>(v.size());
+  }
+  p.adj.reserve(static_cast<std::size_t>(p.adj_ptr.back()));
+  p.adj_prefix.reserve(p.adj.capacity());
+  for (Index e = 0; e < E; ++e) {
+    Index pre = 0;
+    for (Index b : adj[static_cast<std::size_t>(e)]) {
+      p.adj.push_back(b);
+      p.adj_prefix.push_back(pre);
+      pre += p.ent_ndof[static_cast<std::size_t>(b)];
+    }
+    std::vector<Index>().swap(adj[static_cast<std::size_t>(e)]);
+  }
+
+  // DOF-level columns: each DOF of entity e has the rows of all DOFs of e's neighbours.
+  p.col_ptr.assign(static_cast<std::size_t>(p.num_dofs) + 1, 0);
+  for (Index e = 0; e < E; ++e) {
+    const int nd = p.ent_ndof[static_cast<std::size_t>(e)];
+    if (nd == 0) continue;
+    const auto last = static_cast<std::size_t>(p.adj_ptr[static_cast<std::size_t>(e) + 1] - 1);
+    const Index rows = p.adj_prefix[last] + p.ent_ndof[static_cast<std::size_t>(p.adj[last])];
+    for (int a = 0; a < nd; ++a) p.col_ptr[static_cast<std::size_t>(p.ent_dof0[static_cast<std::size_t>(e)] + a) + 1] = rows;
+  }
+  for (std::size_t c = 0; c < static_cast<std::size_t>(p.num_dofs); ++c) p.col_ptr[c + 1] += p.col_ptr[c];
+
+  // Node-level columns (mesh nodes only; interface entities sort after all mesh nodes).
+  p.node_col_ptr.assign(static_cast<std::size_t>(N) + 1, 0);
+  for (Index n = 0; n < N; ++n) {
+    Index cnt = 0;
+    for (Index k = p.adj_ptr[static_cast<std::size_t>(n)]; k < p.adj_ptr[static_cast<std::size_t>(n) + 1]; ++k)
+      if (p.adj[static_cast<std::size_t>(k)] < N) ++cnt;
+    p.node_col_ptr[static_cast<std::size_t>(n) + 1] = p.node_col_ptr[static_cast<std::size_t>(n)] + cnt;
+  }
+  return p;
+}
+
+Index Pattern::entity_of_dof(const FeModel& m, Index d) const {
+  return d < m.mesh_dofs() ? m.dof_node[static_cast<std::size_t>(d)] : num_nodes + (d - m.mesh_dofs()) / 6;
+}
+
+Index Pattern::find(Index col_entity, Index row_entity) const {
+  const auto b = adj.begin() + adj_ptr[static_cast<std::size_t>(col_entity)];
+  const auto e = adj.begin() + adj_ptr[static_cast<std::size_t>(col_entity) + 1];
+  const auto it = std::lower_bound(b, e, row_entity);
+  if (it == e || *it != row_entity) throw std::logic_error("assembly pattern: entity pair not in the pattern");
+  return static_cast<Index>(it - adj.begin());
+}
+
+SparseMatrix Pattern::make_matrix() const {
+  SparseMatrix A(num_dofs, num_dofs);
+  A.resizeNonZeros(col_ptr.back());
+  std::copy(col_ptr.begin(), col_ptr.end(), A.outerIndexPtr());
+  for (Index e = 0; e < static_cast<Index>(ent_ndof.size()); ++e) {
+    const int nd = ent_ndof[static_cast<std::size_t>(e)];
+    for (int a = 0; a < nd; ++a) {
+      Index pos = col_ptr[static_cast<std::size_t>(ent_dof0[static_cast<std::size_t>(e)] + a)];
+      for (Index k = adj_ptr[static_cast<std::size_t>(e)]; k < adj_ptr[static_cast<std::size_t>(e) + 1]; ++k) {
+        const Index b = adj[static_cast<std::size_t>(k)];
+        for (int r = 0; r < ent_ndof[static_cast<std::size_t>(b)]; ++r) A.innerIndexPtr()[pos++] = ent_dof0[static_cast<std::size_t>(b)] + r;
+      }
+    }
+  }
+  std::fill(A.valuePtr(), A.valuePtr() + col_ptr.back(), 0.0);
+  return A;
+}
+
+SparseMatrix Pattern::make_node_matrix() const {
+  SparseMatrix A(num_nodes, num_nodes);
+  A.resizeNonZeros(node_col_ptr.back());
+  std::copy(node_col_ptr.begin(), node_col_ptr.end(), A.outerIndexPtr());
+  for (Index n = 0; n < num_nodes; ++n) {
+    Index pos = node_col_ptr[static_cast<std::size_t>(n)];
+    for (Index k = adj_ptr[static_cast<std::size_t>(n)]; k < adj_ptr[static_cast<std::size_t>(n) + 1]; ++k)
+      if (adj[static_cast<std::size_t>(k)] < num_nodes) A.innerIndexPtr()[pos++] = adj[static_cast<std::size_t>(k)];
+  }
+  std::fill(A.valuePtr(), A.valuePtr() + node_col_ptr.back(), 0.0);
+  return A;
+}
+
+void Pattern::add(SparseMatrix& A, const std::vector<Index>& dofs, const Eigen::MatrixXd& Ae, const FeModel& m) const {
+  const auto nd = dofs.size();
+  // Entity and offset of each element DOF, and the adjacency slot of each entity pair.
+  std::vector<Index> ent(nd), off(nd);
+  for (std::size_t i = 0; i < nd; ++i) {
+    ent[i] = entity_of_dof(m, dofs[i]);
+    off[i] = dofs[i] - ent_dof0[static_cast<std::size_t>(ent[i])];
+  }
+  double* val = A.valuePtr();
+  Index last_col_ent = -1, last_row_ent = -1, slot = -1;
+  for (std::size_t j = 0; j < nd; ++j) {
+    const Index col0 = col_ptr[static_cast<std::size_t>(dofs[j])];
+    for (std::size_t i = 0; i < nd; ++i) {
+      const double v = Ae(static_cast<Index>(i), static_cast<Index>(j));
+      if (v == 0.0) continue;
+      if (ent[j] != last_col_ent || ent[i] != last_row_ent) {
+        slot = find(ent[j], ent[i]);
+        last_col_ent = ent[j];
+        last_row_ent = ent[i];
+      }
+      val[col0 + adj_prefix[static_cast<std::size_t>(slot)] + off[i]] += v;
+    }
+  }
+}
+
+void Pattern::add_node_scalar(SparseMatrix& Ms, const Index* nodes, int nn, const Eigen::MatrixXd& Me) const {
+  double* val = Ms.valuePtr();
+  for (int j = 0; j < nn; ++j) {
+    const Index cn = nodes[j];
+    const Index c0 = node_col_ptr[static_cast<std::size_t>(cn)];
+    const Index a0 = adj_ptr[static_cast<std::size_t>(cn)];
+    for (int i = 0; i < nn; ++i) {
+      const Index slot = find(cn, nodes[i]) - a0;  // mesh nodes precede interfaces in adj
+      val[c0 + slot] += Me(3 * i, 3 * j);
+    }
+  }
+}
+
+}  // namespace ffr::preproc::detail

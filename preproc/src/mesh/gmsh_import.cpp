@@ -1,0 +1,220 @@
+#include "ffr/preproc/mesh/gmsh_import.hpp"
+
+#include "ffr/formats/h5.hpp"
+#include "gmsh_session.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <set>
+#include <unordered_map>
+
+namespace ffr::preproc {
+namespace {
+
+using formats::FormatError;
+
+// Runs a gmsh call and converts its exceptions (std::string in gmsh 4.8) into FormatError.
+template <class F>
+void gmsh_call(const std::string& file, const std::string& what, F&& f) {
+  try {
+    f();
+  } catch (const std::string& s) {
+    throw FormatError(file, "", what + ": " + s);
+  } catch (const std::exception& e) {
+    throw FormatError(file, "", what + ": " + e.what());
+  } catch (int) {
+    throw FormatError(file, "", what + ": " + detail::GmshSession::last_error());
+  }
+}
+
+// Adds the part file's entity-based groups as physical groups (before meshing, so the
+// mesher keeps them and getNodesForPhysicalGroup works).
+void add_part_groups(const PartSpec& part) {
+  for (const auto& g : part.groups) {
+    std::vector<int> tags = g.entities;
+    if (g.box) {
+      const auto& b = *g.box;
+      gmsh::vectorpair dimTags;
+      gmsh::model::getEntitiesInBoundingBox(b[0], b[1], b[2], b[3], b[4], b[5], dimTags, g.dim);
+      for (const auto& [d, t] : dimTags) tags.push_back(t);
+    }
+    gmsh::vectorpair all;
+    gmsh::model::getEntities(all, g.dim);
+    std::set<int> exist;
+    for (const auto& [d, t] : all) exist.insert(t);
+    for (int t : tags)
+      if (!exist.count(t))
+        throw FormatError(part.file.string(), "groups." + g.name,
+                          "no entity of dimension " + std::to_string(g.dim) + " with tag " + std::to_string(t));
+    if (tags.empty())
+      throw FormatError(part.file.string(), "groups." + g.name,
+                        "the box contains no entity of dimension " + std::to_string(g.dim));
+    const int pg = gmsh::model::addPhysicalGroup(g.dim, tags);
+    gmsh::model::setPhysicalName(g.dim, pg, g.name);
+  }
+}
+
+// "all": every entity of the highest dimension, unless the geometry names a group "all".
+void add_default_group() {
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups);
+  for (const auto& [d, t] : groups) {
+    std::string name;
+    gmsh::model::getPhysicalName(d, t, name);
+    if (name == "all") return;
+  }
+  for (int dim = 3; dim >= 1; --dim) {
+    gmsh::vectorpair ents;
+    gmsh::model::getEntities(ents, dim);
+    if (ents.empty()) continue;
+    std::vector<int> tags;
+    for (const auto& [d, t] : ents) tags.push_back(t);
+    const int pg = gmsh::model::addPhysicalGroup(dim, tags);
+    gmsh::model::setPhysicalName(dim, pg, "all");
+    return;
+  }
+}
+
+Mesh extract(const std::string& file) {
+  Mesh mesh;
+  std::vector<std::size_t> tags;
+  std::vector<double> coord, param;
+  gmsh::model::mesh::getNodes(tags, coord, param, -1, -1, false, false);
+  if (tags.empty()) throw FormatError(file, "", "the mesh has no nodes");
+  mesh.x.resize(static_cast<Index>(tags.size()), 3);
+  std::unordered_map<std::size_t, Index> index;
+  index.reserve(tags.size() * 2);
+  for (std::size_t i = 0; i < tags.size(); ++i) {
+    index[tags[i]] = static_cast<Index>(i);
+    for (int c = 0; c < 3; ++c) mesh.x(static_cast<Index>(i), c) = coord[3 * i + c];
+  }
+  mesh.node_tags = tags;
+
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups);
+  for (const auto& [dim, pg] : groups) {
+    std::string name;
+    gmsh::model::getPhysicalName(dim, pg, name);
+    if (name.empty()) name = std::to_string(pg);
+
+    // Node set of the group (any dimension, including points).
+    std::vector<std::size_t> ntags;
+    std::vector<double> ncoord;
+    gmsh::model::mesh::getNodesForPhysicalGroup(dim, pg, ntags, ncoord);
+    auto& set = mesh.node_groups[name];
+    for (auto t : ntags) set.push_back(index.at(t));
+    std::sort(set.begin(), set.end());
+    set.erase(std::unique(set.begin(), set.end()), set.end());
+
+    if (dim == 0) continue;
+    std::vector<int> ents;
+    gmsh::model::getEntitiesForPhysicalGroup(dim, pg, ents);
+    std::map<int, std::size_t> block_of_type;  // gmsh type -> index in mesh.blocks
+    for (int ent : ents) {
+      std::vector<int> types;
+      std::vector<std::vector<std::size_t>> etags, enodes;
+      gmsh::model::mesh::getElements(types, etags, enodes, dim, ent);
+      for (std::size_t k = 0; k < types.size(); ++k) {
+        ElementType t;
+        try {
+          t = from_gmsh(types[k]);
+        } catch (const std::invalid_argument& e) {
+          throw FormatError(file, "group " + name, e.what());
+        }
+        auto [it, fresh] = block_of_type.try_emplace(types[k], mesh.blocks.size());
+        if (fresh) mesh.blocks.push_back(ElementBlock{t, name, {}, {}});
+        ElementBlock* block = &mesh.blocks[it->second];
+        block->tags.insert(block->tags.end(), etags[k].begin(), etags[k].end());
+        for (auto nt : enodes[k]) block->conn.push_back(index.at(nt));
+      }
+    }
+  }
+  if (mesh.blocks.empty()) throw FormatError(file, "", "the mesh has no elements in any physical group");
+  return mesh;
+}
+
+}  // namespace
+
+Mesh load_mesh(const PartSpec& part, MeshReport* report, const MeshLog& log) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string file = part.geometry.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(part.geometry, ec)) throw FormatError(file, "", "no such file");
+  detail::GmshSession session;
+  const bool is_msh = part.geometry.extension() == ".msh";
+
+  gmsh_call(file, "cannot read", [&] { gmsh::open(file); });
+  Mesh mesh;
+  if (is_msh) {
+    gmsh_call(file, "cannot use mesh", [&] {
+      add_part_groups(part);
+      add_default_group();
+    });
+  } else {
+    if (log) log("meshing " + part.geometry.filename().string() + " (size " + std::to_string(part.mesh.size) +
+                 ", order " + std::to_string(part.mesh.order) + ")");
+    gmsh_call(file, "meshing failed", [&] {
+      add_part_groups(part);
+      add_default_group();
+      gmsh::model::mesh::clear();
+      if (part.mesh.size > 0) {
+        gmsh::option::setNumber("Mesh.MeshSizeMax", part.mesh.size);
+        gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
+      }
+      gmsh::option::setNumber("Mesh.SecondOrderIncomplete", 1);  // serendipity 20/15/8-node elements
+      gmsh::option::setNumber("Mesh.Optimize", part.mesh.optimize ? 1 : 0);
+      gmsh::model::mesh::generate(3);
+      if (part.mesh.order == 2) gmsh::model::mesh::setOrder(2);
+    });
+  }
+  gmsh_call(file, "cannot extract mesh", [&] { mesh = extract(file); });
+
+  if (report) {
+    // An element can be in several groups ("all" and a named one): count each once.
+    std::map<std::string, std::set<std::size_t>> tags;
+    for (const auto& b : mesh.blocks) tags[name(b.type)].insert(b.tags.begin(), b.tags.end());
+    report->element_counts.clear();
+    for (const auto& [t, s] : tags) report->element_counts[t] = static_cast<Index>(s.size());
+    report->nodes = mesh.num_nodes();
+    report->meshed = !is_msh;
+    report->gmsh_log = detail::GmshSession::log_text();
+    report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  return mesh;
+}
+
+GeometryMass occ_mass_properties(const std::filesystem::path& geometry) {
+  const std::string file = geometry.string();
+  detail::GmshSession session;
+  GeometryMass g;
+  gmsh_call(file, "cannot read", [&] { gmsh::open(file); });
+  gmsh_call(file, "OpenCASCADE mass properties failed", [&] {
+    gmsh::vectorpair vols;
+    gmsh::model::occ::getEntities(vols, 3);
+    if (vols.empty()) throw std::string("no OpenCASCADE volume in the geometry");
+    // Combine the volumes' properties: total volume, centroid, parallel-axis shift.
+    Eigen::Matrix3d J_O = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d first = Eigen::Vector3d::Zero();
+    for (const auto& [d, t] : vols) {
+      double v = 0, x = 0, y = 0, z = 0;
+      std::vector<double> I;
+      gmsh::model::occ::getMass(3, t, v);
+      gmsh::model::occ::getCenterOfMass(3, t, x, y, z);
+      gmsh::model::occ::getMatrixOfInertia(3, t, I);
+      const Eigen::Vector3d c(x, y, z);
+      Eigen::Matrix3d Ic;
+      for (int r = 0; r < 3; ++r)
+        for (int s = 0; s < 3; ++s) Ic(r, s) = I[3 * r + s];
+      // OCC's matrix of inertia is about the centre of mass; shift to O.
+      J_O += Ic + v * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+      g.volume += v;
+      first += v * c;
+    }
+    g.centroid = first / g.volume;
+    const Eigen::Vector3d& c = g.centroid;
+    g.inertia_about_centroid = J_O - g.volume * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  });
+  return g;
+}
+
+}  // namespace ffr::preproc

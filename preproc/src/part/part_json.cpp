@@ -1,0 +1,267 @@
+#include "ffr/formats/json_input.hpp"
+#include "ffr/preproc/part/part.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <set>
+
+namespace ffr::preproc {
+namespace {
+
+using formats::FormatError;
+using formats::JsonNode;
+
+Material read_material(const JsonNode& n) {
+  Material m;
+  m.E = n.at("E").positive();
+  m.nu = n.at("nu").number();
+  if (!(m.nu > -1.0 && m.nu < 0.5)) n.at("nu").fail("Poisson's ratio must lie in (-1, 0.5)");
+  m.rho = n.at("rho").non_negative();
+  return m;
+}
+
+Units read_units(const JsonNode& n) {
+  n.allow_only({"length", "mass", "time"});
+  Units u;
+  u.length = n.string_or("length", "m");
+  u.mass = n.string_or("mass", "kg");
+  u.time = n.string_or("time", "s");
+  const std::set<std::string> L{"m", "mm", "cm"}, M{"kg", "t", "g"}, T{"s", "ms"};
+  if (!L.count(u.length)) n.at("length").fail("unknown length unit '" + u.length + "' (m, mm, cm)");
+  if (!M.count(u.mass)) n.at("mass").fail("unknown mass unit '" + u.mass + "' (kg, t, g)");
+  if (!T.count(u.time)) n.at("time").fail("unknown time unit '" + u.time + "' (s, ms)");
+  return u;
+}
+
+MeshSpec read_mesh(const JsonNode& n) {
+  n.allow_only({"size", "order", "optimize"});
+  MeshSpec m;
+  if (auto s = n.find("size")) m.size = s->positive();
+  if (auto o = n.find("order")) {
+    m.order = static_cast<int>(o->integer());
+    if (m.order != 1 && m.order != 2) o->fail("mesh order must be 1 or 2");
+  }
+  m.optimize = n.boolean_or("optimize", true);
+  return m;
+}
+
+GroupDef read_group(const JsonNode& n) {
+  n.allow_only({"name", "dim", "entities", "box"});
+  GroupDef g;
+  g.name = n.at("name").string();
+  g.dim = static_cast<int>(n.at("dim").integer());
+  if (g.dim < 0 || g.dim > 3) n.at("dim").fail("dimension must be 0, 1, 2 or 3");
+  if (auto e = n.find("entities"))
+    for (const auto& t : e->items()) g.entities.push_back(static_cast<int>(t.integer()));
+  if (auto b = n.find("box")) {
+    const auto v = b->numbers();
+    if (v.size() != 6) b->fail("expected [xmin, ymin, zmin, xmax, ymax, zmax]");
+    g.box = std::array<double, 6>{v[0], v[1], v[2], v[3], v[4], v[5]};
+    if (v[0] > v[3] || v[1] > v[4] || v[2] > v[5]) b->fail("box minimum exceeds maximum");
+  }
+  if (g.entities.empty() && !g.box) n.fail("a group needs \"entities\" or \"box\"");
+  return g;
+}
+
+BeamProps read_beam(const JsonNode& n) {
+  n.allow_only({"group", "E", "nu", "rho", "section", "y_axis"});
+  BeamProps b;
+  b.group = n.at("group").string();
+  b.mat = read_material(n);
+  const JsonNode s = n.at("section");
+  s.allow_only({"A", "Iy", "Iz", "J", "ky", "kz"});
+  b.A = s.at("A").positive();
+  b.Iy = s.at("Iy").positive();
+  b.Iz = s.at("Iz").positive();
+  b.J = s.at("J").positive();
+  if (auto k = s.find("ky")) b.ky = k->positive();
+  if (auto k = s.find("kz")) b.kz = k->positive();
+  if (auto y = n.find("y_axis")) {
+    b.y_axis = y->vec3();
+    if (b.y_axis.norm() == 0) y->fail("y_axis must not be zero");
+  }
+  return b;
+}
+
+PointMassSpec read_point_mass(const JsonNode& n) {
+  n.allow_only({"name", "at", "mass", "com_offset", "inertia", "interface"});
+  PointMassSpec p;
+  p.name = n.at("name").string();
+  p.mass = n.at("mass").positive();
+  if (auto i = n.find("interface")) p.interface = i->string();
+  if (auto a = n.find("at")) p.at = a->vec3();
+  else if (p.interface.empty()) n.fail("a point mass needs \"at\" or \"interface\"");
+  if (auto c = n.find("com_offset")) p.com_offset = c->vec3();
+  if (auto i = n.find("inertia")) {
+    p.inertia = i->mat3();
+    if ((p.inertia - p.inertia.transpose()).norm() > 1e-12 * p.inertia.norm()) i->fail("inertia tensor must be symmetric");
+    const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(p.inertia).eigenvalues();
+    const double tol = 1e-12 * ev.cwiseAbs().maxCoeff();
+    if (ev.minCoeff() < -tol) i->fail("inertia tensor must be positive semi-definite");
+    // Principal moments of a physical body satisfy the triangle inequality.
+    if (ev(0) + ev(1) < ev(2) - tol) i->fail("principal moments violate the triangle inequality (not a physical body)");
+  }
+  return p;
+}
+
+InterfaceSpec read_interface(const JsonNode& n) {
+  n.allow_only({"name", "group", "coupling", "at"});
+  InterfaceSpec i;
+  i.name = n.at("name").string();
+  i.group = n.at("group").string();
+  i.coupling = n.string_or("coupling", "rigid");
+  if (i.coupling != "rigid" && i.coupling != "averaged") n.at("coupling").fail("coupling must be \"rigid\" or \"averaged\"");
+  if (auto a = n.find("at")) i.at = a->vec3();
+  return i;
+}
+
+ReductionSpec read_reduction(const JsonNode& n) {
+  n.allow_only({"method", "interface", "interfaces", "frame", "modes", "max_frequency_hz", "orthonormalize", "backend"});
+  ReductionSpec r;
+  const std::string m = n.at("method").string();
+  if (m == "free") r.method = ReductionSpec::Method::Free;
+  else if (m == "clamped") r.method = ReductionSpec::Method::Clamped;
+  else if (m == "craig-bampton") r.method = ReductionSpec::Method::CraigBampton;
+  else n.at("method").fail("unknown method '" + m + "' (free, clamped, craig-bampton)");
+  if (auto k = n.find("modes")) {
+    const long long v = k->integer();
+    if (v < 0 || v > 10000) k->fail("number of modes must lie in 0..10000");
+    r.modes = static_cast<int>(v);
+  }
+  if (auto f = n.find("max_frequency_hz")) r.max_frequency_hz = f->positive();
+  if (r.modes == 0 && !r.max_frequency_hz && r.method != ReductionSpec::Method::CraigBampton)
+    n.fail("give \"modes\" (a count) or \"max_frequency_hz\"");
+  r.orthonormalize = n.boolean_or("orthonormalize", false);
+  r.backend = n.string_or("backend", "spectra");
+  if (r.backend != "spectra" && r.backend != "arpack") n.at("backend").fail("backend must be \"spectra\" or \"arpack\"");
+  if (r.method == ReductionSpec::Method::Clamped) r.interface = n.at("interface").string();
+  if (r.method == ReductionSpec::Method::CraigBampton) {
+    for (const auto& i : n.at("interfaces").items()) r.interfaces.push_back(i.string());
+    if (r.interfaces.empty()) n.at("interfaces").fail("craig-bampton needs at least one interface");
+    r.frame = n.has("frame") ? n.at("frame").string() : r.interfaces.front();
+  }
+  return r;
+}
+
+DampingSpec read_damping(const JsonNode& n) {
+  n.allow_only({"ratio", "rayleigh"});
+  DampingSpec d;
+  if (auto r = n.find("ratio")) {
+    d.kind = DampingSpec::Kind::Ratio;
+    d.ratio = r->non_negative();
+    if (d.ratio >= 1) r->fail("damping ratio must be below 1");
+  } else if (auto r = n.find("rayleigh")) {
+    r->allow_only({"alpha", "beta"});
+    d.kind = DampingSpec::Kind::Rayleigh;
+    d.alpha = r->number_or("alpha", 0);
+    d.beta = r->number_or("beta", 0);
+    if (d.alpha < 0 || d.beta < 0) r->fail("Rayleigh coefficients must be >= 0");
+  }
+  return d;
+}
+
+PreloadSpec read_preload(const JsonNode& n) {
+  n.allow_only({"gravity", "loads"});
+  PreloadSpec p;
+  if (auto g = n.find("gravity")) p.gravity = g->vec3();
+  if (auto ls = n.find("loads"))
+    for (const auto& l : ls->items()) {
+      l.allow_only({"interface", "force", "moment"});
+      PreloadSpec::Load load;
+      load.interface = l.at("interface").string();
+      if (auto f = l.find("force")) load.force = f->vec3();
+      if (auto m = l.find("moment")) load.moment = m->vec3();
+      p.loads.push_back(load);
+    }
+  return p;
+}
+
+}  // namespace
+
+const InterfaceSpec* PartSpec::find_interface(const std::string& name) const {
+  for (const auto& i : interfaces)
+    if (i.name == name) return &i;
+  return nullptr;
+}
+
+PartSpec load_part(const std::filesystem::path& path) {
+  const auto doc = formats::JsonDocument::load(path);
+  const JsonNode root = doc.root();
+  if (!root.is_object()) root.fail("a part file is a JSON object");
+  root.allow_only({"geometry", "mesh", "units", "groups", "materials", "shells", "beams", "point_masses",
+                   "interfaces", "reduction", "stiffening", "preload", "output_nodes", "damping", "visual", "comment"});
+  PartSpec p;
+  p.file = path;
+  const JsonNode g = root.at("geometry");
+  p.geometry = path.parent_path() / g.string();
+  {
+    const auto ext = p.geometry.extension().string();
+    if (ext != ".geo" && ext != ".step" && ext != ".stp" && ext != ".brep" && ext != ".msh" && ext != ".STEP" &&
+        ext != ".STP")
+      g.fail("unsupported geometry '" + ext + "' (.geo, .step/.stp, .brep or .msh)");
+    std::error_code ec;
+    if (!std::filesystem::exists(p.geometry, ec)) g.fail("file not found: " + p.geometry.string());
+  }
+  if (auto u = root.find("units")) p.units = read_units(*u);
+  if (auto m = root.find("mesh")) p.mesh = read_mesh(*m);
+  if (auto gs = root.find("groups"))
+    for (const auto& n : gs->items()) p.groups.push_back(read_group(n));
+  if (auto ms = root.find("materials"))
+    for (const auto& n : ms->items()) {
+      n.allow_only({"group", "E", "nu", "rho"});
+      p.materials.push_back({n.at("group").string(), read_material(n)});
+    }
+  if (auto ss = root.find("shells"))
+    for (const auto& n : ss->items()) {
+      n.allow_only({"group", "thickness", "E", "nu", "rho"});
+      p.shells.push_back({n.at("group").string(), n.at("thickness").positive(), read_material(n)});
+    }
+  if (auto bs = root.find("beams"))
+    for (const auto& n : bs->items()) p.beams.push_back(read_beam(n));
+  if (p.materials.empty() && p.shells.empty() && p.beams.empty())
+    root.fail("the part has no material: give \"materials\", \"shells\" or \"beams\"");
+  if (auto pm = root.find("point_masses"))
+    for (const auto& n : pm->items()) p.point_masses.push_back(read_point_mass(n));
+  if (auto is = root.find("interfaces"))
+    for (const auto& n : is->items()) p.interfaces.push_back(read_interface(n));
+  p.reduction = read_reduction(root.at("reduction"));
+  if (auto d = root.find("damping")) p.damping = read_damping(*d);
+  p.stiffening = root.boolean_or("stiffening", false);
+  if (auto pl = root.find("preload")) p.preload = read_preload(*pl);
+  p.visual = root.boolean_or("visual", true);
+  if (auto os = root.find("output_nodes"))
+    for (const auto& n : os->items()) {
+      n.allow_only({"name", "at"});
+      p.output_nodes.push_back({n.at("name").string(), n.at("at").vec3()});
+    }
+
+  // Cross-references that need no mesh.
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < p.interfaces.size(); ++i)
+    if (!names.insert(p.interfaces[i].name).second)
+      root.at("interfaces").items()[i].at("name").fail("duplicate interface name '" + p.interfaces[i].name + "'");
+  for (std::size_t i = 0; i < p.output_nodes.size(); ++i)
+    if (!names.insert(p.output_nodes[i].name).second)
+      root.at("output_nodes").items()[i].at("name").fail("duplicate node name '" + p.output_nodes[i].name + "'");
+  const JsonNode red = root.at("reduction");
+  if (p.reduction.method == ReductionSpec::Method::Clamped && !p.find_interface(p.reduction.interface))
+    red.at("interface").fail("no interface named '" + p.reduction.interface + "' in \"interfaces\"");
+  if (p.reduction.method == ReductionSpec::Method::CraigBampton) {
+    for (std::size_t i = 0; i < p.reduction.interfaces.size(); ++i)
+      if (!p.find_interface(p.reduction.interfaces[i]))
+        red.at("interfaces").items()[i].fail("no interface named '" + p.reduction.interfaces[i] + "' in \"interfaces\"");
+    if (std::find(p.reduction.interfaces.begin(), p.reduction.interfaces.end(), p.reduction.frame) ==
+        p.reduction.interfaces.end())
+      red.at("frame").fail("the frame interface must be one of \"interfaces\"");
+  }
+  for (std::size_t i = 0; i < p.point_masses.size(); ++i)
+    if (!p.point_masses[i].interface.empty() && !p.find_interface(p.point_masses[i].interface))
+      root.at("point_masses").items()[i].at("interface").fail("no interface named '" + p.point_masses[i].interface + "'");
+  for (std::size_t i = 0; i < p.preload.loads.size(); ++i)
+    if (!p.find_interface(p.preload.loads[i].interface))
+      root.at("preload").at("loads").items()[i].at("interface").fail("no interface named '" + p.preload.loads[i].interface + "'");
+  return p;
+}
+
+}  // namespace ffr::preproc

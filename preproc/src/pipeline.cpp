@@ -1,0 +1,172 @@
+#include "ffr/preproc/pipeline.hpp"
+
+#include "ffr/formats/sha256.hpp"
+#include "ffr/preproc/assembly/assembly.hpp"
+#include "ffr/preproc/mesh/gmsh_import.hpp"
+#include "ffr/preproc/reduce/damping.hpp"
+#include "ffr/preproc/reduce/invariants.hpp"
+#include "ffr/preproc/reduce/node_data.hpp"
+#include "ffr/preproc/reduce/reduction.hpp"
+#include "ffr/preproc/reduce/stiffening.hpp"
+#include "ffr/preproc/visual/visual.hpp"
+#include "ffr/version.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace ffr::preproc {
+namespace {
+
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return s;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+std::string fmt(double v, int prec = 3) {
+  std::ostringstream o;
+  o.precision(prec);
+  o << v;
+  return o.str();
+}
+
+// Hash of what the mesh is: coordinates and connectivity, independent of the file format.
+std::string mesh_hash(const Mesh& mesh) {
+  formats::Sha256 h;
+  h.update(mesh.x.data(), static_cast<std::size_t>(mesh.x.size()) * sizeof(double));
+  for (const auto& b : mesh.blocks) {
+    h.update(b.group.data(), b.group.size());
+    const int t = to_gmsh(b.type);
+    h.update(&t, sizeof t);
+    h.update(b.conn.data(), b.conn.size() * sizeof(Index));
+  }
+  return h.hex();
+}
+
+std::string mass_model_text(const FeModel& model) {
+  std::string s = "consistent";
+  bool shells = false, beams = false;
+  for (const auto& pb : model.blocks) {
+    shells = shells || pb.kind == ElementKind::Shell;
+    beams = beams || pb.kind == ElementKind::Beam;
+  }
+  if (shells) s += "; shells: thickness-integrated fibres (u + theta x z n), drilling inertia in the rotary part";
+  if (beams) s += "; beams: section fibres with rotary inertia";
+  if (!model.masses.empty()) s += "; attached rigid masses: offset and inertia (u + theta x e)";
+  return s;
+}
+
+}  // namespace
+
+formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, const PipelineLog& log) {
+  auto stage = [&](const std::string& s) { if (log.stage) log.stage(s); };
+  auto progress = [&](const std::string& s) { if (log.progress) log.progress(s); };
+  Stopwatch sw;
+
+  // 1. Mesh.
+  MeshReport mrep;
+  const Mesh mesh = load_mesh(part, &mrep, [&](const std::string& s) { progress(s); });
+  {
+    std::string counts;
+    for (const auto& [t, n] : mrep.element_counts) counts += (counts.empty() ? "" : ", ") + std::to_string(n) + " " + t;
+    stage("mesh: " + std::to_string(mesh.num_nodes()) + " nodes, " + counts + (mrep.meshed ? " (meshed)" : " (read)") +
+          " [" + fmt(sw.lap()) + " s]");
+  }
+
+  // 2. FE model.
+  const FeModel model = build_model(mesh, part);
+  stage("model: " + std::to_string(model.num_dofs) + " DOF, " + std::to_string(model.interfaces.size()) +
+        " interface(s), " + std::to_string(model.masses.size()) + " attached mass(es) [" + fmt(sw.lap()) + " s]");
+
+  // 3. Assembly.
+  AssemblyOptions aopt;
+  aopt.progress = [&](double f) { progress("assembly " + std::to_string(static_cast<int>(100 * f)) + " %"); };
+  const Assembled fe = assemble(model, aopt);
+  stage("assembly: " + std::to_string(fe.elements) + " elements, nnz(K) = " + std::to_string(fe.K.nonZeros()) +
+        ", mass " + fmt(fe.mass, 6) + " " + part.units.mass + " [" + fmt(sw.lap()) + " s]");
+  if (!fe.worst_element.empty())
+    stage("  quality: worst scaled Jacobian " + fmt(fe.worst_scaled_jacobian) + " (" + fe.worst_element + ")");
+
+  // 4. Modes.
+  ReductionLog rlog;
+  rlog.message = [&](const std::string& s) { stage("  " + s); };
+  rlog.progress = progress;
+  ReductionResult red = reduce(model, fe, part.reduction, rlog);
+  {
+    std::string f;
+    for (Index i = 0; i < std::min<Index>(red.lambda.size(), 6); ++i)
+      f += (i ? ", " : "") + fmt(std::sqrt(std::max(0.0, red.lambda(i))) / (2 * M_PI), 5);
+    stage("modes: " + std::to_string(red.lambda.size()) + " (" + red.reference + "), first [Hz]: " + f +
+          (red.lambda.size() > 6 ? ", ..." : "") + "; max residual " + fmt(red.max_residual, 2) + " [" + fmt(sw.lap()) + " s]");
+  }
+
+  // 5. Invariants.
+  formats::Sid sid;
+  sid.units_length = part.units.length;
+  sid.units_mass = part.units.mass;
+  sid.units_time = part.units.time;
+  sid.resize(red.lambda.size());
+  sid.nodes = node_data(model, red.Phi);
+  const double t_unit = part.units.time == "ms" ? 1e-3 : 1.0;
+  for (Index k = 0; k < red.lambda.size(); ++k)
+    sid.refmod.frequency_hz(k) = std::sqrt(std::max(0.0, red.lambda(k))) / (2 * M_PI) / t_unit;
+  sid.refmod.mode_type = red.types;
+  sid.refmod.reference = red.reference;
+  compute_integrals(model, fe, red.Phi, sid);
+  members_from_integrals(sid);
+  sid.Ke = red.Ke;
+  sid.De = damping_matrix(part.damping, sid.Me, sid.Ke);
+  if (part.stiffening || !part.preload.empty()) {
+    StiffeningResult st = compute_stiffening(model, fe, red.Phi, part.stiffening, [&](const std::string& s) { stage("  " + s); });
+    if (part.stiffening) sid.stiffening = std::move(st.stiffening);
+    if (!part.preload.empty()) sid.ksigma = st.ksigma;
+    stage("stiffening: " + std::to_string(st.load_cases) + " unit load cases" +
+          (part.preload.empty() ? std::string() : ", prestress from the preload") + " [" + fmt(sw.lap()) + " s]");
+  }
+  for (std::size_t i = 0; i < model.interfaces.size(); ++i)
+    sid.interfaces.push_back({model.interfaces[i].name, static_cast<formats::Index>(i), model.interfaces[i].coupling,
+                              model.interfaces[i].group});
+  stage("invariants: m = " + fmt(sid.refmod.mass, 6) + ", centre of mass (" + fmt(sid.mdCM.M0.x() / sid.refmod.mass) +
+        ", " + fmt(sid.mdCM.M0.y() / sid.refmod.mass) + ", " + fmt(sid.mdCM.M0.z() / sid.refmod.mass) + ") [" +
+        fmt(sw.lap()) + " s]");
+
+  // 6. Visual data.
+  if (part.visual || !options.vtk.empty()) {
+    sid.visual = surface_with_modes(model, red.Phi);
+    if (!options.vtk.empty()) write_vtk(options.vtk, model, red.Phi, sid.refmod.frequency_hz);
+    stage("visual: " + std::to_string(sid.visual.vertices.rows()) + " vertices, " +
+          std::to_string(sid.visual.triangles.rows()) + " triangles [" + fmt(sw.lap()) + " s]");
+  }
+  if (!part.visual) sid.visual = {};
+
+  // Provenance.
+  auto& p = sid.provenance;
+  p.generator = kGenerator;
+  p.part_sha256 = formats::sha256_file(part.file);
+  p.mesh_sha256 = mesh_hash(mesh);
+  p.reduction_method = red.reference.substr(0, red.reference.find(':'));
+  p.reduction_parameters = red.parameters_json;
+  p.damping_model = damping_text(part.damping);
+  p.element_counts = mrep.element_counts;
+  const std::string mm = mass_model_text(model);
+  for (const char* g : {"/sid/mdCM", "/sid/J", "/sid/Ct", "/sid/Cr", "/sid/Me", "/sid/Gr", "/sid/Ge", "/sid/Oe", "/integrals"})
+    p.mass_model[g] = mm;
+  p.mass_model["/integrals/rotary"] = "point rotary inertia carried by no material point (shell drilling)";
+  p.extra["geometry"] = part.geometry.filename().string();
+  p.extra["eigen_backend"] = red.backend;
+  p.extra["max_relative_residual"] = fmt(red.max_residual, 3);
+  p.extra["factor_nnz_L"] = fmt(red.factor.nnz_L, 6);
+  for (const auto& o : model.outputs) p.extra["output_node." + o.name] = "mesh node " + std::to_string(mesh.node_tag(o.node)) +
+                                                                          " at distance " + fmt(o.distance);
+  return sid;
+}
+
+}  // namespace ffr::preproc

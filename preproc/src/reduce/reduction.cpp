@@ -1,0 +1,237 @@
+#include "ffr/preproc/reduce/reduction.hpp"
+
+#include "ffr/formats/h5.hpp"
+#include "ffr/preproc/solver/eigen_solver.hpp"
+#include "sparse_ops.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <sstream>
+
+namespace ffr::preproc {
+namespace {
+
+using formats::FormatError;
+
+double seconds_per_time_unit(const std::string& t) { return t == "ms" ? 1e-3 : 1.0; }
+
+// omega^2 of a frequency in Hz, in the part's time unit.
+double lambda_of_hz(double hz, const PartSpec& part) {
+  const double w = 2 * M_PI * hz * seconds_per_time_unit(part.units.time);
+  return w * w;
+}
+
+std::string node_text(const FeModel& model, const DofTransform& t, Index ind_dof) {
+  Index owner;
+  int comp;
+  bool is_itf;
+  model.dof_owner(t.full_of_ind[static_cast<std::size_t>(ind_dof)], owner, comp, is_itf);
+  static const char* names[] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+  std::ostringstream o;
+  if (is_itf) o << "interface '" << model.interfaces[static_cast<std::size_t>(owner)].name << "'";
+  else o << "node " << model.mesh->node_tag(owner);
+  o << " (" << names[comp] << ")";
+  return o.str();
+}
+
+[[noreturn]] void mechanism(const FeModel& model, const std::string& what) {
+  throw FormatError(model.part->file.string(), "reduction",
+                    "the part is a mechanism or not held enough: " + what);
+}
+
+// Near-zero eigenvalues mean mechanisms (after exact deflation of the rigid-body modes).
+void check_no_zero_modes(const FeModel& model, const Eigen::VectorXd& lambda, const PartSpec& part,
+                         const std::string& held) {
+  const double zero = 1e-6 * lambda_of_hz(1.0, part);  // ~1 mHz
+  int n = 0;
+  for (Index i = 0; i < lambda.size(); ++i) n += lambda(i) < zero ? 1 : 0;
+  if (n > 0)
+    mechanism(model, std::to_string(n) + " zero-frequency mode(s) " + held +
+                         "; check that every piece is connected and enough of the part is held");
+}
+
+std::vector<InterfaceState> states_for(const FeModel& model, const ReductionSpec& spec) {
+  std::vector<InterfaceState> st(model.interfaces.size(), InterfaceState::Free);
+  if (spec.method == ReductionSpec::Method::Clamped) {
+    st.at(static_cast<std::size_t>(model.find_interface(spec.interface))) = InterfaceState::Held;
+  } else if (spec.method == ReductionSpec::Method::CraigBampton) {
+    for (const auto& name : spec.interfaces)
+      st.at(static_cast<std::size_t>(model.find_interface(name))) =
+          name == spec.frame ? InterfaceState::Held : InterfaceState::Boundary;
+  }
+  return st;
+}
+
+EigenOptions eigen_options(const ReductionSpec& spec, const PartSpec& part, double sigma) {
+  EigenOptions o;
+  o.nev = spec.modes > 0 ? spec.modes : 10;
+  if (spec.max_frequency_hz) o.lambda_max = lambda_of_hz(*spec.max_frequency_hz, part);
+  o.sigma = sigma;
+  o.backend = spec.backend == "arpack" ? EigenBackend::Arpack : EigenBackend::Spectra;
+  // A relative residual of 1e-6 bounds the eigenvalue error by ~1e-12 and the mode error by
+  // 1e-6 / gap: far below any discretisation error; tighter bounds fail on ill-conditioned
+  // (slender, stiff) parts for no gain.
+  o.residual_tol = 1e-6;
+  return o;
+}
+
+void attach_progress(EigenSolver& s, const ReductionLog& log) {
+  if (!log.progress) return;
+  s.set_progress([&log](const EigenProgress& p) {
+    std::ostringstream o;
+    o << p.stage << ": round " << p.round << ", nev " << p.nev << ", " << p.operator_applications << " solves";
+    if (p.converged >= 0) o << ", " << p.converged << " converged";
+    log.progress(o.str());
+  });
+}
+
+void record(ReductionResult& r, const EigenSolver& s) {
+  r.factor = s.info().factor;
+  r.factor_seconds = s.info().factorize_seconds;
+  r.lanczos_seconds = s.info().lanczos_seconds;
+  r.iterations = s.info().iterations;
+  r.max_residual = s.result().max_relative_residual;
+  r.orthonormality_error = s.result().orthonormality_error;
+  r.backend = to_string(s.info().backend_used);
+}
+
+std::string factor_line(const FactorStatistics& f) {
+  std::ostringstream o;
+  o.precision(3);
+  o << "factor: n = " << f.n << ", nnz(L) = " << f.nnz_L << ", " << f.flops / 1e9 << " GFlop, "
+    << static_cast<double>(f.peak_bytes) / (1u << 20) << " MiB peak (" << f.ordering << ")";
+  return o.str();
+}
+
+}  // namespace
+
+ReductionResult reduce(const FeModel& model, const Assembled& fe, const ReductionSpec& spec, const ReductionLog& log) {
+  const PartSpec& part = *model.part;
+  auto say = [&](const std::string& s) { if (log.message) log.message(s); };
+
+  const auto pieces = connected_pieces(model);
+  if (pieces.size() > 1) {
+    std::ostringstream o;
+    o << "the body is not one connected piece: " << pieces.size() << " pieces (containing nodes";
+    for (std::size_t i = 0; i < std::min<std::size_t>(pieces.size(), 5); ++i) o << ' ' << model.mesh->node_tag(pieces[i]);
+    o << (pieces.size() > 5 ? " ...)" : ")");
+    throw FormatError(part.file.string(), "geometry", o.str());
+  }
+
+  const DofTransform t = build_transform(model, states_for(model, spec));
+  const SparseMatrix K = t.identity ? fe.K : detail::congruence(t.T, fe.K);
+  const SparseMatrix M = t.identity ? fe.M : detail::congruence(t.T, fe.M);
+
+  ReductionResult r;
+  nlohmann::json params;
+  Eigen::MatrixXd basis;  // over the independent DOFs
+
+  if (spec.method != ReductionSpec::Method::CraigBampton) {
+    const bool free = spec.method == ReductionSpec::Method::Free;
+    // Free: a negative shift keeps K - sigma M definite while the rigid-body modes are deflated.
+    const double sigma = free ? -lambda_of_hz(1.0, part) : -lambda_of_hz(0.1, part);
+    EigenOptions o = eigen_options(spec, part, sigma);
+    if (free) {
+      o.deflation = rigid_body_modes(model, t);
+      o.factor.min_pivot_ratio = 0;  // definite by construction; tiny pivots only in the deflated space
+    }
+    say(std::string(free ? "free-free" : "clamped") + " eigen-solve: " + std::to_string(t.num_ind()) + " DOF, " +
+        (spec.max_frequency_hz ? "up to " + std::to_string(*spec.max_frequency_hz) + " Hz" : std::to_string(o.nev) + " modes") +
+        ", " + spec.backend);
+    // Analyse first and report the factor's size, so a factor that will not fit is refused
+    // (by factorize, with the numbers) after the user has seen what it would need.
+    CholmodFactor factor(o.factor);
+    const SparseMatrix C = shifted_upper(K, M, sigma);
+    say(factor_line(factor.analyze(C)));
+    EigenSolver solver(o);
+    attach_progress(solver, log);
+    try {
+      factor.factorize_shifted(K, M, sigma);
+      solver.compute(K, M, factor);
+    } catch (const NotPositiveDefiniteError& e) {
+      mechanism(model, "the stiffness is singular at " + node_text(model, t, e.column));
+    }
+    record(r, solver);
+    r.factor = factor.info().stats;
+    check_no_zero_modes(model, solver.result().lambda, part, free ? "beyond the six rigid-body modes" : "with the interface held");
+    basis = solver.result().X;
+    r.lambda = solver.result().lambda;
+    r.types.assign(static_cast<std::size_t>(basis.cols()), formats::ModeType::Normal);
+    r.reference = free ? "free" : "clamped:" + spec.interface;
+    params = {{"method", free ? "free" : "clamped"}, {"shift", sigma}, {"backend", r.backend}};
+    if (!free) params["interface"] = spec.interface;
+  } else {
+    // Craig–Bampton: boundary = the six DOFs of every non-frame interface node.
+    std::vector<Index> boundary;
+    for (const auto& name : spec.interfaces) {
+      if (name == spec.frame) continue;
+      const Index d0 = model.interfaces[static_cast<std::size_t>(model.find_interface(name))].dof;
+      for (int a = 0; a < 6; ++a) boundary.push_back(t.ind_of_full[static_cast<std::size_t>(d0 + a)]);
+    }
+    const auto split = detail::split(K, M, boundary);
+    say("craig-bampton: " + std::to_string(boundary.size()) + " boundary DOF, " +
+        std::to_string(split.interior.size()) + " interior DOF");
+    CholmodFactor factor;
+    say(factor_line(factor.analyze(split.Kii)));
+    try {
+      factor.factorize(split.Kii);
+    } catch (const NotPositiveDefiniteError& e) {
+      mechanism(model, "with the frame interface '" + spec.frame + "' held, the stiffness is singular at " +
+                           node_text(model, t, split.interior[static_cast<std::size_t>(e.column)]));
+    }
+    r.factor = factor.info().stats;
+    // Static constraint modes: interior response to a unit motion of each boundary DOF.
+    const Eigen::MatrixXd Psi_i = -factor.solve(Eigen::MatrixXd(split.Kib));
+    Eigen::MatrixXd modes_i;
+    Eigen::VectorXd lambda_n;
+    if (spec.modes > 0 || spec.max_frequency_hz) {
+      EigenSolver solver(eigen_options(spec, part, 0.0));
+      attach_progress(solver, log);
+      solver.compute(split.Kii, split.Mii, factor);
+      record(r, solver);
+      check_no_zero_modes(model, solver.result().lambda, part, "with the frame interface held");
+      modes_i = solver.result().X;
+      lambda_n = solver.result().lambda;
+    }
+    const Index nb = static_cast<Index>(boundary.size());
+    const Index nn = modes_i.cols();
+    basis = Eigen::MatrixXd::Zero(t.num_ind(), nb + nn);
+    for (Index j = 0; j < nb; ++j) {
+      basis(boundary[static_cast<std::size_t>(j)], j) = 1.0;
+      for (std::size_t i = 0; i < split.interior.size(); ++i) basis(split.interior[i], j) = Psi_i(static_cast<Index>(i), j);
+    }
+    for (Index j = 0; j < nn; ++j)
+      for (std::size_t i = 0; i < split.interior.size(); ++i) basis(split.interior[i], nb + j) = modes_i(static_cast<Index>(i), j);
+    r.types.assign(static_cast<std::size_t>(nb), formats::ModeType::Constraint);
+    r.types.resize(static_cast<std::size_t>(nb + nn), formats::ModeType::Normal);
+    r.lambda.resize(nb + nn);
+    for (Index j = 0; j < nb; ++j) {
+      const Eigen::VectorXd kb = K * basis.col(j), mb = M * basis.col(j);
+      r.lambda(j) = basis.col(j).dot(kb) / basis.col(j).dot(mb);  // Rayleigh quotient
+    }
+    r.lambda.tail(nn) = lambda_n;
+    r.reference = "craig-bampton";
+    params = {{"method", "craig-bampton"}, {"interfaces", spec.interfaces}, {"frame", spec.frame},
+              {"orthonormalized", spec.orthonormalize}};
+    if (spec.orthonormalize) {
+      const Eigen::MatrixXd Kr = basis.transpose() * (K * basis), Mr = basis.transpose() * (M * basis);
+      Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(Kr, Mr);
+      if (ges.info() != Eigen::Success) throw std::runtime_error("orthonormalization of the Craig-Bampton basis failed");
+      basis = basis * ges.eigenvectors();
+      r.lambda = ges.eigenvalues();
+      r.types.assign(static_cast<std::size_t>(basis.cols()), formats::ModeType::Normal);
+    }
+  }
+  params["modes"] = spec.modes;
+  if (spec.max_frequency_hz) params["max_frequency_hz"] = *spec.max_frequency_hz;
+  r.parameters_json = params.dump();
+
+  r.Ke = basis.transpose() * (K * basis);
+  r.Me = basis.transpose() * (M * basis);
+  r.Phi = t.identity ? basis : Eigen::MatrixXd(t.T * basis);
+  return r;
+}
+
+}  // namespace ffr::preproc

@@ -1,0 +1,332 @@
+#include "ffr/preproc/solver/cholmod_factor.hpp"
+
+#include "cholmod_bridge.hpp"
+#include "ffr/preproc/solver/memory.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <limits>
+#include <sstream>
+
+namespace ffr::preproc {
+
+const char* to_string(Ordering o) {
+  switch (o) {
+    case Ordering::Metis: return "METIS";
+    case Ordering::Nesdis: return "NESDIS";
+    case Ordering::Amd: return "AMD";
+    case Ordering::Natural: return "natural";
+    case Ordering::Auto: return "auto";
+  }
+  return "?";
+}
+
+const char* to_string(FactorStatus s) {
+  switch (s) {
+    case FactorStatus::Empty: return "empty";
+    case FactorStatus::Analyzed: return "analyzed";
+    case FactorStatus::Factorized: return "factorized";
+    case FactorStatus::Failed: return "failed";
+  }
+  return "?";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+const char* ordering_name(int cholmod_ordering) {
+  switch (cholmod_ordering) {
+    case CHOLMOD_NATURAL: return "natural";
+    case CHOLMOD_GIVEN: return "given";
+    case CHOLMOD_AMD: return "AMD";
+    case CHOLMOD_METIS: return "METIS";
+    case CHOLMOD_NESDIS: return "NESDIS";
+    case CHOLMOD_COLAMD: return "COLAMD";
+    case CHOLMOD_POSTORDERED: return "natural (postordered)";
+  }
+  return "unknown";
+}
+
+// FNV-1a over the upper-triangle pattern: decides whether a new matrix can reuse the
+// symbolic analysis. O(nnz), cheap next to any factorization.
+std::uint64_t upper_pattern_hash(const SparseMatrix& A, std::int64_t* upper_nnz) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](std::uint64_t v) {
+    h ^= v;
+    h *= 1099511628211ull;
+  };
+  mix(static_cast<std::uint64_t>(A.rows()));
+  std::int64_t count = 0;
+  for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
+    mix(0xC011u + static_cast<std::uint64_t>(j));
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+      if (it.row() <= it.col()) {
+        mix(static_cast<std::uint64_t>(it.row()));
+        ++count;
+      }
+  }
+  *upper_nnz = count;
+  return h;
+}
+
+}  // namespace
+
+struct CholmodFactor::Impl {
+  FactorOptions opt;
+  detail::CholmodCommon common;  // declared before L: L is freed in ~Impl while common lives
+  cholmod_factor* L = nullptr;
+  bool numeric = false;  // L holds numeric values (possibly of a failed factorization)
+  std::uint64_t pattern = 0;
+  FactorInfo info;
+  // solve2 workspace, reused across calls so the Lanczos loop does not allocate.
+  cholmod_dense* X = nullptr;
+  cholmod_dense* Y = nullptr;
+  cholmod_dense* E = nullptr;
+
+  explicit Impl(FactorOptions o) : opt(o) {}
+  ~Impl() {
+    free_workspace();
+    if (L) cholmod_l_free_factor(&L, common.get());
+  }
+  void free_workspace() {
+    cholmod_l_free_dense(&X, common.get());
+    cholmod_l_free_dense(&Y, common.get());
+    cholmod_l_free_dense(&E, common.get());
+  }
+  [[noreturn]] void fail(const std::string& msg) {
+    info.status = FactorStatus::Failed;
+    info.message = msg;
+    throw SolverError(msg);
+  }
+  std::string cholmod_error(const char* what) {
+    std::string e = detail::CholmodCommon::take_last_error();
+    std::ostringstream os;
+    os << what << " failed (CHOLMOD status " << common.get()->status << ")";
+    if (!e.empty()) os << ": " << e;
+    return os.str();
+  }
+  void analyze(const SparseMatrix& A);
+  void factorize(const SparseMatrix& A, double shift);
+  void check_memory(std::uint64_t needed);
+  [[noreturn]] void throw_not_posdef(std::int64_t permuted, bool singular, double ratio);
+};
+
+void CholmodFactor::Impl::analyze(const SparseMatrix& A) {
+  if (opt.check_symmetry) validate_symmetric(A, "matrix to factorize");
+  else if (A.rows() != A.cols() || A.rows() == 0)
+    throw std::invalid_argument("matrix to factorize: must be square and non-empty");
+  cholmod_common* c = common.get();
+  switch (opt.ordering) {
+    case Ordering::Auto: c->nmethods = 0; break;
+    case Ordering::Metis: c->nmethods = 1; c->method[0].ordering = CHOLMOD_METIS; break;
+    case Ordering::Nesdis: c->nmethods = 1; c->method[0].ordering = CHOLMOD_NESDIS; break;
+    case Ordering::Amd: c->nmethods = 1; c->method[0].ordering = CHOLMOD_AMD; break;
+    case Ordering::Natural: c->nmethods = 1; c->method[0].ordering = CHOLMOD_NATURAL; break;
+  }
+  free_workspace();
+  if (L) cholmod_l_free_factor(&L, c);
+  numeric = false;
+  info = FactorInfo{};
+
+  std::int64_t upper_nnz = 0;
+  pattern = upper_pattern_hash(A, &upper_nnz);
+  cholmod_sparse view = detail::view_upper(A);
+  const auto t0 = Clock::now();
+  L = cholmod_l_analyze(&view, c);
+  if (!L || c->status < CHOLMOD_OK) fail(cholmod_error("symbolic analysis (cholmod_l_analyze)"));
+  if (!L->is_super) fail("symbolic analysis did not produce a supernodal factor");
+
+  FactorStatistics& s = info.stats;
+  s.analyze_seconds = seconds_since(t0);
+  s.n = A.rows();
+  s.nnz_A = upper_nnz;
+  s.nnz_L = c->lnz;
+  s.flops = c->fl;
+  s.factor_entries = static_cast<std::int64_t>(L->xsize);
+  s.supernodes = static_cast<std::int64_t>(L->nsuper);
+  s.ordering = ordering_name(L->ordering);
+  // Estimates in bytes (8-byte doubles and SuiteSparse_long):
+  //  factor   = values (xsize) + supernode row indices (ssize) + super/pi/px arrays +
+  //             Perm, ColCount, IPerm and per-column bookkeeping (~4n);
+  //  workspace of cholmod_l_factorize = the update matrix C (maxcsize) + the permuted copy
+  //             of A's upper triangle (values + indices + column pointers) + Common's Iwork,
+  //             Xwork and the supernodal Map/RelativeMap (~8n).
+  const std::uint64_t n = static_cast<std::uint64_t>(s.n);
+  s.factor_bytes = 8u * (L->xsize + L->ssize + 3u * (L->nsuper + 1u) + 4u * n);
+  const std::uint64_t workspace =
+      8u * L->maxcsize + 16u * static_cast<std::uint64_t>(upper_nnz) + 8u * (n + 1u) + 64u * n;
+  s.peak_bytes = s.factor_bytes + workspace;
+  info.status = FactorStatus::Analyzed;
+}
+
+void CholmodFactor::Impl::check_memory(std::uint64_t needed) {
+  const auto avail = available_memory_bytes();
+  std::uint64_t limit = std::numeric_limits<std::uint64_t>::max();
+  std::string source;
+  if (avail) {
+    limit = *avail;
+    source = "MemAvailable of /proc/meminfo (or the cgroup limit)";
+  }
+  if (opt.memory_limit_bytes > 0 && opt.memory_limit_bytes < limit) {
+    limit = opt.memory_limit_bytes;
+    source = "the memory limit given by the caller";
+  }
+  if (needed > limit) {
+    const FactorStatistics& s = info.stats;
+    std::ostringstream os;
+    os << "Cholesky factor will not fit: needs about " << format_bytes(needed) << " (" << needed
+       << " bytes: nnz(L) = " << static_cast<std::int64_t>(s.nnz_L)
+       << ", stored entries = " << s.factor_entries << ", n = " << s.n << "), available "
+       << format_bytes(limit) << " (" << limit << " bytes, " << source << ")";
+    info.message = os.str();
+    throw InsufficientMemoryError(os.str(), needed, limit);
+  }
+}
+
+void CholmodFactor::Impl::throw_not_posdef(std::int64_t permuted, bool singular, double ratio) {
+  const auto* perm = static_cast<const SuiteSparse_long*>(L->Perm);
+  const std::int64_t col = perm ? perm[permuted] : permuted;
+  std::ostringstream os;
+  os << "matrix is not positive definite: ";
+  if (singular)
+    os << "numerically singular, pivot L_jj^2 / A_jj = " << ratio << " < "
+       << opt.min_pivot_ratio << " at column " << col;
+  else
+    os << "non-positive pivot at column " << col;
+  os << " (0-based; column " << permuted << " in the " << info.stats.ordering
+     << " order). A stiffness matrix fails here when the model has a mechanism or an "
+        "unconstrained rigid-body motion; K - sigma*M fails when sigma is above an eigenvalue.";
+  info.status = FactorStatus::Failed;
+  info.message = os.str();
+  throw NotPositiveDefiniteError(os.str(), col, permuted, singular);
+}
+
+void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
+  std::int64_t upper_nnz = 0;
+  if (!L || A.rows() != info.stats.n || upper_pattern_hash(A, &upper_nnz) != pattern) {
+    analyze(A);
+  } else if (opt.check_symmetry) {
+    validate_symmetric(A, "matrix to factorize");
+  }
+  // A numeric factor already owns its values: only the workspace is new then.
+  const FactorStatistics& s = info.stats;
+  check_memory(numeric ? s.peak_bytes - s.factor_bytes : s.peak_bytes);
+
+  cholmod_common* c = common.get();
+  cholmod_sparse view = detail::view_upper(A);
+  const auto t0 = Clock::now();
+  const int ok = cholmod_l_factorize(&view, L, c);
+  numeric = true;
+  info.stats.factorize_seconds = seconds_since(t0);
+  info.stats.cholmod_peak_bytes = c->memory_usage;
+  info.shift = shift;
+  if (!ok || c->status < CHOLMOD_OK) fail(cholmod_error("numeric factorization (cholmod_l_factorize)"));
+  if (c->status == CHOLMOD_NOT_POSDEF || L->minor < L->n)
+    throw_not_posdef(static_cast<std::int64_t>(L->minor), false, 0.0);
+
+  info.stats.rcond = cholmod_l_rcond(L, c);
+  // Smallest pivot relative to its own diagonal entry. Column j of supernode s holds its
+  // diagonal at x[px[s] + (j - super[s]) * (nrows of s + 1)]; Perm maps j to the input.
+  const Eigen::VectorXd diag = A.diagonal();
+  const auto* super = static_cast<const SuiteSparse_long*>(L->super);
+  const auto* pi = static_cast<const SuiteSparse_long*>(L->pi);
+  const auto* px = static_cast<const SuiteSparse_long*>(L->px);
+  const auto* perm = static_cast<const SuiteSparse_long*>(L->Perm);
+  const auto* x = static_cast<const double*>(L->x);
+  std::int64_t jmin = 0;
+  double rmin = std::numeric_limits<double>::infinity();
+  for (size_t sn = 0; sn < L->nsuper; ++sn) {
+    const SuiteSparse_long nsrow = pi[sn + 1] - pi[sn];
+    for (SuiteSparse_long j = super[sn]; j < super[sn + 1]; ++j) {
+      const double l = x[px[sn] + (j - super[sn]) * (nsrow + 1)];
+      const double ratio = l * l / diag[perm ? perm[j] : j];
+      if (ratio < rmin) {
+        rmin = ratio;
+        jmin = j;
+      }
+    }
+  }
+  info.stats.min_pivot_ratio = rmin;
+  info.stats.min_pivot_column = perm ? perm[jmin] : jmin;
+  if (opt.min_pivot_ratio > 0 && !(rmin >= opt.min_pivot_ratio)) throw_not_posdef(jmin, true, rmin);
+  info.status = FactorStatus::Factorized;
+  info.message.clear();
+}
+
+CholmodFactor::CholmodFactor(FactorOptions options) : impl_(std::make_unique<Impl>(options)) {}
+CholmodFactor::~CholmodFactor() = default;
+CholmodFactor::CholmodFactor(CholmodFactor&&) noexcept = default;
+CholmodFactor& CholmodFactor::operator=(CholmodFactor&&) noexcept = default;
+
+const FactorStatistics& CholmodFactor::analyze(const SparseMatrix& A) {
+  impl_->analyze(A);
+  return impl_->info.stats;
+}
+
+void CholmodFactor::factorize(const SparseMatrix& A) { impl_->factorize(A, 0.0); }
+
+void CholmodFactor::factorize_shifted(const SparseMatrix& A, const SparseMatrix& B,
+                                      double sigma) {
+  if (impl_->opt.check_symmetry) {
+    validate_symmetric(A, "A of A - sigma*B");
+    validate_symmetric(B, "B of A - sigma*B");
+  }
+  const SparseMatrix C = shifted_upper(A, B, sigma);
+  // C is upper-only by construction; its symmetry follows from A's and B's.
+  const bool check = impl_->opt.check_symmetry;
+  impl_->opt.check_symmetry = false;
+  try {
+    impl_->factorize(C, sigma);
+  } catch (...) {
+    impl_->opt.check_symmetry = check;
+    throw;
+  }
+  impl_->opt.check_symmetry = check;
+}
+
+Eigen::MatrixXd CholmodFactor::solve(const Eigen::Ref<const Eigen::MatrixXd>& B) const {
+  Impl& m = *impl_;
+  if (!factorized()) throw std::logic_error("CholmodFactor::solve: no valid factorization");
+  if (B.rows() != m.info.stats.n) {
+    std::ostringstream os;
+    os << "CholmodFactor::solve: right-hand side has " << B.rows() << " rows, matrix has "
+       << m.info.stats.n;
+    throw std::invalid_argument(os.str());
+  }
+  Eigen::MatrixXd X(B.rows(), B.cols());
+  constexpr Eigen::Index kChunk = 32;  // columns per solve: bounds the workspace to 3*n*32
+  for (Eigen::Index j0 = 0; j0 < B.cols(); j0 += kChunk) {
+    const Eigen::Index k = std::min(kChunk, B.cols() - j0);
+    cholmod_dense b = detail::view_dense(B.col(j0).data(), B.rows(), k, B.outerStride());
+    if (!cholmod_l_solve2(CHOLMOD_A, m.L, &b, nullptr, &m.X, nullptr, &m.Y, &m.E,
+                          m.common.get()))
+      throw SolverError(m.cholmod_error("solve (cholmod_l_solve2)"));
+    for (Eigen::Index q = 0; q < k; ++q)
+      std::memcpy(X.col(j0 + q).data(), static_cast<double*>(m.X->x) + q * m.X->d,
+                  sizeof(double) * B.rows());
+  }
+  return X;
+}
+
+void CholmodFactor::solve(const double* b, double* x) const {
+  Impl& m = *impl_;
+  if (!factorized()) throw std::logic_error("CholmodFactor::solve: no valid factorization");
+  const auto n = static_cast<size_t>(m.info.stats.n);
+  cholmod_dense bv = detail::view_dense(b, n, 1, n);
+  if (!cholmod_l_solve2(CHOLMOD_A, m.L, &bv, nullptr, &m.X, nullptr, &m.Y, &m.E,
+                        m.common.get()))
+    throw SolverError(m.cholmod_error("solve (cholmod_l_solve2)"));
+  std::memmove(x, m.X->x, sizeof(double) * n);
+}
+
+std::int64_t CholmodFactor::rows() const { return impl_->info.stats.n; }
+bool CholmodFactor::factorized() const { return impl_->info.status == FactorStatus::Factorized; }
+const FactorInfo& CholmodFactor::info() const { return impl_->info; }
+const FactorOptions& CholmodFactor::options() const { return impl_->opt; }
+
+}  // namespace ffr::preproc

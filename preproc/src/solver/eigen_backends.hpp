@@ -1,0 +1,51 @@
+#pragma once
+// Private interface between EigenSolver and its three backends, and the post-processing
+// every backend's output goes through.
+
+#include "ffr/preproc/solver/eigen_solver.hpp"
+#include "ffr/preproc/solver/shift_invert_ops.hpp"
+
+#include <string>
+
+namespace ffr::preproc::detail {
+
+struct LanczosRequest {
+  int nev = 0;
+  int ncv = 0;
+  int max_restarts = 0;
+  double tol = 0;
+  double sigma = 0;
+  const Eigen::VectorXd* v0 = nullptr;  ///< starting vector, already projected by P
+};
+
+struct BackendOutcome {
+  Eigen::VectorXd lambda;  ///< converged eigenvalues (any order)
+  Eigen::MatrixXd X;       ///< matching vectors (any normalization)
+  int iterations = 0;      ///< restarts used
+  int converged = 0;
+  bool success = false;
+  std::string message;     ///< why not, if !success
+};
+
+/// Spectra 1.0 SymGEigsShiftSolver<ShiftInvertOp, MassOp, GEigsMode::ShiftInvert>.
+BackendOutcome run_spectra(ShiftInvertOp& op, MassOp& bop, const LanczosRequest& req);
+
+/// ARPACK-ng dsaupd/dseupd, bmat = 'G', which = 'LM', mode 3 (shift-invert).
+BackendOutcome run_arpack(ShiftInvertOp& op, MassOp& bop, const LanczosRequest& req);
+
+/// All eigenpairs with lambda > sigma of the pencil restricted to the M-orthogonal
+/// complement of the deflation basis, by Eigen's dense solver. n <= a few thousand.
+BackendOutcome run_dense(const SparseMatrix& K, SymmetricStorage sK, const SparseMatrix& M,
+                         SymmetricStorage sM, const Deflation& deflation, double sigma);
+
+/// Rayleigh-Ritz on span(P X), selection (first `keep` pairs, or all with lambda <=
+/// lambda_max), sign convention, and the residual / orthonormality / deflation checks.
+/// Fills everything in `out`; does not throw on failed checks (the caller decides).
+void finish_eigenpairs(const SparseMatrix& K, SymmetricStorage sK, const SparseMatrix& M,
+                       SymmetricStorage sM, const Deflation& deflation, Eigen::MatrixXd X,
+                       int keep, double lambda_max, EigenResult& out);
+
+/// Flips each column so that its first component with |x_i| >= kSignThreshold max|x| is > 0.
+void normalize_signs(Eigen::MatrixXd& X);
+
+}  // namespace ffr::preproc::detail

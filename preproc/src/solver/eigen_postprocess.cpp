@@ -1,0 +1,83 @@
+// What happens to every backend's eigenvectors before they are returned:
+//  1. X <- P X: removes the round-off component along the deflation basis R;
+//  2. Rayleigh-Ritz on span(X): solve (X^T K X) Y = (X^T M X) Y diag(l) and X <- X Y. This
+//     makes X M-orthonormal to round-off, turns each eigenvalue into its Rayleigh quotient
+//     (the best estimate from the subspace), and resolves the arbitrary basis a backend
+//     returns inside a multiple eigenvalue (e.g. the symmetric modes of a cube);
+//  3. selection, sign convention;
+//  4. checks with freshly computed K X and M X (not the transformed ones), so the reported
+//     residuals are those of the vectors actually returned.
+
+#include "eigen_backends.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+
+namespace ffr::preproc::detail {
+
+void normalize_signs(Eigen::MatrixXd& X) {
+  for (Eigen::Index j = 0; j < X.cols(); ++j) {
+    auto x = X.col(j);
+    const double amax = x.cwiseAbs().maxCoeff();
+    if (!(amax > 0)) continue;
+    for (Eigen::Index i = 0; i < x.size(); ++i) {
+      if (std::abs(x[i]) >= kSignThreshold * amax) {
+        if (x[i] < 0) x = -x;
+        break;
+      }
+    }
+  }
+}
+
+void finish_eigenpairs(const SparseMatrix& K, SymmetricStorage sK, const SparseMatrix& M,
+                       SymmetricStorage sM, const Deflation& deflation, Eigen::MatrixXd X,
+                       int keep, double lambda_max, EigenResult& out) {
+  for (Eigen::Index j = 0; j < X.cols(); ++j) deflation.project(X.col(j).data());
+
+  // Rayleigh-Ritz. Scaling the columns first keeps the small pencil well balanced.
+  for (Eigen::Index j = 0; j < X.cols(); ++j) {
+    const double nrm = X.col(j).norm();
+    if (nrm > 0) X.col(j) /= nrm;
+  }
+  {
+    const Eigen::MatrixXd KX = sym_multiply(K, sK, X), MX = sym_multiply(M, sM, X);
+    Eigen::MatrixXd Ks = X.transpose() * KX, Ms = X.transpose() * MX;
+    Ks = 0.5 * (Ks + Ks.transpose());
+    Ms = 0.5 * (Ms + Ms.transpose());
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> rr(Ks, Ms);
+    out.lambda = rr.eigenvalues();  // ascending
+    X = X * rr.eigenvectors();      // M-orthonormal: Y^T Ms Y = I
+  }
+
+  // Selection: the `keep` lowest, and those not above lambda_max.
+  Eigen::Index m = out.lambda.size();
+  if (keep > 0) m = std::min<Eigen::Index>(m, keep);
+  if (std::isfinite(lambda_max))
+    while (m > 0 && out.lambda[m - 1] > lambda_max) --m;
+  out.lambda.conservativeResize(m);
+  X.conservativeResize(Eigen::NoChange, m);
+  normalize_signs(X);
+
+  const Eigen::MatrixXd KX = sym_multiply(K, sK, X), MX = sym_multiply(M, sM, X);
+  const double nK = sym_norm1(K, sK), nM = sym_norm1(M, sM);
+  out.relative_residual.resize(m);
+  out.backward_error.resize(m);
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const double l = out.lambda[j];
+    const double r = (KX.col(j) - l * MX.col(j)).norm();
+    const double denom = KX.col(j).norm() + std::abs(l) * MX.col(j).norm();
+    out.relative_residual[j] = denom > 0 ? r / denom : r;
+    const double bden = (nK + std::abs(l) * nM) * X.col(j).norm();
+    out.backward_error[j] = bden > 0 ? r / bden : r;
+  }
+  out.max_relative_residual = m > 0 ? out.relative_residual.maxCoeff() : 0.0;
+  out.orthonormality_error =
+      m > 0 ? (X.transpose() * MX - Eigen::MatrixXd::Identity(m, m)).cwiseAbs().maxCoeff() : 0.0;
+  out.deflation_error =
+      (m > 0 && !deflation.empty()) ? (deflation.MR.transpose() * X).cwiseAbs().maxCoeff() : 0.0;
+  out.X = std::move(X);
+}
+
+}  // namespace ffr::preproc::detail

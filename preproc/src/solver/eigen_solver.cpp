@@ -1,0 +1,320 @@
+#include "ffr/preproc/solver/eigen_solver.hpp"
+
+#include "eigen_backends.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+namespace ffr::preproc {
+
+const char* to_string(EigenBackend b) {
+  switch (b) {
+    case EigenBackend::Spectra: return "Spectra";
+    case EigenBackend::Arpack: return "ARPACK";
+    case EigenBackend::Dense: return "dense";
+  }
+  return "?";
+}
+
+const char* to_string(EigenStatus s) {
+  switch (s) {
+    case EigenStatus::NotRun: return "not run";
+    case EigenStatus::Success: return "success";
+    case EigenStatus::FactorizationFailed: return "factorization failed";
+    case EigenStatus::NotConverged: return "not converged";
+    case EigenStatus::CheckFailed: return "check failed";
+    case EigenStatus::BadInput: return "bad input";
+  }
+  return "?";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void validate_options(const EigenOptions& o) {
+  auto bad = [](const std::string& m) { throw std::invalid_argument("eigen-solver options: " + m); };
+  if (o.nev < 1) bad("nev must be >= 1, got " + std::to_string(o.nev));
+  if (!std::isfinite(o.sigma)) bad("sigma must be finite");
+  if (std::isnan(o.lambda_max) || o.lambda_max <= o.sigma) {
+    std::ostringstream os;
+    os << "lambda_max (" << o.lambda_max << ") must be above sigma (" << o.sigma << ")";
+    bad(os.str());
+  }
+  if (o.max_modes < 1) bad("max_modes must be >= 1");
+  if (o.ncv < 0) bad("ncv must be >= 0 (0 = automatic)");
+  if (o.max_restarts < 1) bad("max_restarts must be >= 1");
+  if (!(o.lanczos_tol > 0) || !(o.residual_tol > 0) || !(o.orthonormality_tol > 0))
+    bad("tolerances must be positive");
+}
+
+// Deterministic start vector in the complement of the deflation basis (same for every
+// backend and run, so results are reproducible).
+Eigen::VectorXd start_vector(Eigen::Index n, const Deflation& d) {
+  std::mt19937_64 rng(20240611);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  Eigen::VectorXd v(n);
+  for (Eigen::Index i = 0; i < n; ++i) v[i] = u(rng);
+  d.project(v.data());
+  return v;
+}
+
+// Next request size when every converged eigenvalue is still below lambda_max: the
+// eigenvalue count of a 3D body grows like lambda^{3/2} (Weyl's law), so extrapolate with
+// that exponent and at least double.
+int grow_nev(int nev, double top, double lambda_max, double sigma) {
+  const double ratio = (lambda_max - sigma) / std::max(top - sigma, 1e-300);
+  const double est = 1.2 * nev * std::pow(ratio, 1.5);
+  return static_cast<int>(std::min(std::max(2.0 * nev, est), 1e9));
+}
+
+}  // namespace
+
+EigenSolver::EigenSolver(EigenOptions options) : options_(std::move(options)) {}
+
+const EigenResult& EigenSolver::compute(const SparseMatrix& K, const SparseMatrix& M) {
+  return run_recorded(K, M, nullptr);
+}
+
+const EigenResult& EigenSolver::compute(const SparseMatrix& K, const SparseMatrix& M,
+                                        const CholmodFactor& factor) {
+  return run_recorded(K, M, &factor);
+}
+
+// Whatever escapes run() (including exceptions of Spectra or of a CHOLMOD solve in the
+// middle of the Lanczos loop) leaves a status and message in info().
+const EigenResult& EigenSolver::run_recorded(const SparseMatrix& K, const SparseMatrix& M,
+                                             const CholmodFactor* given) {
+  try {
+    return run(K, M, given);
+  } catch (const std::exception& e) {
+    if (info_.status == EigenStatus::NotRun || info_.status == EigenStatus::Success) {
+      info_.status = EigenStatus::NotConverged;
+      info_.message = e.what();
+    }
+    throw;
+  }
+}
+
+const EigenResult& EigenSolver::run(const SparseMatrix& K, const SparseMatrix& M,
+                                    const CholmodFactor* given) {
+  const EigenOptions& o = options_;
+  info_ = EigenInfo{};
+  result_ = EigenResult{};
+  EigenProgress prog;
+  auto report = [&](const char* stage) {
+    prog.stage = stage;
+    if (progress_) progress_(prog);
+  };
+  auto fail = [&](EigenStatus s, const std::string& msg) {
+    info_.status = s;
+    info_.message = msg;
+  };
+
+  // ---- input
+  SymmetricStorage sK, sM;
+  Deflation defl;
+  try {
+    validate_options(o);
+    if (K.rows() != M.rows() || K.cols() != M.cols()) {
+      std::ostringstream os;
+      os << "K is " << K.rows() << " x " << K.cols() << " but M is " << M.rows() << " x " << M.cols();
+      throw std::invalid_argument(os.str());
+    }
+    sK = validate_symmetric(K, "K");
+    sM = validate_symmetric(M, "M");
+    defl = make_deflation(M, sM, o.deflation);
+    if (K.rows() - defl.rank() < 1)
+      throw std::invalid_argument("deflation basis leaves no degrees of freedom");
+  } catch (const std::exception& e) {
+    fail(EigenStatus::BadInput, e.what());
+    throw;
+  }
+  const Eigen::Index n = K.rows();
+  const Eigen::Index n_eff = n - defl.rank();
+  const bool by_limit = std::isfinite(o.lambda_max);
+  if (!by_limit && o.nev > n_eff) {
+    std::ostringstream os;
+    os << "eigen-solver: " << o.nev << " eigenpairs requested but only " << n_eff
+       << " degrees of freedom remain (n = " << n << ", deflation rank " << defl.rank() << ")";
+    fail(EigenStatus::BadInput, os.str());
+    throw std::invalid_argument(os.str());
+  }
+
+  // ---- factorization of K - sigma M
+  FactorOptions fo = o.factor;
+  fo.check_symmetry = false;  // K and M were validated above
+  CholmodFactor own(fo);
+  const CholmodFactor* factor = given;
+  const auto tf = Clock::now();
+  try {
+    if (given) {
+      if (!given->factorized() || given->rows() != n)
+        throw std::invalid_argument("eigen-solver: the given factor is not a valid factorization "
+                                    "of an n x n matrix");
+      const double have = given->info().shift;
+      if (std::abs(have - o.sigma) > 1e-12 * std::max(1.0, std::abs(o.sigma))) {
+        std::ostringstream os;
+        os << "eigen-solver: the given factor is of K - " << have << " M but sigma = " << o.sigma;
+        throw std::invalid_argument(os.str());
+      }
+    } else if (o.backend != EigenBackend::Dense) {
+      report("factorize");
+      own.factorize_shifted(K, M, o.sigma);
+      factor = &own;
+    }
+  } catch (const NotPositiveDefiniteError& e) {
+    std::ostringstream os;
+    os << "eigen-solver: factorizing K - sigma*M with sigma = " << o.sigma << ": " << e.what();
+    fail(EigenStatus::FactorizationFailed, os.str());
+    throw NotPositiveDefiniteError(os.str(), e.column, e.permuted_column, e.numerically_singular);
+  } catch (const std::invalid_argument& e) {
+    fail(EigenStatus::BadInput, e.what());
+    throw;
+  } catch (const std::exception& e) {
+    fail(EigenStatus::FactorizationFailed, e.what());
+    throw;
+  }
+  info_.factorize_seconds = seconds_since(tf);
+  if (factor) info_.factor = factor->info().stats;
+
+  // ---- Lanczos rounds (one unless a lambda_max query has to grow nev)
+  const auto tl = Clock::now();
+  detail::BackendOutcome run;
+  int nev = std::min<Eigen::Index>(o.nev, n_eff);
+  EigenBackend backend = o.backend;
+  const Eigen::VectorXd v0 = start_vector(n, defl);
+  for (;;) {
+    ++info_.rounds;
+    prog.round = info_.rounds;
+    prog.nev = nev;
+    prog.iterations = prog.converged = -1;
+    // Lanczos needs nev < ncv <= n_eff; otherwise the whole spectrum is wanted anyway.
+    if (backend != EigenBackend::Dense && nev >= n_eff) {
+      if (n_eff > o.dense_max_n) {
+        std::ostringstream os;
+        os << "eigen-solver: " << nev << " eigenpairs of a problem with " << n_eff
+           << " DOF need the dense backend, which is limited to dense_max_n = " << o.dense_max_n;
+        fail(EigenStatus::BadInput, os.str());
+        throw std::invalid_argument(os.str());
+      }
+      backend = EigenBackend::Dense;
+    }
+    if (backend == EigenBackend::Dense && n_eff > o.dense_max_n) {
+      std::ostringstream os;
+      os << "eigen-solver: dense backend asked for a problem with " << n_eff
+         << " DOF, above dense_max_n = " << o.dense_max_n;
+      fail(EigenStatus::BadInput, os.str());
+      throw std::invalid_argument(os.str());
+    }
+    info_.backend_used = backend;
+    report("lanczos");
+    if (backend == EigenBackend::Dense) {
+      run = detail::run_dense(K, sK, M, sM, defl, o.sigma);
+    } else {
+      int ncv = o.ncv > 0 ? o.ncv : std::max(2 * nev + 1, nev + 20);
+      ncv = static_cast<int>(std::min<Eigen::Index>(std::max(ncv, nev + 1), n_eff));
+      ShiftInvertOp op(*factor, &defl);
+      MassOp bop(M, sM);
+      const std::int64_t before = info_.operator_applications;
+      op.set_observer([&](std::int64_t k) {
+        prog.operator_applications = before + k;
+        report("lanczos");
+      });
+      detail::LanczosRequest req{nev, ncv, o.max_restarts, o.lanczos_tol, o.sigma, &v0};
+      run = backend == EigenBackend::Arpack ? detail::run_arpack(op, bop, req)
+                                            : detail::run_spectra(op, bop, req);
+      info_.operator_applications = before + op.applications();
+    }
+    info_.iterations = run.iterations;
+    prog.iterations = run.iterations;
+    prog.converged = run.converged;
+    prog.operator_applications = info_.operator_applications;
+    report("lanczos");
+    if (!run.success) {
+      fail(EigenStatus::NotConverged, run.message);
+      throw EigenSolverError(run.message);
+    }
+    if (!by_limit || backend == EigenBackend::Dense || run.lambda.size() == 0) break;
+    const double top = run.lambda.maxCoeff();
+    if (top > o.lambda_max || nev >= n_eff) break;
+    if (nev >= o.max_modes) {
+      std::ostringstream os;
+      os << "eigen-solver: more than max_modes = " << o.max_modes
+         << " eigenvalues lie below lambda_max = " << o.lambda_max << " (the " << nev
+         << "th is " << top << ")";
+      fail(EigenStatus::BadInput, os.str());
+      throw EigenSolverError(os.str());
+    }
+    nev = static_cast<int>(std::min<std::int64_t>(
+        {static_cast<std::int64_t>(grow_nev(nev, top, o.lambda_max, o.sigma)),
+         static_cast<std::int64_t>(o.max_modes) + 1, static_cast<std::int64_t>(n_eff)}));
+  }
+  info_.lanczos_seconds = seconds_since(tl);
+
+  // ---- post-processing and checks
+  const auto tv = Clock::now();
+  report("verify");
+  if (backend == EigenBackend::Dense) {
+    // Keep only what is needed before the Rayleigh-Ritz pass (cubic in the column count).
+    Eigen::Index m = run.lambda.size();
+    if (!by_limit) m = std::min<Eigen::Index>(m, o.nev);
+    else
+      m = std::count_if(run.lambda.data(), run.lambda.data() + m,
+                        [&](double l) { return l <= o.lambda_max; });
+    run.X.conservativeResize(Eigen::NoChange, m);
+  }
+  detail::finish_eigenpairs(K, sK, M, sM, defl, std::move(run.X), by_limit ? 0 : o.nev,
+                            o.lambda_max, result_);
+  info_.verify_seconds = seconds_since(tv);
+  if (by_limit && static_cast<Eigen::Index>(result_.lambda.size()) > o.max_modes) {
+    std::ostringstream os;
+    os << "eigen-solver: " << result_.lambda.size() << " eigenvalues lie below lambda_max = "
+       << o.lambda_max << ", more than max_modes = " << o.max_modes;
+    fail(EigenStatus::BadInput, os.str());
+    throw EigenSolverError(os.str());
+  }
+
+  std::ostringstream why;
+  const EigenResult& r = result_;
+  const double zero_scale = kZeroEigenvalue * sym_norm1(K, sK) / sym_norm1(M, sM);
+  for (Eigen::Index j = 0; j < r.lambda.size(); ++j) {
+    // A zero eigenvalue (undeflated rigid-body mode) has K x and lambda M x both at the
+    // rounding level of the product, so its relative residual is 0/0-like noise; the
+    // backward error is the meaningful measure there.
+    const bool zero = std::abs(r.lambda[j]) <= zero_scale;
+    const double checked = zero ? r.backward_error[j] : r.relative_residual[j];
+    if (!(checked <= o.residual_tol)) {
+      why << "eigenpair " << j << " (lambda = " << r.lambda[j] << ") has "
+          << (zero ? "backward error " : "relative residual ") << checked << " > "
+          << o.residual_tol;
+      break;
+    }
+    if (!(r.lambda[j] > o.sigma)) {
+      why << "eigenvalue " << r.lambda[j] << " is not above the shift " << o.sigma;
+      break;
+    }
+  }
+  if (why.str().empty() && !(r.orthonormality_error <= o.orthonormality_tol))
+    why << "M-orthonormality error max|X^T M X - I| = " << r.orthonormality_error << " > "
+        << o.orthonormality_tol;
+  if (why.str().empty() && !(r.deflation_error <= o.orthonormality_tol))
+    why << "M-orthogonality to the deflation basis max|R^T M X| = " << r.deflation_error << " > "
+        << o.orthonormality_tol;
+  if (!why.str().empty()) {
+    const std::string msg = "eigen-solver check failed: " + why.str();
+    fail(EigenStatus::CheckFailed, msg);
+    throw EigenSolverError(msg);
+  }
+  info_.status = EigenStatus::Success;
+  report("done");
+  return result_;
+}
+
+}  // namespace ffr::preproc

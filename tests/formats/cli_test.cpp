@@ -1,0 +1,229 @@
+// The executables as a user's script drives them: --help/--version, exit codes 0/1/2,
+// messages naming the file and dataset, the exact Campbell JSON of the contract, no partial
+// output on failure.
+#include "ffr/formats/campbell.hpp"
+#include "ffr/formats/diff.hpp"
+#include "ffr/formats/results_io.hpp"
+#include "ffr/formats/sid_io.hpp"
+#include "ffr/formats/synthetic.hpp"
+#include "ffr/version.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <hdf5.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+using namespace ffr::formats;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path dir() {
+  static const fs::path d = fs::temp_directory_path() / ("ffr_cli_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+struct RemoveTempDir : ::testing::Environment {
+  void TearDown() override { fs::remove_all(dir()); }
+};
+const auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new RemoveTempDir);
+
+struct Outcome {
+  int rc;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& f) {
+  std::ifstream in(f, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Outcome run(const std::string& tool, const std::string& args) {
+  const fs::path out = dir() / "stdout.txt", err = dir() / "stderr.txt";
+  const std::string cmd = std::string(FFR_BINARY_DIR) + "/bin/" + tool + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+fs::path chain_file(const std::string& name, bool clamped = true) {
+  synthetic::ChainParams p;
+  p.clamped = clamped;
+  p.EIy = p.EIz = 2.0;  // repeated pairs
+  p.modes = 4;
+  p.stiffening = true;
+  const fs::path f = dir() / name;
+  write_sid(synthetic::spring_chain(p).sid, f);
+  return f;
+}
+
+}  // namespace
+
+TEST(Cli, HelpAndVersion) {
+  for (const std::string tool : {"ffr-info", "ffr-diff", "ffr-synth"}) {
+    const Outcome h = run(tool, "--help");
+    EXPECT_EQ(h.rc, 0) << tool;
+    EXPECT_NE(h.out.find("usage: " + tool), std::string::npos) << h.out;
+    const Outcome v = run(tool, "--version");
+    EXPECT_EQ(v.rc, 0) << tool;
+    EXPECT_NE(v.out.find(ffr::kVersion), std::string::npos) << v.out;
+  }
+}
+
+TEST(Cli, InfoSummarisesASid) {
+  const auto f = chain_file("info.sid.h5", false);
+  const Outcome t = run("ffr-info", f.string());
+  EXPECT_EQ(t.rc, 0) << t.err;
+  EXPECT_NE(t.out.find("validation        OK"), std::string::npos) << t.out;
+  const Outcome j = run("ffr-info", f.string() + " --json");
+  ASSERT_EQ(j.rc, 0) << j.err;
+  const auto js = nlohmann::json::parse(j.out);
+  const Sid s = read_sid(f);
+  EXPECT_EQ(js["kind"], "sid");
+  EXPECT_DOUBLE_EQ(js["mass"].get<double>(), s.refmod.mass);
+  EXPECT_EQ(js["nq"], 4);
+  EXPECT_DOUBLE_EQ(js["modes"][2]["frequency_hz"].get<double>(), s.refmod.frequency_hz[2]);
+  EXPECT_DOUBLE_EQ(js["center_of_mass"][0].get<double>(), 0.5);  // uniform chain on [0, 1]
+  EXPECT_NEAR(js["inertia_about_com"][1][1].get<double>(), s.J.M0(1, 1) - 0.25, 1e-15);
+  EXPECT_TRUE(js["validation"]["ok"].get<bool>());
+  EXPECT_EQ(js["nodes"][1]["name"], "B");
+}
+
+TEST(Cli, InfoSummarisesAResultsFile) {
+  Results r;
+  r.time = Eigen::VectorXd::LinSpaced(11, 0.0, 1.0);
+  r.outputs.push_back({"tip", "node_deformation", Eigen::MatrixXd::Random(11, 3)});
+  r.outputs.push_back({"energy", "energy", Eigen::MatrixXd::Ones(11, 3)});
+  r.steps = 10;
+  r.newton_iterations = 23;
+  r.integration_seconds = 0.5;
+  const auto f = dir() / "run.h5";
+  write_results(r, f);
+  const Outcome j = run("ffr-info", f.string() + " --json");
+  ASSERT_EQ(j.rc, 0) << j.err;
+  const auto js = nlohmann::json::parse(j.out);
+  EXPECT_EQ(js["kind"], "results");
+  EXPECT_EQ(js["steps"], 10);
+  EXPECT_EQ(js["newton_iterations"], 23);
+  EXPECT_DOUBLE_EQ(js["time"]["end"].get<double>(), 1.0);
+  EXPECT_EQ(js["outputs"][1]["name"], "tip");  // sorted by name
+  EXPECT_DOUBLE_EQ(js["outputs"][1]["final"][2].get<double>(), r.outputs[0].values(10, 2));
+  EXPECT_EQ(run("ffr-info", f.string()).rc, 0);
+}
+
+TEST(Cli, InfoRefusesBadInputWithExitCode2) {
+  const Outcome missing = run("ffr-info", (dir() / "nowhere.h5").string());
+  EXPECT_EQ(missing.rc, 2);
+  EXPECT_NE(missing.err.find("nowhere.h5"), std::string::npos) << missing.err;
+  const auto f = dir() / "text.h5";
+  std::ofstream(f) << "not hdf5";
+  EXPECT_EQ(run("ffr-info", f.string()).rc, 2);
+  EXPECT_EQ(run("ffr-info", "").rc, 2);
+  EXPECT_EQ(run("ffr-info", "a.h5 --bogus").rc, 2);
+  // A SID with a dataset removed: the message names file and dataset.
+  const auto g = chain_file("damaged.sid.h5");
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const hid_t h = H5Fopen(g.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(h, 0);
+  H5Ldelete(h, "/sid/Oe/M1", H5P_DEFAULT);
+  H5Fclose(h);
+  const Outcome damaged = run("ffr-info", g.string() + " --json");
+  EXPECT_EQ(damaged.rc, 2);
+  EXPECT_NE(damaged.err.find(g.string() + ": /sid/Oe/M1: missing dataset"), std::string::npos) << damaged.err;
+  EXPECT_TRUE(damaged.out.empty()) << "no partial output: " << damaged.out;
+  EXPECT_EQ(std::count(damaged.err.begin(), damaged.err.end(), '\n'), 1) << "one line: " << damaged.err;
+}
+
+TEST(Cli, CampbellJsonIsExactlyTheContract) {
+  const auto f = chain_file("campbell.sid.h5");
+  const Outcome j = run("ffr-info", f.string() + " --campbell z --speeds 0,50,100 --json");
+  ASSERT_EQ(j.rc, 0) << j.err;
+  const auto js = nlohmann::ordered_json::parse(j.out);
+  ASSERT_EQ(js.size(), 2u);
+  EXPECT_EQ(js.begin().key(), "speeds_rad_s");
+  EXPECT_EQ(std::next(js.begin()).key(), "frequency_hz");
+  EXPECT_EQ(js["speeds_rad_s"], nlohmann::json({0.0, 50.0, 100.0}));
+  const auto ref = campbell(read_sid(f), 2, {0.0, 50.0, 100.0});
+  ASSERT_EQ(js["frequency_hz"].size(), 3u);
+  for (int s = 0; s < 3; ++s) {
+    ASSERT_EQ(js["frequency_hz"][s].size(), 4u);
+    for (int k = 0; k < 4; ++k) EXPECT_DOUBLE_EQ(js["frequency_hz"][s][k].get<double>(), ref.frequency_hz[s][k]);
+    for (int k = 1; k < 4; ++k) EXPECT_LE(js["frequency_hz"][s][k - 1].get<double>(), js["frequency_hz"][s][k].get<double>());
+  }
+  const Outcome t = run("ffr-info", f.string() + " --campbell x --speeds 0,10");
+  EXPECT_EQ(t.rc, 0);
+  EXPECT_NE(t.out.find("speed [rad/s]"), std::string::npos);
+}
+
+TEST(Cli, CampbellPngAndBadArguments) {
+  const auto f = chain_file("png.sid.h5");
+  const auto png = dir() / "campbell.png";
+  ASSERT_EQ(run("ffr-info", f.string() + " --campbell y --speeds 0,20,40 --png " + png.string()).rc, 0);
+  const std::string bytes = slurp(png);
+  ASSERT_GT(bytes.size(), 33u);
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  EXPECT_EQ(bytes.substr(12, 4), "IHDR");
+  EXPECT_EQ(static_cast<unsigned char>(bytes[18]) * 256 + static_cast<unsigned char>(bytes[19]), 900);  // width
+  const Outcome axis = run("ffr-info", f.string() + " --campbell w --speeds 0");
+  EXPECT_EQ(axis.rc, 2);
+  EXPECT_NE(axis.err.find("--campbell"), std::string::npos);
+  EXPECT_EQ(run("ffr-info", f.string() + " --speeds 0,1").rc, 2);
+  EXPECT_EQ(run("ffr-info", f.string() + " --campbell x --speeds 0,abc").rc, 2);
+  // No partial output when the PNG cannot be written.
+  const auto nowhere = dir() / "no_such_dir" / "c.png";
+  EXPECT_NE(run("ffr-info", f.string() + " --campbell y --speeds 0 --png " + nowhere.string()).rc, 0);
+  EXPECT_FALSE(fs::exists(nowhere));
+}
+
+TEST(Cli, DiffExitCodes) {
+  const auto a = chain_file("a.sid.h5");
+  const Sid sa = read_sid(a);
+  // B: the same body with flipped signs and a rotation inside the first repeated pair.
+  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(4, 4);
+  const double c = std::cos(0.7), s = std::sin(0.7);
+  T.topLeftCorner(2, 2) << c, -s, s, c;
+  T(3, 3) = -1;
+  const auto b = dir() / "b.sid.h5";
+  write_sid(transform_modes(sa, T), b);
+  const Outcome same = run("ffr-diff", a.string() + " " + b.string());
+  EXPECT_EQ(same.rc, 0) << same.out << same.err;
+  EXPECT_NE(same.out.find("EQUIVALENT"), std::string::npos);
+
+  Sid sc = sa;
+  sc.Gr[2](1, 2) += 1e-3;
+  const auto cfile = dir() / "c.sid.h5";
+  write_sid(sc, cfile);
+  const Outcome diff = run("ffr-diff", a.string() + " " + cfile.string());
+  EXPECT_EQ(diff.rc, 1);
+  EXPECT_NE(diff.out.find("/sid/Gr/M0[2,1,2]"), std::string::npos) << diff.out;
+  EXPECT_EQ(run("ffr-diff", a.string() + " " + cfile.string() + " --rtol 1e-2").rc, 0);
+  EXPECT_EQ(run("ffr-diff", a.string() + " " + cfile.string() + " --atol 1e-2").rc, 0);
+
+  const Outcome bad = run("ffr-diff", a.string() + " " + (dir() / "missing.sid.h5").string());
+  EXPECT_EQ(bad.rc, 2);
+  EXPECT_NE(bad.err.find("missing.sid.h5"), std::string::npos);
+  EXPECT_EQ(run("ffr-diff", a.string()).rc, 2);
+  EXPECT_EQ(run("ffr-diff", a.string() + " " + b.string() + " --rtol -1").rc, 2);
+}
+
+TEST(Cli, SynthWritesAValidChainAndLeavesNothingOnError) {
+  const auto f = dir() / "synth.sid.h5";
+  const Outcome ok = run("ffr-synth", "--chain --points 7 --modes 3 --clamped --stiffening -o " + f.string());
+  ASSERT_EQ(ok.rc, 0) << ok.err;
+  EXPECT_EQ(read_sid(f).nq(), 3);
+  EXPECT_EQ(read_sid(f).refmod.reference, "clamped:A");
+  const auto g = dir() / "bad_synth.sid.h5";
+  EXPECT_EQ(run("ffr-synth", "--chain --points 1 -o " + g.string()).rc, 2);
+  EXPECT_EQ(run("ffr-synth", "--chain --modes 99 -o " + g.string()).rc, 2);
+  EXPECT_FALSE(fs::exists(g));
+  for (const auto& e : fs::directory_iterator(dir()))
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << "left behind: " << e.path();
+}

@@ -1,0 +1,174 @@
+// diff(): a mode's sign and a rotation inside a repeated eigenvalue are not differences;
+// everything else is, and is named. transform_modes() is checked against the direct point
+// sums of the synthetic generator applied to the rotated shapes (an independent oracle).
+#include "ffr/formats/diff.hpp"
+#include "ffr/formats/sid_io.hpp"
+#include "ffr/formats/synthetic.hpp"
+#include "ffr/formats/validate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/QR>
+
+#include <filesystem>
+#include <random>
+#include <sstream>
+
+using namespace ffr::formats;
+using namespace ffr::formats::synthetic;
+using Eigen::MatrixXd;
+
+namespace {
+
+// Clamped chain with a symmetric section: bending modes come in exactly repeated pairs.
+Sid symmetric_chain() {
+  ChainParams p;
+  p.points = 15;
+  p.clamped = true;
+  p.EIy = p.EIz = 2.0;
+  p.modes = 6;  // three bending pairs (EA is high: the first axial mode is far above)
+  p.stiffening = true;
+  p.damping_ratio = 0.01;
+  return spring_chain(p).sid;
+}
+
+MatrixXd random_orthogonal(int n, std::mt19937& rng) {
+  std::normal_distribution<double> g;
+  const MatrixXd A = MatrixXd::NullaryExpr(n, n, [&] { return g(rng); });
+  return Eigen::HouseholderQR<MatrixXd>(A).householderQ() * MatrixXd::Identity(n, n);
+}
+
+std::string dump(const DiffReport& r) {
+  std::ostringstream o;
+  for (const auto& x : r.structural) o << "  " << x << "\n";
+  for (const auto& d : r.worst) o << "  " << d.dataset << d.index << " rel " << d.rel << "\n";
+  return o.str();
+}
+
+}  // namespace
+
+TEST(Diff, IdenticalBodiesAreEquivalent) {
+  const Sid a = symmetric_chain();
+  const DiffReport r = diff(a, a);
+  EXPECT_TRUE(r.equivalent) << dump(r);
+  EXPECT_GT(r.datasets_compared, 30);
+}
+
+TEST(Diff, SignFlipsAreNotDifferences) {
+  const Sid a = symmetric_chain();
+  ASSERT_NEAR(a.refmod.frequency_hz[0], a.refmod.frequency_hz[1], 1e-9 * a.refmod.frequency_hz[0]);
+  Eigen::VectorXd s = Eigen::VectorXd::Ones(6);
+  s[0] = s[3] = s[4] = -1;
+  const Sid b = transform_modes(a, s.asDiagonal());
+  const DiffReport plain = diff(a, b, [] { DiffOptions o; o.align = false; return o; }());
+  EXPECT_FALSE(plain.equivalent) << "the flip must be visible without alignment";
+  const DiffReport r = diff(a, b);
+  EXPECT_TRUE(r.equivalent) << dump(r);
+}
+
+TEST(Diff, RotationsInsideRepeatedEigenvaluesAreNotDifferences) {
+  const Sid a = symmetric_chain();
+  std::mt19937 rng(5);
+  MatrixXd T = MatrixXd::Zero(6, 6);
+  for (int g = 0; g < 3; ++g) T.block(2 * g, 2 * g, 2, 2) = random_orthogonal(2, rng);  // includes reflections
+  const Sid b = transform_modes(a, T);
+  // Through the file, as ffr-diff sees it.
+  const auto path = std::filesystem::temp_directory_path() / ("ffr_diff_rot_" + std::to_string(::getpid()) + ".sid.h5");
+  write_sid(b, path);
+  const Sid br = read_sid(path);
+  std::filesystem::remove(path);
+  const DiffReport r = diff(a, br);
+  EXPECT_TRUE(r.equivalent) << dump(r);
+  EXPECT_EQ(r.alignment.groups.size(), 3u);
+  EXPECT_FALSE(r.alignment.rotated_groups.empty());
+}
+
+TEST(Diff, RotationAcrossDistinctFrequenciesIsADifference) {
+  const Sid a = symmetric_chain();
+  MatrixXd T = MatrixXd::Identity(6, 6);
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  T(1, 1) = c, T(1, 2) = -s, T(2, 1) = s, T(2, 2) = c;  // mixes the first and second pairs
+  const DiffReport r = diff(a, transform_modes(a, T));
+  EXPECT_FALSE(r.equivalent);
+}
+
+TEST(Diff, RescaledModeIsADifference) {
+  const Sid a = symmetric_chain();
+  Eigen::VectorXd s = Eigen::VectorXd::Ones(6);
+  s[2] = 1.01;
+  const DiffReport r = diff(a, transform_modes(a, s.asDiagonal()));
+  EXPECT_FALSE(r.equivalent);
+}
+
+TEST(Diff, ARealPerturbationIsReportedWithItsDataset) {
+  const Sid a = symmetric_chain();
+  Sid b = a;
+  b.Gr[1](0, 2) += 1e-4 * (std::abs(b.Gr[1](0, 2)) + 1);
+  const DiffReport r = diff(a, b);
+  ASSERT_FALSE(r.equivalent);
+  ASSERT_FALSE(r.worst.empty());
+  EXPECT_EQ(r.worst[0].dataset, "/sid/Gr/M0");
+  EXPECT_EQ(r.worst[0].index, "[1,0,2]");
+  EXPECT_EQ(r.datasets_different, 1);
+  DiffOptions loose;
+  loose.rtol = 1e-2;
+  EXPECT_TRUE(diff(a, b, loose).equivalent);
+
+  Sid m = a;
+  m.refmod.mass *= 1.001;
+  const DiffReport rm = diff(a, m);
+  ASSERT_FALSE(rm.equivalent);
+  EXPECT_EQ(rm.worst[0].dataset, "/refmod/mass");
+}
+
+TEST(Diff, NodesAreMatchedByNameAndMissingOnesAreStructural) {
+  const Sid a = symmetric_chain();
+  Sid b = a;
+  std::swap(b.nodes[0], b.nodes[1]);
+  for (auto& i : b.interfaces) i.node = 1 - i.node;
+  EXPECT_TRUE(diff(a, b).equivalent) << dump(diff(a, b));
+  b.nodes[0].name = "C";
+  b.interfaces[1].node = 0;  // keeps the interfaces valid
+  const DiffReport r = diff(a, b);
+  EXPECT_FALSE(r.equivalent);
+  bool named = false;
+  for (const auto& s : r.structural) named |= s.find("'C' only in B") != std::string::npos;
+  EXPECT_TRUE(named) << dump(r);
+}
+
+// transform_modes against the oracle: the generator's direct sums over the points with the
+// rotated shapes. All frequencies equal, so any orthogonal T keeps Ke = diag(w^2).
+TEST(Diff, TransformModesMatchesDirectSumsOfTheRotatedShapes) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<PointMass> pts;
+  for (int p = 0; p < 6; ++p) {
+    PointMass pm;
+    pm.m = 1 + std::abs(u(rng));
+    pm.c = Eigen::Vector3d(u(rng), u(rng), u(rng));
+    pm.inertia = 0.05 * Eigen::Matrix3d::Identity() + 0.01 * Eigen::Vector3d(u(rng), u(rng), u(rng)).cwiseAbs().asDiagonal().toDenseMatrix();
+    pts.push_back(pm);
+  }
+  // M-orthonormal shapes first (the generator's own normalisation), then rotate them.
+  const MatrixXd Phi0 = MatrixXd::NullaryExpr(18, 4, [&] { return u(rng); });
+  const MatrixXd Psi0 = MatrixXd::NullaryExpr(18, 4, [&] { return u(rng); });
+  std::vector<ExportedNode> all;
+  for (int p = 0; p < 6; ++p) all.push_back({std::string(1, char('a' + p)), p});
+  const Eigen::Vector4d w = Eigen::Vector4d::Constant(7.0);
+  const Sid a = from_shapes(pts, Phi0, Psi0, w, all, "craig-bampton");
+  MatrixXd Phi(18, 4), Psi(18, 4);
+  for (int p = 0; p < 6; ++p) {
+    Phi.middleRows(3 * p, 3) = a.nodes[p].phi;
+    Psi.middleRows(3 * p, 3) = a.nodes[p].psi;
+  }
+  const MatrixXd T = random_orthogonal(4, rng);
+  const Sid direct = from_shapes(pts, Phi * T, Psi * T, w, all, "craig-bampton");
+  const Sid transformed = transform_modes(a, T);
+  DiffOptions exact;
+  exact.align = false;
+  exact.rtol = 1e-12;
+  const DiffReport r = diff(direct, transformed, exact);
+  EXPECT_TRUE(r.equivalent) << dump(r);
+  // And the transformed body still satisfies every basis-independent identity.
+  EXPECT_TRUE(validate(transformed).ok());
+}

@@ -1,0 +1,103 @@
+// ffr-reduce as a user runs it: the examples reduce and validate; bad inputs get exit 2, one
+// clear message naming the file and the field, and no output file; Spectra and ARPACK give the
+// same modes (compared with ffr-diff, which ignores signs and rotations in repeated pairs).
+#include "support.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace ffr;
+
+namespace {
+const std::string kGeoBar = R"(SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 0.2, 0.02, 0.012};
+Physical Volume("body") = {1};
+Physical Surface("clamp") = Surface In BoundingBox{-1e-6, -1, -1, 1e-6, 1, 1};
+)";
+
+test::RunResult reduce(const test::TempDir& dir, const std::string& part_json, const std::string& extra = "") {
+  test::write_text(dir / "bar.geo", kGeoBar);
+  test::write_text(dir / "part.json", part_json);
+  return test::run(test::bin("ffr-reduce").string() + " " + (dir / "part.json").string() + " -o " +
+                   (dir / "out.sid.h5").string() + " --quiet " + extra);
+}
+}  // namespace
+
+TEST(ReduceCli, HelpAndVersion) {
+  const auto h = test::run(test::bin("ffr-reduce").string() + " --help");
+  EXPECT_EQ(h.status, 0);
+  EXPECT_NE(h.output.find("usage: ffr-reduce"), std::string::npos);
+  const auto v = test::run(test::bin("ffr-reduce").string() + " --version");
+  EXPECT_EQ(v.status, 0);
+  EXPECT_NE(v.output.find("ffr"), std::string::npos);
+}
+
+TEST(ReduceCli, BadInputsExitTwoWithoutOutput) {
+  struct Case { std::string name, json, expect; };
+  const std::string mat = R"("materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}])";
+  const std::vector<Case> cases = {
+      {"missing geometry", R"({"geometry": "nothere.geo", )" + mat + R"(, "reduction": {"method": "free", "modes": 4}})", "nothere.geo"},
+      {"unknown group", R"({"geometry": "bar.geo", "materials": [{"group": "bodee", "E": 2.1e11, "nu": 0.3, "rho": 7850}], "reduction": {"method": "free", "modes": 4}})", "no group 'bodee'"},
+      {"no material", R"({"geometry": "bar.geo", "reduction": {"method": "free", "modes": 4}})", "no material"},
+      {"clamped interface does not exist", R"({"geometry": "bar.geo", )" + mat + R"(, "reduction": {"method": "clamped", "interface": "root", "modes": 4}})", "no interface named 'root'"},
+      {"material on a surface group", R"({"geometry": "bar.geo", "materials": [{"group": "clamp", "E": 2.1e11, "nu": 0.3, "rho": 7850}], "reduction": {"method": "free", "modes": 4}})", "surface group"},
+      // Held at one point: the body can still rotate about it.
+      {"mechanism", R"({"geometry": "bar.geo", )" + mat + R"(, "groups": [{"name": "corner", "dim": 0, "box": [-1e-6, -1e-6, -1e-6, 1e-6, 1e-6, 1e-6]}],
+          "interfaces": [{"name": "pin", "group": "corner"}], "reduction": {"method": "clamped", "interface": "pin", "modes": 4}})", "mechanism"},
+  };
+  for (const auto& c : cases) {
+    test::TempDir dir("cli");
+    const auto r = reduce(dir, c.json);
+    EXPECT_EQ(r.status, 2) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find("part.json"), std::string::npos) << c.name << " names the file: " << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5")) << c.name;
+    for (const auto& f : std::filesystem::directory_iterator(dir.path()))
+      EXPECT_EQ(f.path().filename().string().find(".tmp"), std::string::npos) << c.name << " left " << f.path();
+  }
+}
+
+TEST(ReduceCli, TwoDisconnectedSolidsInAFreeBodyAreRefused) {
+  test::TempDir dir("cli");
+  test::write_text(dir / "two.geo", R"(SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 0.1, 0.02, 0.02};
+Box(2) = {0.2, 0, 0, 0.1, 0.02, 0.02};
+Physical Volume("body") = {1, 2};
+)");
+  test::write_text(dir / "part.json", R"({"geometry": "two.geo", "mesh": {"size": 0.01},
+    "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}], "reduction": {"method": "free", "modes": 4}})");
+  const auto r = test::run(test::bin("ffr-reduce").string() + " " + (dir / "part.json").string() + " -o " +
+                           (dir / "out.sid.h5").string() + " --quiet");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("not one connected piece"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
+}
+
+TEST(ReduceCli, SpectraAndArpackGiveTheSameModes) {
+  test::TempDir dir("backends");
+  const std::string part = R"({"geometry": "bar.geo", "mesh": {"size": 0.005, "order": 2},
+    "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],
+    "interfaces": [{"name": "root", "group": "clamp"}],
+    "reduction": {"method": "clamped", "interface": "root", "modes": 8}, "output_nodes": [{"name": "tip", "at": [0.2, 0, 0]}]})";
+  auto r = reduce(dir, part, "--backend spectra");
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::filesystem::rename(dir / "out.sid.h5", dir / "spectra.sid.h5");
+  r = reduce(dir, part, "--backend arpack");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto d = test::run(test::bin("ffr-diff").string() + " " + (dir / "spectra.sid.h5").string() + " " +
+                           (dir / "out.sid.h5").string() + " --rtol 1e-6");
+  EXPECT_EQ(d.status, 0) << d.output;
+  // And the file is valid per ffr-info.
+  const auto info = test::run(test::bin("ffr-info").string() + " " + (dir / "out.sid.h5").string());
+  EXPECT_EQ(info.status, 0) << info.output;
+}
+
+TEST(ReduceCli, ExamplesReduce) {
+  for (const char* ex : {"meshes/cantilever/cantilever.json", "meshes/link/link.json"}) {
+    test::TempDir dir("examples");
+    const auto r = test::run(test::bin("ffr-reduce").string() + " " + test::source(ex).string() + " -o " +
+                             (dir / "out.sid.h5").string() + " --quiet --vtk " + (dir / "modes.vtk").string());
+    EXPECT_EQ(r.status, 0) << ex << ": " << r.output;
+    EXPECT_TRUE(std::filesystem::exists(dir / "out.sid.h5")) << ex;
+    EXPECT_TRUE(std::filesystem::exists(dir / "modes.vtk")) << ex;
+  }
+}

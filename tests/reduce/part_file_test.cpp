@@ -1,0 +1,57 @@
+// Part-file validation: every bad input is a FormatError that names the file and the field.
+#include "ffr/formats/h5.hpp"
+#include "ffr/preproc/part/part.hpp"
+#include "support.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace ffr;
+
+namespace {
+
+// Loads a part file with the given text; returns the error message ("" if it loaded).
+std::string error_of(const std::string& json) {
+  test::TempDir dir("part");
+  test::write_text(dir / "g.geo", "SetFactory(\"OpenCASCADE\");\nBox(1) = {0,0,0,1,1,1};\n");
+  test::write_text(dir / "p.json", json);
+  try {
+    preproc::load_part(dir / "p.json");
+  } catch (const formats::FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("p.json"), std::string::npos) << "message names the file: " << e.what();
+    return e.what();
+  }
+  return "";
+}
+
+const std::string kOk = R"("geometry": "g.geo", "materials": [{"group": "all", "E": 7e10, "nu": 0.3, "rho": 2700}])";
+
+}  // namespace
+
+TEST(PartFile, AValidFileLoads) {
+  EXPECT_EQ(error_of("{" + kOk + R"(, "reduction": {"method": "free", "modes": 6}})"), "");
+}
+
+TEST(PartFile, BadInputsNameTheField) {
+  struct Case { std::string json, expect; };
+  const std::vector<Case> cases = {
+      {R"({"geometry": "g.geo", )", "malformed JSON"},
+      {R"({"geometry": "g.geo", "reduction": {"method": "free", "modes": 6}})", "no material"},
+      {R"({"geometry": "missing.step", "materials": [], "reduction": {"method": "free", "modes": 6}})", "geometry"},
+      {R"({"geometry": "g.iges", "reduction": {"method": "free", "modes": 6}})", "unsupported geometry"},
+      {"{" + kOk + R"(, "reduction": {"method": "free"}})", "modes"},
+      {"{" + kOk + R"(, "reduction": {"method": "wobbly", "modes": 6}})", "reduction.method"},
+      {"{" + kOk + R"(, "reduction": {"method": "clamped", "interface": "root", "modes": 6}})", "no interface named 'root'"},
+      {R"({"geometry": "g.geo", "materials": [{"group": "all", "E": -7e10, "nu": 0.3, "rho": 2700}], "reduction": {"method": "free", "modes": 6}})", "materials[0].E"},
+      {R"({"geometry": "g.geo", "materials": [{"group": "all", "E": 7e10, "nu": 0.5, "rho": 2700}], "reduction": {"method": "free", "modes": 6}})", "materials[0].nu"},
+      {R"({"geometry": "g.geo", "materials": [{"group": "all", "E": 7e10, "nu": 0.3, "rho": "heavy"}], "reduction": {"method": "free", "modes": 6}})", "materials[0].rho"},
+      {"{" + kOk + R"(, "reduction": {"method": "free", "modes": 6}, "thikness": 1})", "thikness"},
+      {"{" + kOk + R"(, "units": {"length": "furlong"}, "reduction": {"method": "free", "modes": 6}})", "units.length"},
+      {"{" + kOk + R"(, "mesh": {"order": 3}, "reduction": {"method": "free", "modes": 6}})", "mesh.order"},
+      {"{" + kOk + R"(, "interfaces": [{"name": "a", "group": "g", "coupling": "glued"}], "reduction": {"method": "free", "modes": 6}})", "interfaces[0].coupling"},
+      {"{" + kOk + R"(, "point_masses": [{"name": "m", "at": [0,0,0], "mass": 1, "inertia": [[1,0,0],[0,1,0],[0,0,5]]}], "reduction": {"method": "free", "modes": 6}})", "triangle inequality"},
+  };
+  for (const auto& c : cases) {
+    const std::string e = error_of(c.json);
+    EXPECT_NE(e.find(c.expect), std::string::npos) << "input: " << c.json << "\nmessage: " << e;
+  }
+}

@@ -1,0 +1,57 @@
+#pragma once
+// Test support for the reduction tests: temporary folders, running the command-line tools,
+// meshing with the gmsh command line, and CalculiX (ccx) as an independent reference on the
+// identical mesh.
+#include "ffr/preproc/mesh/mesh.hpp"
+#include "ffr/preproc/part/part.hpp"
+
+#include <Eigen/Core>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace ffr::test {
+
+/// A fresh folder under the system temp dir, removed at the end of the test.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& tag);
+  ~TempDir();
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+struct RunResult {
+  int status = -1;
+  std::string output;  ///< stdout and stderr together
+};
+/// Runs a shell command, capturing its output.
+RunResult run(const std::string& command);
+
+std::filesystem::path bin(const std::string& tool);     ///< build/bin/<tool>
+std::filesystem::path source(const std::string& rel);   ///< <repo>/<rel>
+
+/// Writes a file.
+void write_text(const std::filesystem::path& p, const std::string& text);
+
+/// Meshes a .geo with the gmsh command line into `msh` (order 1 or 2, serendipity).
+void gmsh_mesh(const std::filesystem::path& geo, const std::filesystem::path& msh, double size, int order);
+
+// ---- CalculiX -------------------------------------------------------------------------
+
+struct CcxModes {
+  std::vector<double> frequency_hz;
+  /// Participation factors: one row per mode, columns X, Y, Z, X-rot, Y-rot, Z-rot.
+  Eigen::MatrixXd participation;
+};
+
+/// Runs ccx *FREQUENCY on the solid elements of `group` in `mesh` (C3D4/C3D10/C3D8/C3D20),
+/// with the nodes of `fixed_group` held (empty: free-free), one isotropic material.
+CcxModes calculix_frequency(const preproc::Mesh& mesh, const preproc::Material& mat, const std::string& group,
+                            const std::string& fixed_group, int modes, const std::filesystem::path& workdir);
+
+}  // namespace ffr::test

@@ -1,0 +1,126 @@
+// Geometric stiffening of a solid (TET10) cantilever, 1 m long, 20 mm thick (z) and 60 mm
+// wide (y), clamped at x = 0, reduced once with "stiffening": true and a gravity preload.
+// All references are the power-series solutions of beam_series.hpp, themselves checked
+// against the published tables in series_test.cpp (Wright et al. 1982; Blevins 1979;
+// Greenhill's self-weight buckling).
+#include "beam_series.hpp"
+#include "ffr/formats/campbell.hpp"
+#include "ffr/preproc/pipeline.hpp"
+#include "../reduce/support.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <gtest/gtest.h>
+
+using namespace ffr;
+
+namespace {
+
+constexpr double L = 1.0, h = 0.02, b = 0.06, E = 2.1e11, rho = 7850;
+constexpr double A = b * h, I_flap = b * h * h * h / 12, I_lag = h * b * b * b / 12;
+constexpr double g_scaled = 2675.0;  // scaled gravity: self-weight parameter gamma = 3
+
+double unit(double I) { return std::sqrt(E * I / (rho * A * L * L * L * L)); }  // rad/s per omega_bar
+
+const formats::Sid& beam() {
+  static const formats::Sid sid = [] {
+    test::TempDir dir("stiff");
+    test::write_text(dir / "beam.geo", R"(SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 1.0, 0.06, 0.02};
+Physical Volume("body") = {1};
+Physical Surface("clamp") = Surface In BoundingBox{-1e-6, -1, -1, 1e-6, 1, 1};
+Physical Surface("end") = Surface In BoundingBox{1 - 1e-6, -1, -1, 1 + 1e-6, 1, 1};
+)");
+    test::write_text(dir / "beam.json", R"({"geometry": "beam.geo", "mesh": {"size": 0.01, "order": 2},
+      "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],
+      "interfaces": [{"name": "root", "group": "clamp"}, {"name": "tip", "group": "end"}],
+      "reduction": {"method": "clamped", "interface": "root", "modes": 12},
+      "stiffening": true, "preload": {"gravity": [2675.0, 0, 0]}, "visual": false})");
+    return preproc::run_pipeline(preproc::load_part(dir / "beam.json"));
+  }();
+  return sid;
+}
+
+// Frequencies [rad/s] of (Ke + dK) q = w^2 Me q, ascending.
+Eigen::VectorXd omegas(const formats::Sid& s, const Eigen::MatrixXd& dK) {
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(s.Ke + dK, s.Me);
+  return es.eigenvalues().cwiseMax(0).cwiseSqrt();
+}
+
+// sum_c x_c K0[k](i, c) as a matrix (i, k).
+template <class Stack>
+Eigen::MatrixXd contract(const Stack& K0, int col) {
+  const Eigen::Index nq = static_cast<Eigen::Index>(K0.size());
+  Eigen::MatrixXd out(nq, nq);
+  for (Eigen::Index k = 0; k < nq; ++k) out.col(k) = K0[static_cast<std::size_t>(k)].col(col);
+  return out;
+}
+
+}  // namespace
+
+TEST(SolidBeamStiffening, StiffeningMatricesAreSymmetricAndStiffenUnderTension) {
+  const auto& st = *beam().stiffening;
+  for (int c = 0; c < 6; ++c) {
+    const Eigen::MatrixXd K = contract(st.K0om, c);
+    EXPECT_LT((K - K.transpose()).cwiseAbs().maxCoeff(), 1e-9 * K.cwiseAbs().maxCoeff()) << "K0om column " << c;
+  }
+  // Spin about z pulls the beam (along x) outwards: K0om_zz is positive definite on bending.
+  const Eigen::MatrixXd Kzz = contract(st.K0om, formats::kZZ);
+  EXPECT_GT(Kzz(0, 0), 0.0);
+  // A frame acceleration +x loads the clamped beam like gravity -x: compression, so K0t_x < 0.
+  EXPECT_LT(contract(st.K0t, 0)(0, 0), 0.0);
+}
+
+TEST(SolidBeamStiffening, RotatingCantileverFlapAndLagFrequencies) {
+  const formats::Sid& s = beam();
+  const double uf = unit(I_flap), ul = unit(I_lag);
+  for (double sf : {0.0, 2.0, 4.0, 6.0}) {
+    const double Omega = sf * uf;
+    const auto c = formats::campbell(s, 2, {Omega});
+    const auto& f = c.frequency_hz[0];
+    // Flapwise (out of the plane of rotation): Southwell stiffening.
+    const double flap_ref = test::cantilever_frequencies(test::rotating(sf), 1)[0] * uf;
+    EXPECT_NEAR(2 * M_PI * f[0] / flap_ref, 1.0, 0.01) << "first flap at speed " << sf;
+    // Lagwise (in the plane): the same stiffening minus the centrifugal softening,
+    // omega_lag^2 = omega_flaplike^2 - Omega^2 (Wright et al. 1982, sec. 4).
+    const double sl = Omega / ul;
+    const double like = test::cantilever_frequencies(test::rotating(sl), 1)[0] * ul;
+    const double lag_ref = std::sqrt(like * like - Omega * Omega);
+    EXPECT_NEAR(2 * M_PI * f[1] / lag_ref, 1.0, 0.01) << "first lag at speed " << sf;
+    // Without the softening term (Oe.M1 removed) the lag frequency is the stiffened one.
+    formats::Sid no_soft = s;
+    for (auto& m : no_soft.Oe.M1) m.setZero();
+    const auto c2 = formats::campbell(no_soft, 2, {Omega});
+    EXPECT_NEAR(2 * M_PI * c2.frequency_hz[0][1] / like, 1.0, 0.01) << "lag without softening at speed " << sf;
+  }
+}
+
+TEST(SolidBeamStiffening, AxialEndForceTensionAndCompression) {
+  const formats::Sid& s = beam();
+  const auto& tip = s.stiffening->interfaces;
+  ASSERT_EQ(tip.size(), 1u);
+  const double uf = unit(I_flap), pcr = M_PI * M_PI / 4;
+  for (double p : {0.5 * pcr, -0.5 * pcr}) {
+    const double P = p * E * I_flap / (L * L);
+    const Eigen::VectorXd w = omegas(s, P * contract(tip[0].K0F, 0));
+    const double ref = test::cantilever_frequencies(test::end_force(p), 1)[0] * uf;
+    EXPECT_NEAR(w(0) / ref, 1.0, 0.01) << "end force p = " << p << " (" << (p > 0 ? "tension" : "compression") << ")";
+  }
+}
+
+TEST(SolidBeamStiffening, HangingAndStandingUnderGravity) {
+  const formats::Sid& s = beam();
+  const double uf = unit(I_flap);
+  const double gamma = rho * A * g_scaled * L * L * L / (E * I_flap);
+  ASSERT_NEAR(gamma, 3.0, 0.01);
+  // Gravity +x (hanging from the clamp, tension) acts like a frame acceleration -x.
+  const Eigen::MatrixXd K0tx = contract(s.stiffening->K0t, 0);
+  const double hang_ref = test::cantilever_frequencies(test::self_weight(gamma), 1)[0] * uf;
+  const double stand_ref = test::cantilever_frequencies(test::self_weight(-gamma), 1)[0] * uf;
+  EXPECT_NEAR(omegas(s, -g_scaled * K0tx)(0) / hang_ref, 1.0, 0.01) << "hanging";
+  EXPECT_NEAR(omegas(s, +g_scaled * K0tx)(0) / stand_ref, 1.0, 0.01) << "standing";
+  // The preload in the part file (gravity +x) gives the same prestress through ksigma.
+  EXPECT_NEAR(omegas(s, s.ksigma.M1)(0) / hang_ref, 1.0, 0.01) << "prestress (ksigma)";
+  const double at_rest = test::cantilever_frequencies({}, 1)[0] * uf;
+  EXPECT_GT(hang_ref, 1.05 * at_rest);   // the effect is large enough to be tested
+  EXPECT_LT(stand_ref, 0.95 * at_rest);
+}

@@ -1,0 +1,27 @@
+// The JSON summary of an ffr-sim results file.
+#include "summary.hpp"
+
+namespace ffr::info {
+
+nlohmann::json summarize_results(const formats::Results& r, const std::string& file) {
+  using nlohmann::json;
+  json outputs = json::array();
+  for (const auto& o : r.outputs) {
+    json last = json::array();
+    if (o.values.rows() > 0)
+      for (Eigen::Index c = 0; c < o.values.cols(); ++c) last.push_back(o.values(o.values.rows() - 1, c));
+    outputs.push_back({{"name", o.name}, {"type", o.type}, {"shape", {o.values.rows(), o.values.cols()}}, {"final", last}});
+  }
+  const auto nt = r.time.size();
+  return {{"file", file},
+          {"kind", "results"},
+          {"generator", r.generator},
+          {"time", {{"samples", nt}, {"start", nt ? json(r.time[0]) : json(nullptr)},
+                    {"end", nt ? json(r.time[nt - 1]) : json(nullptr)}}},
+          {"steps", r.steps},
+          {"newton_iterations", r.newton_iterations},
+          {"integration_seconds", r.integration_seconds},
+          {"outputs", outputs}};
+}
+
+}  // namespace ffr::info
