@@ -169,3 +169,30 @@ TEST_F(Fixture, ForceTangentsMatchFiniteDifferences) {
   EXPECT_LT(rel_err(K, Kfd), 1e-6) << "worst K entry off by " << (K - Kfd).cwiseAbs().maxCoeff();
   EXPECT_LT(rel_err(C, Cfd), 1e-6) << "worst C entry off by " << (C - Cfd).cwiseAbs().maxCoeff();
 }
+
+TEST_F(Fixture, ConstraintHessianMatchesFiniteDifferences) {
+  // d(Phi_q^T lambda)/dq for fixed lambda against central differences.
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const VectorXd lam = VectorXd::NullaryExpr(model.nconstraints, [&](Eigen::Index) { return 10 * u(rng); });
+  auto force = [&](const VectorXd& a) {
+    constraints(a, t);
+    VectorXd g = VectorXd::Zero(model.ncoord);
+    add_constraint_forces(model, *data, lam, g);
+    return g;
+  };
+  set(q, qd, qdd);
+  evaluate_constraints(model, *data, t);
+  MatrixXd H = MatrixXd::Zero(model.ncoord, model.ncoord);
+  add_constraint_hessian(model, *data, lam, 1.0, H);
+  MatrixXd Hfd(H.rows(), H.cols());
+  const double eps = 1e-6;
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
+    VectorXd a = q, b = q;
+    a(i) += eps;
+    b(i) -= eps;
+    Hfd.col(i) = (force(a) - force(b)) / (2 * eps);
+  }
+  std::printf("constraint Hessian: %.2e (max %.2e)\n", rel_err(H, Hfd), H.cwiseAbs().maxCoeff());
+  EXPECT_LT(rel_err(H, Hfd), 1e-6);
+}

@@ -21,11 +21,12 @@ void size_marker(MarkerData& md, int nb) {
 Data::Data(const Model& model) {
   const int n = model.ncoord, m = model.nconstraints;
   q = qd = qdd = VectorXd::Zero(n);
-  lambda = lambda_eff = lambda0 = VectorXd::Zero(m);
-  Q = f = dq = r = tmp = vstar = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);
-  sigma = c = VectorXd::Zero(m);
+  lambda = lambda_eff = lambda0 = lambda_prev = VectorXd::Zero(m);
+  Q = f = dq = r = tmp = tmp2 = vstar = qdd_prev = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);
+  sigma = c = alpha = VectorXd::Zero(m);
   K = C = W = T = MatrixXd::Zero(n, n);
   lu = Eigen::PartialPivLU<MatrixXd>(n);
+  scale = VectorXd::Ones(n);
   Phi = Phit = gamma = VectorXd::Zero(m);
 
   int nb_max = 12;
@@ -80,6 +81,10 @@ Data::Data(const Model& model) {
     J1[i] = MatrixXd::Zero(b.rows, n1);
     J2[i] = MatrixXd::Zero(b.rows, n2);
   }
+  int rows_max = 6, nb_all = 12;
+  for (const auto& b : model.blocks) rows_max = std::max(rows_max, b.rows);
+  for (const auto& b : model.bodies) nb_all = std::max(nb_all, b.ncoord());
+  Jw = MatrixXd::Zero(rows_max, nb_all);
   auto pair = [&](int m1, int m2) {
     const int b1 = model.markers[m1].body, b2 = model.markers[m2].body;
     return (b1 == kGround ? 0 : model.bodies[b1].ncoord()) + (b2 == kGround ? 0 : model.bodies[b2].ncoord());
@@ -87,6 +92,11 @@ Data::Data(const Model& model) {
   for (const auto& s : model.springs) pair_max = std::max(pair_max, pair(s.m1, s.m2));
   for (const auto& s : model.bushings) pair_max = std::max(pair_max, pair(s.m1, s.m2));
   fK = fC = fH = MatrixXd::Zero(pair_max, pair_max);
+  int joint_pair = 0;
+  for (const auto& j : model.joints) joint_pair = std::max(joint_pair, pair(j.m1, j.m2));
+  cH = MatrixXd::Zero(joint_pair, joint_pair);
+  cg = Eigen::Matrix<double, 4, Eigen::Dynamic>::Zero(4, joint_pair);
+  cl = VectorXd::Zero(6);
   fg = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, pair_max);
   fz = fhz = VectorXd::Zero(pair_max);
   for (auto& w : w3) w = Matrix3N::Zero(3, nb_max);

@@ -37,13 +37,32 @@ void step(const Model& model, Data& data) {
   data.qdd0 = data.qdd;
   data.qd_hat = -(2.0 / h) * data.q0 - data.qd0;
   data.qdd_hat = -(4.0 / h2) * data.q0 - (4.0 / h) * data.qd0 - data.qdd0;
-  data.q.noalias() += h * data.qd0 + (0.5 * h2) * data.qdd0;
+  // Predictor of the trapezoidal solution q + h qd + h^2/4 (qdd + qdd_next) with qdd_next
+  // extrapolated from the last two accelerations (O(h^4) error instead of O(h^3): for a frame
+  // turning by omega h per step the first iterate violates the constraints ~(omega h)^4, not
+  // ~(omega h)^3), and the multipliers extrapolated linearly.
+  if (data.have_previous) {
+    data.q.noalias() += h * data.qd0 + (0.75 * h2) * data.qdd0 - (0.25 * h2) * data.qdd_prev;
+    data.tmp = data.lambda;
+    data.lambda = 2.0 * data.lambda - data.lambda_prev;
+    data.lambda_prev = data.tmp;
+  } else {
+    data.q.noalias() += h * data.qd0 + (0.5 * h2) * data.qdd0;
+    data.lambda_prev = data.lambda;
+  }
+  data.qdd_prev = data.qdd0;
   data.lambda0 = data.lambda;
 
-  bool refactor = !data.tangent_valid || !s.reuse_jacobian;
+  // Tangent policy. Without reuse, the tangent is rebuilt at the first iteration of every step;
+  // with reuse, only when the last step needed many iterations. In both cases an iteration that
+  // contracts slowly gets a fresh tangent (at most twice a step). The constraints' second
+  // derivatives use the multipliers lambda, not lambda + alpha Phi: at the predictor the
+  // constraints are violated by O(h^3) and the penalised multipliers swing far off.
+  bool refactor = !data.tangent_valid || !s.reuse_jacobian || data.stats.last_iterations > 5;
+  int refreshes = 0;
   data.tangent_fresh_step = false;
   double inc = 0, prev_inc = 0, viol = 0;
-  int it = 0;
+  int it = 0, stalled = 0;
   bool converged = false;
   for (it = 1; it <= s.max_iterations; ++it) {
     data.qd = (2.0 / h) * data.q + data.qd_hat;
@@ -53,37 +72,38 @@ void step(const Model& model, Data& data) {
     if (!std::isfinite(viol)) throw SolverError(t1, viol, newton_failure(t1, it, inc, viol) + ": the state is not finite");
     // Augmented-Lagrangian update with the new iterate (from the second pass on: the first uses
     // the previous step's multipliers), then the penalised force lambda + alpha Phi.
-    if (it > 1) data.lambda += data.alpha * data.Phi;
-    data.lambda_eff = data.lambda + data.alpha * data.Phi;
+    if (it > 1) data.lambda += data.alpha.cwiseProduct(data.Phi);
+    data.lambda_eff = data.lambda + data.alpha.cwiseProduct(data.Phi);
     mass_times(model, data, data.qdd, data.f);
     data.f -= data.Q;
     add_constraint_forces(model, data, data.lambda_eff, data.f);
     data.f *= 0.25 * h2;
     if (refactor) {
-      refresh_tangent(model, data, t1);
-      refactor = false;
+      refresh_tangent(model, data, t1, data.lambda);
       data.tangent_fresh_step = true;
+      refactor = false;
+      ++refreshes;
     }
-    data.dq = data.lu.solve(data.f);
+    solve_tangent(data, data.f, data.dq);
     data.q -= data.dq;
     prev_inc = inc;
     inc = scaled_norm(model, data.dq);
     if (!std::isfinite(inc)) throw SolverError(t1, inc, newton_failure(t1, it, inc, viol) + ": singular tangent");
-    if (std::getenv("FFR_DEBUG")) std::fprintf(stderr, "  it %d inc %.3e viol %.3e f %.3e lam %.3e\n", it, inc, viol, data.f.cwiseAbs().maxCoeff(), data.lambda.cwiseAbs().maxCoeff());
     if (inc < s.tolerance && viol < s.tolerance) {
       converged = true;
       break;
     }
-    // A stale tangent that contracts slowly is refreshed, and the step restarted from the
-    // predictor: the stale iterations may have pushed the multipliers far off, where the
-    // tangent (without the constraints' second derivatives) converges poorly.
-    if (!data.tangent_fresh_step && it >= 2 && inc > 0.25 * prev_inc) {
-      refactor = true;
-      data.q = data.q0;
-      data.q.noalias() += h * data.qd0 + (0.5 * h2) * data.qdd0;
-      data.lambda = data.lambda0;
-      inc = 0;
+    // Round-off floor: a stiff model (large h^2/4 K against M) cannot get below it. Accept when
+    // the iteration has stopped contracting within a few hundred times the tolerance.
+    if (it >= 3 && inc > 0.5 * prev_inc && inc < 1e3 * s.tolerance && viol < 1e3 * s.tolerance) {
+      if (++stalled >= 2) {
+        converged = true;
+        break;
+      }
+    } else {
+      stalled = 0;
     }
+    if (it >= 2 && inc > 0.1 * prev_inc && refreshes < 2) refactor = true;
   }
   data.stats.newton_iterations += it > s.max_iterations ? s.max_iterations : it;
   data.stats.last_iterations = it;
@@ -96,15 +116,14 @@ void step(const Model& model, Data& data) {
   update_bodies(model, data);
   update_markers(model, data);
   evaluate_constraints(model, data, t1);
-  data.lambda += data.alpha * data.Phi;
+  data.lambda += data.alpha.cwiseProduct(data.Phi);
   data.stats.last_violation = data.Phi.cwiseAbs().maxCoeff() / model.length;
-  { if (!std::getenv("NOVEL")) { if (!std::getenv("NOVEL")) { if (!std::getenv("NOVEL")) data.stats.last_velocity_violation = project_velocities(model, data, t1); } } }
-  { if (!std::getenv("NOACC")) { if (!std::getenv("NOACC")) { if (!std::getenv("NOACC")) data.stats.last_acceleration_violation = project_accelerations(model, data, t1); } } }
+  data.stats.last_velocity_violation = project_velocities(model, data, t1);
+  data.stats.last_acceleration_violation = project_accelerations(model, data, t1);
   data.t = t1;
+  data.have_previous = true;
   ++data.stats.steps;
   update_angle_references(model, data);
-  // Many iterations mean the tangent no longer fits: refresh it at the next step.
-  if (it > 4) data.tangent_valid = false;
 }
 
 }  // namespace ffr::runtime

@@ -20,16 +20,18 @@ namespace {
 
 constexpr int kMaxAssembly = 200;
 
-// Block-diagonal mass matrix into W and the penalty tangent into T; factorises T.
-void factor_metric(const Model& model, Data& data, double alpha_phi) {
+// W = the block-diagonal mass matrix, the rows' penalties data.alpha = alpha_factor times W along
+// each row, T = W + t_factor Phi_q^T diag(alpha) Phi_q, factorised.
+void factor_metric(const Model& model, Data& data, double alpha_factor, double t_factor) {
   data.W.setZero();
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
     data.W.block(b.offset, b.offset, b.ncoord(), b.ncoord()) = data.bodies[i].M;
   }
+  penalty_weights(model, data, data.W, alpha_factor, data.alpha);
   data.T = data.W;
-  add_penalty_tangent(model, data, alpha_phi, data.T);
-  data.lu.compute(data.T);
+  add_penalty_tangent(model, data, data.alpha, t_factor, data.T);
+  factorize_tangent(data);
 }
 
 std::string fmt(double v) {
@@ -60,7 +62,7 @@ void assemble_positions(const Model& model, Data& data, double t0, std::vector<s
   mass_matrices(model, data);
   update_markers(model, data);
   evaluate_constraints(model, data, t0);
-  const double alpha = model.settings.penalty * model.mass;
+  const double kappa = model.settings.penalty;
   data.lambda.setZero();
   double viol = data.Phi.cwiseAbs().maxCoeff() / model.length, inc = 0;
   const double tol = model.settings.tolerance;
@@ -68,9 +70,9 @@ void assemble_positions(const Model& model, Data& data, double t0, std::vector<s
   int it = 0;
   for (it = 0; it < kMaxAssembly; ++it) {
     // The metric is the mass matrix at the given configuration; the tangent is refreshed each pass.
-    factor_metric(model, data, alpha);
-    if (it > 0) data.lambda += alpha * data.Phi;
-    data.lambda_eff = data.lambda + alpha * data.Phi;
+    factor_metric(model, data, kappa, 1.0);
+    if (it > 0) data.lambda += data.alpha.cwiseProduct(data.Phi);
+    data.lambda_eff = data.lambda + data.alpha.cwiseProduct(data.Phi);
     data.tmp = data.q - given;
     data.r.setZero();
     for (std::size_t i = 0; i < model.bodies.size(); ++i) {
@@ -78,7 +80,7 @@ void assemble_positions(const Model& model, Data& data, double t0, std::vector<s
       data.r.segment(b.offset, b.ncoord()).noalias() = data.bodies[i].M * data.tmp.segment(b.offset, b.ncoord());
     }
     add_constraint_forces(model, data, data.lambda_eff, data.r);
-    data.dq = data.lu.solve(data.r);
+    solve_tangent(data, data.r, data.dq);
     data.q -= data.dq;
     inc = scaled_norm(model, data.dq);
     update_bodies(model, data);
@@ -105,6 +107,7 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
   const double t0 = model.settings.start;
   data.t = t0;
   data.qdd.setZero();
+  data.have_previous = false;
   data.stats = Stats{};
   // Angles of driven joints are unwrapped around their targets from the start.
   for (std::size_t m = 0; m < model.motions.size(); ++m)
@@ -115,12 +118,11 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
   update_angle_references(model, data);
 
   // Velocities: M-orthogonal projection (metric M, as the step's projections use W at h -> 0).
-  data.alpha = model.settings.penalty * model.mass / (0.25 * h * h);
   update_bodies(model, data);
   mass_matrices(model, data);
   update_markers(model, data);
   evaluate_constraints(model, data, t0);
-  factor_metric(model, data, 0.25 * h * h * data.alpha);
+  factor_metric(model, data, model.settings.penalty * 4.0 / (h * h), 0.25 * h * h);
   data.tangent_fresh_step = true;  // the metric is M here: no refresh with C and K
   const VectorXd given = data.qd;
   const double vres = project_velocities(model, data, t0);
@@ -134,21 +136,20 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
 
   // Accelerations and multipliers. The stiffening forces depend on the accelerations, hence the
   // outer fixed-point passes.
-  const double alpha = model.settings.penalty * model.mass;
   for (int pass = 0; pass < 3; ++pass) {
     evaluate(model, data, t0);
-    factor_metric(model, data, alpha);
+    factor_metric(model, data, model.settings.penalty, 1.0);
     data.lambda.setZero();
     double res = 0;
     for (int k = 0; k < 100; ++k) {
       // (M + alpha Phi_q^T Phi_q) a = Q - Phi_q^T (lambda + alpha gamma);  lambda += alpha (Phi_q a + gamma)
       data.r = data.Q;
-      data.c = -(data.lambda + alpha * data.gamma);
+      data.c = -(data.lambda + data.alpha.cwiseProduct(data.gamma));
       add_constraint_forces(model, data, data.c, data.r);
-      data.qdd = data.lu.solve(data.r);
+      solve_tangent(data, data.r, data.qdd);
       constraint_times(model, data, data.qdd, data.c);
       data.c += data.gamma;
-      data.lambda += alpha * data.c;
+      data.lambda += data.alpha.cwiseProduct(data.c);
       res = data.c.cwiseAbs().maxCoeff() * h * h / model.length;
       if (res < 1e-3 * model.settings.tolerance) break;
     }

@@ -28,13 +28,13 @@ double project_once(const Model& model, Data& data, VectorXd& x, const VectorXd&
   for (int k = 0; k < kMaxProjection && res > target; ++k) {
     data.tmp = x - data.vstar;
     data.r.noalias() = data.W * data.tmp;
-    data.c = h4 * (data.sigma + data.alpha * data.c);
+    data.c = h4 * (data.sigma + data.alpha.cwiseProduct(data.c));
     add_constraint_forces(model, data, data.c, data.r);
-    data.dq = data.lu.solve(data.r);
+    solve_tangent(data, data.r, data.dq);
     x -= data.dq;
     constraint_times(model, data, x, data.c);
     data.c += bias;
-    data.sigma += data.alpha * data.c;
+    data.sigma += data.alpha.cwiseProduct(data.c);
     const double prev = res;
     res = data.c.cwiseAbs().maxCoeff() * unit;
     if (!(res < 1e3 * std::max(res0, target))) return res;  // diverging: stale factorisation
@@ -51,7 +51,7 @@ double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias
   double res = project_once(model, data, x, bias, unit);
   if (res > model.settings.tolerance && data.tangent_fresh_step == false) {
     x = data.vstar;
-    refresh_tangent(model, data, t);
+    refresh_tangent(model, data, t, data.lambda);
     data.tangent_fresh_step = true;
     data.vstar = x;
     res = project_once(model, data, x, bias, unit);

@@ -206,27 +206,45 @@ void constraint_times(const Model& model, const Data& data, const VectorXd& v, V
   }
 }
 
-void add_penalty_tangent(const Model& model, const Data& data, double f, MatrixXd& T) {
+void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, double f, MatrixXd& T) {
   for (std::size_t bi = 0; bi < model.blocks.size(); ++bi) {
     const ConstraintBlock& b = model.blocks[bi];
     const MatrixXd& J1 = data.J1[bi];
     const MatrixXd& J2 = data.J2[bi];
+    const auto a = alpha.segment(b.row0, b.rows);
     if (b.kind == BlockKind::RigidBody) {
       // Only the frame-vector columns are nonzero.
       const int o = model.bodies[b.body1].offset + 3;
-      T.block<9, 9>(o, o).noalias() += f * J1.middleCols<9>(3).transpose() * J1.middleCols<9>(3);
+      auto Jw = data.Jw.topLeftCorner(b.rows, 9);
+      Jw.noalias() = (f * a).asDiagonal() * J1.middleCols<9>(3);
+      T.block<9, 9>(o, o).noalias() += Jw.transpose() * J1.middleCols<9>(3);
       continue;
     }
     const bool h1 = b.body1 != kGround, h2 = b.body2 != kGround;
     const int o1 = h1 ? model.bodies[b.body1].offset : 0, n1 = static_cast<int>(J1.cols());
     const int o2 = h2 ? model.bodies[b.body2].offset : 0, n2 = static_cast<int>(J2.cols());
-    if (h1) T.block(o1, o1, n1, n1).noalias() += f * J1.transpose() * J1;
-    if (h2) T.block(o2, o2, n2, n2).noalias() += f * J2.transpose() * J2;
-    if (h1 && h2) {
-      T.block(o1, o2, n1, n2).noalias() += f * J1.transpose() * J2;
-      T.block(o2, o1, n2, n1).noalias() += f * J2.transpose() * J1;
+    if (h1) {
+      auto Jw = data.Jw.topLeftCorner(b.rows, n1);
+      Jw.noalias() = (f * a).asDiagonal() * J1;
+      T.block(o1, o1, n1, n1).noalias() += Jw.transpose() * J1;
+      if (h2) T.block(o1, o2, n1, n2).noalias() += Jw.transpose() * J2;
+    }
+    if (h2) {
+      auto Jw = data.Jw.topLeftCorner(b.rows, n2);
+      Jw.noalias() = (f * a).asDiagonal() * J2;
+      T.block(o2, o2, n2, n2).noalias() += Jw.transpose() * J2;
+      if (h1) T.block(o2, o1, n2, n1).noalias() += Jw.transpose() * J1;
     }
   }
+}
+
+void penalty_weights(const Model& model, const Data& data, const MatrixXd& W, double factor, VectorXd& alpha) {
+  // One penalty for all rows, relative to the mean body mass. (A per-row penalty scaled to the
+  // tangent's stiffness along each row was tried: rows touching stiff modes then get penalties
+  // so large that the augmented multipliers swing and Newton needs more iterations, not fewer.)
+  (void)data;
+  (void)W;
+  alpha.setConstant(factor * model.mass);
 }
 
 }  // namespace ffr::runtime

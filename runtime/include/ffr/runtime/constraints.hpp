@@ -21,8 +21,15 @@ void add_constraint_forces(const Model& model, const Data& data, const VectorXd&
 /// out = Phi_q v.
 void constraint_times(const Model& model, const Data& data, const VectorXd& v, VectorXd& out);
 
-/// T += factor * Phi_q^T Phi_q, assembled from the blocks.
-void add_penalty_tangent(const Model& model, const Data& data, double factor, MatrixXd& T);
+/// T += factor * Phi_q^T diag(alpha) Phi_q, assembled from the blocks.
+void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, double factor, MatrixXd& T);
+
+/// Penalty of each constraint row: factor times the mean body mass (W is the metric the rows act
+/// against, kept for per-row schemes).
+void penalty_weights(const Model& model, const Data& data, const MatrixXd& W, double factor, VectorXd& alpha);
+
+/// M += factor * sum_i lam_i d2Phi_i/dq2 (the constraints' second derivatives; Newton tangent).
+void add_constraint_hessian(const Model& model, Data& data, const VectorXd& lam, double factor, MatrixXd& M);
 
 /// A joint's coordinate in the current state (angle unwrapped around data.angle_ref).
 double joint_coordinate(const Model& model, const Data& data, int joint, JointCoordinate c);

@@ -72,14 +72,17 @@ struct Data {
   VectorXd lambda0;             ///< multipliers at the start of the step
   MatrixXd W;                   ///< M + h/2 C + h^2/4 K at the last factorisation (projection metric)
   MatrixXd T;                   ///< tangent W + h^2/4 Phi_q^T alpha Phi_q
-  Eigen::PartialPivLU<MatrixXd> lu;
+  Eigen::PartialPivLU<MatrixXd> lu; ///< of the scaled tangent S T S (see factorize_tangent)
+  VectorXd scale;               ///< S = diag(|T_ii|^-1/2): equilibration of masses vs stiffnesses
   bool tangent_valid = false;
   bool tangent_fresh_step = false; ///< factorised during the current step (or set-up)
 
   // Integrator work.
   VectorXd q0, qd0, qdd0;       ///< state at the start of the step
   VectorXd qd_hat, qdd_hat;     ///< trapezoidal predictors
-  VectorXd f, dq, r, sigma, c, tmp, vstar;
+  VectorXd qdd_prev, lambda_prev; ///< accelerations and multipliers of the step before (predictor)
+  bool have_previous = false;
+  VectorXd f, dq, r, sigma, c, tmp, tmp2, vstar;
 
   // Joints: unwrapped angle of each revolute/cylindrical joint at the last accepted step.
   std::vector<double> angle_ref;
@@ -98,8 +101,14 @@ struct Data {
   VectorXd fz, fhz;             ///< [n12]
   std::array<Matrix3N, 4> w3;   ///< [3, nb max]
 
+  // Constraint-Hessian work, sized for the largest pair of bodies a joint joins.
+  MatrixXd cH;                  ///< [n12, n12]
+  Eigen::Matrix<double, 4, Eigen::Dynamic> cg;  ///< angle row: g_x, g_y, N, w
+  VectorXd cl;                  ///< [6] scaled multipliers of one joint
+
   Stats stats;
-  double alpha = 0;             ///< penalty factor in use
+  VectorXd alpha;               ///< penalty of each constraint row in use (penalty_weights)
+  MatrixXd Jw;                  ///< work: a penalty-weighted Jacobian block
 };
 
 }  // namespace ffr::runtime

@@ -30,8 +30,16 @@ void step(const Model& model, Data& data);
 double project_velocities(const Model& model, Data& data, double t);
 double project_accelerations(const Model& model, Data& data, double t);
 
-/// Factorises T = W + h^2/4 alpha Phi_q^T Phi_q with W = M + h/2 C + h^2/4 K at the current state.
-void refresh_tangent(const Model& model, Data& data, double t);
+/// Factorises T = W + h^2/4 (alpha Phi_q^T Phi_q + sum lam_i Phi_i,qq) with W = M + h/2 C + h^2/4 K
+/// at the current state (lam: the multipliers to use in the constraints' second derivatives).
+void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& lam);
+
+/// Factorises data.T after symmetric diagonal scaling S T S, S = diag(|T_ii|^-1/2). The tangent
+/// mixes masses (down to ~1e-6 for a bar's section inertia) with h^2/4 K of stiff modes and the
+/// penalty (~1e5): unscaled, partial pivoting loses most digits and Newton converges slowly.
+void factorize_tangent(Data& data);
+/// out = T^-1 rhs with the scaled factorisation (out and rhs distinct).
+void solve_tangent(Data& data, const VectorXd& rhs, VectorXd& out);
 
 /// Scaled infinity norm of a coordinate increment (lengths / model length, frame vectors, modes
 /// by their scale).
