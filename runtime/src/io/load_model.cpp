@@ -87,6 +87,11 @@ Model parse_model(const std::string& text, const std::filesystem::path& base_dir
     std::string what = e.what();
     const auto p = what.find("parse error");
     throw ModelError(name, "", "malformed JSON: " + (p == std::string::npos ? what : what.substr(p)));
+  } catch (const nlohmann::json::exception& e) {
+    // e.g. "number overflow parsing '1e999'": a number that is not a finite double.
+    std::string what = e.what();
+    const auto p = what.find("] ");
+    throw ModelError(name, "", "not a finite number in the JSON text: " + (p == std::string::npos ? what : what.substr(p + 2)));
   }
   Model m;
   m.source = name;
