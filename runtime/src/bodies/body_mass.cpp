@@ -25,8 +25,12 @@ void body_mass_matrix(const Body& b, BodyData& bd) {
 void mass_matrices(const Model& model, Data& data) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     // A rigid body's mass matrix is constant: it was filled when Data was built.
-    if (model.bodies[i].nq == 0) continue;
-    body_mass_matrix(model.bodies[i], data.bodies[i]);
+    const Body& b = model.bodies[i];
+    if (b.nq == 0) continue;
+    if (b.full_mass)
+      fe_mass_matrix(b, data.bodies[i], data.q.segment(b.offset, b.ncoord()));
+    else
+      body_mass_matrix(b, data.bodies[i]);
   }
 }
 

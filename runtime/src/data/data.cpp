@@ -50,6 +50,11 @@ Data::Data(const Model& model) {
     bd.KG = MatrixXd::Zero(nq, nq);
     bd.wq = VectorXd::Zero(nq);
     if (nq == 0) body_mass_matrix(b, bd);  // constant for a rigid body
+    if (b.full_mass) {
+      const auto N3 = b.full_mass->X.size();
+      bd.feB = bd.feG = bd.feD = MatrixXd::Zero(N3, nb);
+      bd.few = VectorXd::Zero(N3);
+    }
 
     // Initial state as given: frame, rates from the frame's velocity and angular velocity.
     const int o = b.offset;

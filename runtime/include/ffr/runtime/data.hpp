@@ -28,6 +28,8 @@ struct BodyData {
   Vector3d alpha;               ///< body-frame angular acceleration
   Vector3d acc;                 ///< body-frame acceleration of O minus gravity
   MatrixXd KG;                  ///< geometric stiffness [nq, nq] (stiffening)
+  MatrixXd feB, feG, feD;       ///< co-rotational path only: B, M_FE B, dw/dz_dot [3N, nb]
+  VectorXd few;                 ///< co-rotational path only: 2 A_dot Phi y_dot [3N]
   VectorXd wq;                  ///< work [nq]
 };
 

@@ -28,6 +28,12 @@ void force_tangents(const Model& model, Data& data, double t);
 
 // ---- the parts, exposed for tests --------------------------------------------------------
 
+/// The co-rotational path of a body with full_mass (see FullMass): mass matrix, then inertia
+/// forces into Qb and their velocity tangent into Cb.
+void fe_mass_matrix(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& z);
+void fe_inertia_forces(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<VectorXd> Qb);
+void fe_inertia_tangents(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<MatrixXd> Cb);
+
 /// Velocity-dependent inertia forces of one body (local vector, nb) added to Qb.
 void body_inertia_forces(const Body& b, const BodyData& bd, const Eigen::Ref<const VectorXd>& zd,
                          Eigen::Ref<VectorXd> Qb);

@@ -14,7 +14,10 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross products
 
+#include <Eigen/SparseCore>
+
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,6 +50,16 @@ struct StiffeningTerms {
   std::array<MatrixXd, 6> Kw;  ///< Kw[j](i,k) = K0om[k](i,j), j in omega_bar order
 };
 
+/// The unreduced mass data of a flexible body, for seed 000's comparison only (benchmarks):
+/// when a body has it, its mass matrix and inertia forces are computed each step the
+/// co-rotational way, B^T M_FE B and -B^T M_FE (2 A_dot Phi y_dot) with B the [3N, 12+nq]
+/// velocity map of all N nodes, instead of from the shape integrals. Translational mass only.
+struct FullMass {
+  Eigen::VectorXd X;                     ///< [3N] undeformed nodal positions (body frame)
+  Eigen::MatrixXd Phi;                   ///< [3N, nq] mode shapes
+  Eigen::SparseMatrix<double> M;         ///< [3N, 3N] FE mass matrix
+};
+
 /// One body. A rigid body is the special case nq = 0 (its integrals are m, m c_G and the
 /// pseudo-inertia), which makes its mass matrix constant.
 struct Body {
@@ -69,6 +82,7 @@ struct Body {
   MatrixXd Ke, De;                   ///< modal stiffness and total modal damping
   bool has_rotary_coupling = false;
   std::optional<StiffeningTerms> stiffening;  ///< only when the SID has it and it is enabled
+  std::shared_ptr<const FullMass> full_mass;  ///< benchmarks only (see FullMass)
   std::vector<NodeSlice> nodes;
 
   // Initial state as given in the model file (global).
@@ -171,10 +185,12 @@ struct SolverSettings {
   int output_every = 1;          ///< record every n-th step
   double tolerance = 1e-12;      ///< Newton: scaled increment and constraint violation
   int max_iterations = 30;
-  double penalty = 1e3;          ///< alpha * h^2/4 relative to the mean body mass (FORMULATION.md 9)
+  double penalty = 1e4;          ///< alpha * h^2/4 relative to the mean body mass (FORMULATION.md 9)
   /// Keep the factorised tangent over steps while Newton converges fast (it is refreshed as
-  /// soon as an iteration contracts slowly). Off: a fresh tangent every step.
-  bool reuse_jacobian = true;
+  /// soon as an iteration contracts slowly). Off (default): a fresh tangent every step. The
+  /// penalty dominates the tangent, so a tangent older than a step is only good when no body
+  /// turns by more than ~1/penalty radians per step.
+  bool reuse_jacobian = false;
 };
 
 struct Model {
