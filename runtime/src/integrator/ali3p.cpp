@@ -14,7 +14,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 
 namespace ffr::runtime {
 namespace {
@@ -90,7 +89,6 @@ void step(const Model& model, Data& data) {
     prev_inc = inc;
     inc = scaled_norm(model, data.dq);
     if (!std::isfinite(inc)) throw SolverError(t1, inc, newton_failure(t1, it, inc, viol) + ": singular tangent");
-    if (std::getenv("FFR_DEBUG")) std::fprintf(stderr, "  t %.4f it %d inc %.3e viol %.3e refreshes %d\n", t1, it, inc, viol, refreshes);
     if (inc < s.tolerance && viol < s.tolerance) {
       converged = true;
       break;
@@ -107,7 +105,7 @@ void step(const Model& model, Data& data) {
     } else {
       stalled = 0;
     }
-    if (it >= 2 && inc > 0.1 * prev_inc && refreshes < 2) {
+    if (it >= 2 && inc > 0.5 * prev_inc && refreshes < 2) {
       refactor = true;
       // A stale tangent (reused from an earlier step) may already have thrown the iterate and
       // the multipliers far off: start the step again from the predictor.

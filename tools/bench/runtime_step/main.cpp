@@ -75,16 +75,20 @@ int main(int argc, char** argv) {
   std::printf("per step %.2f us  (Newton iterations %.2f, factorisations %.2f per step)  target <= 25 us: %s\n",
               t.us_per_step, t.iterations_per_step, t.factorizations_per_step, t.us_per_step <= 25 ? "met" : "NOT met");
 
-  std::printf("\n# 2. per-step time vs mesh size (10 modes each)\n");
-  std::printf("%10s %14s %12s\n", "points", "us/step", "ratio");
+  std::printf("\n# 2. per-step time vs mesh size (10 modes each; rounds interleaved, best of each)\n");
   std::vector<int> sizes = quick ? std::vector<int>{11, 201, 2001} : std::vector<int>{11, 101, 1001, 5001, 20001};
-  double first = 0, worst = 0;
-  for (int points : sizes) {
-    const Model m = slider_crank(dir, points, 10, 1e-3, end);
-    const Timing tt = time_model(m, repeats);
-    if (first == 0) first = tt.us_per_step;
-    worst = std::max(worst, tt.us_per_step / first);
-    std::printf("%10d %14.2f %12.3f\n", points, tt.us_per_step, tt.us_per_step / first);
+  std::vector<Model> models;
+  for (int points : sizes) models.push_back(slider_crank(dir, points, 10, 1e-3, end));
+  std::vector<double> best(sizes.size(), 1e300);
+  // The machine is shared: interleave the sizes over several rounds so that a busy moment hits
+  // every size alike, and keep each size's best round.
+  for (int round = 0; round < repeats; ++round)
+    for (std::size_t i = 0; i < sizes.size(); ++i) best[i] = std::min(best[i], time_model(models[i], 1).us_per_step);
+  std::printf("%10s %14s %12s\n", "points", "us/step", "ratio");
+  double worst = 0;
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    worst = std::max(worst, best[i] / best[0]);
+    std::printf("%10d %14.2f %12.3f\n", sizes[i], best[i], best[i] / best[0]);
   }
   std::printf("largest / smallest %.3f (required <= 1.05): %s\n", worst, worst <= 1.05 ? "met" : "NOT met");
   std::filesystem::remove_all(dir);
