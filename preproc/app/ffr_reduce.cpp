@@ -24,12 +24,14 @@ options:
   -o, --output FILE     the SID file to write (required)
   --vtk FILE            also write the mesh with every mode shape for ParaView (.vtk)
   --backend NAME        eigen-solver: spectra (default) or arpack (overrides the part file)
+  --max-memory GIB      refuse (before computing it) a factorization that needs more than this
+                        many GiB; default: the memory available on the machine
   --quiet               no progress output (errors are still printed)
   --help, --version
 
 exit status: 0 ok, 2 bad input (the message names the file and the field), 1 other failure.
 )",
-    "ffr-reduce PART.json -o OUT.sid.h5 [--vtk MODES.vtk] [--backend spectra|arpack] [--quiet]"};
+    "ffr-reduce PART.json -o OUT.sid.h5 [--vtk MODES.vtk] [--backend spectra|arpack] [--max-memory GIB] [--quiet]"};
 
 }  // namespace
 
@@ -40,6 +42,7 @@ int main(int argc, char** argv) {
     if (auto o = args.option("-o")) out = o;
     const auto vtk = args.option("--vtk");
     const auto backend = args.option("--backend");
+    const auto max_memory = args.number("--max-memory");
     const auto pos = args.positionals();
     if (pos.size() != 1) throw ffr::cli::UsageError("expected one part file");
     if (!out) throw ffr::cli::UsageError("missing -o OUT.sid.h5");
@@ -48,6 +51,10 @@ int main(int argc, char** argv) {
     if (backend) {
       if (*backend != "spectra" && *backend != "arpack") throw ffr::cli::UsageError("--backend must be spectra or arpack");
       part.reduction.backend = *backend;
+    }
+    if (max_memory) {
+      if (!(*max_memory > 0)) throw ffr::cli::UsageError("--max-memory must be a positive number of GiB");
+      part.reduction.memory_limit_bytes = static_cast<std::uint64_t>(*max_memory * 1024.0 * 1024.0 * 1024.0);
     }
     const bool tty = ::isatty(STDERR_FILENO);
     const auto t0 = std::chrono::steady_clock::now();

@@ -127,7 +127,7 @@ TEST(Diff, NodesAreMatchedByNameAndMissingOnesAreStructural) {
   std::swap(b.nodes[0], b.nodes[1]);
   for (auto& i : b.interfaces) i.node = 1 - i.node;
   EXPECT_TRUE(diff(a, b).equivalent) << dump(diff(a, b));
-  b.nodes[0].name = "C";
+  b.nodes[0].name = "C";  // node B missing, C extra: alignment uses the common node only
   b.interfaces[1].node = 0;  // keeps the interfaces valid
   const DiffReport r = diff(a, b);
   EXPECT_FALSE(r.equivalent);

@@ -91,8 +91,6 @@ std::vector<Violation> violations() {
        }},
       {"rrdm - rdm rdm^T / m positive semi-definite", kRotary, [](Sid& s) { s.integrals.rdm *= 10; }},
       {"rotary.I positive semi-definite", kRotary, [](Sid& s) { s.rotary.I(0, 0) = -1; }},
-      {"rotary.I principal moments: triangle inequality", kRotary,
-       [](Sid& s) { s.rotary.I = Eigen::Vector3d(0.1, 0.1, 0.3).asDiagonal(); }},
       {"rotary.PsiIPsi positive semi-definite", kRotary, [](Sid& s) { s.rotary.PsiIPsi(1, 1) = -1; }},
       {"frequency_hz >= 0", kRotary, [](Sid& s) { s.refmod.frequency_hz[0] = -1; }},
       {"node names unique and non-empty", kRotary, [](Sid& s) { s.nodes[1].name = s.nodes[0].name; }},
@@ -130,6 +128,7 @@ std::vector<Violation> violations() {
       {"normal modes: Ke = diag(omega^2)", kFree, [](Sid& s) { s.Ke(0, 1) = s.Ke(1, 0) = 1e-3 * s.Ke(3, 3); }},
       {"normal and constraint modes: Ke coupling = 0", kRotaryCB,
        [](Sid& s) { s.Ke(0, 2) = s.Ke(2, 0) = 1e-3 * s.Ke(2, 2); }},
+      {"damping model: De as stated", kFree, [](Sid& s) { s.De(1, 1) *= 1.01; }},
       {"free: Ct.M0 = 0", kFree, [](Sid& s) { s.Ct.M0(0, 1) = 1e-3; }},
       {"free: Cr.M0 = 0", kFree, [](Sid& s) { s.Cr.M0(2, 2) = 1e-3; }},
       {"reference is free, clamped:<interface> or craig-bampton", kClamped,
@@ -205,4 +204,28 @@ TEST(Validate, NonFiniteValuesFail) {
   const ValidationReport r = validate(s);
   EXPECT_FALSE(r.find("Ge = 2 Kr (Cr.M1)")->pass);
   EXPECT_FALSE(r.find("Ge = 2 eps PPdm")->pass);
+}
+
+// The damping check holds in any modal basis: a Craig-Bampton-like rotated basis with ratio
+// damping built from the reduced eigenproblem, Rayleigh damping, and none.
+TEST(Validate, DampingModelsInAnyBasis) {
+  Sid s = body(kRotaryCB);  // ratio 0.05, modes from direct sums
+  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(3, 3);
+  T(0, 1) = 0.3;  // not orthogonal: Me and Ke are no longer diagonal
+  Sid t = s;
+  t.Me = T.transpose() * s.Me * T;
+  t.Ke = T.transpose() * s.Ke * T;
+  t.De = T.transpose() * s.De * T;
+  EXPECT_TRUE(validate(t).find("damping model: De as stated")->pass);
+  t.provenance.damping_model = "rayleigh alpha=0.5 beta=0.002";
+  t.De = 0.5 * t.Me + 0.002 * t.Ke;
+  EXPECT_TRUE(validate(t).find("damping model: De as stated")->pass);
+  t.De(0, 0) *= 1.01;
+  EXPECT_FALSE(validate(t).find("damping model: De as stated")->pass);
+  t.provenance.damping_model = "none";
+  EXPECT_FALSE(validate(t).find("damping model: De as stated")->pass);
+  t.De.setZero();
+  EXPECT_TRUE(validate(t).find("damping model: De as stated")->pass);
+  t.provenance.damping_model = "matrix";
+  EXPECT_FALSE(validate(t).find("damping model: De as stated")->applicable);
 }

@@ -3,7 +3,12 @@
 // same modes (compared with ffr-diff, which ignores signs and rotations in repeated pairs).
 #include "support.hpp"
 
+#include "ffr/formats/sid_io.hpp"
+
 #include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
 
 using namespace ffr;
 
@@ -100,4 +105,71 @@ TEST(ReduceCli, ExamplesReduce) {
     EXPECT_TRUE(std::filesystem::exists(dir / "out.sid.h5")) << ex;
     EXPECT_TRUE(std::filesystem::exists(dir / "modes.vtk")) << ex;
   }
+}
+
+TEST(ReduceCli, InvertedElementInAMeshFileIsRefusedWithItsId) {
+  test::TempDir dir("inverted");
+  test::write_text(dir / "box.geo", "SetFactory(\"OpenCASCADE\");\nBox(1) = {0,0,0,0.1,0.02,0.02};\nPhysical Volume(\"body\") = {1};\n");
+  ASSERT_EQ(test::run("gmsh -3 -clmax 0.02 -format msh22 " + (dir / "box.geo").string() + " -o " + (dir / "box.msh").string()).status, 0);
+  // Swap two nodes of the first tetrahedron (MSH 2.2: id type ntags tags... nodes...): it turns inside out.
+  std::ifstream in(dir / "box.msh");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string msh = text.str();
+  std::string tag;
+  const auto pos = msh.find("\n", msh.find("$Elements") + 10) + 1;  // after the count line
+  std::size_t line = pos;
+  while (true) {
+    const auto end = msh.find('\n', line);
+    std::istringstream ls(msh.substr(line, end - line));
+    std::vector<long> v;
+    long x;
+    while (ls >> x) v.push_back(x);
+    if (v.size() == 9 && v[1] == 4) {
+      std::swap(v[5], v[6]);
+      std::string repl;
+      for (std::size_t i = 0; i < v.size(); ++i) repl += (i ? " " : "") + std::to_string(v[i]);
+      msh.replace(line, end - line, repl);
+      tag = std::to_string(v[0]);
+      break;
+    }
+    line = end + 1;
+  }
+  test::write_text(dir / "box.msh", msh);
+  test::write_text(dir / "part.json", R"({"geometry": "box.msh",
+    "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}], "reduction": {"method": "free", "modes": 4}})");
+  const auto r = test::run(test::bin("ffr-reduce").string() + " " + (dir / "part.json").string() + " -o " +
+                           (dir / "out.sid.h5").string() + " --quiet");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("element " + tag), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("inverted"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
+}
+
+TEST(ReduceCli, FactorAboveTheMemoryLimitIsRefusedBeforeFactorizing) {
+  test::TempDir dir("memory");
+  const auto r = reduce(dir, R"({"geometry": "bar.geo", "mesh": {"size": 0.004, "order": 2},
+    "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],
+    "interfaces": [{"name": "root", "group": "clamp"}],
+    "reduction": {"method": "clamped", "interface": "root", "modes": 4}})", "--max-memory 0.001");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("factor"), std::string::npos) << r.output;  // "needs N bytes, M available"
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
+}
+
+TEST(ReduceCli, FrequencyLimitReturnsEveryModeBelowIt) {
+  test::TempDir dir("flimit");
+  // The clamped bar's modes below 2500 Hz: bending in both planes (about 250, 410, 1560, 2520
+  // Hz...) and torsion; compare with a count-based run.
+  const std::string base = R"({"geometry": "bar.geo", "mesh": {"size": 0.005, "order": 2},
+    "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],
+    "interfaces": [{"name": "root", "group": "clamp"}], "visual": false, "reduction": )";
+  ASSERT_EQ(reduce(dir, base + R"({"method": "clamped", "interface": "root", "modes": 12}})").status, 0);
+  std::filesystem::rename(dir / "out.sid.h5", dir / "count.sid.h5");
+  const auto many = ffr::formats::read_sid(dir / "count.sid.h5");
+  const double limit = 0.5 * (many.refmod.frequency_hz(4) + many.refmod.frequency_hz(5));  // between modes 5 and 6
+  ASSERT_EQ(reduce(dir, base + R"({"method": "clamped", "interface": "root", "max_frequency_hz": )" + std::to_string(limit) + "}}").status, 0);
+  const auto limited = ffr::formats::read_sid(dir / "out.sid.h5");
+  ASSERT_EQ(limited.nq(), 5);
+  for (int k = 0; k < 5; ++k) EXPECT_NEAR(limited.refmod.frequency_hz(k) / many.refmod.frequency_hz(k), 1.0, 1e-9);
 }

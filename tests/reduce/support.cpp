@@ -96,13 +96,19 @@ std::vector<std::vector<double>> table_after(const std::string& text, const std:
 
 }  // namespace
 
+CcxModes run_ccx(const std::filesystem::path& workdir);
+
+void write_nodes(std::ostream& f, const preproc::Mesh& mesh) {
+  f << "*NODE\n";
+  for (preproc::Index n = 0; n < mesh.num_nodes(); ++n)
+    f << n + 1 << ", " << mesh.x(n, 0) << ", " << mesh.x(n, 1) << ", " << mesh.x(n, 2) << "\n";
+}
+
 CcxModes calculix_frequency(const preproc::Mesh& mesh, const preproc::Material& mat, const std::string& group,
                             const std::string& fixed_group, int modes, const std::filesystem::path& workdir) {
   std::ofstream f(workdir / "job.inp");
   f.precision(17);
-  f << "*NODE\n";
-  for (preproc::Index n = 0; n < mesh.num_nodes(); ++n)
-    f << n + 1 << ", " << mesh.x(n, 0) << ", " << mesh.x(n, 1) << ", " << mesh.x(n, 2) << "\n";
+  write_nodes(f, mesh);
   std::size_t eid = 1;
   for (const auto& b : mesh.blocks) {
     if (preproc::dimension(b.type) != 3 || b.group != group) continue;  // each element once
@@ -123,6 +129,46 @@ CcxModes calculix_frequency(const preproc::Mesh& mesh, const preproc::Material& 
   f << "*MATERIAL, NAME=MAT\n*ELASTIC\n" << mat.E << ", " << mat.nu << "\n*DENSITY\n" << mat.rho << "\n";
   f << "*SOLID SECTION, ELSET=EALL, MATERIAL=MAT\n*STEP\n*FREQUENCY\n" << modes << "\n*END STEP\n";
   f.close();
+  return run_ccx(workdir);
+}
+
+CcxModes calculix_frequency_structural(const preproc::Mesh& mesh, const preproc::Material& mat, const std::string& group,
+                                       const CcxSection& section, const std::string& fixed_group, int modes,
+                                       const std::filesystem::path& workdir) {
+  std::ofstream f(workdir / "job.inp");
+  f.precision(17);
+  write_nodes(f, mesh);
+  std::size_t eid = 1;
+  for (const auto& b : mesh.blocks) {
+    if (b.group != group) continue;
+    const char* type = b.type == preproc::ElementType::Quad4 ? "S4"
+                       : b.type == preproc::ElementType::Tri3 ? "S3"
+                       : b.type == preproc::ElementType::Line2 ? "B31" : nullptr;
+    if (!type) throw std::invalid_argument(std::string("no CalculiX counterpart for ") + preproc::name(b.type));
+    f << "*ELEMENT, TYPE=" << type << ", ELSET=EALL\n";
+    for (preproc::Index e = 0; e < b.size(); ++e) {
+      f << eid++;
+      for (int i = 0; i < preproc::num_nodes(b.type); ++i) f << ", " << b.element(e)[i] + 1;
+      f << "\n";
+    }
+  }
+  f << "*NSET, NSET=FIX\n";
+  int k = 0;
+  for (auto n : mesh.node_groups.at(fixed_group)) f << n + 1 << (++k % 10 == 0 ? ",\n" : ", ");
+  f << "\n*BOUNDARY\nFIX, 1, 6\n";
+  f << "*MATERIAL, NAME=MAT\n*ELASTIC\n" << mat.E << ", " << mat.nu << "\n*DENSITY\n" << mat.rho << "\n";
+  if (section.kind == "shell") {
+    f << "*SHELL SECTION, ELSET=EALL, MATERIAL=MAT\n" << section.thickness << "\n";
+  } else {
+    f << "*BEAM SECTION, ELSET=EALL, MATERIAL=MAT, SECTION=RECT\n" << section.b << ", " << section.h << "\n"
+      << section.n1.x() << ", " << section.n1.y() << ", " << section.n1.z() << "\n";
+  }
+  f << "*STEP\n*FREQUENCY\n" << modes << "\n*END STEP\n";
+  f.close();
+  return run_ccx(workdir);
+}
+
+CcxModes run_ccx(const std::filesystem::path& workdir) {
   const auto r = run("cd " + workdir.string() + " && OMP_NUM_THREADS=1 ccx -i job");
   std::ifstream dat(workdir / "job.dat");
   std::stringstream ss;

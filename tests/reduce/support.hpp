@@ -54,4 +54,15 @@ struct CcxModes {
 CcxModes calculix_frequency(const preproc::Mesh& mesh, const preproc::Material& mat, const std::string& group,
                             const std::string& fixed_group, int modes, const std::filesystem::path& workdir);
 
+/// The same for shell (S4, S3; "thickness" = section) or beam (B31, rectangular "b x h" section
+/// with the local 1-axis along `n1`) elements of `group`; `fixed_group` nodes held in all six DOFs.
+struct CcxSection {
+  std::string kind;  ///< "shell" or "beam"
+  double thickness = 0, b = 0, h = 0;
+  Eigen::Vector3d n1 = Eigen::Vector3d::UnitZ();
+};
+CcxModes calculix_frequency_structural(const preproc::Mesh& mesh, const preproc::Material& mat, const std::string& group,
+                                       const CcxSection& section, const std::string& fixed_group, int modes,
+                                       const std::filesystem::path& workdir);
+
 }  // namespace ffr::test

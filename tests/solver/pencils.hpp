@@ -69,7 +69,11 @@ inline std::vector<double> rod_eigenvalues(int n, double L, Ends ends, double EA
                                            double rhoA = 1.0) {
   const double h = L / n, c = 6.0 * EA / (rhoA * h * h);
   std::vector<double> l;
-  auto add = [&](double th) { l.push_back(c * (1 - std::cos(th)) / (2 + std::cos(th))); };
+  // 1 - cos(th) written as 2 sin^2(th/2): no cancellation for the small th of fine meshes.
+  auto add = [&](double th) {
+    const double s = std::sin(0.5 * th);
+    l.push_back(c * 2 * s * s / (2 + std::cos(th)));
+  };
   if (ends == Ends::FixedFixed)
     for (int k = 1; k <= n - 1; ++k) add(k * M_PI / n);
   else if (ends == Ends::FreeFree)

@@ -40,6 +40,48 @@ Physical Surface("end") = Surface In BoundingBox{1 - 1e-6, -1, -1, 1 + 1e-6, 1, 
   return sid;
 }
 
+// The same cantilever of 2-node Timoshenko beam elements (Iy = b h^3/12 bends in z, the flap).
+const formats::Sid& beam_elements() {
+  static const formats::Sid sid = [] {
+    test::TempDir dir("stiffbeam");
+    test::write_text(dir / "line.geo", R"(Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Line(1) = {1, 2};
+Transfinite Curve{1} = 41; Physical Curve("beam") = {1}; Physical Point("root") = {1}; Physical Point("end") = {2};
+)");
+    test::write_text(dir / "line.json", R"({"geometry": "line.geo", "mesh": {"order": 1},
+      "beams": [{"group": "beam", "E": 2.1e11, "nu": 0.3, "rho": 7850, "y_axis": [0, 1, 0],
+                 "section": {"A": 1.2e-3, "Iy": 4e-8, "Iz": 3.6e-7, "J": 1.5e-7}}],
+      "interfaces": [{"name": "root", "group": "root"}, {"name": "tip", "group": "end"}],
+      "reduction": {"method": "clamped", "interface": "root", "modes": 12},
+      "stiffening": true, "visual": false})");
+    return preproc::run_pipeline(preproc::load_part(dir / "line.json"));
+  }();
+  return sid;
+}
+
+// Flap and lag frequencies of a SID spinning about z, against the power series.
+void check_rotating(const formats::Sid& s, const char* what) {
+  const double uf = unit(I_flap), ul = unit(I_lag);
+  for (double sf : {0.0, 2.0, 4.0, 6.0}) {
+    const double Omega = sf * uf;
+    const auto c = formats::campbell(s, 2, {Omega});
+    const auto& f = c.frequency_hz[0];
+    // Flapwise (out of the plane of rotation): Southwell stiffening.
+    const double flap_ref = test::cantilever_frequencies(test::rotating(sf), 1)[0] * uf;
+    EXPECT_NEAR(2 * M_PI * f[0] / flap_ref, 1.0, 0.01) << what << ": first flap at speed " << sf;
+    // Lagwise (in the plane): the same stiffening minus the centrifugal softening,
+    // omega_lag^2 = omega_flaplike^2 - Omega^2 (Wright et al. 1982, sec. 4).
+    const double sl = Omega / ul;
+    const double like = test::cantilever_frequencies(test::rotating(sl), 1)[0] * ul;
+    const double lag_ref = std::sqrt(like * like - Omega * Omega);
+    EXPECT_NEAR(2 * M_PI * f[1] / lag_ref, 1.0, 0.01) << what << ": first lag at speed " << sf;
+    // Without the softening term (Oe.M1 removed) the lag frequency is the stiffened one.
+    formats::Sid no_soft = s;
+    for (auto& m : no_soft.Oe.M1) m.setZero();
+    const auto c2 = formats::campbell(no_soft, 2, {Omega});
+    EXPECT_NEAR(2 * M_PI * c2.frequency_hz[0][1] / like, 1.0, 0.01) << what << ": lag without softening at speed " << sf;
+  }
+}
+
 // Frequencies [rad/s] of (Ke + dK) q = w^2 Me q, ascending.
 Eigen::VectorXd omegas(const formats::Sid& s, const Eigen::MatrixXd& dK) {
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(s.Ke + dK, s.Me);
@@ -70,29 +112,9 @@ TEST(SolidBeamStiffening, StiffeningMatricesAreSymmetricAndStiffenUnderTension) 
   EXPECT_LT(contract(st.K0t, 0)(0, 0), 0.0);
 }
 
-TEST(SolidBeamStiffening, RotatingCantileverFlapAndLagFrequencies) {
-  const formats::Sid& s = beam();
-  const double uf = unit(I_flap), ul = unit(I_lag);
-  for (double sf : {0.0, 2.0, 4.0, 6.0}) {
-    const double Omega = sf * uf;
-    const auto c = formats::campbell(s, 2, {Omega});
-    const auto& f = c.frequency_hz[0];
-    // Flapwise (out of the plane of rotation): Southwell stiffening.
-    const double flap_ref = test::cantilever_frequencies(test::rotating(sf), 1)[0] * uf;
-    EXPECT_NEAR(2 * M_PI * f[0] / flap_ref, 1.0, 0.01) << "first flap at speed " << sf;
-    // Lagwise (in the plane): the same stiffening minus the centrifugal softening,
-    // omega_lag^2 = omega_flaplike^2 - Omega^2 (Wright et al. 1982, sec. 4).
-    const double sl = Omega / ul;
-    const double like = test::cantilever_frequencies(test::rotating(sl), 1)[0] * ul;
-    const double lag_ref = std::sqrt(like * like - Omega * Omega);
-    EXPECT_NEAR(2 * M_PI * f[1] / lag_ref, 1.0, 0.01) << "first lag at speed " << sf;
-    // Without the softening term (Oe.M1 removed) the lag frequency is the stiffened one.
-    formats::Sid no_soft = s;
-    for (auto& m : no_soft.Oe.M1) m.setZero();
-    const auto c2 = formats::campbell(no_soft, 2, {Omega});
-    EXPECT_NEAR(2 * M_PI * c2.frequency_hz[0][1] / like, 1.0, 0.01) << "lag without softening at speed " << sf;
-  }
-}
+TEST(SolidBeamStiffening, RotatingCantileverFlapAndLagFrequencies) { check_rotating(beam(), "TET10 solid"); }
+
+TEST(BeamElementStiffening, RotatingCantileverFlapAndLagFrequencies) { check_rotating(beam_elements(), "beam elements"); }
 
 TEST(SolidBeamStiffening, AxialEndForceTensionAndCompression) {
   const formats::Sid& s = beam();

@@ -22,7 +22,8 @@ an ffr-sim results file (time span, statistics, output channels with their final
   --png OUT.png           with --campbell: also draw the diagram into OUT.png
   --help, --version
 
-Exit status: 0 ok, 2 bad input (named on stderr), 1 other failure.
+Exit status: 0 ok, 2 bad input (named on stderr), 1 other failure. A readable SID that
+fails some identity checks is summarised with the failures listed (status 0).
 )",
     "ffr-info FILE.h5 [--json] | ffr-info FILE.sid.h5 --campbell x|y|z --speeds 0,50,100 [--json] [--png OUT.png]"};
 

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace ffr::formats {
 namespace {
@@ -16,16 +17,15 @@ namespace {
 using Eigen::MatrixXd;
 
 // Rows of linear functionals of the modes, one column per mode, each block scaled to O(1).
-MatrixXd features(const Sid& s, const Sid& other, const Size& z) {
+MatrixXd features(const Sid& s, const Sid& other, const std::vector<std::string>& common_nodes, const Size& z) {
   std::vector<MatrixXd> blocks;
   blocks.push_back(s.integrals.Pdm / (z.m * z.phi));
   for (int a = 0; a < 3; ++a) blocks.push_back(s.integrals.rPdm[a] / (z.m * z.phi * z.L));
-  // Nodes in A's order, matched by name, so both files give the same rows.
-  for (const auto& n : other.nodes) {
-    const Index p = s.find_node(n.name);
-    if (p < 0) continue;
-    blocks.push_back(s.nodes[static_cast<std::size_t>(p)].phi / z.phi);
-    blocks.push_back(s.nodes[static_cast<std::size_t>(p)].psi * (z.L / z.phi));
+  // The nodes both files have, in A's order, so both give the same rows.
+  for (const auto& name : common_nodes) {
+    const auto& n = s.nodes[static_cast<std::size_t>(s.find_node(name))];
+    blocks.push_back(n.phi / z.phi);
+    blocks.push_back(n.psi * (z.L / z.phi));
   }
   if (!s.visual.empty() && !other.visual.empty() && s.visual.vertices.rows() == other.visual.vertices.rows()) {
     MatrixXd v(3 * s.visual.vertices.rows(), s.nq());
@@ -68,7 +68,10 @@ ModeAlignment align_modes(const Sid& a, const Sid& b, const DiffOptions& opt) {
   al.T = MatrixXd::Identity(nq, nq);
   al.groups = frequency_groups(a, std::max(opt.group_rtol, 0.0));
   const Size z = size_of(a);
-  const MatrixXd SA = features(a, a, z), SB = features(b, a, z);
+  std::vector<std::string> common;
+  for (const auto& n : a.nodes)
+    if (b.find_node(n.name) >= 0) common.push_back(n.name);
+  const MatrixXd SA = features(a, b, common, z), SB = features(b, a, common, z);
   for (std::size_t g = 0; g < al.groups.size(); ++g) {
     const auto& G = al.groups[g];
     const auto n = static_cast<Eigen::Index>(G.size());

@@ -2,7 +2,45 @@
 // the eigen-solve (ValidateOptions::modal_rtol).
 #include "context.hpp"
 
+#include <Eigen/Eigenvalues>
+
+#include <cstdio>
+#include <string>
+
 namespace ffr::formats::validation {
+
+namespace {
+
+// The stated damping model against De, in a basis-independent form so it holds for any
+// reduction (Craig-Bampton bases are not the reduced system's eigenmodes):
+//   "none": De = 0;  "rayleigh alpha=a beta=b": De = a Me + b Ke;
+//   "ratio z": De = Me X diag(2 z w_r) X^T Me, (w_r^2, X) the Me-orthonormal eigenpairs of (Ke, Me).
+void check_damping(Context& cx) {
+  const Sid& s = cx.sid;
+  const std::string name = "damping model: De as stated";
+  const std::string& dm = s.provenance.damping_model;
+  const Eigen::Index nq = s.nq();
+  Eigen::MatrixXd expected;
+  double z = 0, alpha = 0, beta = 0;
+  if (dm == "none") {
+    expected = Eigen::MatrixXd::Zero(nq, nq);
+  } else if (std::sscanf(dm.c_str(), "rayleigh alpha=%lf beta=%lf", &alpha, &beta) == 2) {
+    expected = alpha * s.Me + beta * s.Ke;
+  } else if (std::sscanf(dm.c_str(), "ratio %lf", &z) == 1 && nq > 0) {
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(s.Ke, s.Me);
+    if (es.info() != Eigen::Success) return cx.skip(name, "/sid/De/M0", "(Ke, Me) eigen-solve failed");
+    const Eigen::MatrixXd MX = s.Me * es.eigenvectors();
+    expected = MX * (2 * z * es.eigenvalues().cwiseMax(0.0).cwiseSqrt()).asDiagonal() * MX.transpose();
+  } else {
+    return cx.skip(name, "/sid/De/M0", "damping model '" + dm + "' is not one validate knows");
+  }
+  Worst w;
+  w.add_matrix(s.De - expected, "[");
+  const double scale = std::max(expected.size() ? expected.cwiseAbs().maxCoeff() : 0.0, s.De.size() ? s.De.cwiseAbs().maxCoeff() : 0.0);
+  cx.record(name, "/sid/De/M0 /provenance@damping_model", w, scale > 0 ? scale : 1.0, cx.opt.modal_rtol);
+}
+
+}  // namespace
 
 void check_modal(Context& cx) {
   const Sid& s = cx.sid;
@@ -50,6 +88,8 @@ void check_modal(Context& cx) {
       for (auto i : constraint) w.add(s.Ke(k, i), index({k, i}));
     cx.record(cb, "/sid/Ke/M0", w, sc.Ke, tol);
   }
+
+  check_damping(cx);
 
   const std::string& ref = s.refmod.reference;
   const bool free = ref == "free";

@@ -3,7 +3,6 @@
 #include "ffr/preproc/elements/solid.hpp"
 #include "pattern.hpp"
 
-#include <Eigen/Geometry>
 #include <atomic>
 #include <chrono>
 #include <exception>
@@ -21,21 +20,6 @@ struct Computed {
   ElementMatrices em;
   double scaled_jacobian = 1.0;  ///< solids only
 };
-
-// Rigid-rotation field of an element's DOFs about axis a through O (for the rotary part).
-Eigen::VectorXd rotation_field(const FeModel& model, const std::vector<Index>& dofs, int a) {
-  Eigen::VectorXd v = Eigen::VectorXd::Zero(static_cast<Index>(dofs.size()));
-  for (std::size_t i = 0; i < dofs.size(); ++i) {
-    Index owner;
-    int comp;
-    bool is_itf;
-    model.dof_owner(dofs[i], owner, comp, is_itf);
-    const Eigen::Vector3d x = is_itf ? model.interfaces[static_cast<std::size_t>(owner)].x
-                                     : Eigen::Vector3d(model.mesh->x.row(owner).transpose());
-    v(static_cast<Index>(i)) = comp < 3 ? Eigen::Vector3d::Unit(a).cross(x)(comp) : (comp - 3 == a ? 1.0 : 0.0);
-  }
-  return v;
-}
 
 std::string describe(const FeModel& model, const ElementRef& ref) {
   if (ref.block < 0) return "point mass '" + model.masses[static_cast<std::size_t>(ref.index)].name + "'";
@@ -90,7 +74,7 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
       }
       if (c.em.M_rotary.size() > 0) {
         Eigen::Matrix<double, Eigen::Dynamic, 3> R(static_cast<Index>(c.dofs.size()), 3);
-        for (int a = 0; a < 3; ++a) R.col(a) = rotation_field(model, c.dofs, a);
+        for (std::size_t i = 0; i < c.dofs.size(); ++i) R.row(static_cast<Index>(i)) = model.rigid_motion(c.dofs[i]).tail<3>();
         out.rotary_I += R.transpose() * c.em.M_rotary * R;
       }
     }

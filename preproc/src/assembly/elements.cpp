@@ -1,16 +1,16 @@
 // Which kernel computes which element, and where its DOFs go.
 #include "ffr/preproc/assembly/assembly.hpp"
-
-#if __has_include("ffr/preproc/elements/solid.hpp")
+#include "ffr/preproc/elements/attached_mass.hpp"
+#include "ffr/preproc/elements/beam.hpp"
+#include "ffr/preproc/elements/shell.hpp"
 #include "ffr/preproc/elements/solid.hpp"
-#define FFR_HAVE_SOLID 1
-#endif
-
-#include <stdexcept>
+#include "sections.hpp"
+#include "sub_elements.hpp"
 
 namespace ffr::preproc {
 
 namespace {
+
 // A plain point mass on a translational node: one sample at the node, M = m I3.
 ElementMatrices point_mass(const Eigen::Vector3d& x, double m) {
   ElementMatrices em;
@@ -24,6 +24,7 @@ ElementMatrices point_mass(const Eigen::Vector3d& x, double m) {
   em.samples.push_back(s);
   return em;
 }
+
 }  // namespace
 
 std::vector<ElementRef> all_elements(const FeModel& model) {
@@ -65,21 +66,25 @@ ElementMatrices element_matrices(const FeModel& model, const ElementRef& ref) {
     const Eigen::MatrixX3d xe = model.mesh->element_coords(blk, ref.index);
     switch (pb.kind) {
       case ElementKind::Solid:
-#ifdef FFR_HAVE_SOLID
         // Solids need no samples: their inertia integrals follow exactly from the scalar mass
         // matrix Ms (see invariants.hpp), which saves a third of the kernel time on HEX20.
         return solid_element(blk.type, xe, part.materials[pb.property].mat, SolidOptions{true, false});
-#else
-        throw ElementError("solid elements are not available in this build");
-#endif
-      case ElementKind::Shell: throw ElementError("shell elements are not available in this build");
-      case ElementKind::Beam: throw ElementError("beam elements are not available in this build");
+      case ElementKind::Shell: {
+        const ShellSection sec = detail::shell_section(part.shells[pb.property]);
+        return detail::composite(blk.type, xe, 6, [&](ElementType t, const Eigen::MatrixX3d& x) { return shell_element(t, x, sec); });
+      }
+      case ElementKind::Beam: {
+        const BeamSection sec = detail::beam_section(part.beams[pb.property]);
+        return detail::composite(blk.type, xe, 6, [&](ElementType, const Eigen::MatrixX3d& x) { return beam_element(x, sec); });
+      }
     }
   }
   const auto& m = model.masses[static_cast<std::size_t>(ref.index)];
-  if (m.interface < 0 && model.node_ndof[static_cast<std::size_t>(m.node)] == 3)
-    return point_mass(model.mesh->x.row(m.node).transpose(), m.mass);
-  throw ElementError("attached rigid masses with rotations are not available in this build");
+  if (m.interface >= 0)
+    return attached_mass(model.interfaces[static_cast<std::size_t>(m.interface)].x, m.mass, m.offset, m.inertia);
+  const Eigen::Vector3d x = model.mesh->x.row(m.node).transpose();
+  if (model.node_ndof[static_cast<std::size_t>(m.node)] == 3) return point_mass(x, m.mass);
+  return attached_mass(x, m.mass, m.offset, m.inertia);
 }
 
 }  // namespace ffr::preproc

@@ -1,6 +1,8 @@
 #include "ffr/formats/h5.hpp"
 #include "ffr/preproc/model/fe_model.hpp"
 
+#include <Eigen/Geometry>
+
 #include <numeric>
 #include <sstream>
 #include <unordered_set>
@@ -80,6 +82,19 @@ void FeModel::dof_owner(Index d, Index& owner, int& component, bool& is_interfac
   }
   owner = dof_node[static_cast<std::size_t>(d)];
   component = static_cast<int>(d - node_dof[static_cast<std::size_t>(owner)]);
+}
+
+Eigen::Matrix<double, 1, 6> FeModel::rigid_motion(Index d) const {
+  Index owner;
+  int comp;
+  bool is_itf;
+  dof_owner(d, owner, comp, is_itf);
+  const Eigen::Vector3d x = is_itf ? interfaces[static_cast<std::size_t>(owner)].x : Eigen::Vector3d(mesh->x.row(owner).transpose());
+  Eigen::Matrix<double, 1, 6> r = Eigen::Matrix<double, 1, 6>::Zero();
+  r(comp) = 1.0;  // translation DOF under its translation, or rotation DOF under its rotation
+  if (comp < 3)
+    for (int a = 0; a < 3; ++a) r(3 + a) = Eigen::Vector3d::Unit(a).cross(x)(comp);
+  return r;
 }
 
 FeModel build_model(const Mesh& mesh, const PartSpec& part) {

@@ -2,7 +2,6 @@
 
 #include "ffr/formats/h5.hpp"
 
-#include <Eigen/Geometry>
 #include <Eigen/Dense>
 
 #include <unordered_map>
@@ -170,22 +169,8 @@ DofTransform build_transform(const FeModel& model, const std::vector<InterfaceSt
 }
 
 Eigen::MatrixXd rigid_body_modes(const FeModel& model, const DofTransform& t) {
-  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(t.num_ind(), 6);
-  for (Index i = 0; i < t.num_ind(); ++i) {
-    const Index f = t.full_of_ind[static_cast<std::size_t>(i)];
-    Index owner;
-    int comp;
-    bool is_itf;
-    model.dof_owner(f, owner, comp, is_itf);
-    const Eigen::Vector3d x = is_itf ? model.interfaces[static_cast<std::size_t>(owner)].x
-                                     : Eigen::Vector3d(model.mesh->x.row(owner).transpose());
-    if (comp < 3) {
-      R(i, comp) = 1.0;
-      for (int a = 0; a < 3; ++a) R(i, 3 + a) = Eigen::Vector3d::Unit(a).cross(x)(comp);
-    } else {
-      R(i, comp) = 1.0;  // rotation DOF comp-3 under a rotation about axis comp-3
-    }
-  }
+  Eigen::MatrixXd R(t.num_ind(), 6);
+  for (Index i = 0; i < t.num_ind(); ++i) R.row(i) = model.rigid_motion(t.full_of_ind[static_cast<std::size_t>(i)]);
   return R;
 }
 

@@ -1,6 +1,8 @@
 #include "geometric_kernels.hpp"
 
 #include "ffr/preproc/elements/solid.hpp"
+#include "../assembly/sections.hpp"
+#include "../assembly/sub_elements.hpp"
 
 namespace ffr::preproc::detail {
 
@@ -21,9 +23,20 @@ ElementMatrices geometric_element(const FeModel& model, const ElementRef& ref, c
     case ElementKind::Solid:
       em.K = solid_geometric_stiffness(blk.type, xe, model.part->materials[pb.property].mat, d);
       break;
-    case ElementKind::Shell:
-    case ElementKind::Beam:
-      throw ElementError("geometric stiffness of shells and beams is not available in this build");
+    case ElementKind::Shell: {
+      const ShellSection sec = shell_section(model.part->shells[pb.property]);
+      em.K = composite_matrix(blk.type, xe, d, 6, [&](ElementType t, const Eigen::MatrixX3d& x, const Eigen::VectorXd& ds) {
+        return shell_geometric_stiffness(t, x, sec, ds);
+      });
+      break;
+    }
+    case ElementKind::Beam: {
+      const BeamSection sec = beam_section(model.part->beams[pb.property]);
+      em.K = composite_matrix(blk.type, xe, d, 6, [&](ElementType, const Eigen::MatrixX3d& x, const Eigen::VectorXd& ds) {
+        return beam_geometric_stiffness(x, sec, ds);
+      });
+      break;
+    }
   }
   return em;
 }

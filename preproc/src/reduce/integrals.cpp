@@ -1,6 +1,5 @@
 #include "ffr/preproc/reduce/invariants.hpp"
 
-#include <Eigen/Geometry>
 #include <mutex>
 #include <thread>
 
@@ -72,17 +71,8 @@ void structural_part(const FeModel& model, const Eigen::MatrixXd& Phi, const std
       }
     }
     if (em.M_rotary.size() > 0) {
-      Eigen::Matrix<double, Eigen::Dynamic, 3> Rot = Eigen::Matrix<double, Eigen::Dynamic, 3>::Zero(Phi_e.rows(), 3);
-      for (std::size_t i = 0; i < dofs.size(); ++i) {
-        Index owner;
-        int comp;
-        bool is_itf;
-        model.dof_owner(dofs[i], owner, comp, is_itf);
-        const Eigen::Vector3d x = is_itf ? model.interfaces[static_cast<std::size_t>(owner)].x
-                                         : Eigen::Vector3d(model.mesh->x.row(owner).transpose());
-        for (int a = 0; a < 3; ++a)
-          Rot(static_cast<Index>(i), a) = comp < 3 ? Eigen::Vector3d::Unit(a).cross(x)(comp) : (comp - 3 == a ? 1.0 : 0.0);
-      }
+      Eigen::Matrix<double, Eigen::Dynamic, 3> Rot(Phi_e.rows(), 3);
+      for (std::size_t i = 0; i < dofs.size(); ++i) Rot.row(static_cast<Index>(i)) = model.rigid_motion(dofs[i]).tail<3>();
       acc.PsiI += Phi_e.transpose() * em.M_rotary * Rot;
       acc.PsiIPsi += Phi_e.transpose() * em.M_rotary * Phi_e;
     }

@@ -70,10 +70,7 @@ EigenOptions eigen_options(const ReductionSpec& spec, const PartSpec& part, doub
   if (spec.max_frequency_hz) o.lambda_max = lambda_of_hz(*spec.max_frequency_hz, part);
   o.sigma = sigma;
   o.backend = spec.backend == "arpack" ? EigenBackend::Arpack : EigenBackend::Spectra;
-  // A relative residual of 1e-6 bounds the eigenvalue error by ~1e-12 and the mode error by
-  // 1e-6 / gap: far below any discretisation error; tighter bounds fail on ill-conditioned
-  // (slender, stiff) parts for no gain.
-  o.residual_tol = 1e-6;
+  o.factor.memory_limit_bytes = spec.memory_limit_bytes;
   return o;
 }
 
@@ -173,7 +170,9 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
     const auto split = detail::split(K, M, boundary);
     say("craig-bampton: " + std::to_string(boundary.size()) + " boundary DOF, " +
         std::to_string(split.interior.size()) + " interior DOF");
-    CholmodFactor factor;
+    FactorOptions fo;
+    fo.memory_limit_bytes = spec.memory_limit_bytes;
+    CholmodFactor factor(fo);
     say(factor_line(factor.analyze(split.Kii)));
     try {
       factor.factorize(split.Kii);

@@ -66,4 +66,14 @@ inline cholmod_dense view_dense(const double* x, size_t nrow, size_t ncol, size_
   return d;
 }
 
+/// Smallest pivot of a numeric supernodal LL^T factor relative to the matrix's own
+/// diagonal entry, min_j L_jj^2 / A_pp with p = Perm[j] (the MAXRATIO-style singularity test,
+/// see FactorOptions::min_pivot_ratio).
+struct PivotRatio {
+  double ratio;
+  std::int64_t permuted_column;  ///< j
+  std::int64_t column;           ///< Perm[j], the input numbering
+};
+PivotRatio min_pivot_ratio(const cholmod_factor& L, const SparseMatrix& A);
+
 }  // namespace ffr::preproc::detail

@@ -230,29 +230,11 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
     throw_not_posdef(static_cast<std::int64_t>(L->minor), false, 0.0);
 
   info.stats.rcond = cholmod_l_rcond(L, c);
-  // Smallest pivot relative to its own diagonal entry. Column j of supernode s holds its
-  // diagonal at x[px[s] + (j - super[s]) * (nrows of s + 1)]; Perm maps j to the input.
-  const Eigen::VectorXd diag = A.diagonal();
-  const auto* super = static_cast<const SuiteSparse_long*>(L->super);
-  const auto* pi = static_cast<const SuiteSparse_long*>(L->pi);
-  const auto* px = static_cast<const SuiteSparse_long*>(L->px);
-  const auto* perm = static_cast<const SuiteSparse_long*>(L->Perm);
-  const auto* x = static_cast<const double*>(L->x);
-  std::int64_t jmin = 0;
-  double rmin = std::numeric_limits<double>::infinity();
-  for (size_t sn = 0; sn < L->nsuper; ++sn) {
-    const SuiteSparse_long nsrow = pi[sn + 1] - pi[sn];
-    for (SuiteSparse_long j = super[sn]; j < super[sn + 1]; ++j) {
-      const double l = x[px[sn] + (j - super[sn]) * (nsrow + 1)];
-      const double ratio = l * l / diag[perm ? perm[j] : j];
-      if (ratio < rmin) {
-        rmin = ratio;
-        jmin = j;
-      }
-    }
-  }
+  const detail::PivotRatio pr = detail::min_pivot_ratio(*L, A);
+  const std::int64_t jmin = pr.permuted_column;
+  const double rmin = pr.ratio;
   info.stats.min_pivot_ratio = rmin;
-  info.stats.min_pivot_column = perm ? perm[jmin] : jmin;
+  info.stats.min_pivot_column = pr.column;
   if (opt.min_pivot_ratio > 0 && !(rmin >= opt.min_pivot_ratio)) throw_not_posdef(jmin, true, rmin);
   info.status = FactorStatus::Factorized;
   info.message.clear();

@@ -45,6 +45,9 @@ void finish_eigenpairs(const SparseMatrix& K, SymmetricStorage sK, const SparseM
                        SymmetricStorage sM, const Deflation& deflation, Eigen::MatrixXd X,
                        int keep, double lambda_max, EigenResult& out);
 
+/// "" if every pair passes (see EigenSolver's header for the criteria), else the reason.
+std::string check_eigenpairs(const EigenResult& r, const EigenOptions& o);
+
 /// Flips each column so that its first component with |x_i| >= kSignThreshold max|x| is > 0.
 void normalize_signs(Eigen::MatrixXd& X);
 

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace ffr::preproc::detail {
 
@@ -78,6 +79,30 @@ void finish_eigenpairs(const SparseMatrix& K, SymmetricStorage sK, const SparseM
   out.deflation_error =
       (m > 0 && !deflation.empty()) ? (deflation.MR.transpose() * X).cwiseAbs().maxCoeff() : 0.0;
   out.X = std::move(X);
+}
+
+std::string check_eigenpairs(const EigenResult& r, const EigenOptions& o) {
+  std::ostringstream why;
+  for (Eigen::Index j = 0; j < r.lambda.size(); ++j) {
+    if (!(r.relative_residual[j] <= o.residual_tol) &&
+        !(r.backward_error[j] <= kRoundoffBackwardError)) {
+      why << "eigenpair " << j << " (lambda = " << r.lambda[j] << ") has relative residual "
+          << r.relative_residual[j] << " > " << o.residual_tol << " and backward error "
+          << r.backward_error[j] << " above the rounding level " << kRoundoffBackwardError;
+      return why.str();
+    }
+    if (!(r.lambda[j] > o.sigma)) {
+      why << "eigenvalue " << r.lambda[j] << " is not above the shift " << o.sigma;
+      return why.str();
+    }
+  }
+  if (!(r.orthonormality_error <= o.orthonormality_tol))
+    why << "M-orthonormality error max|X^T M X - I| = " << r.orthonormality_error << " > "
+        << o.orthonormality_tol;
+  else if (!(r.deflation_error <= o.orthonormality_tol))
+    why << "M-orthogonality to the deflation basis max|R^T M X| = " << r.deflation_error << " > "
+        << o.orthonormality_tol;
+  return why.str();
 }
 
 }  // namespace ffr::preproc::detail

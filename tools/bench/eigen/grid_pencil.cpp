@@ -43,7 +43,8 @@ std::vector<double> rod_eigenvalues(int n, double L, bool fixed_start) {
   std::vector<double> l;
   for (int k = fixed_start ? 1 : 0; k <= n; ++k) {
     const double th = fixed_start ? (2 * k - 1) * M_PI / (2.0 * n) : k * M_PI / n;
-    l.push_back(c * (1 - std::cos(th)) / (2 + std::cos(th)));
+    const double s = std::sin(0.5 * th);  // 1 - cos(th) = 2 sin^2(th/2), no cancellation
+    l.push_back(c * 2 * s * s / (2 + std::cos(th)));
   }
   std::sort(l.begin(), l.end());
   return l;

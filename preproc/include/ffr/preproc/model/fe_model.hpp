@@ -65,6 +65,9 @@ struct FeModel {
   Index dof(Index node, int component) const { return node_dof[static_cast<std::size_t>(node)] + component; }
   /// Position of the node owning each full DOF and its component (for messages and rigid modes).
   void dof_owner(Index dof, Index& node_or_interface, int& component, bool& is_interface) const;
+  /// Value at a full DOF of the six rigid-body motions: unit translations x, y, z, then unit
+  /// rotations about the x, y, z axes through the origin (u = e_a x x, theta = e_a).
+  Eigen::Matrix<double, 1, 6> rigid_motion(Index dof) const;
 };
 
 /// Builds the FE model. Throws formats::FormatError naming the part file and field for:

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -78,6 +79,7 @@ struct ReductionSpec {
   std::optional<double> max_frequency_hz;
   bool orthonormalize = false;          ///< craig-bampton: orthonormalize the whole basis
   std::string backend = "spectra";      ///< "spectra" or "arpack"
+  std::uint64_t memory_limit_bytes = 0; ///< refuse factors above this (0: the machine's available memory)
 };
 
 struct DampingSpec {

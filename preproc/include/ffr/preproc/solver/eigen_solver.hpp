@@ -20,10 +20,12 @@
 //     structures have mirrored components of equal magnitude and opposite sign, and
 //     rounding would then pick the sign.)
 //   * every returned pair is checked and EigenSolverError is thrown if a check fails (the
-//     result stays readable in result()/info()): relative_residual <= residual_tol, except
-//     for a numerically zero eigenvalue (|lambda| <= kZeroEigenvalue ||K||_1/||M||_1, an
-//     undeflated rigid-body mode) whose relative residual is rounding noise over rounding
-//     noise: there backward_error <= residual_tol is checked instead; and
+//     result stays readable in result()/info()). A pair passes if relative_residual <=
+//     residual_tol, or if its residual is at the rounding level of the products K x and
+//     M x themselves: backward_error <= kRoundoffBackwardError (~450 eps). The second case
+//     covers what the relative residual cannot judge: ill-conditioned parts, whose lowest
+//     modes have a rounding floor eps * lambda_max / lambda in the relative residual, and
+//     zero eigenvalues (an undeflated rigid-body mode: noise over noise). Also checked:
 //     orthonormality_error, deflation_error <= orthonormality_tol.
 //   * M must be symmetric positive (semi-)definite. Full or upper-only storage (see
 //     sparse_types.hpp).
@@ -47,7 +49,7 @@ enum class EigenBackend {
 const char* to_string(EigenBackend b);
 
 inline constexpr double kSignThreshold = 0.6180339887498949;
-inline constexpr double kZeroEigenvalue = 1e-10;
+inline constexpr double kRoundoffBackwardError = 1e-13;
 
 struct EigenOptions {
   /// Number of eigenpairs wanted (ignored when lambda_max is set, except as first guess).
@@ -70,7 +72,10 @@ struct EigenOptions {
   /// Largest problem (DOF after deflation) the Dense backend or the automatic fallback may
   /// take. Lanczos needs nev < ncv <= n; smaller problems are handed to Dense if they fit.
   std::int64_t dense_max_n = 3000;
-  FactorOptions factor;  ///< ordering and memory limit of the factorization of K - sigma M
+  /// Ordering and memory limit of the factorization of K - sigma M. Its min_pivot_ratio
+  /// (the mechanism test) applies for sigma >= 0 only: for sigma < 0 small pivots are the
+  /// intended nearness of the rigid-body modes (set to 0 internally).
+  FactorOptions factor;
 };
 
 /// What the progress callback sees. Counts are cumulative over the whole compute() call.

@@ -1,0 +1,87 @@
+// The ffr-sim results file (SPEC.md section 13): bit-exact round trip, refusal of
+// inconsistent data before writing, strict reading with messages naming file and dataset.
+#include "ffr/formats/results_io.hpp"
+
+#include <gtest/gtest.h>
+#include <hdf5.h>
+
+#include <filesystem>
+
+using namespace ffr::formats;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path temp(const std::string& name) {
+  return fs::temp_directory_path() / ("ffr_results_" + std::to_string(::getpid()) + "_" + name);
+}
+
+Results sample() {
+  Results r;
+  r.time = Eigen::VectorXd::LinSpaced(5, 0.0, 0.4);
+  r.outputs.push_back({"q", "modal_coordinates", Eigen::MatrixXd::Random(5, 4)});
+  r.outputs.push_back({"angle", "joint_coordinate", Eigen::MatrixXd::Random(5, 1)});
+  r.steps = 4;
+  r.newton_iterations = 9;
+  r.integration_seconds = 0.125;
+  return r;
+}
+
+}  // namespace
+
+TEST(ResultsIo, RoundTripBitExact) {
+  const Results a = sample();
+  const auto f = temp("ok.h5");
+  write_results(a, f);
+  const Results b = read_results(f);
+  fs::remove(f);
+  EXPECT_EQ(b.time, a.time);
+  ASSERT_EQ(b.outputs.size(), 2u);
+  ASSERT_NE(b.find("q"), nullptr);
+  EXPECT_EQ(b.find("q")->values, a.outputs[0].values);
+  EXPECT_EQ(b.find("q")->type, "modal_coordinates");
+  EXPECT_EQ(b.find("angle")->values, a.outputs[1].values);
+  EXPECT_EQ(b.steps, 4);
+  EXPECT_EQ(b.newton_iterations, 9);
+  EXPECT_EQ(b.integration_seconds, 0.125);
+  EXPECT_FALSE(b.generator.empty());
+}
+
+TEST(ResultsIo, InconsistentDataIsRefusedBeforeWriting) {
+  const auto f = temp("bad.h5");
+  Results r = sample();
+  r.outputs[0].values.conservativeResize(4, 4);
+  EXPECT_THROW(write_results(r, f), std::invalid_argument);
+  r = sample();
+  r.time[3] = 0.0;
+  EXPECT_THROW(write_results(r, f), std::invalid_argument);
+  r = sample();
+  r.outputs[1].name = "a/b";
+  EXPECT_THROW(write_results(r, f), std::invalid_argument);
+  EXPECT_FALSE(fs::exists(f));
+}
+
+TEST(ResultsIo, StrictReading) {
+  const auto f = temp("shape.h5");
+  write_results(sample(), f);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const hid_t h = H5Fopen(f.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  H5Ldelete(h, "/outputs/q", H5P_DEFAULT);
+  const hsize_t dims[2] = {3, 4};
+  const hid_t sp = H5Screate_simple(2, dims, nullptr);
+  const hid_t ds = H5Dcreate2(h, "/outputs/q", H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const std::vector<double> v(12, 1.0);
+  H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Dclose(ds);
+  H5Sclose(sp);
+  H5Fclose(h);
+  try {
+    read_results(f);
+    ADD_FAILURE() << "read a results file with a wrong output shape";
+  } catch (const FormatError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(f.string()), std::string::npos) << m;
+    EXPECT_NE(m.find("/outputs/q: wrong shape: expected [5,k], found [3,4]"), std::string::npos) << m;
+  }
+  fs::remove(f);
+}
