@@ -1,0 +1,116 @@
+#pragma once
+// The Data: every buffer the algorithms write, sized once from a Model. After construction
+// (and initialize()), a time step allocates nothing: all work goes into these members.
+
+#include "ffr/runtime/model.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace ffr::runtime {
+
+using Matrix3N = Eigen::Matrix<double, 3, Eigen::Dynamic>;
+
+/// Per-body kinematic and inertial quantities at the current state.
+struct BodyData {
+  Matrix3d A, Ad, Add;          ///< frame [u v w], its rate and acceleration
+  Vector3d md;                  ///< int xbar dm = rdm + Pdm y
+  Matrix3d Jc;                  ///< int xbar xbar^T dm (+ rotary pseudo-inertia)
+  std::array<Matrix3Xd, 3> S;   ///< S_a = int xbar_a Phi dm = rPdm[a] + P_a(y), [3, nq]
+  std::array<Matrix3Xd, 3> PPy; ///< work: rows (PPdm[a][b]^T y)^T, [3, nq]
+  MatrixXd Pyd;                 ///< column 3b+c = PPdm[b][c] y_dot, [nq, 9]
+  MatrixXd M;                   ///< body mass matrix [nb, nb]
+  Vector3d omega;               ///< body-frame angular velocity (from the frame vectors)
+  Vector3d alpha;               ///< body-frame angular acceleration
+  Vector3d acc;                 ///< body-frame acceleration of O minus gravity
+  MatrixXd KG;                  ///< geometric stiffness [nq, nq] (stiffening)
+  MatrixXd feB, feG, feD;       ///< co-rotational path only: B, M_FE B, dw/dz_dot [3N, nb]
+  VectorXd few;                 ///< co-rotational path only: 2 A_dot Phi y_dot [3N]
+  VectorXd wq;                  ///< work [nq]
+};
+
+/// A marker's position and axes with their Jacobians (columns: the coordinates of its body).
+struct MarkerData {
+  Vector3d p, pd, pb;           ///< position, velocity, J_dot * z_dot
+  Matrix3N Jp;                  ///< [3, nb]
+  std::array<Vector3d, 3> e, ed, eb;
+  std::array<Matrix3N, 3> Je;   ///< [3, nb] each
+  Vector3d xbar;                ///< deformed local point
+  std::array<Vector3d, 3> ebar; ///< deformed local axes
+};
+
+/// Iteration counts and residuals, for reports and tests.
+struct Stats {
+  std::int64_t steps = 0;
+  std::int64_t newton_iterations = 0;
+  std::int64_t factorizations = 0;
+  int last_iterations = 0;
+  double last_increment = 0;    ///< scaled
+  double last_violation = 0;    ///< max |Phi| / length after the step
+  double last_velocity_violation = 0;
+  double last_acceleration_violation = 0;
+};
+
+struct Data {
+  explicit Data(const Model& model);
+
+  double t = 0;
+  VectorXd q, qd, qdd, lambda;  ///< state: coordinates, rates, accelerations, multipliers
+
+  // Per-element work.
+  std::vector<BodyData> bodies;
+  std::vector<MarkerData> markers;
+  std::vector<MatrixXd> J1, J2; ///< per constraint block: [rows, nb1], [rows, nb2]
+
+  // Global vectors and matrices (n = coordinates, m = constraint rows).
+  VectorXd Q;                   ///< generalized forces (applied + velocity-dependent inertia)
+  MatrixXd K, C;                ///< -dQ/dq, -dQ/dqd (analytic)
+  VectorXd Phi, Phit, gamma;    ///< constraint value, partial time derivative, acceleration bias
+  VectorXd lambda_eff;          ///< lambda + alpha Phi
+  VectorXd lambda0;             ///< multipliers at the start of the step
+  MatrixXd W;                   ///< M + h/2 C + h^2/4 K at the last factorisation (projection metric)
+  MatrixXd T;                   ///< tangent W + h^2/4 Phi_q^T alpha Phi_q
+  Eigen::PartialPivLU<MatrixXd> lu; ///< of the scaled tangent S T S (see factorize_tangent)
+  VectorXd scale;               ///< S = diag(|T_ii|^-1/2): equilibration of masses vs stiffnesses
+  bool tangent_valid = false;
+  bool tangent_fresh_step = false; ///< factorised during the current step (or set-up)
+
+  // Integrator work.
+  VectorXd q0, qd0, qdd0;       ///< state at the start of the step
+  VectorXd qd_hat, qdd_hat;     ///< trapezoidal predictors
+  VectorXd qdd_prev, lambda_prev; ///< accelerations and multipliers of the step before (predictor)
+  bool have_previous = false;
+  VectorXd f, dq, r, sigma, c, tmp, tmp2, vstar;
+
+  // Joints: unwrapped angle of each revolute/cylindrical joint at the last accepted step.
+  std::vector<double> angle_ref;
+  // Motions: values from the C API override the table when set.
+  std::vector<char> motion_external;
+  std::vector<Eigen::Vector3d> motion_value;  ///< value, rate, acceleration
+
+  // External loads (C API): per body, slot 0 = frame origin, slot 1 + p = node p.
+  std::vector<Matrix3N> ext_force, ext_torque;
+  std::vector<std::vector<char>> ext_active;
+  std::vector<MarkerData> ext_marker;  ///< work for one node per body
+
+  // Force-element work, sized for the largest pair of bodies an element joins.
+  MatrixXd fK, fC, fH;          ///< [n12, n12]
+  Eigen::Matrix<double, 6, Eigen::Dynamic> fg;  ///< gradients of up to 6 scalar measures
+  VectorXd fz, fhz;             ///< [n12]
+  std::array<Matrix3N, 4> w3;   ///< [3, nb max]
+
+  // Constraint-Hessian work, sized for the largest pair of bodies a joint joins.
+  MatrixXd cH;                  ///< [n12, n12]
+  Eigen::Matrix<double, 4, Eigen::Dynamic> cg;  ///< angle row: g_x, g_y, N, w
+  VectorXd cl;                  ///< [6] scaled multipliers of one joint
+
+  Stats stats;
+  VectorXd alpha;               ///< penalty of each constraint row in use (penalty_weights)
+  MatrixXd Jw;                  ///< work: a penalty-weighted Jacobian block
+};
+
+}  // namespace ffr::runtime

@@ -1,0 +1,49 @@
+#pragma once
+// Mass matrix and generalized forces of the unconstrained system (FORMULATION.md 3-7).
+// Q collects everything on the right-hand side of M(q) q_dd = Q(q, q_d, t) - Phi_q^T lambda:
+// velocity-dependent inertia forces, elastic and damping forces, gravity, stiffening, force
+// elements, table loads and external inputs. K = -dQ/dq and C = -dQ/dq_d are analytic.
+
+#include "ffr/runtime/data.hpp"
+#include "ffr/runtime/model.hpp"
+
+namespace ffr::runtime {
+
+/// One body's mass matrix (bd.M) from bd.A, bd.md, bd.Jc, bd.S.
+void body_mass_matrix(const Body& b, BodyData& bd);
+
+/// Every body's mass matrix into data.bodies[i].M. Needs update_bodies.
+void mass_matrices(const Model& model, Data& data);
+
+/// y = M x (block diagonal over bodies).
+void mass_times(const Model& model, const Data& data, const VectorXd& x, VectorXd& y);
+
+/// data.Q at time t. Needs update_bodies, update_markers and the mass matrices (for nothing
+/// else than the stiffening accelerations, which come from data.qdd).
+void generalized_forces(const Model& model, Data& data, double t);
+
+/// data.K and data.C at time t (same prerequisites). The stiffening terms enter K only through
+/// their y-dependence at frozen accelerations (FORMULATION.md 7).
+void force_tangents(const Model& model, Data& data, double t);
+
+// ---- the parts, exposed for tests --------------------------------------------------------
+
+/// The co-rotational path of a body with full_mass (see FullMass): mass matrix, then inertia
+/// forces into Qb and their velocity tangent into Cb.
+void fe_mass_matrix(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& z);
+void fe_inertia_forces(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<VectorXd> Qb);
+void fe_inertia_tangents(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<MatrixXd> Cb);
+
+/// Velocity-dependent inertia forces of one body (local vector, nb) added to Qb.
+void body_inertia_forces(const Body& b, const BodyData& bd, const Eigen::Ref<const VectorXd>& zd,
+                         Eigen::Ref<VectorXd> Qb);
+/// Their tangents -dQ/dz, -dQ/dzd added to Kb, Cb ([nb, nb]).
+void body_inertia_tangents(const Body& b, const BodyData& bd, const Eigen::Ref<const VectorXd>& zd,
+                           Eigen::Ref<MatrixXd> Kb, Eigen::Ref<MatrixXd> Cb);
+/// Gravity, elastic, damping and stiffening forces of one body.
+void body_applied_forces(const Body& b, BodyData& bd, const Vector3d& gravity, const Eigen::Ref<const VectorXd>& z,
+                         const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<VectorXd> Qb);
+void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& gravity, Eigen::Ref<MatrixXd> Kb,
+                           Eigen::Ref<MatrixXd> Cb);
+
+}  // namespace ffr::runtime

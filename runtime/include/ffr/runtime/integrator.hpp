@@ -1,0 +1,48 @@
+#pragma once
+// Time integration: the index-3 augmented Lagrangian formulation with mass-orthogonal
+// projections of velocities and accelerations (ALI3-P), trapezoidal rule, fixed step
+// (Bayo & Ledesma 1996; Cuadrado, Cardenal, Morer & Bayo 2000). FORMULATION.md section 9.
+
+#include "ffr/runtime/data.hpp"
+#include "ffr/runtime/model.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ffr::runtime {
+
+/// Everything at the current state: kinematics, mass matrices, forces Q, constraints.
+void evaluate(const Model& model, Data& data, double t);
+
+/// Makes the initial state consistent (FORMULATION.md section 10): positions with the joints and
+/// motions at the start time (mass-weighted least change), velocities likewise, then the
+/// accelerations and multipliers from the equations of motion. Returns what it changed, as
+/// sentences for the caller to show. Throws SolverError if the constraints cannot be met.
+std::vector<std::string> initialize(const Model& model, Data& data);
+
+/// One step of settings.step from data.t. Throws SolverError when Newton does not converge.
+/// Allocation-free.
+void step(const Model& model, Data& data);
+
+/// Projects data.qd (then data.qdd) onto the velocity (acceleration) constraints in the metric
+/// of the last factorised tangent. Needs evaluate() at the current q. Returns the scaled residual.
+double project_velocities(const Model& model, Data& data, double t);
+double project_accelerations(const Model& model, Data& data, double t);
+
+/// Factorises T = W + h^2/4 (alpha Phi_q^T Phi_q + sum lam_i Phi_i,qq) with W = M + h/2 C + h^2/4 K
+/// at the current state (lam: the multipliers to use in the constraints' second derivatives).
+void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& lam);
+
+/// Factorises data.T after symmetric diagonal scaling S T S, S = diag(|T_ii|^-1/2). The tangent
+/// mixes masses (down to ~1e-6 for a bar's section inertia) with h^2/4 K of stiff modes and the
+/// penalty (~1e5): unscaled, partial pivoting loses most digits and Newton converges slowly.
+void factorize_tangent(Data& data);
+/// out = T^-1 rhs with the scaled factorisation (out and rhs distinct).
+void solve_tangent(Data& data, const VectorXd& rhs, VectorXd& out);
+
+/// Scaled infinity norm of a coordinate increment (lengths / model length, frame vectors, modes
+/// by their scale).
+double scaled_norm(const Model& model, const VectorXd& dq);
+
+}  // namespace ffr::runtime

@@ -1,0 +1,231 @@
+#pragma once
+// The Model: everything about a multibody system that does not change while it moves.
+// Built once (load_model or by hand + finalize), then only read by the algorithms, which take
+// (const Model&, Data&) like Pinocchio. Every quantity here is reduced: a flexible body keeps
+// its primitive shape integrals (design/invariants.md section 2) and the slices of its exported
+// nodes, never a mesh.
+//
+// Coordinates (FORMULATION.md): each body owns z = [r0, u, v, w, y] (12 + nq numbers): the
+// position of its frame origin, the three frame vectors (A = [u v w]) and its modal amplitudes.
+// The ground has none.
+
+#include "ffr/runtime/table.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
+
+#include <Eigen/SparseCore>
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ffr::runtime {
+
+using Eigen::Matrix3d;
+using Eigen::Matrix3Xd;
+using Eigen::MatrixXd;
+using Eigen::Vector3d;
+using Eigen::VectorXd;
+using Matrix36 = Eigen::Matrix<double, 3, 6>;
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+inline constexpr int kGround = -1;
+
+/// An exported node of a flexible body: undeformed position and mode slices (body frame).
+struct NodeSlice {
+  std::string name;
+  Vector3d origin = Vector3d::Zero();
+  Matrix3Xd phi;  ///< [3, nq] translational
+  Matrix3Xd psi;  ///< [3, nq] small rotation
+};
+
+/// Geometric stiffening (design/invariants.md section 4), regrouped per load component so the
+/// per-step geometric stiffness is a sum of nq x nq matrices: KG = sum_c a_c Kt[c] + ...
+struct StiffeningTerms {
+  std::array<MatrixXd, 3> Kt;  ///< Kt[c](i,k) = K0t[k](i,c)
+  std::array<MatrixXd, 3> Kr;  ///< Kr[c](i,k) = K0r[k](i,c)
+  std::array<MatrixXd, 6> Kw;  ///< Kw[j](i,k) = K0om[k](i,j), j in omega_bar order
+};
+
+/// The unreduced mass data of a flexible body, for seed 000's comparison only (benchmarks):
+/// when a body has it, its mass matrix and inertia forces are computed each step the
+/// co-rotational way, B^T M_FE B and -B^T M_FE (2 A_dot Phi y_dot) with B the [3N, 12+nq]
+/// velocity map of all N nodes, instead of from the shape integrals. Translational mass only.
+struct FullMass {
+  Eigen::VectorXd X;                     ///< [3N] undeformed nodal positions (body frame)
+  Eigen::MatrixXd Phi;                   ///< [3N, nq] mode shapes
+  Eigen::SparseMatrix<double> M;         ///< [3N, 3N] FE mass matrix
+};
+
+/// One body. A rigid body is the special case nq = 0 (its integrals are m, m c_G and the
+/// pseudo-inertia), which makes its mass matrix constant.
+struct Body {
+  std::string name;
+  bool flexible = false;
+  std::string source;  ///< SID path for a flexible body (for messages)
+  int nq = 0;
+  int offset = 0;      ///< index of r0 in the global coordinate vector
+  int ncoord() const { return 12 + nq; }
+
+  // Inertia (body frame, about the frame origin O).
+  double mass = 0;
+  Vector3d rdm = Vector3d::Zero();   ///< int c dm
+  Matrix3d J0 = Matrix3d::Zero();    ///< int c c^T dm + rotary pseudo-inertia (1/2 tr(I) 1 - I)
+  Matrix3Xd Pdm;                     ///< [3, nq]
+  std::array<Matrix3Xd, 3> rPdm;     ///< rPdm[a] = int c_a Phi dm, [3, nq]
+  std::array<std::array<MatrixXd, 3>, 3> PPdm;  ///< int Phi_a^T Phi_b dm, [nq, nq]
+  MatrixXd PsiI;                     ///< [nq, 3] = sum Psi_p^T I_p (rotary coupling)
+  MatrixXd Myy;                      ///< sum_a PPdm[a][a] + sum Psi^T I Psi: constant modal mass
+  MatrixXd Ke, De;                   ///< modal stiffness and total modal damping
+  bool has_rotary_coupling = false;
+  std::optional<StiffeningTerms> stiffening;  ///< only when the SID has it and it is enabled
+  std::shared_ptr<const FullMass> full_mass;  ///< benchmarks only (see FullMass)
+  std::vector<NodeSlice> nodes;
+
+  // Initial state as given in the model file (global).
+  Vector3d r0 = Vector3d::Zero();
+  Matrix3d A0 = Matrix3d::Identity();
+  Vector3d v0 = Vector3d::Zero(), w0 = Vector3d::Zero();
+  VectorXd y0, yd0;
+
+  /// Scale of each modal coordinate for convergence tests: a length times sqrt(m / Me_kk).
+  VectorXd y_scale;
+
+  int find_node(const std::string& n) const {
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (nodes[i].name == n) return static_cast<int>(i);
+    return -1;
+  }
+};
+
+/// A point with a triad attached to a body (or to the ground), possibly at a SID node so it
+/// follows the node's deformation: p = r0 + A (c + phi y), axis k = A (E_k + (psi y) x E_k).
+struct Marker {
+  int body = kGround;
+  int node = -1;                     ///< node index in the body, -1 if rigidly on the frame
+  Vector3d c = Vector3d::Zero();     ///< local point (global point for the ground)
+  Matrix3d E = Matrix3d::Identity(); ///< columns e, f, g (local; global for the ground)
+  Matrix3Xd phi;                     ///< [3, nq] (zero when node < 0)
+  Matrix3Xd psi;                     ///< [3, nq] node rotation slice (zero when node < 0)
+  std::array<Matrix3Xd, 3> phiE;     ///< -skew(E_k) psi: the axes' mode slices
+};
+
+enum class JointType { Revolute, Spherical, Fixed, Prismatic, Cylindrical, Universal };
+const char* to_string(JointType t);
+
+/// Which scalar a motion or output reads from a joint.
+enum class JointCoordinate { Angle, Displacement };
+
+struct Joint {
+  std::string name;
+  JointType type = JointType::Spherical;
+  int m1 = -1, m2 = -1;  ///< markers
+  int block = -1;        ///< its constraint block
+  double d0 = 0;         ///< initial displacement along the axis (prismatic/cylindrical coordinate zero)
+};
+
+struct Motion {
+  int joint = -1;
+  JointCoordinate coordinate = JointCoordinate::Angle;
+  Table table;           ///< one component
+  int block = -1;
+};
+
+struct SpringDamper {
+  std::string name;
+  int m1 = -1, m2 = -1;
+  double k = 0, c = 0, length0 = 0;
+};
+
+/// Linear 6-DOF bushing: force and torque from the displacement and small rotation of marker 2
+/// relative to marker 1, resolved in marker 1's triad.
+struct Bushing {
+  std::string name;
+  int m1 = -1, m2 = -1;
+  Vector6d k = Vector6d::Zero(), c = Vector6d::Zero();
+  Vector6d s0 = Vector6d::Zero();  ///< measures in the initial configuration (the unloaded state)
+};
+
+/// A force or torque (global components) at a marker, from a time table with 3 components.
+struct PointLoad {
+  std::string name;
+  int marker = -1;
+  bool torque = false;
+  Table table;
+};
+
+enum class OutputType { NodeDeformation, NodePosition, ModalCoordinates, JointCoordinate, Energy };
+
+struct Output {
+  std::string name;
+  OutputType type = OutputType::Energy;
+  int body = -1, node = -1, joint = -1;
+  Vector3d point = Vector3d::Zero();     ///< local point of a node_position on a rigid body
+  std::vector<JointCoordinate> coords;  ///< for JointCoordinate
+  int size = 0;
+};
+
+/// Constraint equations come in blocks that touch at most two bodies, so the Jacobian is stored
+/// per block (rows x body coordinates) and the tangent is assembled from small products.
+enum class BlockKind { RigidBody, Joint, Motion };
+struct ConstraintBlock {
+  BlockKind kind = BlockKind::Joint;
+  int index = -1;                 ///< body, joint or motion index
+  int row0 = 0, rows = 0;
+  int body1 = kGround, body2 = kGround;
+};
+
+struct SolverSettings {
+  double start = 0.0;
+  double end = 1.0;
+  double step = 1e-3;
+  int output_every = 1;          ///< record every n-th step
+  double tolerance = 1e-12;      ///< Newton: scaled increment and constraint violation
+  int max_iterations = 30;
+  double penalty = 1e4;          ///< alpha * h^2/4 relative to the mean body mass (FORMULATION.md 9)
+  /// Keep the factorised tangent over steps while Newton converges fast (it is refreshed as
+  /// soon as an iteration contracts slowly). Off (default): a fresh tangent every step. The
+  /// penalty dominates the tangent, so a tangent older than a step is only good when no body
+  /// turns by more than ~1/penalty radians per step.
+  bool reuse_jacobian = false;
+};
+
+struct Model {
+  std::string source;            ///< model file (for messages)
+  Vector3d gravity = Vector3d::Zero();
+  std::vector<Body> bodies;
+  std::vector<Marker> markers;
+  std::vector<Joint> joints;
+  std::vector<Motion> motions;
+  std::vector<SpringDamper> springs;
+  std::vector<Bushing> bushings;
+  std::vector<PointLoad> loads;
+  std::vector<Output> outputs;
+  SolverSettings settings;
+
+  // Filled by finalize().
+  std::vector<ConstraintBlock> blocks;
+  /// Per body, where external loads (C API) can act: slot 0 the frame origin, 1 + p node p.
+  std::vector<std::vector<Marker>> load_slots;
+  int ncoord = 0;
+  int nconstraints = 0;
+  double length = 1.0;           ///< characteristic length (constraint and convergence scaling)
+  double mass = 1.0;             ///< mean body mass (penalty scaling)
+  std::vector<std::string> notes;  ///< things the set-up changed or assumed, for the caller to show
+
+  int find_body(const std::string& n) const;
+  int find_joint(const std::string& n) const;
+  int find_output(const std::string& n) const;
+};
+
+/// Offsets, constraint blocks and scales. Call after filling bodies/markers/joints/motions.
+/// Throws ModelError on inconsistent contents (e.g. a motion on a spherical joint).
+void finalize(Model& model);
+
+/// Constraint rows of a joint type (without its motion).
+int joint_rows(JointType t);
+
+}  // namespace ffr::runtime

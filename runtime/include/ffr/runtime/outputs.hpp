@@ -1,0 +1,59 @@
+#pragma once
+// Requested outputs, their recording during a run, and the results file (contract "Model file":
+// /time [nt], /outputs/<name> [nt, k], root attributes steps, newton_iterations,
+// integration_seconds; optional CSV with one column per component headed name[i]).
+
+#include "ffr/runtime/data.hpp"
+#include "ffr/runtime/model.hpp"
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ffr::runtime {
+
+/// Writes output `o` at the current state into out[0 .. o.size).
+void evaluate_output(const Model& model, Data& data, const Output& o, double* out);
+
+/// Preallocated storage for every output at every recorded time.
+class Recorder {
+ public:
+  Recorder(const Model& model, std::int64_t max_rows);
+  /// Appends a row (no allocation while rows < max_rows).
+  void record(const Model& model, Data& data);
+  std::int64_t rows() const { return rows_; }
+  const VectorXd& times() const { return t_; }
+  const MatrixXd& values(std::size_t output) const { return v_[output]; }
+
+ private:
+  std::int64_t rows_ = 0;
+  VectorXd t_;
+  std::vector<MatrixXd> v_;  ///< [max_rows, k]
+  VectorXd row_;
+};
+
+struct RunInfo {
+  std::int64_t steps = 0;
+  std::int64_t newton_iterations = 0;
+  double integration_seconds = 0;
+};
+
+struct RunOptions {
+  /// Called from the time loop (at most every `progress_seconds` of wall time) with t and end.
+  std::function<void(double t, double end)> progress;
+  double progress_seconds = 1.0;
+};
+
+/// Number of steps of the run (end - start) / step, rounded.
+std::int64_t step_count(const Model& model);
+
+/// Runs from data's (initialised) state to settings.end, recording every output_every steps.
+RunInfo simulate(const Model& model, Data& data, Recorder& rec, const RunOptions& opt = {});
+
+/// Writes the results file atomically (temporary name, renamed when complete).
+void write_results_h5(const std::filesystem::path& path, const Model& model, const Recorder& rec, const RunInfo& info);
+void write_results_csv(const std::filesystem::path& path, const Model& model, const Recorder& rec);
+
+}  // namespace ffr::runtime

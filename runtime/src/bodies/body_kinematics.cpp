@@ -1,0 +1,60 @@
+// Frame, deformed inertia integrals and rates of each body (FORMULATION.md sections 2-4).
+#include "ffr/runtime/kinematics.hpp"
+
+namespace ffr::runtime {
+
+Vector3d body_omega(const Matrix3d& A, const Matrix3d& Ad) {
+  const auto u = A.col(0), v = A.col(1), w = A.col(2);
+  const auto ud = Ad.col(0), vd = Ad.col(1), wd = Ad.col(2);
+  return 0.5 * Vector3d(w.dot(vd) - v.dot(wd), u.dot(wd) - w.dot(ud), v.dot(ud) - u.dot(vd));
+}
+
+Eigen::Matrix<double, 3, 9> gbar(const Matrix3d& A) {
+  Eigen::Matrix<double, 3, 9> G = Eigen::Matrix<double, 3, 9>::Zero();
+  const Vector3d u = A.col(0), v = A.col(1), w = A.col(2);
+  G.block<1, 3>(0, 3) = 0.5 * w.transpose();
+  G.block<1, 3>(0, 6) = -0.5 * v.transpose();
+  G.block<1, 3>(1, 0) = -0.5 * w.transpose();
+  G.block<1, 3>(1, 6) = 0.5 * u.transpose();
+  G.block<1, 3>(2, 0) = 0.5 * v.transpose();
+  G.block<1, 3>(2, 3) = -0.5 * u.transpose();
+  return G;
+}
+
+void update_bodies(const Model& model, Data& data) {
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    const Body& b = model.bodies[i];
+    BodyData& bd = data.bodies[i];
+    const int o = b.offset;
+    for (int a = 0; a < 3; ++a) {
+      bd.A.col(a) = data.q.segment<3>(o + 3 + 3 * a);
+      bd.Ad.col(a) = data.qd.segment<3>(o + 3 + 3 * a);
+      bd.Add.col(a) = data.qdd.segment<3>(o + 3 + 3 * a);
+    }
+    bd.omega = body_omega(bd.A, bd.Ad);
+    bd.alpha = body_omega(bd.A, bd.Add);
+    bd.acc.noalias() = bd.A.transpose() * (data.qdd.segment<3>(o) - model.gravity);
+    if (b.nq == 0) {
+      bd.md = b.rdm;
+      bd.Jc = b.J0;
+      continue;
+    }
+    const auto y = data.q.segment(o + 12, b.nq);
+    bd.md = b.rdm;
+    bd.md.noalias() += b.Pdm * y;
+    // P_a(y): row b is (PPdm[a][b]^T y)^T; then S_a = rPdm[a] + P_a(y).
+    for (int a = 0; a < 3; ++a) {
+      for (int c = 0; c < 3; ++c) bd.PPy[a].row(c).noalias() = y.transpose() * b.PPdm[a][c];
+      bd.S[a] = b.rPdm[a] + bd.PPy[a];
+    }
+    const auto yd = data.qd.segment(o + 12, b.nq);
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) bd.Pyd.col(3 * a + c).noalias() = b.PPdm[a][c] * yd;
+    // Jc(a,c) = J0 + R(a,c) + R(c,a) + y^T PPdm[a][c] y with R(a,c) = rPdm[a].row(c) y.
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c)
+        bd.Jc(a, c) = b.J0(a, c) + b.rPdm[a].row(c).dot(y) + b.rPdm[c].row(a).dot(y) + bd.PPy[a].row(c).dot(y);
+  }
+}
+
+}  // namespace ffr::runtime

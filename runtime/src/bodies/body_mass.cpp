@@ -1,0 +1,44 @@
+// Body mass matrix M = int B^T B dm from the primitive integrals (seed 000 eq. 5-7), plus the
+// rotary coupling Gbar^T PsiI^T (FORMULATION.md section 3). Coordinates z = [r0, u, v, w, y].
+#include "ffr/runtime/dynamics.hpp"
+#include "ffr/runtime/kinematics.hpp"
+
+namespace ffr::runtime {
+void body_mass_matrix(const Body& b, BodyData& bd) {
+  MatrixXd& M = bd.M;
+  // The rigid part: [[m, md^T], [md, Jc]] (x) I3.
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      const double s = (i == 0 && j == 0) ? b.mass : (i == 0) ? bd.md(j - 1) : (j == 0) ? bd.md(i - 1) : bd.Jc(i - 1, j - 1);
+      M.block<3, 3>(3 * i, 3 * j) = s * Matrix3d::Identity();
+    }
+  if (b.nq == 0) return;
+  const int nq = b.nq;
+  auto Mry = M.block(0, 12, 3, nq);
+  Mry.noalias() = bd.A * b.Pdm;
+  for (int a = 0; a < 3; ++a) M.block(3 + 3 * a, 12, 3, nq).noalias() = bd.A * bd.S[a];
+  if (b.has_rotary_coupling) M.block(3, 12, 9, nq).noalias() += gbar(bd.A).transpose() * b.PsiI.transpose();
+  M.block(12, 0, nq, 12) = M.block(0, 12, 12, nq).transpose();
+  M.block(12, 12, nq, nq) = b.Myy;
+}
+
+void mass_matrices(const Model& model, Data& data) {
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    // A rigid body's mass matrix is constant: it was filled when Data was built.
+    const Body& b = model.bodies[i];
+    if (b.nq == 0) continue;
+    if (b.full_mass)
+      fe_mass_matrix(b, data.bodies[i], data.q.segment(b.offset, b.ncoord()));
+    else
+      body_mass_matrix(b, data.bodies[i]);
+  }
+}
+
+void mass_times(const Model& model, const Data& data, const VectorXd& x, VectorXd& y) {
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    const Body& b = model.bodies[i];
+    y.segment(b.offset, b.ncoord()).noalias() = data.bodies[i].M * x.segment(b.offset, b.ncoord());
+  }
+}
+
+}  // namespace ffr::runtime

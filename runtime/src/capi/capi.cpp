@@ -1,0 +1,205 @@
+// The C interface (ffr_runtime.h): a Model and its Data behind an opaque handle; every entry
+// point catches everything and turns it into a status and a thread-local message.
+#include "ffr_runtime.h"
+
+#include "ffr/runtime/runtime.hpp"
+#include "ffr/version.hpp"
+
+#include <cmath>
+#include <exception>
+#include <memory>
+#include <new>
+#include <string>
+
+struct ffr_sim {
+  ffr::runtime::Model model;
+  std::unique_ptr<ffr::runtime::Data> data;
+  Eigen::VectorXd q, qd, qdd, lambda;  ///< the last accepted state, restored if a step fails
+};
+
+namespace {
+
+thread_local std::string g_error;
+
+int fail(int status, std::string msg) {
+  g_error = std::move(msg);
+  return status;
+}
+
+template <class F>
+int guarded(F&& f) {
+  try {
+    g_error.clear();
+    return f();
+  } catch (const ffr::runtime::ModelError& e) {
+    return fail(FFR_ERROR_INPUT, e.what());
+  } catch (const ffr::runtime::SolverError& e) {
+    return fail(FFR_ERROR_SOLVER, e.what());
+  } catch (const std::bad_alloc&) {
+    return fail(FFR_ERROR_INTERNAL, "out of memory");
+  } catch (const std::exception& e) {
+    return fail(FFR_ERROR_INTERNAL, e.what());
+  } catch (...) {
+    return fail(FFR_ERROR_INTERNAL, "unknown failure");
+  }
+}
+
+bool finite3(const double* v) { return !v || (std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2])); }
+
+int motion_of(const ffr_sim* s, const char* joint) {
+  const int j = s->model.find_joint(joint);
+  if (j < 0) return -2;
+  for (std::size_t m = 0; m < s->model.motions.size(); ++m)
+    if (s->model.motions[m].joint == j) return static_cast<int>(m);
+  return -1;
+}
+
+}  // namespace
+
+extern "C" {
+
+const char* ffr_version(void) { return ffr::kVersion; }
+
+const char* ffr_last_error(void) { return g_error.c_str(); }
+
+int ffr_open(const char* path, ffr_sim** sim) {
+  if (!sim) return fail(FFR_ERROR_ARGUMENT, "ffr_open: sim is NULL");
+  *sim = nullptr;
+  if (!path) return fail(FFR_ERROR_ARGUMENT, "ffr_open: model_path is NULL");
+  return guarded([&] {
+    auto s = std::make_unique<ffr_sim>();
+    s->model = ffr::runtime::load_model(path);
+    s->data = std::make_unique<ffr::runtime::Data>(s->model);
+    ffr::runtime::initialize(s->model, *s->data);
+    s->q = s->data->q;
+    s->qd = s->data->qd;
+    s->qdd = s->data->qdd;
+    s->lambda = s->data->lambda;
+    *sim = s.release();
+    return FFR_OK;
+  });
+}
+
+void ffr_close(ffr_sim* sim) { delete sim; }
+
+int ffr_time(const ffr_sim* sim, double* t) {
+  if (!sim || !t) return fail(FFR_ERROR_ARGUMENT, "ffr_time: NULL argument");
+  *t = sim->data->t;
+  return FFR_OK;
+}
+
+int ffr_step_size(const ffr_sim* sim, double* h) {
+  if (!sim || !h) return fail(FFR_ERROR_ARGUMENT, "ffr_step_size: NULL argument");
+  *h = sim->model.settings.step;
+  return FFR_OK;
+}
+
+int ffr_step(ffr_sim* sim, int n) {
+  if (!sim) return fail(FFR_ERROR_ARGUMENT, "ffr_step: sim is NULL");
+  if (n < 1) return fail(FFR_ERROR_ARGUMENT, "ffr_step: n must be at least 1");
+  return guarded([&] {
+    auto& d = *sim->data;
+    for (int i = 0; i < n; ++i) {
+      // Keep the last accepted state if a step fails (buffers sized at open: no allocation).
+      sim->q = d.q;
+      sim->qd = d.qd;
+      sim->qdd = d.qdd;
+      sim->lambda = d.lambda;
+      const double t = d.t;
+      try {
+        ffr::runtime::step(sim->model, d);
+      } catch (...) {
+        d.q = sim->q;
+        d.qd = sim->qd;
+        d.qdd = sim->qdd;
+        d.lambda = sim->lambda;
+        d.t = t;
+        d.tangent_valid = false;
+        throw;
+      }
+    }
+    return FFR_OK;
+  });
+}
+
+int ffr_set_load(ffr_sim* sim, const char* body, const char* node, const double force[3], const double torque[3]) {
+  if (!sim || !body) return fail(FFR_ERROR_ARGUMENT, "ffr_set_load: NULL argument");
+  if (!finite3(force) || !finite3(torque)) return fail(FFR_ERROR_ARGUMENT, "ffr_set_load: force and torque must be finite");
+  const int b = sim->model.find_body(body);
+  if (b < 0) return fail(FFR_ERROR_NOT_FOUND, std::string("ffr_set_load: no body '") + body + "'");
+  int slot = 0;
+  if (node) {
+    const int p = sim->model.bodies[b].find_node(node);
+    if (p < 0) return fail(FFR_ERROR_NOT_FOUND, std::string("ffr_set_load: body '") + body + "' has no node '" + node + "'");
+    slot = 1 + p;
+  }
+  auto& d = *sim->data;
+  for (int i = 0; i < 3; ++i) {
+    d.ext_force[b](i, slot) = force ? force[i] : 0.0;
+    d.ext_torque[b](i, slot) = torque ? torque[i] : 0.0;
+  }
+  d.ext_active[b][static_cast<std::size_t>(slot)] = 1;
+  return FFR_OK;
+}
+
+int ffr_clear_loads(ffr_sim* sim) {
+  if (!sim) return fail(FFR_ERROR_ARGUMENT, "ffr_clear_loads: sim is NULL");
+  auto& d = *sim->data;
+  for (std::size_t b = 0; b < d.ext_active.size(); ++b) {
+    d.ext_force[b].setZero();
+    d.ext_torque[b].setZero();
+    std::fill(d.ext_active[b].begin(), d.ext_active[b].end(), 0);
+  }
+  return FFR_OK;
+}
+
+int ffr_set_motion(ffr_sim* sim, const char* joint, double value, double rate, double acceleration) {
+  if (!sim || !joint) return fail(FFR_ERROR_ARGUMENT, "ffr_set_motion: NULL argument");
+  if (!std::isfinite(value) || !std::isfinite(rate) || !std::isfinite(acceleration))
+    return fail(FFR_ERROR_ARGUMENT, "ffr_set_motion: values must be finite");
+  const int m = motion_of(sim, joint);
+  if (m == -2) return fail(FFR_ERROR_NOT_FOUND, std::string("ffr_set_motion: no joint '") + joint + "'");
+  if (m < 0) return fail(FFR_ERROR_NOT_FOUND, std::string("ffr_set_motion: joint '") + joint + "' has no motion in the model");
+  sim->data->motion_external[m] = 1;
+  sim->data->motion_value[m] = Eigen::Vector3d(value, rate, acceleration);
+  return FFR_OK;
+}
+
+int ffr_release_motion(ffr_sim* sim, const char* joint) {
+  if (!sim || !joint) return fail(FFR_ERROR_ARGUMENT, "ffr_release_motion: NULL argument");
+  const int m = motion_of(sim, joint);
+  if (m < 0) return fail(FFR_ERROR_NOT_FOUND, std::string("ffr_release_motion: no motion on joint '") + joint + "'");
+  sim->data->motion_external[m] = 0;
+  return FFR_OK;
+}
+
+int ffr_output_size(const ffr_sim* sim, const char* output, int* size) {
+  if (!sim || !output || !size) return fail(FFR_ERROR_ARGUMENT, "ffr_output_size: NULL argument");
+  const int o = sim->model.find_output(output);
+  if (o < 0) return fail(FFR_ERROR_NOT_FOUND, std::string("ffr_output_size: no output '") + output + "'");
+  *size = sim->model.outputs[o].size;
+  return FFR_OK;
+}
+
+int ffr_get_output(ffr_sim* sim, const char* output, double* values, int capacity) {
+  if (!sim || !output || !values) return fail(FFR_ERROR_ARGUMENT, "ffr_get_output: NULL argument");
+  const int o = sim->model.find_output(output);
+  if (o < 0) return fail(FFR_ERROR_NOT_FOUND, std::string("ffr_get_output: no output '") + output + "'");
+  const auto& out = sim->model.outputs[o];
+  if (capacity < out.size)
+    return fail(FFR_ERROR_ARGUMENT, "ffr_get_output: output '" + out.name + "' has " + std::to_string(out.size) +
+                                        " values, capacity " + std::to_string(capacity));
+  return guarded([&] {
+    ffr::runtime::evaluate_output(sim->model, *sim->data, out, values);
+    return FFR_OK;
+  });
+}
+
+int ffr_stats(const ffr_sim* sim, long long* steps, long long* iterations) {
+  if (!sim) return fail(FFR_ERROR_ARGUMENT, "ffr_stats: sim is NULL");
+  if (steps) *steps = sim->data->stats.steps;
+  if (iterations) *iterations = sim->data->stats.newton_iterations;
+  return FFR_OK;
+}
+
+}  // extern "C"

@@ -1,0 +1,127 @@
+// Data: every buffer sized once from the Model, and the state set to the model's initial
+// configuration (before assembly; initialize() makes it consistent).
+#include "ffr/runtime/data.hpp"
+
+#include "ffr/runtime/dynamics.hpp"
+
+#include <algorithm>
+
+namespace ffr::runtime {
+namespace {
+
+void size_marker(MarkerData& md, int nb) {
+  md.Jp = Matrix3N::Zero(3, nb);
+  for (auto& J : md.Je) J = Matrix3N::Zero(3, nb);
+  md.p = md.pd = md.pb = md.xbar = Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) md.e[k] = md.ed[k] = md.eb[k] = md.ebar[k] = Vector3d::Zero();
+}
+
+}  // namespace
+
+Data::Data(const Model& model) {
+  const int n = model.ncoord, m = model.nconstraints;
+  q = qd = qdd = VectorXd::Zero(n);
+  lambda = lambda_eff = lambda0 = lambda_prev = VectorXd::Zero(m);
+  Q = f = dq = r = tmp = tmp2 = vstar = qdd_prev = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);
+  sigma = c = alpha = VectorXd::Zero(m);
+  K = C = W = T = MatrixXd::Zero(n, n);
+  lu = Eigen::PartialPivLU<MatrixXd>(n);
+  scale = VectorXd::Ones(n);
+  Phi = Phit = gamma = VectorXd::Zero(m);
+
+  int nb_max = 12;
+  bodies.resize(model.bodies.size());
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    const Body& b = model.bodies[i];
+    BodyData& bd = bodies[i];
+    const int nq = b.nq, nb = b.ncoord();
+    nb_max = std::max(nb_max, nb);
+    bd.A = b.A0;
+    bd.Ad = bd.Add = Matrix3d::Zero();
+    bd.md = b.rdm;
+    bd.Jc = b.J0;
+    for (int a = 0; a < 3; ++a) {
+      bd.S[a] = Matrix3Xd::Zero(3, nq);
+      bd.PPy[a] = Matrix3Xd::Zero(3, nq);
+    }
+    bd.Pyd = MatrixXd::Zero(nq, 9);
+    bd.M = MatrixXd::Zero(nb, nb);
+    bd.omega = bd.alpha = bd.acc = Vector3d::Zero();
+    bd.KG = MatrixXd::Zero(nq, nq);
+    bd.wq = VectorXd::Zero(nq);
+    if (nq == 0) body_mass_matrix(b, bd);  // constant for a rigid body
+    if (b.full_mass) {
+      const auto N3 = b.full_mass->X.size();
+      bd.feB = bd.feG = bd.feD = MatrixXd::Zero(N3, nb);
+      bd.few = VectorXd::Zero(N3);
+    }
+
+    // Initial state as given: frame, rates from the frame's velocity and angular velocity.
+    const int o = b.offset;
+    q.segment<3>(o) = b.r0;
+    qd.segment<3>(o) = b.v0;
+    for (int a = 0; a < 3; ++a) {
+      q.segment<3>(o + 3 + 3 * a) = b.A0.col(a);
+      qd.segment<3>(o + 3 + 3 * a) = b.w0.cross(Vector3d(b.A0.col(a)));
+    }
+    if (nq) {
+      q.segment(o + 12, nq) = b.y0;
+      qd.segment(o + 12, nq) = b.yd0;
+    }
+  }
+
+  markers.resize(model.markers.size());
+  for (std::size_t i = 0; i < model.markers.size(); ++i) {
+    const int b = model.markers[i].body;
+    size_marker(markers[i], b == kGround ? 0 : model.bodies[b].ncoord());
+  }
+
+  J1.resize(model.blocks.size());
+  J2.resize(model.blocks.size());
+  int pair_max = 0;
+  for (std::size_t i = 0; i < model.blocks.size(); ++i) {
+    const ConstraintBlock& b = model.blocks[i];
+    const int n1 = b.body1 == kGround ? 0 : model.bodies[b.body1].ncoord();
+    const int n2 = b.body2 == kGround ? 0 : model.bodies[b.body2].ncoord();
+    J1[i] = MatrixXd::Zero(b.rows, n1);
+    J2[i] = MatrixXd::Zero(b.rows, n2);
+  }
+  int rows_max = 6, nb_all = 12;
+  for (const auto& b : model.blocks) rows_max = std::max(rows_max, b.rows);
+  for (const auto& b : model.bodies) nb_all = std::max(nb_all, b.ncoord());
+  Jw = MatrixXd::Zero(rows_max, nb_all);
+  auto pair = [&](int m1, int m2) {
+    const int b1 = model.markers[m1].body, b2 = model.markers[m2].body;
+    return (b1 == kGround ? 0 : model.bodies[b1].ncoord()) + (b2 == kGround ? 0 : model.bodies[b2].ncoord());
+  };
+  for (const auto& s : model.springs) pair_max = std::max(pair_max, pair(s.m1, s.m2));
+  for (const auto& s : model.bushings) pair_max = std::max(pair_max, pair(s.m1, s.m2));
+  fK = fC = fH = MatrixXd::Zero(pair_max, pair_max);
+  int joint_pair = 0;
+  for (const auto& j : model.joints) joint_pair = std::max(joint_pair, pair(j.m1, j.m2));
+  cH = MatrixXd::Zero(joint_pair, joint_pair);
+  cg = Eigen::Matrix<double, 4, Eigen::Dynamic>::Zero(4, joint_pair);
+  cl = VectorXd::Zero(6);
+  fg = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, pair_max);
+  fz = fhz = VectorXd::Zero(pair_max);
+  for (auto& w : w3) w = Matrix3N::Zero(3, nb_max);
+
+  angle_ref.assign(model.joints.size(), 0.0);
+  motion_external.assign(model.motions.size(), 0);
+  motion_value.assign(model.motions.size(), Eigen::Vector3d::Zero());
+
+  ext_force.resize(model.bodies.size());
+  ext_torque.resize(model.bodies.size());
+  ext_active.resize(model.bodies.size());
+  ext_marker.resize(model.bodies.size());
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    const auto slots = static_cast<Eigen::Index>(model.load_slots.size() > i ? model.load_slots[i].size() : 1);
+    ext_force[i] = Matrix3N::Zero(3, slots);
+    ext_torque[i] = Matrix3N::Zero(3, slots);
+    ext_active[i].assign(static_cast<std::size_t>(slots), 0);
+    size_marker(ext_marker[i], model.bodies[i].ncoord());
+  }
+  t = model.settings.start;
+}
+
+}  // namespace ffr::runtime

@@ -1,0 +1,46 @@
+#pragma once
+// Second-derivative pieces shared by the force elements (FORMULATION.md section 8).
+// For a marker quantity x (a point or an axis) with Jacobian J_x and mode slice S (its phi, or
+// phiE_k for an axis), the only configuration dependence of J_x is through xbar (in the frame
+// blocks) and A (in the modal block), so for a constant vector f:
+//   d(J_x^T f)/dz : (A_a, y) block = f S_a,  (y, A_a) block = S_a^T f^T   (S_a = row a of S)
+//   d(J_x z_dot)/dz : (A_a) block = (S y_dot)_a I,  (y) block = A_dot S
+// Both vanish for a marker rigidly on its frame.
+
+#include "ffr/runtime/data.hpp"
+#include "ffr/runtime/model.hpp"
+
+namespace ffr::runtime::detail {
+
+/// H += s * d(J_x^T f)/dz for a quantity with mode slice S (nq columns) on a body with nq modes.
+template <class Mat>
+void add_jt_f_derivative(const Matrix3Xd& S, const Vector3d& f, double s, Mat&& H) {
+  const Eigen::Index nq = S.cols();
+  if (nq == 0) return;
+  for (int a = 0; a < 3; ++a) {
+    H.block(3 + 3 * a, 12, 3, nq).noalias() += s * f * S.row(a);
+    H.block(12, 3 + 3 * a, nq, 3).noalias() += s * S.row(a).transpose() * f.transpose();
+  }
+}
+
+/// D = d(J_x z_dot)/dz ([3, nb]) for a quantity with mode slice S.
+template <class Mat>
+void jzd_derivative(const Matrix3Xd& S, const Matrix3d& Ad, const Eigen::Ref<const VectorXd>& yd, Mat&& D) {
+  D.setZero();
+  const Eigen::Index nq = S.cols();
+  if (nq == 0) return;
+  for (int a = 0; a < 3; ++a) D.block(0, 3 + 3 * a, 3, 3).diagonal().setConstant(S.row(a).dot(yd));
+  D.rightCols(nq).noalias() = Ad * S;
+}
+
+/// Global coordinate range of a body.
+inline int offset(const Model& m, int body) { return m.bodies[body].offset; }
+inline int ncoord(const Model& m, int body) { return body == kGround ? 0 : m.bodies[body].ncoord(); }
+
+/// Mode slice of a marker quantity: k < 0 the point, else axis k. Empty when rigidly attached.
+inline const Matrix3Xd& slice(const Marker& mk, int k) { return k < 0 ? mk.phi : mk.phiE[k]; }
+inline bool on_node(const Model& m, const Marker& mk) {
+  return mk.body != kGround && mk.node >= 0 && m.bodies[mk.body].nq > 0;
+}
+
+}  // namespace ffr::runtime::detail

@@ -1,0 +1,25 @@
+#pragma once
+// Force elements (internal): each adds to data.Q, and its tangents to data.K / data.C.
+
+#include "ffr/runtime/data.hpp"
+#include "ffr/runtime/model.hpp"
+
+namespace ffr::runtime::detail {
+
+void spring_forces(const Model& model, const SpringDamper& s, Data& data);
+void spring_tangents(const Model& model, const SpringDamper& s, Data& data);
+double spring_energy(const Model& model, const SpringDamper& s, const Data& data);
+
+/// add_q: add the forces to data.Q; tangents: add -dQ/dq, -dQ/dqd to data.K, data.C.
+void bushing_forces(const Model& model, const Bushing& b, Data& data, bool add_q, bool tangents);
+double bushing_energy(const Model& model, const Bushing& b, Data& data);
+/// The six measures (displacement in marker 1's triad, small rotation) in the current state.
+Vector6d bushing_measures(const Model& model, const Bushing& b, const Data& data);
+
+/// A global force or torque at a marker (computed kinematics md).
+void marker_load(const Model& model, const Marker& mk, const MarkerData& md, const Vector3d& f, bool torque,
+                 Data& data, bool add_q, bool tangents);
+void point_loads(const Model& model, Data& data, double t, bool add_q, bool tangents);
+void external_loads(const Model& model, Data& data, bool add_q, bool tangents);
+
+}  // namespace ffr::runtime::detail

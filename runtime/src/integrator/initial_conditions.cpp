@@ -1,0 +1,161 @@
+// Consistent initial conditions (FORMULATION.md section 10).
+//
+// Positions: the configuration closest to the given one in the kinetic-energy metric M that
+// satisfies every constraint at the start time, by the same augmented-Lagrangian Newton as the
+// integrator (so redundant constraints are fine). Velocities: the M-orthogonal projection of the
+// given ones. Accelerations and multipliers: M a + Phi_q^T lambda = Q, Phi_q a + gamma = 0,
+// by augmented-Lagrangian iterations.
+#include "ffr/runtime/constraints.hpp"
+#include "ffr/runtime/dynamics.hpp"
+#include "ffr/runtime/errors.hpp"
+#include "ffr/runtime/integrator.hpp"
+#include "ffr/runtime/kinematics.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace ffr::runtime {
+namespace {
+
+constexpr int kMaxAssembly = 200;
+
+// W = the block-diagonal mass matrix, the rows' penalties data.alpha = alpha_factor times W along
+// each row, T = W + t_factor Phi_q^T diag(alpha) Phi_q, factorised.
+void factor_metric(const Model& model, Data& data, double alpha_factor, double t_factor) {
+  data.W.setZero();
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    const Body& b = model.bodies[i];
+    data.W.block(b.offset, b.offset, b.ncoord(), b.ncoord()) = data.bodies[i].M;
+  }
+  penalty_weights(model, data, data.W, alpha_factor, data.alpha);
+  data.T = data.W;
+  add_penalty_tangent(model, data, data.alpha, t_factor, data.T);
+  factorize_tangent(data);
+}
+
+std::string fmt(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", v);
+  return b;
+}
+
+// Largest change of a body's frame (origin, or frame vectors times the model length).
+std::string largest_change(const Model& model, const VectorXd& a, const VectorXd& b, const char* unit) {
+  double best = -1;
+  std::string who;
+  for (const Body& body : model.bodies) {
+    const int o = body.offset;
+    const double d = std::max((a.segment<3>(o) - b.segment<3>(o)).norm(),
+                              (a.segment<9>(o + 3) - b.segment<9>(o + 3)).cwiseAbs().maxCoeff() * model.length);
+    if (d > best) {
+      best = d;
+      who = body.name;
+    }
+  }
+  return fmt(best) + " " + unit + " (body '" + who + "')";
+}
+
+void assemble_positions(const Model& model, Data& data, double t0, std::vector<std::string>& notes) {
+  const VectorXd given = data.q;
+  update_bodies(model, data);
+  mass_matrices(model, data);
+  update_markers(model, data);
+  evaluate_constraints(model, data, t0);
+  const double kappa = model.settings.penalty;
+  data.lambda.setZero();
+  double viol = data.Phi.cwiseAbs().maxCoeff() / model.length, inc = 0;
+  const double tol = model.settings.tolerance;
+  if (viol < 1e-3 * tol) return;
+  int it = 0;
+  for (it = 0; it < kMaxAssembly; ++it) {
+    // The metric is the mass matrix at the given configuration; the tangent is refreshed each pass.
+    factor_metric(model, data, kappa, 1.0);
+    if (it > 0) data.lambda += data.alpha.cwiseProduct(data.Phi);
+    data.lambda_eff = data.lambda + data.alpha.cwiseProduct(data.Phi);
+    data.tmp = data.q - given;
+    data.r.setZero();
+    for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+      const Body& b = model.bodies[i];
+      data.r.segment(b.offset, b.ncoord()).noalias() = data.bodies[i].M * data.tmp.segment(b.offset, b.ncoord());
+    }
+    add_constraint_forces(model, data, data.lambda_eff, data.r);
+    solve_tangent(data, data.r, data.dq);
+    data.q -= data.dq;
+    inc = scaled_norm(model, data.dq);
+    update_bodies(model, data);
+    update_markers(model, data);
+    evaluate_constraints(model, data, t0);
+    viol = data.Phi.cwiseAbs().maxCoeff() / model.length;
+    if (!std::isfinite(viol)) break;
+    if (viol < 1e-3 * tol && inc < tol) break;
+  }
+  if (!(viol < tol))
+    throw SolverError(t0, viol,
+                      "the initial configuration cannot be assembled: the joints and motions leave a violation of " +
+                          fmt(viol) + " of the model length after " + std::to_string(it) + " iterations");
+  const double change = (data.q - given).cwiseAbs().maxCoeff();
+  if (change > 1e-9) notes.push_back("initial positions adjusted to satisfy the joints and motions: largest change " +
+                                     largest_change(model, data.q, given, "m"));
+}
+
+}  // namespace
+
+std::vector<std::string> initialize(const Model& model, Data& data) {
+  std::vector<std::string> notes;
+  const double h = model.settings.step;
+  const double t0 = model.settings.start;
+  data.t = t0;
+  data.qdd.setZero();
+  data.have_previous = false;
+  data.stats = Stats{};
+  // Angles of driven joints are unwrapped around their targets from the start.
+  for (std::size_t m = 0; m < model.motions.size(); ++m)
+    if (model.motions[m].coordinate == JointCoordinate::Angle)
+      data.angle_ref[model.motions[m].joint] = motion_target(model, data, static_cast<int>(m), t0)(0);
+
+  assemble_positions(model, data, t0, notes);
+  update_angle_references(model, data);
+
+  // Velocities: M-orthogonal projection (metric M, as the step's projections use W at h -> 0).
+  update_bodies(model, data);
+  mass_matrices(model, data);
+  update_markers(model, data);
+  evaluate_constraints(model, data, t0);
+  factor_metric(model, data, model.settings.penalty * 4.0 / (h * h), 0.25 * h * h);
+  data.tangent_fresh_step = true;  // the metric is M here: no refresh with C and K
+  const VectorXd given = data.qd;
+  const double vres = project_velocities(model, data, t0);
+  if (vres > model.settings.tolerance)
+    throw SolverError(t0, vres, "the initial velocities cannot be made consistent with the joints and motions");
+  const double dv = (data.qd - given).cwiseAbs().maxCoeff();
+  // Below this the change is the rounding of the given numbers, not worth a note.
+  if (dv > 1e-8 * std::max(1.0, given.cwiseAbs().maxCoeff()))
+    notes.push_back("initial velocities adjusted to satisfy the joints and motions: largest change " +
+                    largest_change(model, data.qd, given, "m/s"));
+
+  // Accelerations and multipliers. The stiffening forces depend on the accelerations, hence the
+  // outer fixed-point passes.
+  for (int pass = 0; pass < 3; ++pass) {
+    evaluate(model, data, t0);
+    factor_metric(model, data, model.settings.penalty, 1.0);
+    data.lambda.setZero();
+    double res = 0;
+    for (int k = 0; k < 100; ++k) {
+      // (M + alpha Phi_q^T Phi_q) a = Q - Phi_q^T (lambda + alpha gamma);  lambda += alpha (Phi_q a + gamma)
+      data.r = data.Q;
+      data.c = -(data.lambda + data.alpha.cwiseProduct(data.gamma));
+      add_constraint_forces(model, data, data.c, data.r);
+      solve_tangent(data, data.r, data.qdd);
+      constraint_times(model, data, data.qdd, data.c);
+      data.c += data.gamma;
+      data.lambda += data.alpha.cwiseProduct(data.c);
+      res = data.c.cwiseAbs().maxCoeff() * h * h / model.length;
+      if (res < 1e-3 * model.settings.tolerance) break;
+    }
+  }
+  data.tangent_valid = false;
+  return notes;
+}
+
+}  // namespace ffr::runtime

@@ -1,0 +1,135 @@
+// The model file: top level, gravity, solver settings; sections are parsed in their own files.
+#include "ffr/runtime/load.hpp"
+
+#include "parse.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace ffr::runtime {
+namespace detail {
+
+int body_ref(const Field& f, const Model& m) {
+  const std::string n = f.string();
+  const int b = m.find_body(n);
+  if (b == -2) {
+    std::string known = "ground";
+    for (const auto& body : m.bodies) known += ", " + body.name;
+    f.fail("unknown body '" + n + "' (bodies: " + known + ")");
+  }
+  return b;
+}
+
+Vector3d unit_axis(const Field& f) {
+  const Vector3d a = f.vec3();
+  if (!(a.norm() > 0)) f.fail("must not be the zero vector");
+  return a.normalized();
+}
+
+Matrix3d triad(const Vector3d& axis) {
+  const Vector3d e = axis.normalized();
+  int k = 0;
+  e.cwiseAbs().minCoeff(&k);
+  Vector3d helper = Vector3d::Zero();
+  helper(k) = 1;
+  const Vector3d f = (helper - helper.dot(e) * e).normalized();
+  Matrix3d E;
+  E << e, f, e.cross(f);
+  return E;
+}
+
+Table parse_table(const Field& f, int ncomp) {
+  f.expect_object({"t", "value"});
+  const Eigen::VectorXd t = f.at("t").vector();
+  const Field vf = f.at("value");
+  const Eigen::MatrixXd v = vf.matrix(ncomp);
+  if (v.rows() != t.size())
+    vf.fail("has " + std::to_string(v.rows()) + " entries but t has " + std::to_string(t.size()));
+  for (Eigen::Index i = 1; i < t.size(); ++i)
+    if (!(t(i) > t(i - 1))) f.at("t").fail("times must be strictly increasing (entry " + std::to_string(i) + ")");
+  return Table(t, v);
+}
+
+void parse_solver(const Field& root, ParseContext& ctx) {
+  const Field s = root.at("solver");
+  s.expect_object({"start", "end", "step", "output_every", "tolerance", "max_iterations", "penalty", "reuse_jacobian"});
+  SolverSettings& st = ctx.model.settings;
+  if (auto f = s.get("start")) st.start = f->number();
+  st.end = s.at("end").number();
+  st.step = s.at("step").positive();
+  if (!(st.end > st.start)) s.at("end").fail("must be after the start time");
+  const double n = (st.end - st.start) / st.step;
+  if (n > 1e9) s.at("step").fail("gives more than 1e9 steps");
+  if (std::abs(n - std::round(n)) > 1e-6 * std::max(1.0, n))
+    s.at("step").fail("the run (end - start) is not a whole number of steps");
+  if (auto f = s.get("output_every")) {
+    st.output_every = f->integer();
+    if (st.output_every < 1) f->fail("must be at least 1");
+  }
+  if (auto f = s.get("tolerance")) st.tolerance = f->positive();
+  if (auto f = s.get("max_iterations")) {
+    st.max_iterations = f->integer();
+    if (st.max_iterations < 1) f->fail("must be at least 1");
+  }
+  if (auto f = s.get("penalty")) st.penalty = f->positive();
+  if (auto f = s.get("reuse_jacobian")) st.reuse_jacobian = f->boolean();
+}
+
+}  // namespace detail
+
+Model parse_model(const std::string& text, const std::filesystem::path& base_dir, const std::string& name) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // nlohmann's message carries the byte position ("at line 3, column 7").
+    std::string what = e.what();
+    const auto p = what.find("parse error");
+    throw ModelError(name, "", "malformed JSON: " + (p == std::string::npos ? what : what.substr(p)));
+  } catch (const nlohmann::json::exception& e) {
+    // e.g. "number overflow parsing '1e999'": a number that is not a finite double.
+    std::string what = e.what();
+    const auto p = what.find("] ");
+    throw ModelError(name, "", "not a finite number in the JSON text: " + (p == std::string::npos ? what : what.substr(p + 2)));
+  }
+  Model m;
+  m.source = name;
+  detail::ParseContext ctx{name, base_dir, m};
+  const detail::Field root(j, name, "");
+  root.expect_object({"format_version", "units", "gravity", "bodies", "joints", "forces", "motions", "solver", "outputs"});
+  if (auto f = root.get("format_version"))
+    if (f->integer() != 1) f->fail("unsupported format_version (this build reads 1)");
+  if (auto f = root.get("units")) {
+    f->expect_object({"length", "mass", "time"});
+    for (const char* k : {"length", "mass", "time"})
+      if (auto u = f->get(k)) {
+        const std::string s = u->string();
+        const bool si = (std::string(k) == "length" && s == "m") || (std::string(k) == "mass" && s == "kg") ||
+                        (std::string(k) == "time" && s == "s");
+        if (!si) u->fail("only SI units are supported (m, kg, s)");
+      }
+  }
+  if (auto g = root.get("gravity")) m.gravity = g->vec3();
+  detail::parse_solver(root, ctx);
+  detail::parse_bodies(root, ctx);
+  detail::parse_joints(root, ctx);
+  detail::parse_forces(root, ctx);
+  detail::parse_motions(root, ctx);
+  detail::parse_outputs(root, ctx);
+  finalize(m);
+  return m;
+}
+
+Model load_model(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw ModelError(path.string(), "", "no such file");
+  if (std::filesystem::is_directory(path, ec)) throw ModelError(path.string(), "", "is a directory, not a model file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ModelError(path.string(), "", "cannot open for reading");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parse_model(ss.str(), path.parent_path(), path.string());
+}
+
+}  // namespace ffr::runtime

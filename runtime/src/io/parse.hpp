@@ -1,0 +1,48 @@
+#pragma once
+// The model-file parser, split by section (internal).
+
+#include "ffr/runtime/model.hpp"
+#include "json_reader.hpp"
+
+#include <filesystem>
+
+namespace ffr::runtime::detail {
+
+struct ParseContext {
+  std::string file;               ///< model file name for messages
+  std::filesystem::path base;     ///< directory for relative paths
+  Model& model;
+};
+
+void parse_bodies(const Field& root, ParseContext& ctx);
+void parse_joints(const Field& root, ParseContext& ctx);
+void parse_forces(const Field& root, ParseContext& ctx);
+void parse_motions(const Field& root, ParseContext& ctx);
+void parse_outputs(const Field& root, ParseContext& ctx);
+void parse_solver(const Field& root, ParseContext& ctx);
+
+/// Body index by name (kGround for "ground"); fails naming `f` if unknown.
+int body_ref(const Field& f, const Model& m);
+/// A unit-length axis from a field (fails on a zero vector).
+Vector3d unit_axis(const Field& f);
+/// An orthonormal triad [e f g] with e along `axis`.
+Matrix3d triad(const Vector3d& axis);
+/// A time table {"t": [...], "value": [...]} with `ncomp` components per time.
+Table parse_table(const Field& f, int ncomp);
+
+/// Where something attaches: a body and either a node or a global point.
+struct Attachment {
+  int body = kGround;
+  int node = -1;
+  Vector3d point = Vector3d::Zero();  ///< global (initial configuration)
+};
+/// Node index of body by the name in field f (fails if the body is rigid or has no such node).
+int node_ref(const Field& f, const Model& m, int body);
+/// Global initial position of a node.
+Vector3d node_position(const Model& m, int body, int node);
+/// The common point of a two-body connection (joint or bushing) from at / node1 / node2.
+void connection_points(const Field& j, const Model& m, Attachment& a1, Attachment& a2);
+/// Adds a marker for an attachment with the global triad E; returns its index.
+int add_marker(Model& m, const Attachment& a, const Matrix3d& E);
+
+}  // namespace ffr::runtime::detail

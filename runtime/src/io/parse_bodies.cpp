@@ -1,0 +1,94 @@
+// "bodies": rigid bodies and flexible bodies from SID files, with their initial state.
+#include "ffr/formats/sid_io.hpp"
+#include "ffr/runtime/load.hpp"
+#include "parse.hpp"
+
+#include <Eigen/SVD>
+
+#include <set>
+
+namespace ffr::runtime::detail {
+namespace {
+
+Matrix3d orientation(const std::optional<Field>& f) {
+  if (!f) return Matrix3d::Identity();
+  // Rows as written; the matrix maps body components to global ones (columns = body axes).
+  const Matrix3d A = f->mat3();
+  if ((A.transpose() * A - Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 || A.determinant() < 0)
+    f->fail("must be a rotation matrix (orthonormal, determinant +1)");
+  // Re-orthonormalise what passed the check so the frame constraints hold to round-off.
+  Eigen::JacobiSVD<Matrix3d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  return svd.matrixU() * svd.matrixV().transpose();
+}
+
+formats::Sid read_sid_for(const Field& f, const std::filesystem::path& base) {
+  const std::filesystem::path p = base / f.string();
+  try {
+    return formats::read_sid(p);
+  } catch (const formats::FormatError& e) {
+    // Keep the SID's own file and dataset, say where the model refers to it.
+    std::string what = e.what();
+    const std::string prefix = e.file() + (e.object().empty() ? "" : ": " + e.object()) + ": ";
+    if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
+    throw ModelError(e.file(), e.object(), what + " (" + f.file() + ": " + f.path() + ")");
+  }
+}
+
+void initial_motion(const Field& b, Body& body) {
+  if (auto f = b.get("velocity")) body.v0 = f->vec3();
+  if (auto f = b.get("angular_velocity")) body.w0 = f->vec3();
+}
+
+}  // namespace
+
+void parse_bodies(const Field& root, ParseContext& ctx) {
+  const Field list = root.at("bodies");
+  std::set<std::string> names{"ground"};
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Field b = list.at(i);
+    if (!b.json().is_object()) b.fail("expected an object");
+    const std::string name = b.at("name").string();
+    if (name.empty()) b.at("name").fail("must not be empty");
+    if (!names.insert(name).second) b.at("name").fail("duplicate body name '" + name + "'" + (name == "ground" ? " (ground always exists)" : ""));
+    const std::string type = b.at("type").string();
+    if (type == "rigid") {
+      b.expect_object({"name", "type", "mass", "com", "inertia", "position", "orientation", "velocity", "angular_velocity"});
+      const double mass = b.at("mass").positive();
+      const auto pos = b.get("position");
+      const auto com = b.get("com");
+      const Vector3d position = pos ? pos->vec3() : com ? com->vec3() : Vector3d::Zero();
+      const Vector3d c = com ? com->vec3() : position;
+      Body body = make_rigid_body(name, mass, c, b.at("inertia").mat3(), position, orientation(b.get("orientation")),
+                                  ctx.file, b.path());
+      initial_motion(b, body);
+      ctx.model.bodies.push_back(std::move(body));
+    } else if (type == "flexible") {
+      b.expect_object({"name", "type", "sid", "position", "orientation", "damping", "stiffening", "velocity",
+                       "angular_velocity", "modal_coordinates", "modal_velocities"});
+      const Field sidf = b.at("sid");
+      const formats::Sid sid = read_sid_for(sidf, ctx.base);
+      if (sid.units_length != "m" || sid.units_mass != "kg" || sid.units_time != "s")
+        throw ModelError(ctx.base.empty() ? sidf.string() : (ctx.base / sidf.string()).string(), "/@units_length",
+                         "only SI SID files are supported (found " + sid.units_length + ", " + sid.units_mass + ", " +
+                             sid.units_time + ")");
+      std::optional<double> ratio;
+      if (auto d = b.get("damping")) {
+        d->expect_object({"ratio"});
+        ratio = d->at("ratio").nonnegative();
+        if (*ratio >= 1) d->at("ratio").fail("must be below 1 (critical damping)");
+      }
+      const bool stiff = b.has("stiffening") ? b.at("stiffening").boolean() : true;
+      Body body = make_flexible_body(name, sid, b.has("position") ? b.at("position").vec3() : Vector3d::Zero(),
+                                     orientation(b.get("orientation")), ratio, stiff, ctx.file, b.path(), &ctx.model.notes);
+      body.source = sidf.string();
+      initial_motion(b, body);
+      if (auto f = b.get("modal_coordinates")) body.y0 = f->vector(body.nq);
+      if (auto f = b.get("modal_velocities")) body.yd0 = f->vector(body.nq);
+      ctx.model.bodies.push_back(std::move(body));
+    } else {
+      b.at("type").fail("unknown body type '" + type + "' (expected rigid or flexible)");
+    }
+  }
+}
+
+}  // namespace ffr::runtime::detail

@@ -1,0 +1,141 @@
+// "joints": markers on both bodies at a common point (global `at`, or SID nodes), with a triad
+// built from the joint's axis.
+#include "parse.hpp"
+
+#include <set>
+
+namespace ffr::runtime::detail {
+
+int node_ref(const Field& f, const Model& m, int body) {
+  const std::string n = f.string();
+  if (body == kGround) f.fail("the ground has no nodes");
+  const Body& b = m.bodies[body];
+  if (!b.flexible) f.fail("body '" + b.name + "' is rigid and has no nodes (use \"at\")");
+  const int k = b.find_node(n);
+  if (k < 0) {
+    std::string known;
+    for (const auto& node : b.nodes) known += (known.empty() ? "" : ", ") + node.name;
+    f.fail("body '" + b.name + "' has no node '" + n + "' (nodes: " + (known.empty() ? "none" : known) + ")");
+  }
+  return k;
+}
+
+Vector3d node_position(const Model& m, int body, int node) {
+  const Body& b = m.bodies[body];
+  const NodeSlice& n = b.nodes[node];
+  return b.r0 + b.A0 * (n.origin + n.phi * b.y0);
+}
+
+int add_marker(Model& m, const Attachment& a, const Matrix3d& E) {
+  Marker mk;
+  mk.body = a.body;
+  if (a.body == kGround) {
+    mk.c = a.point;
+    mk.E = E;
+  } else {
+    const Body& b = m.bodies[a.body];
+    mk.E = b.A0.transpose() * E;
+    if (a.node >= 0) {
+      mk.node = a.node;
+      mk.c = b.nodes[a.node].origin;
+      mk.phi = b.nodes[a.node].phi;
+      mk.psi = b.nodes[a.node].psi;
+    } else {
+      mk.c = b.A0.transpose() * (a.point - b.r0);
+      mk.phi.resize(3, 0);
+      mk.psi.resize(3, 0);
+    }
+  }
+  m.markers.push_back(std::move(mk));
+  return static_cast<int>(m.markers.size()) - 1;
+}
+
+namespace {
+
+JointType joint_type(const Field& f) {
+  const std::string t = f.string();
+  if (t == "revolute") return JointType::Revolute;
+  if (t == "spherical") return JointType::Spherical;
+  if (t == "fixed") return JointType::Fixed;
+  if (t == "prismatic") return JointType::Prismatic;
+  if (t == "cylindrical") return JointType::Cylindrical;
+  if (t == "universal") return JointType::Universal;
+  f.fail("unknown joint type '" + t + "' (expected revolute, spherical, fixed, prismatic, cylindrical or universal)");
+}
+
+}  // namespace
+
+/// Resolves the common point of a two-body connection: `at`, else the first node given, else the
+/// frame origin of a flexible body (contract: "a flexible body without either is joined at its
+/// frame origin"). Each side without a node is attached rigidly to its frame at that point.
+void connection_points(const Field& j, const Model& m, Attachment& a1, Attachment& a2) {
+  a1.body = body_ref(j.at("body1"), m);
+  a2.body = body_ref(j.at("body2"), m);
+  if (a1.body == a2.body) j.at("body2").fail("a connection needs two different bodies");
+  if (auto n = j.get("node1")) a1.node = node_ref(*n, m, a1.body);
+  if (auto n = j.get("node2")) a2.node = node_ref(*n, m, a2.body);
+  Vector3d P;
+  if (auto at = j.get("at")) {
+    P = at->vec3();
+  } else if (a1.node >= 0) {
+    P = node_position(m, a1.body, a1.node);
+  } else if (a2.node >= 0) {
+    P = node_position(m, a2.body, a2.node);
+  } else if (a2.body != kGround && m.bodies[a2.body].flexible) {
+    P = m.bodies[a2.body].r0;
+  } else if (a1.body != kGround && m.bodies[a1.body].flexible) {
+    P = m.bodies[a1.body].r0;
+  } else {
+    j.fail("needs \"at\" (a global point) or a node of a flexible body");
+  }
+  a1.point = a2.point = P;
+}
+
+void parse_joints(const Field& root, ParseContext& ctx) {
+  if (!root.has("joints")) return;
+  const Field list = root.at("joints");
+  std::set<std::string> names;
+  Model& m = ctx.model;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Field j = list.at(i);
+    j.expect_object({"name", "type", "body1", "body2", "at", "node1", "node2", "axis", "axis1", "axis2"});
+    Joint jt;
+    jt.name = j.at("name").string();
+    if (jt.name.empty()) j.at("name").fail("must not be empty");
+    if (!names.insert(jt.name).second) j.at("name").fail("duplicate joint name '" + jt.name + "'");
+    jt.type = joint_type(j.at("type"));
+    Attachment a1, a2;
+    connection_points(j, m, a1, a2);
+    Matrix3d E1 = Matrix3d::Identity(), E2 = Matrix3d::Identity();
+    switch (jt.type) {
+      case JointType::Revolute:
+      case JointType::Prismatic:
+      case JointType::Cylindrical:
+        E1 = E2 = triad(unit_axis(j.at("axis")));
+        break;
+      case JointType::Fixed:
+        if (auto a = j.get("axis")) E1 = E2 = triad(unit_axis(*a));
+        break;
+      case JointType::Universal: {
+        const Vector3d x1 = unit_axis(j.at("axis1")), x2 = unit_axis(j.at("axis2"));
+        if (std::abs(x1.dot(x2)) > 1e-9) j.at("axis2").fail("must be perpendicular to axis1");
+        E1 = triad(x1);
+        E2 = triad(x2);
+        break;
+      }
+      case JointType::Spherical:
+        break;
+    }
+    if (jt.type == JointType::Universal) {
+      if (j.has("axis")) j.at("axis").fail("a universal joint takes axis1 and axis2");
+    } else if (j.has("axis1") || j.has("axis2")) {
+      j.at(j.has("axis1") ? "axis1" : "axis2").fail("only a universal joint takes axis1/axis2");
+    }
+    if (jt.type == JointType::Spherical && j.has("axis")) j.at("axis").fail("a spherical joint has no axis");
+    jt.m1 = add_marker(m, a1, E1);
+    jt.m2 = add_marker(m, a2, E2);
+    m.joints.push_back(jt);
+  }
+}
+
+}  // namespace ffr::runtime::detail

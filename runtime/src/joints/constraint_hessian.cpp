@@ -1,0 +1,206 @@
+// Second derivatives of the constraints, sum_i lambda_i d2Phi_i/dq2: the "geometric stiffness" of
+// the constraint forces Phi_q^T lambda in the Newton tangent. Without it Newton converges only
+// linearly once the multipliers are large (fast rotation: the frame vectors' normalisation rows
+// carry the centrifugal load), with it quadratically.
+//   a . b:         J_a^T J_b + J_b^T J_a + H_a(b) + H_b(a)     (H_x(f) = d(J_x^T f)/dz)
+//   e_i . (p2-p1): H_p2(e_i) - H_p1(e_i)
+//   atan2(y, x):   (x H_y - y H_x + g_x^T g_y - g_y^T g_x) / r^2 - 2 (x g_x + y g_y)^T N / r^4,
+//                  N = x g_y - y g_x
+#include "ffr/runtime/constraints.hpp"
+
+#include "../forces/force_helpers.hpp"
+
+namespace ffr::runtime {
+namespace {
+
+// A marker quantity (point or axis) with its Jacobian and mode slice (null when rigid on its frame).
+struct Quantity {
+  const Vector3d* v = nullptr;
+  const Matrix3N* J = nullptr;
+  const Matrix3Xd* S = nullptr;
+  int side = 0;
+  double sign = 1;
+};
+
+struct Expr {
+  Quantity t[2];
+  int n = 0;
+  Vector3d value() const {
+    Vector3d s = Vector3d::Zero();
+    for (int i = 0; i < n; ++i) s += t[i].sign * *t[i].v;
+    return s;
+  }
+};
+
+// Where the two sides' coordinates sit in the target matrix.
+struct Target {
+  MatrixXd* M;
+  int off[3] = {0, 0, 0};
+  int nb[3] = {0, 0, 0};
+};
+
+Quantity quantity(const Model& model, const Data& data, int marker, int k, int side, double sign = 1) {
+  const Marker& mk = model.markers[marker];
+  const MarkerData& md = data.markers[marker];
+  Quantity q;
+  q.side = side;
+  q.sign = sign;
+  q.v = k < 0 ? &md.p : &md.e[k];
+  if (mk.body == kGround) return q;
+  q.J = k < 0 ? &md.Jp : &md.Je[k];
+  if (detail::on_node(model, mk)) q.S = &detail::slice(mk, k);
+  return q;
+}
+
+Expr one(Quantity a) {
+  Expr e;
+  e.t[0] = a;
+  e.n = 1;
+  return e;
+}
+Expr two(Quantity a, Quantity b) {
+  Expr e;
+  e.t[0] = a;
+  e.t[1] = b;
+  e.n = 2;
+  return e;
+}
+
+void add_node(Target& T, const Quantity& q, const Vector3d& f, double c) {
+  if (!q.S || c == 0) return;
+  detail::add_jt_f_derivative(*q.S, f, c * q.sign, T.M->block(T.off[q.side], T.off[q.side], T.nb[q.side], T.nb[q.side]));
+}
+
+void dot_hessian(Target& T, const Expr& a, const Expr& b, double c) {
+  if (c == 0) return;
+  for (int i = 0; i < a.n; ++i)
+    for (int j = 0; j < b.n; ++j) {
+      const Quantity &x = a.t[i], &y = b.t[j];
+      if (!x.J || !y.J) continue;
+      const double s = c * x.sign * y.sign;
+      T.M->block(T.off[x.side], T.off[y.side], T.nb[x.side], T.nb[y.side]).noalias() += s * x.J->transpose() * *y.J;
+      T.M->block(T.off[y.side], T.off[x.side], T.nb[y.side], T.nb[x.side]).noalias() += s * y.J->transpose() * *x.J;
+    }
+  const Vector3d av = a.value(), bv = b.value();
+  for (int i = 0; i < a.n; ++i) add_node(T, a.t[i], bv, c);
+  for (int j = 0; j < b.n; ++j) add_node(T, b.t[j], av, c);
+}
+
+// Gradient row of a . b over [side 1, side 2] columns (for the angle row's products).
+void dot_gradient(const Target& T, const Expr& a, const Expr& b, Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> g) {
+  const Vector3d av = a.value(), bv = b.value();
+  for (int i = 0; i < a.n; ++i)
+    if (a.t[i].J) g.segment(T.off[a.t[i].side], T.nb[a.t[i].side]).noalias() += a.t[i].sign * bv.transpose() * *a.t[i].J;
+  for (int j = 0; j < b.n; ++j)
+    if (b.t[j].J) g.segment(T.off[b.t[j].side], T.nb[b.t[j].side]).noalias() += b.t[j].sign * av.transpose() * *b.t[j].J;
+}
+
+void joint_hessian(const Model& model, const Data& data, const Joint& j, const Eigen::Ref<const VectorXd>& l, Target& T) {
+  const double L = model.length;
+  auto e1 = [&](int k) { return one(quantity(model, data, j.m1, k, 1)); };
+  auto e2 = [&](int k) { return one(quantity(model, data, j.m2, k, 2)); };
+  const Expr d = two(quantity(model, data, j.m2, -1, 2), quantity(model, data, j.m1, -1, 1, -1.0));
+  auto points = [&](int row) {
+    const Vector3d lv = l.segment<3>(row);
+    add_node(T, quantity(model, data, j.m2, -1, 2), lv, 1.0);
+    add_node(T, quantity(model, data, j.m1, -1, 1), lv, -1.0);
+  };
+  switch (j.type) {
+    case JointType::Spherical:
+      points(0);
+      break;
+    case JointType::Revolute:
+      points(0);
+      dot_hessian(T, e1(0), e2(1), L * l(3));
+      dot_hessian(T, e1(0), e2(2), L * l(4));
+      break;
+    case JointType::Universal:
+      points(0);
+      dot_hessian(T, e1(0), e2(0), L * l(3));
+      break;
+    case JointType::Fixed:
+      points(0);
+      dot_hessian(T, e1(0), e2(1), L * l(3));
+      dot_hessian(T, e1(0), e2(2), L * l(4));
+      dot_hessian(T, e1(1), e2(2), L * l(5));
+      break;
+    case JointType::Cylindrical:
+    case JointType::Prismatic:
+      dot_hessian(T, e1(0), e2(1), L * l(0));
+      dot_hessian(T, e1(0), e2(2), L * l(1));
+      dot_hessian(T, d, e1(1), l(2));
+      dot_hessian(T, d, e1(2), l(3));
+      if (j.type == JointType::Prismatic) dot_hessian(T, e1(1), e2(2), L * l(4));
+      break;
+  }
+}
+
+void motion_hessian(const Model& model, Data& data, const Motion& mo, double lam, Target& T) {
+  const Joint& j = model.joints[mo.joint];
+  if (mo.coordinate == JointCoordinate::Displacement) {
+    const Expr d = two(quantity(model, data, j.m2, -1, 2), quantity(model, data, j.m1, -1, 1, -1.0));
+    dot_hessian(T, d, one(quantity(model, data, j.m1, 0, 1)), lam);
+    return;
+  }
+  // Angle row L (theta - target): build g_x, g_y, H_x, H_y over [z1, z2] in the work buffers.
+  const int n = T.nb[1] + T.nb[2];
+  Target local{&data.cH, {0, 0, T.nb[1]}, {0, T.nb[1], T.nb[2]}};
+  const Expr f2 = one(quantity(model, data, j.m2, 1, 2));
+  const Expr f1 = one(quantity(model, data, j.m1, 1, 1)), g1 = one(quantity(model, data, j.m1, 2, 1));
+  const double x = f1.value().dot(f2.value()), y = g1.value().dot(f2.value()), r2 = x * x + y * y;
+  auto gx = data.cg.row(0).head(n);
+  auto gy = data.cg.row(1).head(n);
+  gx.setZero();
+  gy.setZero();
+  dot_gradient(local, f1, f2, gx);
+  dot_gradient(local, g1, f2, gy);
+  auto H = data.cH.topLeftCorner(n, n);
+  H.setZero();
+  dot_hessian(local, g1, f2, x / r2);   // x H_y / r^2
+  dot_hessian(local, f1, f2, -y / r2);  // -y H_x / r^2
+  H.noalias() += (1.0 / r2) * gx.transpose() * gy;
+  H.noalias() -= (1.0 / r2) * gy.transpose() * gx;
+  auto N = data.cg.row(2).head(n);
+  auto w = data.cg.row(3).head(n);
+  N = x * gy - y * gx;
+  w = x * gx + y * gy;
+  H.noalias() -= (2.0 / (r2 * r2)) * w.transpose() * N;
+  const double c = lam * model.length;
+  for (int a = 1; a <= 2; ++a)
+    for (int b = 1; b <= 2; ++b)
+      if (T.nb[a] && T.nb[b]) T.M->block(T.off[a], T.off[b], T.nb[a], T.nb[b]) += c * H.block(local.off[a], local.off[b], T.nb[a], T.nb[b]);
+}
+
+}  // namespace
+
+void add_constraint_hessian(const Model& model, Data& data, const VectorXd& lam, double factor, MatrixXd& M) {
+  for (std::size_t bi = 0; bi < model.blocks.size(); ++bi) {
+    const ConstraintBlock& b = model.blocks[bi];
+    const auto l = lam.segment(b.row0, b.rows);
+    if (b.kind == BlockKind::RigidBody) {
+      const int o = model.bodies[b.body1].offset + 3;
+      const double L = model.length;
+      const int pairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {2, 0}};
+      for (int i = 0; i < 6; ++i) {
+        const int a = pairs[i][0], c = pairs[i][1];
+        const double s = factor * l(i) * L;  // (L/2) d2(u.u) = L I;  L d2(u.v) = L I off-diagonal
+        M.block<3, 3>(o + 3 * a, o + 3 * c).diagonal().array() += s;
+        if (a != c) M.block<3, 3>(o + 3 * c, o + 3 * a).diagonal().array() += s;
+      }
+      continue;
+    }
+    Target T{&M};
+    T.off[1] = b.body1 == kGround ? 0 : model.bodies[b.body1].offset;
+    T.off[2] = b.body2 == kGround ? 0 : model.bodies[b.body2].offset;
+    T.nb[1] = b.body1 == kGround ? 0 : model.bodies[b.body1].ncoord();
+    T.nb[2] = b.body2 == kGround ? 0 : model.bodies[b.body2].ncoord();
+    if (b.kind == BlockKind::Joint) {
+      data.cl.head(b.rows) = factor * l;
+      joint_hessian(model, data, model.joints[b.index], data.cl.head(b.rows), T);
+    } else {
+      motion_hessian(model, data, model.motions[b.index], factor * l(0), T);
+    }
+  }
+}
+
+}  // namespace ffr::runtime

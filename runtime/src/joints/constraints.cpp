@@ -1,0 +1,250 @@
+// Constraint rows of rigid-body conditions, joints and motions (FORMULATION.md section 5).
+#include "ffr/runtime/constraints.hpp"
+
+#include "rows.hpp"
+
+#include <cmath>
+
+namespace ffr::runtime {
+namespace {
+
+using detail::axis;
+using detail::dot;
+using detail::dot_jacobian;
+using detail::expr;
+using detail::point;
+using detail::VecExpr;
+
+struct Rows {
+  Eigen::Ref<VectorXd> Phi, Phit, gamma;
+  MatrixXd& J1;
+  MatrixXd& J2;
+};
+
+// The six conditions on a body's frame vectors: L/2 (u.u - 1), ..., L u.v, ... (each a length).
+void rigid_body_rows(const Model& model, const Data& data, int body, Rows& r) {
+  const double L = model.length;
+  const BodyData& bd = data.bodies[body];
+  const int pairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {2, 0}};
+  for (int i = 0; i < 6; ++i) {
+    const int a = pairs[i][0], b = pairs[i][1];
+    const bool diag = a == b;
+    const double s = diag ? 0.5 * L : L;
+    r.Phi(i) = s * (bd.A.col(a).dot(bd.A.col(b)) - (diag ? 1.0 : 0.0));
+    r.gamma(i) = 2 * s * bd.Ad.col(a).dot(bd.Ad.col(b));
+    r.J1.block<1, 3>(i, 3 + 3 * a) += s * bd.A.col(b).transpose();
+    r.J1.block<1, 3>(i, 3 + 3 * b) += s * bd.A.col(a).transpose();
+  }
+}
+
+struct JointSides {
+  const MarkerData* m1;
+  const MarkerData* m2;
+  bool g1, g2;
+};
+
+JointSides sides(const Model& model, const Data& data, const Joint& j) {
+  return {&data.markers[j.m1], &data.markers[j.m2], model.markers[j.m1].body == kGround,
+          model.markers[j.m2].body == kGround};
+}
+
+void dot_row(const VecExpr& a, const VecExpr& b, double scale, Rows& r, int row) {
+  const auto v = dot(a, b);
+  r.Phi(row) = scale * v.value;
+  r.gamma(row) = scale * v.bias;
+  dot_jacobian(a, b, scale, r.J1, r.J2, row);
+}
+
+void coincident_points(const JointSides& s, Rows& r, int row) {
+  r.Phi.segment<3>(row) = s.m2->p - s.m1->p;
+  r.gamma.segment<3>(row) = s.m2->pb - s.m1->pb;
+  if (!s.g1) r.J1.middleRows(row, 3) -= s.m1->Jp;
+  if (!s.g2) r.J2.middleRows(row, 3) += s.m2->Jp;
+}
+
+void joint_rows(const Model& model, const Data& data, const Joint& j, Rows& r) {
+  const double L = model.length;
+  const JointSides s = sides(model, data, j);
+  auto e1 = [&](int k) { return expr(axis(*s.m1, k, 1, s.g1)); };
+  auto e2 = [&](int k) { return expr(axis(*s.m2, k, 2, s.g2)); };
+  const VecExpr d = expr(point(*s.m2, 2, s.g2), point(*s.m1, 1, s.g1, -1.0));
+  switch (j.type) {
+    case JointType::Spherical:
+      coincident_points(s, r, 0);
+      break;
+    case JointType::Revolute:
+      coincident_points(s, r, 0);
+      dot_row(e1(0), e2(1), L, r, 3);
+      dot_row(e1(0), e2(2), L, r, 4);
+      break;
+    case JointType::Universal:
+      coincident_points(s, r, 0);
+      dot_row(e1(0), e2(0), L, r, 3);
+      break;
+    case JointType::Fixed:
+      coincident_points(s, r, 0);
+      dot_row(e1(0), e2(1), L, r, 3);
+      dot_row(e1(0), e2(2), L, r, 4);
+      dot_row(e1(1), e2(2), L, r, 5);
+      break;
+    case JointType::Cylindrical:
+    case JointType::Prismatic:
+      dot_row(e1(0), e2(1), L, r, 0);
+      dot_row(e1(0), e2(2), L, r, 1);
+      dot_row(d, e1(1), 1.0, r, 2);
+      dot_row(d, e1(2), 1.0, r, 3);
+      if (j.type == JointType::Prismatic) dot_row(e1(1), e2(2), L, r, 4);
+      break;
+  }
+}
+
+double unwrap(double raw, double ref) { return raw + 2 * M_PI * std::round((ref - raw) / (2 * M_PI)); }
+
+// Coordinate value, rate and bias; with jac, adds scale * gradient to row `row`.
+detail::DotValue coordinate(const Model& model, const Data& data, int joint, JointCoordinate c, Rows* r, int row,
+                            double scale) {
+  const Joint& j = model.joints[joint];
+  const JointSides s = sides(model, data, j);
+  if (c == JointCoordinate::Displacement) {
+    const VecExpr d = expr(point(*s.m2, 2, s.g2), point(*s.m1, 1, s.g1, -1.0));
+    const VecExpr e = expr(axis(*s.m1, 0, 1, s.g1));
+    if (r) dot_jacobian(d, e, scale, r->J1, r->J2, row);
+    auto v = dot(d, e);
+    v.value -= j.d0;
+    return v;
+  }
+  // theta = atan2(g1.f2, f1.f2): the rotation of marker 2's f axis about marker 1's e axis.
+  const VecExpr f2 = expr(axis(*s.m2, 1, 2, s.g2));
+  const VecExpr f1 = expr(axis(*s.m1, 1, 1, s.g1)), g1 = expr(axis(*s.m1, 2, 1, s.g1));
+  const auto x = dot(f1, f2), y = dot(g1, f2);
+  const double rho2 = x.value * x.value + y.value * y.value;
+  if (r) {
+    dot_jacobian(g1, f2, scale * x.value / rho2, r->J1, r->J2, row);
+    dot_jacobian(f1, f2, -scale * y.value / rho2, r->J1, r->J2, row);
+  }
+  const double th = unwrap(std::atan2(y.value, x.value), data.angle_ref[joint]);
+  const double thd = (x.value * y.rate - y.value * x.rate) / rho2;
+  const double bias = (x.value * y.bias - y.value * x.bias) / rho2 - 2 * thd * (x.value * x.rate + y.value * y.rate) / rho2;
+  return {th, thd, bias};
+}
+
+void motion_row(const Model& model, const Data& data, int m, double t, Rows& r) {
+  const Motion& mo = model.motions[m];
+  const double scale = mo.coordinate == JointCoordinate::Angle ? model.length : 1.0;
+  const auto v = coordinate(model, data, mo.joint, mo.coordinate, &r, 0, scale);
+  const Vector3d target = motion_target(model, data, m, t);
+  r.Phi(0) = scale * (v.value - target(0));
+  r.Phit(0) = -scale * target(1);
+  r.gamma(0) = scale * (v.bias - target(2));
+}
+
+}  // namespace
+
+Vector3d motion_target(const Model& model, const Data& data, int m, double t) {
+  if (data.motion_external[m]) return data.motion_value[m];
+  Vector3d v;
+  model.motions[m].table.eval(t, 0, v(0), v(1), v(2));
+  return v;
+}
+
+void evaluate_constraints(const Model& model, Data& data, double t) {
+  for (std::size_t bi = 0; bi < model.blocks.size(); ++bi) {
+    const ConstraintBlock& b = model.blocks[bi];
+    data.J1[bi].setZero();
+    data.J2[bi].setZero();
+    Rows r{data.Phi.segment(b.row0, b.rows), data.Phit.segment(b.row0, b.rows), data.gamma.segment(b.row0, b.rows),
+           data.J1[bi], data.J2[bi]};
+    r.Phit.setZero();
+    switch (b.kind) {
+      case BlockKind::RigidBody: rigid_body_rows(model, data, b.index, r); break;
+      case BlockKind::Joint: joint_rows(model, data, model.joints[b.index], r); break;
+      case BlockKind::Motion: motion_row(model, data, b.index, t, r); break;
+    }
+  }
+}
+
+double joint_coordinate(const Model& model, const Data& data, int joint, JointCoordinate c) {
+  return coordinate(model, data, joint, c, nullptr, 0, 1.0).value;
+}
+
+void update_angle_references(const Model& model, Data& data) {
+  for (std::size_t j = 0; j < model.joints.size(); ++j) {
+    const JointType t = model.joints[j].type;
+    if (t == JointType::Revolute || t == JointType::Cylindrical)
+      data.angle_ref[j] = joint_coordinate(model, data, static_cast<int>(j), JointCoordinate::Angle);
+  }
+}
+
+void add_constraint_forces(const Model& model, const Data& data, const VectorXd& lam, VectorXd& out) {
+  for (std::size_t bi = 0; bi < model.blocks.size(); ++bi) {
+    const ConstraintBlock& b = model.blocks[bi];
+    const auto l = lam.segment(b.row0, b.rows);
+    if (b.body1 != kGround) {
+      const Body& B = model.bodies[b.body1];
+      out.segment(B.offset, B.ncoord()).noalias() += data.J1[bi].transpose() * l;
+    }
+    if (b.body2 != kGround) {
+      const Body& B = model.bodies[b.body2];
+      out.segment(B.offset, B.ncoord()).noalias() += data.J2[bi].transpose() * l;
+    }
+  }
+}
+
+void constraint_times(const Model& model, const Data& data, const VectorXd& v, VectorXd& out) {
+  for (std::size_t bi = 0; bi < model.blocks.size(); ++bi) {
+    const ConstraintBlock& b = model.blocks[bi];
+    auto o = out.segment(b.row0, b.rows);
+    o.setZero();
+    if (b.body1 != kGround) {
+      const Body& B = model.bodies[b.body1];
+      o.noalias() += data.J1[bi] * v.segment(B.offset, B.ncoord());
+    }
+    if (b.body2 != kGround) {
+      const Body& B = model.bodies[b.body2];
+      o.noalias() += data.J2[bi] * v.segment(B.offset, B.ncoord());
+    }
+  }
+}
+
+void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, double f, MatrixXd& T) {
+  for (std::size_t bi = 0; bi < model.blocks.size(); ++bi) {
+    const ConstraintBlock& b = model.blocks[bi];
+    const MatrixXd& J1 = data.J1[bi];
+    const MatrixXd& J2 = data.J2[bi];
+    const auto a = alpha.segment(b.row0, b.rows);
+    if (b.kind == BlockKind::RigidBody) {
+      // Only the frame-vector columns are nonzero.
+      const int o = model.bodies[b.body1].offset + 3;
+      auto Jw = data.Jw.topLeftCorner(b.rows, 9);
+      Jw.noalias() = (f * a).asDiagonal() * J1.middleCols<9>(3);
+      T.block<9, 9>(o, o).noalias() += Jw.transpose() * J1.middleCols<9>(3);
+      continue;
+    }
+    const bool h1 = b.body1 != kGround, h2 = b.body2 != kGround;
+    const int o1 = h1 ? model.bodies[b.body1].offset : 0, n1 = static_cast<int>(J1.cols());
+    const int o2 = h2 ? model.bodies[b.body2].offset : 0, n2 = static_cast<int>(J2.cols());
+    if (h1) {
+      auto Jw = data.Jw.topLeftCorner(b.rows, n1);
+      Jw.noalias() = (f * a).asDiagonal() * J1;
+      T.block(o1, o1, n1, n1).noalias() += Jw.transpose() * J1;
+      if (h2) T.block(o1, o2, n1, n2).noalias() += Jw.transpose() * J2;
+    }
+    if (h2) {
+      auto Jw = data.Jw.topLeftCorner(b.rows, n2);
+      Jw.noalias() = (f * a).asDiagonal() * J2;
+      T.block(o2, o2, n2, n2).noalias() += Jw.transpose() * J2;
+      if (h1) T.block(o2, o1, n2, n1).noalias() += Jw.transpose() * J1;
+    }
+  }
+}
+
+void penalty_weights(const Model& model, const Data& data, const MatrixXd& W, double factor, VectorXd& alpha) {
+  // One penalty for all rows, relative to the mean body mass. (A per-row penalty scaled to the
+  // tangent's stiffness along each row was tried: rows touching stiff modes then get penalties
+  // so large that the augmented multipliers swing and Newton needs more iterations, not fewer.)
+  (void)data;
+  (void)W;
+  alpha.setConstant(factor * model.mass);
+}
+
+}  // namespace ffr::runtime

@@ -1,0 +1,163 @@
+// Model bookkeeping: coordinate offsets, constraint blocks, scales and derived offsets.
+#include "ffr/runtime/model.hpp"
+
+#include "ffr/runtime/errors.hpp"
+#include "ffr/runtime/kinematics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ffr::runtime {
+
+const char* to_string(JointType t) {
+  switch (t) {
+    case JointType::Revolute: return "revolute";
+    case JointType::Spherical: return "spherical";
+    case JointType::Fixed: return "fixed";
+    case JointType::Prismatic: return "prismatic";
+    case JointType::Cylindrical: return "cylindrical";
+    case JointType::Universal: return "universal";
+  }
+  return "?";
+}
+
+int joint_rows(JointType t) {
+  switch (t) {
+    case JointType::Spherical: return 3;
+    case JointType::Revolute: return 5;
+    case JointType::Universal: return 4;
+    case JointType::Fixed: return 6;
+    case JointType::Cylindrical: return 4;
+    case JointType::Prismatic: return 5;
+  }
+  return 0;
+}
+
+int Model::find_body(const std::string& n) const {
+  if (n == "ground") return kGround;
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (bodies[i].name == n) return static_cast<int>(i);
+  return -2;
+}
+
+int Model::find_joint(const std::string& n) const {
+  for (std::size_t i = 0; i < joints.size(); ++i)
+    if (joints[i].name == n) return static_cast<int>(i);
+  return -1;
+}
+
+int Model::find_output(const std::string& n) const {
+  for (std::size_t i = 0; i < outputs.size(); ++i)
+    if (outputs[i].name == n) return static_cast<int>(i);
+  return -1;
+}
+
+namespace {
+
+// Mode slices of a node marker's axes: (psi y) x E_k = -skew(E_k) psi y.
+void set_axis_slices(Marker& mk) {
+  if (mk.body == kGround || mk.node < 0) return;
+  for (int k = 0; k < 3; ++k) {
+    const Vector3d e = mk.E.col(k);
+    mk.phiE[k].resize(3, mk.psi.cols());
+    for (Eigen::Index j = 0; j < mk.psi.cols(); ++j) mk.phiE[k].col(j) = Vector3d(mk.psi.col(j)).cross(e);
+  }
+}
+
+Marker slot_marker(const Body& b, int node) {
+  Marker m;
+  m.E = Matrix3d::Identity();
+  if (node < 0) return m;
+  const NodeSlice& n = b.nodes[node];
+  m.node = node;
+  m.c = n.origin;
+  m.phi = n.phi;
+  m.psi = n.psi;
+  return m;
+}
+
+}  // namespace
+
+void finalize(Model& m) {
+  // Coordinates.
+  int off = 0;
+  double gyration = 0, mass_sum = 0;
+  for (auto& b : m.bodies) {
+    b.offset = off;
+    off += b.ncoord();
+    const Matrix3d Jg = b.J0 - b.rdm * b.rdm.transpose() / b.mass;
+    gyration = std::max(gyration, std::sqrt(std::max(0.0, Jg.trace() / b.mass)));
+    mass_sum += b.mass;
+  }
+  m.ncoord = off;
+  m.length = gyration > 0 ? gyration : 1.0;
+  m.mass = m.bodies.empty() ? 1.0 : mass_sum / static_cast<double>(m.bodies.size());
+  for (auto& b : m.bodies) {
+    b.y_scale.resize(b.nq);
+    for (int k = 0; k < b.nq; ++k)
+      b.y_scale(k) = b.Myy(k, k) > 0 ? m.length * std::sqrt(b.mass / b.Myy(k, k)) : m.length;
+  }
+
+  // Markers on a node need their axes' mode slices.
+  for (auto& mk : m.markers) set_axis_slices(mk);
+
+  // Constraint blocks: rigid-body conditions, joints, motions.
+  m.blocks.clear();
+  int row = 0;
+  for (std::size_t i = 0; i < m.bodies.size(); ++i) {
+    m.blocks.push_back({BlockKind::RigidBody, static_cast<int>(i), row, 6, static_cast<int>(i), kGround});
+    row += 6;
+  }
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    Joint& jt = m.joints[j];
+    jt.block = static_cast<int>(m.blocks.size());
+    const int r = joint_rows(jt.type);
+    m.blocks.push_back({BlockKind::Joint, static_cast<int>(j), row, r, m.markers[jt.m1].body, m.markers[jt.m2].body});
+    row += r;
+    // Zero of the displacement coordinate: the initial offset along the axis.
+    jt.d0 = (initial_marker_position(m, m.markers[jt.m2]) - initial_marker_position(m, m.markers[jt.m1]))
+                .dot(initial_marker_axis(m, m.markers[jt.m1], 0));
+  }
+  for (std::size_t i = 0; i < m.motions.size(); ++i) {
+    Motion& mo = m.motions[i];
+    const Joint& jt = m.joints[mo.joint];
+    const bool angle_ok = jt.type == JointType::Revolute || jt.type == JointType::Cylindrical;
+    const bool disp_ok = jt.type == JointType::Prismatic || jt.type == JointType::Cylindrical;
+    if ((mo.coordinate == JointCoordinate::Angle && !angle_ok) || (mo.coordinate == JointCoordinate::Displacement && !disp_ok))
+      throw ModelError(m.source, "motions[" + std::to_string(i) + "]",
+                       std::string("a ") + to_string(jt.type) + " joint has no " +
+                           (mo.coordinate == JointCoordinate::Angle ? "angle" : "displacement") + " to prescribe");
+    mo.block = static_cast<int>(m.blocks.size());
+    m.blocks.push_back({BlockKind::Motion, static_cast<int>(i), row, 1, m.markers[jt.m1].body, m.markers[jt.m2].body});
+    row += 1;
+  }
+  m.nconstraints = row;
+
+  // Load slots for external inputs: the frame origin and every node of every body.
+  m.load_slots.assign(m.bodies.size(), {});
+  for (std::size_t i = 0; i < m.bodies.size(); ++i) {
+    const Body& b = m.bodies[i];
+    m.load_slots[i].push_back(slot_marker(b, -1));
+    for (std::size_t p = 0; p < b.nodes.size(); ++p) m.load_slots[i].push_back(slot_marker(b, static_cast<int>(p)));
+    for (auto& mk : m.load_slots[i]) {
+      mk.body = static_cast<int>(i);
+      set_axis_slices(mk);
+    }
+  }
+
+  // Bushings are unloaded in the initial configuration.
+  for (auto& bu : m.bushings) {
+    const Marker& a = m.markers[bu.m1];
+    const Marker& b = m.markers[bu.m2];
+    const Vector3d d = initial_marker_position(m, b) - initial_marker_position(m, a);
+    Vector3d e1[3], e2[3];
+    for (int k = 0; k < 3; ++k) {
+      e1[k] = initial_marker_axis(m, a, k);
+      e2[k] = initial_marker_axis(m, b, k);
+    }
+    bu.s0 << e1[0].dot(d), e1[1].dot(d), e1[2].dot(d), 0.5 * (e1[2].dot(e2[1]) - e1[1].dot(e2[2])),
+        0.5 * (e1[0].dot(e2[2]) - e1[2].dot(e2[0])), 0.5 * (e1[1].dot(e2[0]) - e1[0].dot(e2[1]));
+  }
+}
+
+}  // namespace ffr::runtime

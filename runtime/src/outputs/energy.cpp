@@ -1,0 +1,64 @@
+#include "ffr/runtime/energy.hpp"
+
+#include "ffr/runtime/dynamics.hpp"
+#include "ffr/runtime/kinematics.hpp"
+#include "../forces/forces.hpp"
+
+namespace ffr::runtime {
+
+Energy energy(const Model& model, Data& data) {
+  update_bodies(model, data);
+  mass_matrices(model, data);
+  update_markers(model, data);
+  Energy e;
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    const Body& b = model.bodies[i];
+    const BodyData& bd = data.bodies[i];
+    const auto zd = data.qd.segment(b.offset, b.ncoord());
+    e.kinetic += 0.5 * zd.dot(bd.M * zd);
+    const Vector3d r0 = data.q.segment<3>(b.offset);
+    e.potential -= model.gravity.dot(b.mass * r0 + bd.A * bd.md);
+    if (b.nq) {
+      const auto y = data.q.segment(b.offset + 12, b.nq);
+      e.potential += 0.5 * y.dot(b.Ke * y);
+    }
+  }
+  for (const SpringDamper& s : model.springs) e.potential += detail::spring_energy(model, s, data);
+  for (const Bushing& bu : model.bushings) e.potential += detail::bushing_energy(model, bu, data);
+  return e;
+}
+
+Vector3d linear_momentum(const Model& model, Data& data) {
+  update_bodies(model, data);
+  Vector3d p = Vector3d::Zero();
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    const Body& b = model.bodies[i];
+    const BodyData& bd = data.bodies[i];
+    p += b.mass * data.qd.segment<3>(b.offset) + bd.Ad * bd.md;
+    if (b.nq) p += bd.A * (b.Pdm * data.qd.segment(b.offset + 12, b.nq));
+  }
+  return p;
+}
+
+Vector3d angular_momentum(const Model& model, Data& data) {
+  update_bodies(model, data);
+  Vector3d H = Vector3d::Zero();
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    const Body& b = model.bodies[i];
+    const BodyData& bd = data.bodies[i];
+    const Vector3d r0 = data.q.segment<3>(b.offset), r0d = data.qd.segment<3>(b.offset);
+    Vector3d pb = bd.Ad * bd.md;  // momentum of the body relative to its origin's motion
+    if (b.nq) pb += bd.A * (b.Pdm * data.qd.segment(b.offset + 12, b.nq));
+    H += b.mass * r0.cross(r0d) + r0.cross(pb) + (bd.A * bd.md).cross(r0d);
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) H += bd.Jc(a, c) * Vector3d(bd.A.col(a)).cross(Vector3d(bd.Ad.col(c)));
+    if (b.nq) {
+      const auto yd = data.qd.segment(b.offset + 12, b.nq);
+      for (int a = 0; a < 3; ++a) H += Vector3d(bd.A.col(a)).cross(bd.A * (bd.S[a] * yd));
+      if (b.has_rotary_coupling) H += bd.A * (b.PsiI.transpose() * yd);
+    }
+  }
+  return H;
+}
+
+}  // namespace ffr::runtime

@@ -1,0 +1,70 @@
+#include "ffr/runtime/outputs.hpp"
+
+#include "ffr/runtime/constraints.hpp"
+#include "ffr/runtime/energy.hpp"
+#include "ffr/runtime/kinematics.hpp"
+
+#include <algorithm>
+
+namespace ffr::runtime {
+
+void evaluate_output(const Model& model, Data& data, const Output& o, double* out) {
+  switch (o.type) {
+    case OutputType::NodeDeformation: {
+      const Body& b = model.bodies[o.body];
+      const Vector3d u = b.nodes[o.node].phi * data.q.segment(b.offset + 12, b.nq);
+      for (int i = 0; i < 3; ++i) out[i] = u(i);
+      break;
+    }
+    case OutputType::NodePosition: {
+      const Body& b = model.bodies[o.body];
+      Vector3d x = o.point;
+      if (o.node >= 0) x = b.nodes[o.node].origin + b.nodes[o.node].phi * data.q.segment(b.offset + 12, b.nq);
+      Matrix3d A;
+      for (int a = 0; a < 3; ++a) A.col(a) = data.q.segment<3>(b.offset + 3 + 3 * a);
+      const Vector3d p = data.q.segment<3>(b.offset) + A * x;
+      for (int i = 0; i < 3; ++i) out[i] = p(i);
+      break;
+    }
+    case OutputType::ModalCoordinates: {
+      const Body& b = model.bodies[o.body];
+      for (int k = 0; k < b.nq; ++k) out[k] = data.q(b.offset + 12 + k);
+      break;
+    }
+    case OutputType::JointCoordinate:
+      update_bodies(model, data);
+      update_markers(model, data);
+      for (std::size_t i = 0; i < o.coords.size(); ++i) out[i] = joint_coordinate(model, data, o.joint, o.coords[i]);
+      break;
+    case OutputType::Energy: {
+      const Energy e = energy(model, data);
+      out[0] = e.kinetic;
+      out[1] = e.potential;
+      out[2] = e.total();
+      break;
+    }
+  }
+}
+
+Recorder::Recorder(const Model& model, std::int64_t max_rows) {
+  t_ = VectorXd::Zero(max_rows);
+  int widest = 0;
+  for (const Output& o : model.outputs) {
+    v_.push_back(MatrixXd::Zero(max_rows, o.size));
+    widest = std::max(widest, o.size);
+  }
+  row_ = VectorXd::Zero(widest);
+}
+
+void Recorder::record(const Model& model, Data& data) {
+  if (rows_ >= t_.size()) return;
+  t_(rows_) = data.t;
+  for (std::size_t i = 0; i < model.outputs.size(); ++i) {
+    // Rows of a column-major matrix are strided: evaluate into a contiguous buffer first.
+    evaluate_output(model, data, model.outputs[i], row_.data());
+    v_[i].row(rows_) = row_.head(model.outputs[i].size).transpose();
+  }
+  ++rows_;
+}
+
+}  // namespace ffr::runtime

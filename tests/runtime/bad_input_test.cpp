@@ -1,0 +1,144 @@
+// Bad model inputs: each is refused with a ModelError whose message names the file and the
+// offending field (or the SID file and dataset), never a crash or a half-built model.
+#include "support.hpp"
+#include "synthetic_bodies.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+using namespace ffr::runtime;
+
+namespace {
+
+const char* kRigid = R"({"name": "bar", "type": "rigid", "mass": 1.0, "com": [0.5, 0, 0],
+  "inertia": [[1e-3, 0, 0], [0, 0.08, 0], [0, 0, 0.08]]})";
+
+std::string model(const std::string& bodies, const std::string& rest = "") {
+  return R"({"gravity": [0, 0, -9.81], "bodies": [)" + bodies + "]" + (rest.empty() ? "" : ", " + rest) +
+         R"(, "solver": {"end": 1, "step": 0.001}})";
+}
+
+// The message of the ModelError thrown while parsing `json` (in dir), or "" if none.
+std::string error_of(const std::string& json, const std::filesystem::path& dir = {}) {
+  try {
+    test::model_from(json, dir);
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void expect_error(const std::string& json, const std::string& field, const std::string& what,
+                  const std::filesystem::path& dir = {}) {
+  const std::string msg = error_of(json, dir);
+  EXPECT_NE(msg.find("test-model.json"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(field), std::string::npos) << "field '" << field << "' not in: " << msg;
+  EXPECT_NE(msg.find(what), std::string::npos) << "'" << what << "' not in: " << msg;
+}
+
+}  // namespace
+
+TEST(BadInput, MalformedJson) { expect_error(R"({"bodies": [)", "", "malformed JSON"); }
+
+TEST(BadInput, UnknownBodyInJoint) {
+  expect_error(model(kRigid, R"("joints": [{"name": "j", "type": "revolute", "body1": "ground", "body2": "nope", "at": [0,0,0], "axis": [0,0,1]}])"),
+               "joints[0].body2", "unknown body 'nope'");
+}
+
+TEST(BadInput, NonFiniteNumber) {
+  // JSON has no NaN or infinity; an overflowing literal is caught while parsing.
+  expect_error(model(R"({"name": "bar", "type": "rigid", "mass": 1e999, "inertia": [[1,0,0],[0,1,0],[0,0,1]]})"),
+               "1e999", "not a finite number");
+}
+
+TEST(BadInput, NegativeMass) {
+  expect_error(model(R"({"name": "bar", "type": "rigid", "mass": -1, "inertia": [[1,0,0],[0,1,0],[0,0,1]]})"),
+               "bodies[0].mass", "must be positive");
+}
+
+TEST(BadInput, TypoInKey) {
+  expect_error(model(kRigid, R"("joints": [{"name": "j", "type": "revolute", "body1": "ground", "body2": "bar", "at": [0,0,0], "axsi": [0,0,1]}])"),
+               "joints[0].axsi", "unknown key");
+}
+
+TEST(BadInput, ImpossibleInertia) {
+  expect_error(model(R"({"name": "bar", "type": "rigid", "mass": 1, "inertia": [[1,0,0],[0,1,0],[0,0,3]]})"),
+               "bodies[0].inertia", "triangle inequality");
+}
+
+TEST(BadInput, NotARotation) {
+  expect_error(model(R"({"name": "bar", "type": "rigid", "mass": 1, "inertia": [[1,0,0],[0,1,0],[0,0,1]], "orientation": [[1,0,0],[0,2,0],[0,0,1]]})"),
+               "bodies[0].orientation", "rotation matrix");
+}
+
+TEST(BadInput, MotionOnSphericalJoint) {
+  expect_error(model(kRigid, R"("joints": [{"name": "j", "type": "spherical", "body1": "ground", "body2": "bar", "at": [0,0,0]}],
+      "motions": [{"joint": "j", "table": {"t": [0, 1], "value": [0, 1]}}])"),
+               "motions[0].joint", "no joint coordinate");
+}
+
+TEST(BadInput, TableTimesNotIncreasing) {
+  expect_error(model(kRigid, R"("joints": [{"name": "j", "type": "revolute", "body1": "ground", "body2": "bar", "at": [0,0,0], "axis": [0,0,1]}],
+      "motions": [{"joint": "j", "table": {"t": [0, 1, 1], "value": [0, 1, 2]}}])"),
+               "motions[0].table.t", "strictly increasing");
+}
+
+TEST(BadInput, DuplicateBodyName) { expect_error(model(std::string(kRigid) + ", " + kRigid), "bodies[1].name", "duplicate"); }
+
+TEST(BadInput, UniversalAxesNotPerpendicular) {
+  expect_error(model(kRigid, R"("joints": [{"name": "j", "type": "universal", "body1": "ground", "body2": "bar", "at": [0,0,0], "axis1": [1,0,0], "axis2": [1,1,0]}])"),
+               "joints[0].axis2", "perpendicular");
+}
+
+TEST(BadInput, StepNotDividingTheRun) {
+  const std::string json = R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"end": 1, "step": 0.3}})";
+  expect_error(json, "solver.step", "whole number of steps");
+}
+
+TEST(BadInput, UnknownOutputType) {
+  expect_error(model(kRigid, R"("outputs": [{"name": "x", "type": "stress"}])"), "outputs[0].type", "unknown output type");
+}
+
+TEST(BadInput, MissingSidFile) {
+  test::TempDir dir("bad");
+  const std::string msg = error_of(model(R"({"name": "rod", "type": "flexible", "sid": "nope.sid.h5"})"), dir.path);
+  EXPECT_NE(msg.find("nope.sid.h5"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("no such file"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("bodies[0].sid"), std::string::npos) << msg;
+}
+
+TEST(BadInput, SidThatIsNotHdf5) {
+  test::TempDir dir("bad");
+  test::write_text(dir / "junk.sid.h5", "this is not an HDF5 file");
+  const std::string msg = error_of(model(R"({"name": "rod", "type": "flexible", "sid": "junk.sid.h5"})"), dir.path);
+  EXPECT_NE(msg.find("junk.sid.h5"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("not an HDF5 file"), std::string::npos) << msg;
+}
+
+TEST(BadInput, UnknownNodeOfFlexibleBody) {
+  test::TempDir dir("bad");
+  test::write_sid_file(test::lumpy_body(), dir / "b.sid.h5");
+  const std::string msg = error_of(
+      model(R"({"name": "rod", "type": "flexible", "sid": "b.sid.h5"})",
+            R"("joints": [{"name": "j", "type": "spherical", "body1": "ground", "body2": "rod", "node2": "Z"}])"),
+      dir.path);
+  EXPECT_NE(msg.find("joints[0].node2"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("has no node 'Z' (nodes: A, B, C)"), std::string::npos) << msg;
+}
+
+TEST(BadInput, ModalCoordinatesOfWrongLength) {
+  test::TempDir dir("bad");
+  test::write_sid_file(test::lumpy_body(), dir / "b.sid.h5");
+  expect_error(model(R"({"name": "rod", "type": "flexible", "sid": "b.sid.h5", "modal_coordinates": [1, 2]})"),
+               "bodies[0].modal_coordinates", "expected 3 numbers", dir.path);
+}
+
+TEST(BadInput, MissingModelFile) {
+  try {
+    load_model("/nonexistent/model.json");
+    FAIL() << "no error";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/model.json: no such file"), std::string::npos) << e.what();
+  }
+}

@@ -1,0 +1,104 @@
+// ffr-sim as a user runs it: exit status 0 / 2 (bad input) / 1 (other failure), one-line
+// messages naming the file and field, the results file with the contract's datasets and
+// attributes, the CSV header, and no output file left behind on failure.
+#include "ffr/formats/h5.hpp"
+#include "support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sys/wait.h>
+
+namespace {
+
+const std::string kSim = std::string(FFR_BINARY_DIR) + "/bin/ffr-sim";
+
+struct Result {
+  int status;
+  std::string output;  // stdout and stderr
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = kSim + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 512> buf{};
+  while (fgets(buf.data(), buf.size(), p)) out += buf.data();
+  const int st = pclose(p);
+  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+const char* kPendulum = R"({
+  "gravity": [0, 0, -9.81],
+  "bodies": [{"name": "bar", "type": "rigid", "mass": 1.0, "com": [0.5, 0, 0],
+              "inertia": [[1e-4, 0, 0], [0, 0.0834, 0], [0, 0, 0.0834]]}],
+  "joints": [{"name": "hinge", "type": "revolute", "body1": "ground", "body2": "bar", "at": [0, 0, 0], "axis": [0, 1, 0]}],
+  "solver": {"end": 0.1, "step": 0.001%s},
+  "outputs": [{"name": "angle", "type": "joint_coordinate", "joint": "hinge"}, {"name": "energy", "type": "energy"}]
+})";
+
+std::string pendulum(const std::string& extra = "") {
+  char buf[2048];
+  std::snprintf(buf, sizeof buf, kPendulum, extra.c_str());
+  return buf;
+}
+
+}  // namespace
+
+TEST(Cli, HelpAndVersion) {
+  const Result h = run("--help");
+  EXPECT_EQ(h.status, 0);
+  EXPECT_NE(h.output.find("usage: ffr-sim MODEL.json -o OUT.h5"), std::string::npos) << h.output;
+  const Result v = run("--version");
+  EXPECT_EQ(v.status, 0);
+  EXPECT_NE(v.output.find("ffr-sim"), std::string::npos) << v.output;
+}
+
+TEST(Cli, RunWritesResultsAndCsv) {
+  ffr::runtime::test::TempDir dir("cli");
+  ffr::runtime::test::write_text(dir / "m.json", pendulum());
+  const Result r = run((dir / "m.json").string() + " -o " + (dir / "out.h5").string() + " --csv " + (dir / "out.csv").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  ffr::formats::h5::Reader h5(dir / "out.h5");
+  EXPECT_EQ(h5.shape("/time"), (ffr::formats::h5::Shape{101}));
+  EXPECT_EQ(h5.shape("/outputs/angle"), (ffr::formats::h5::Shape{101, 1}));
+  EXPECT_EQ(h5.shape("/outputs/energy"), (ffr::formats::h5::Shape{101, 3}));
+  EXPECT_EQ(h5.attr_int("/", "steps"), 100);
+  EXPECT_GE(h5.attr_int("/", "newton_iterations"), 100);
+  EXPECT_GT(h5.attr_double("/", "integration_seconds"), 0.0);
+  std::ifstream csv(dir / "out.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "time,angle[0],energy[0],energy[1],energy[2]");
+}
+
+TEST(Cli, BadInputIsExitTwoWithFileAndField) {
+  ffr::runtime::test::TempDir dir("cli");
+  ffr::runtime::test::write_text(dir / "m.json", pendulum(R"(, "tolerance": -1)"));
+  const Result r = run((dir / "m.json").string() + " -o " + (dir / "out.h5").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("m.json: solver.tolerance: must be positive"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
+
+  ffr::runtime::test::write_text(dir / "broken.json", "{\"bodies\": [");
+  EXPECT_EQ(run((dir / "broken.json").string() + " -o " + (dir / "out.h5").string()).status, 2);
+  EXPECT_EQ(run((dir / "missing.json").string() + " -o " + (dir / "out.h5").string()).status, 2);
+  EXPECT_EQ(run((dir / "m.json").string()).status, 2);  // no -o
+  EXPECT_EQ(run("--bogus").status, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
+}
+
+TEST(Cli, NewtonFailureIsExitOneWithTimeAndResidual) {
+  ffr::runtime::test::TempDir dir("cli");
+  // One Newton iteration cannot reach the tolerance: the solver must give up cleanly.
+  ffr::runtime::test::write_text(dir / "m.json", pendulum(R"(, "max_iterations": 1, "tolerance": 1e-15)"));
+  const Result r = run((dir / "m.json").string() + " -o " + (dir / "out.h5").string() + " --csv " + (dir / "out.csv").string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("Newton did not converge at t = 0.001 s"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("scaled increment"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
+}

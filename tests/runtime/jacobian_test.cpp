@@ -1,0 +1,198 @@
+// Analytic Jacobians against central finite differences: constraint Jacobian and acceleration
+// bias (Phi_dd = Phi_q q_dd + gamma, Phi_d = Phi_q q_d + Phi_t), and the force tangents
+// K = -dQ/dq, C = -dQ/dq_d, for every joint type, motion type and force element, on a flexible
+// body with node rotations and rotary inertia and on a rigid body, at a generic state (off the
+// constraint manifold on purpose: the derivatives must hold everywhere).
+#include "support.hpp"
+#include "synthetic_bodies.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <random>
+
+using namespace ffr::runtime;
+
+namespace {
+
+std::string model_json() {
+  return R"({
+  "gravity": [0.3, -1.0, -9.81],
+  "bodies": [
+    {"name": "flex", "type": "flexible", "sid": "lumpy.sid.h5", "position": [0.1, 0.2, 0.3],
+     "orientation": [[0.36, 0.48, -0.8], [-0.8, 0.6, 0], [0.48, 0.64, 0.6]],
+     "modal_coordinates": [0.01, -0.02, 0.015]},
+    {"name": "link", "type": "rigid", "mass": 2.0, "com": [0.5, 0.1, 0.2],
+     "inertia": [[0.02, 0.001, 0], [0.001, 0.03, 0.002], [0, 0.002, 0.025]], "position": [0.4, 0, 0.1]}
+  ],
+  "joints": [
+    {"name": "j_rev", "type": "revolute", "body1": "ground", "body2": "flex", "node2": "A", "axis": [0, 0.6, 0.8]},
+    {"name": "j_sph", "type": "spherical", "body1": "flex", "body2": "link", "node1": "B"},
+    {"name": "j_uni", "type": "universal", "body1": "link", "body2": "ground", "at": [0.7, 0.1, 0.2], "axis1": [1, 0, 0], "axis2": [0, 0, 1]},
+    {"name": "j_cyl", "type": "cylindrical", "body1": "flex", "body2": "link", "node1": "C", "axis": [0.2, 1, 0.1]},
+    {"name": "j_pri", "type": "prismatic", "body1": "link", "body2": "ground", "at": [0.5, 0.2, 0.0], "axis": [1, 1, 0]},
+    {"name": "j_fix", "type": "fixed", "body1": "ground", "body2": "flex", "at": [0.3, 0.3, 0.3], "axis": [0, 0, 1]},
+    {"name": "j_rev2", "type": "revolute", "body1": "flex", "body2": "link", "node1": "C", "axis": [1, 0, 0]}
+  ],
+  "motions": [
+    {"joint": "j_rev", "table": {"t": [0, 0.5, 1, 2], "value": [0, 0.3, 0.2, 1.0]}},
+    {"joint": "j_pri", "table": {"t": [0, 1, 2], "value": [0, 0.1, -0.2]}},
+    {"joint": "j_cyl", "coordinate": "displacement", "table": {"t": [0, 1, 2], "value": [0, 0.05, 0.02]}}
+  ],
+  "forces": [
+    {"type": "spring_damper", "body1": "ground", "at1": [0, 0, 1], "body2": "flex", "node2": "B", "k": 300, "c": 4, "length0": 0.7},
+    {"type": "spring_damper", "body1": "link", "at1": [0.6, 0, 0.1], "body2": "flex", "k": 100, "c": 2},
+    {"type": "bushing", "body1": "flex", "node1": "C", "body2": "link", "stiffness": [100, 200, 300, 4, 5, 6], "damping": [1, 2, 3, 0.1, 0.2, 0.3]},
+    {"type": "bushing", "body1": "ground", "at": [0.2, 0.1, 0], "body2": "link", "axes": [[0, 1, 0], [0, 0, 1], [1, 0, 0]], "stiffness": [10, 20, 30, 1, 2, 3], "damping": [1, 1, 1, 0.1, 0.1, 0.1]},
+    {"type": "point_force", "body": "flex", "node": "B", "table": {"t": [0, 1], "value": [[1, 2, 3], [2, 0, -1]]}},
+    {"type": "point_torque", "body": "flex", "node": "C", "table": {"t": [0, 1], "value": [[0.1, -0.2, 0.3], [0, 0, 0]]}},
+    {"type": "point_force", "body": "link", "at": [0.5, 0.1, 0.1], "table": {"t": [0, 1], "value": [[0, 0, -5], [0, 0, -5]]}},
+    {"type": "point_torque", "body": "link", "table": {"t": [0, 1], "value": [[0.5, 0, 0], [0.5, 0, 0]]}}
+  ],
+  "solver": {"end": 1.0, "step": 1e-3}
+})";
+}
+
+struct Fixture : ::testing::Test {
+  test::TempDir dir{"jac"};
+  Model model;
+  std::unique_ptr<Data> data;
+  VectorXd q, qd, qdd;
+  double t = 0.37;
+
+  void SetUp() override {
+    test::write_sid_file(test::lumpy_body(3), dir / "lumpy.sid.h5");
+    model = test::model_from(model_json(), dir.path);
+    data = std::make_unique<Data>(model);
+    // External loads on a node and a frame origin too.
+    data->ext_active[0][2] = 1;
+    data->ext_force[0].col(2) = Eigen::Vector3d(0.5, -1, 2);
+    data->ext_torque[0].col(2) = Eigen::Vector3d(0.1, 0.2, -0.3);
+    data->ext_active[1][0] = 1;
+    data->ext_torque[1].col(0) = Eigen::Vector3d(-0.2, 0.1, 0.4);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1, 1);
+    q = data->q;
+    qd = data->qd;
+    for (Eigen::Index i = 0; i < q.size(); ++i) {
+      q(i) += 0.05 * u(rng);
+      qd(i) = u(rng);
+    }
+    qdd = VectorXd::NullaryExpr(q.size(), [&](Eigen::Index) { return u(rng); });
+  }
+
+  void set(const VectorXd& a, const VectorXd& b, const VectorXd& c) {
+    data->q = a;
+    data->qd = b;
+    data->qdd = c;
+    update_bodies(model, *data);
+    update_markers(model, *data);
+  }
+  VectorXd constraints(const VectorXd& a, double time) {
+    set(a, qd, qdd);
+    evaluate_constraints(model, *data, time);
+    return data->Phi;
+  }
+  VectorXd forces(const VectorXd& a, const VectorXd& b) {
+    set(a, b, qdd);
+    generalized_forces(model, *data, t);
+    return data->Q;
+  }
+  // Dense Phi_q from the blocks.
+  MatrixXd jacobian() {
+    MatrixXd J = MatrixXd::Zero(model.nconstraints, model.ncoord);
+    for (std::size_t b = 0; b < model.blocks.size(); ++b) {
+      const auto& blk = model.blocks[b];
+      if (blk.body1 != kGround)
+        J.block(blk.row0, model.bodies[blk.body1].offset, blk.rows, data->J1[b].cols()) += data->J1[b];
+      if (blk.body2 != kGround)
+        J.block(blk.row0, model.bodies[blk.body2].offset, blk.rows, data->J2[b].cols()) += data->J2[b];
+    }
+    return J;
+  }
+};
+
+double rel_err(const MatrixXd& a, const MatrixXd& b) { return (a - b).cwiseAbs().maxCoeff() / std::max(1.0, b.cwiseAbs().maxCoeff()); }
+
+}  // namespace
+
+TEST_F(Fixture, ConstraintJacobianMatchesFiniteDifferences) {
+  set(q, qd, qdd);
+  evaluate_constraints(model, *data, t);
+  const MatrixXd J = jacobian();
+  MatrixXd Jfd(J.rows(), J.cols());
+  const double eps = 1e-6;
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
+    VectorXd a = q, b = q;
+    a(i) += eps;
+    b(i) -= eps;
+    Jfd.col(i) = (constraints(a, t) - constraints(b, t)) / (2 * eps);
+  }
+  std::printf("constraint Jacobian: relative error %.2e (%ld x %ld)\n", rel_err(J, Jfd), (long)J.rows(), (long)J.cols());
+  EXPECT_LT(rel_err(J, Jfd), 1e-7);
+}
+
+TEST_F(Fixture, AccelerationBiasAndTimeDerivativesMatchFiniteDifferences) {
+  // Along the path q(s) = q + s qd + s^2/2 qdd at time t + s.
+  set(q, qd, qdd);
+  evaluate_constraints(model, *data, t);
+  const MatrixXd J = jacobian();
+  const VectorXd Phit = data->Phit, gamma = data->gamma;
+  const double eps = 1e-4;
+  auto path = [&](double s) { return constraints(q + s * qd + 0.5 * s * s * qdd, t + s); };
+  const VectorXd p0 = path(0), pp = path(eps), pm = path(-eps);
+  const VectorXd d1 = (pp - pm) / (2 * eps), d2 = (pp - 2 * p0 + pm) / (eps * eps);
+  std::printf("Phi_dot: %.2e, Phi_ddot: %.2e\n", rel_err(J * qd + Phit, d1), rel_err(J * qdd + gamma, d2));
+  EXPECT_LT(rel_err(J * qd + Phit, d1), 1e-7);
+  EXPECT_LT(rel_err(J * qdd + gamma, d2), 1e-5);  // second differences: eps^2 and round-off
+}
+
+TEST_F(Fixture, ForceTangentsMatchFiniteDifferences) {
+  set(q, qd, qdd);
+  generalized_forces(model, *data, t);
+  force_tangents(model, *data, t);
+  const MatrixXd K = data->K, C = data->C;
+  MatrixXd Kfd(K.rows(), K.cols()), Cfd(C.rows(), C.cols());
+  const double eps = 1e-6;
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
+    VectorXd a = q, b = q;
+    a(i) += eps;
+    b(i) -= eps;
+    Kfd.col(i) = -(forces(a, qd) - forces(b, qd)) / (2 * eps);
+    a = qd;
+    b = qd;
+    a(i) += eps;
+    b(i) -= eps;
+    Cfd.col(i) = -(forces(q, a) - forces(q, b)) / (2 * eps);
+  }
+  std::printf("K: %.2e (max |K| %.2e), C: %.2e (max |C| %.2e)\n", rel_err(K, Kfd), K.cwiseAbs().maxCoeff(), rel_err(C, Cfd), C.cwiseAbs().maxCoeff());
+  EXPECT_LT(rel_err(K, Kfd), 1e-6) << "worst K entry off by " << (K - Kfd).cwiseAbs().maxCoeff();
+  EXPECT_LT(rel_err(C, Cfd), 1e-6) << "worst C entry off by " << (C - Cfd).cwiseAbs().maxCoeff();
+}
+
+TEST_F(Fixture, ConstraintHessianMatchesFiniteDifferences) {
+  // d(Phi_q^T lambda)/dq for fixed lambda against central differences.
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const VectorXd lam = VectorXd::NullaryExpr(model.nconstraints, [&](Eigen::Index) { return 10 * u(rng); });
+  auto force = [&](const VectorXd& a) {
+    constraints(a, t);
+    VectorXd g = VectorXd::Zero(model.ncoord);
+    add_constraint_forces(model, *data, lam, g);
+    return g;
+  };
+  set(q, qd, qdd);
+  evaluate_constraints(model, *data, t);
+  MatrixXd H = MatrixXd::Zero(model.ncoord, model.ncoord);
+  add_constraint_hessian(model, *data, lam, 1.0, H);
+  MatrixXd Hfd(H.rows(), H.cols());
+  const double eps = 1e-6;
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
+    VectorXd a = q, b = q;
+    a(i) += eps;
+    b(i) -= eps;
+    Hfd.col(i) = (force(a) - force(b)) / (2 * eps);
+  }
+  std::printf("constraint Hessian: %.2e (max %.2e)\n", rel_err(H, Hfd), H.cwiseAbs().maxCoeff());
+  EXPECT_LT(rel_err(H, Hfd), 1e-6);
+}

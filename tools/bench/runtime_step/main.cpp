@@ -1,0 +1,96 @@
+// ffr-bench-runtime-step: the runtime's cost per time step.
+//
+//  1. Flexible slider-crank, rod with 10 modes (11-point free-free chain), h = 1 ms: per-step
+//     wall time (best of several runs of the whole time loop, so shared-core noise is excluded),
+//     Newton iterations and factorisations per step. Target: <= 25 us per step.
+//  2. The same model with rods of growing point count (11 ... 20001 points) and the same 10
+//     modes: the per-step time must not depend on the mesh (largest / smallest <= 1.05).
+#include "models.hpp"
+
+#include "ffr/formats/sid_io.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <cstdlib>
+#include <vector>
+
+using namespace ffr::runtime;
+
+namespace {
+
+bool g_no_reuse = false;
+
+struct Timing {
+  double us_per_step;
+  double iterations_per_step;
+  double factorizations_per_step;
+};
+
+Timing time_model(const Model& model, int repeats) {
+  double best = 1e300, iters = 0, facts = 0;
+  const auto n = step_count(model);
+  for (int r = 0; r < repeats; ++r) {
+    Data data(model);
+    initialize(model, data);
+    const auto t0 = std::chrono::steady_clock::now();
+    for (std::int64_t i = 0; i < n; ++i) step(model, data);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    best = std::min(best, s);
+    iters = static_cast<double>(data.stats.newton_iterations) / static_cast<double>(n);
+    facts = static_cast<double>(data.stats.factorizations) / static_cast<double>(n);
+  }
+  return {1e6 * best / static_cast<double>(n), iters, facts};
+}
+
+Model slider_crank(const std::filesystem::path& dir, int points, int modes, double h, double end) {
+  auto chain = ffr::formats::synthetic::spring_chain(bench::rod_params(points, modes));
+  bench::add_section_inertia(chain.sid, 0.008, 0.008);
+  const std::string name = "rod_" + std::to_string(points) + ".sid.h5";
+  ffr::formats::write_sid(chain.sid, dir / name);
+  Model m = parse_model(bench::slider_crank_json(name, h, end, 150.0), dir, "slider_crank.json");
+  if (g_no_reuse) m.settings.reuse_jacobian = false;
+  if (const char* pen = std::getenv("FFR_PENALTY")) m.settings.penalty = std::atof(pen);
+  return m;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool quick = false, no_reuse = false;
+  for (int i = 1; i < argc; ++i) {
+    quick = quick || std::strcmp(argv[i], "--quick") == 0;
+    no_reuse = no_reuse || std::strcmp(argv[i], "--no-reuse") == 0;
+  }
+  g_no_reuse = no_reuse;
+  const auto dir = bench::temp_dir("step");
+  const int repeats = quick ? 2 : 7;
+  const double end = quick ? 0.2 : 1.0;
+
+  std::printf("# 1. flexible slider-crank, 10 modes, h = 1 ms (best of %d runs of %g s)\n", repeats, end);
+  const Model sc = slider_crank(dir, 11, 10, 1e-3, end);
+  const Timing t = time_model(sc, repeats);
+  std::printf("coordinates %d, constraint rows %d\n", sc.ncoord, sc.nconstraints);
+  std::printf("per step %.2f us  (Newton iterations %.2f, factorisations %.2f per step)  target <= 25 us: %s\n",
+              t.us_per_step, t.iterations_per_step, t.factorizations_per_step, t.us_per_step <= 25 ? "met" : "NOT met");
+
+  std::printf("\n# 2. per-step time vs mesh size (10 modes each; rounds interleaved, best of each)\n");
+  std::vector<int> sizes = quick ? std::vector<int>{11, 201, 2001} : std::vector<int>{11, 101, 1001, 5001, 20001};
+  std::vector<Model> models;
+  for (int points : sizes) models.push_back(slider_crank(dir, points, 10, 1e-3, end));
+  std::vector<double> best(sizes.size(), 1e300);
+  // The machine is shared: interleave the sizes over several rounds so that a busy moment hits
+  // every size alike, and keep each size's best round.
+  for (int round = 0; round < repeats; ++round)
+    for (std::size_t i = 0; i < sizes.size(); ++i) best[i] = std::min(best[i], time_model(models[i], 1).us_per_step);
+  std::printf("%10s %14s %12s\n", "points", "us/step", "ratio");
+  double worst = 0;
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    worst = std::max(worst, best[i] / best[0]);
+    std::printf("%10d %14.2f %12.3f\n", sizes[i], best[i], best[i] / best[0]);
+  }
+  std::printf("largest / smallest %.3f (required <= 1.05): %s\n", worst, worst <= 1.05 ? "met" : "NOT met");
+  std::filesystem::remove_all(dir);
+  return 0;
+}
