@@ -117,6 +117,39 @@ TEST(Cli, InfoSummarisesAResultsFile) {
   EXPECT_EQ(js["outputs"][1]["name"], "tip");  // sorted by name
   EXPECT_DOUBLE_EQ(js["outputs"][1]["final"][2].get<double>(), r.outputs[0].values(10, 2));
   EXPECT_EQ(run("ffr-info", f.string()).rc, 0);
+  // Ranges per component.
+  EXPECT_DOUBLE_EQ(js["outputs"][1]["min"][0].get<double>(), r.outputs[0].values.col(0).minCoeff());
+  EXPECT_DOUBLE_EQ(js["outputs"][1]["max"][1].get<double>(), r.outputs[0].values.col(1).maxCoeff());
+}
+
+TEST(Cli, InfoPlotsTimeHistoriesAndRefusesUnknownChannels) {
+  Results r;
+  r.time = Eigen::VectorXd::LinSpaced(21, 0.0, 2.0);
+  r.outputs.push_back({"tip", "node_deformation", Eigen::MatrixXd::Random(21, 3)});
+  r.outputs.push_back({"angle", "joint_coordinate", Eigen::MatrixXd::Constant(21, 1, 0.5)});  // flat: no range
+  const auto f = dir() / "plot_run.h5";
+  write_results(r, f);
+  const auto png = dir() / "histories.png";
+  const Outcome ok = run("ffr-info", f.string() + " --plot tip,angle,tip[2] --png " + png.string());
+  ASSERT_EQ(ok.rc, 0) << ok.err;
+  const std::string bytes = slurp(png);
+  ASSERT_GT(bytes.size(), 33u);
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  const auto u32 = [&](int at) {
+    unsigned v = 0;
+    for (int i = 0; i < 4; ++i) v = v * 256 + static_cast<unsigned char>(bytes[at + i]);
+    return v;
+  };
+  EXPECT_EQ(u32(16), 900u);      // width
+  EXPECT_EQ(u32(20), 3 * 360u);  // one 360-pixel panel per channel
+  const auto bad = dir() / "bad.png";
+  const Outcome unknown = run("ffr-info", f.string() + " --plot tip,speed --png " + bad.string());
+  EXPECT_EQ(unknown.rc, 2);
+  EXPECT_NE(unknown.err.find(f.string() + ": no output channel 'speed'"), std::string::npos) << unknown.err;
+  EXPECT_EQ(run("ffr-info", f.string() + " --plot tip[3] --png " + bad.string()).rc, 2);
+  EXPECT_EQ(run("ffr-info", f.string() + " --plot tip[x] --png " + bad.string()).rc, 2);
+  EXPECT_EQ(run("ffr-info", f.string() + " --plot tip").rc, 2);  // no --png
+  EXPECT_FALSE(fs::exists(bad));
 }
 
 TEST(Cli, InfoRefusesBadInputWithExitCode2) {

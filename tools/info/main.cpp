@@ -20,12 +20,14 @@ an ffr-sim results file (time span, statistics, output channels with their final
   --campbell x|y|z        frequencies [Hz] of the body spinning about that axis through O,
   --speeds W1,W2,...      at these speeds [rad/s] (needs --campbell)
   --png OUT.png           with --campbell: also draw the diagram into OUT.png
+  --plot CH1,CH2[i],...   of an ffr-sim results file: draw the time histories of these output
+                          channels (all components, or component i from 0) into --png OUT.png
   --help, --version
 
 Exit status: 0 ok, 2 bad input (named on stderr), 1 other failure. A readable SID that
 fails some identity checks is summarised with the failures listed (status 0).
 )",
-    "ffr-info FILE.h5 [--json] | ffr-info FILE.sid.h5 --campbell x|y|z --speeds 0,50,100 [--json] [--png OUT.png]"};
+    "ffr-info FILE.h5 [--json] | ffr-info FILE.sid.h5 --campbell x|y|z --speeds 0,50,100 [--json] [--png OUT.png] | ffr-info RESULTS.h5 --plot CH1,CH2 --png OUT.png"};
 
 int run(ffr::cli::Args& a) {
   using ffr::cli::UsageError;
@@ -33,8 +35,13 @@ int run(ffr::cli::Args& a) {
   const auto campbell = a.option("--campbell");
   const auto speeds = a.option("--speeds");
   const auto png = a.option("--png");
+  const auto plot = a.option("--plot");
   const auto files = a.positionals();
   if (files.size() != 1) throw UsageError(files.empty() ? "missing FILE" : "expected one FILE, got " + std::to_string(files.size()));
+  if (plot) {
+    if (campbell || speeds) throw UsageError("--plot and --campbell do not go together");
+    return ffr::info::run_plot(files[0], *plot, png.value_or(""));
+  }
   if (campbell || speeds || png) {
     if (!campbell) throw UsageError("--speeds and --png need --campbell x|y|z");
     if (!speeds) throw UsageError("--campbell needs --speeds W1,W2,...");

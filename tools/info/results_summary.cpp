@@ -7,10 +7,15 @@ nlohmann::json summarize_results(const formats::Results& r, const std::string& f
   using nlohmann::json;
   json outputs = json::array();
   for (const auto& o : r.outputs) {
-    json last = json::array();
+    json last = json::array(), lo = json::array(), hi = json::array();
     if (o.values.rows() > 0)
-      for (Eigen::Index c = 0; c < o.values.cols(); ++c) last.push_back(o.values(o.values.rows() - 1, c));
-    outputs.push_back({{"name", o.name}, {"type", o.type}, {"shape", {o.values.rows(), o.values.cols()}}, {"final", last}});
+      for (Eigen::Index c = 0; c < o.values.cols(); ++c) {
+        last.push_back(o.values(o.values.rows() - 1, c));
+        lo.push_back(o.values.col(c).minCoeff());
+        hi.push_back(o.values.col(c).maxCoeff());
+      }
+    outputs.push_back({{"name", o.name}, {"type", o.type}, {"shape", {o.values.rows(), o.values.cols()}},
+                       {"final", last}, {"min", lo}, {"max", hi}});
   }
   const auto nt = r.time.size();
   return {{"file", file},

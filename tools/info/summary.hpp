@@ -21,4 +21,7 @@ std::string render_text(const nlohmann::json& summary);
 int run_campbell(const std::filesystem::path& file, const std::string& axis, const std::string& speeds, bool json,
                  const std::string& png);
 
+/// `ffr-info RESULTS.h5 --plot CH1,CH2[i],... --png OUT`: time histories, one panel per channel.
+int run_plot(const std::filesystem::path& file, const std::string& channels, const std::string& png);
+
 }  // namespace ffr::info

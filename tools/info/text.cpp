@@ -104,7 +104,9 @@ void results_text(std::ostringstream& o, const json& r) {
       t += ' ';
       t += c["type"].get<std::string>();
     }
-    line(o, "", t + "  final " + row(c["final"]));
+    line(o, "", t);
+    line(o, "", "  final " + row(c["final"]));
+    if (c.contains("min")) line(o, "", "  range " + row(c["min"]) + " .. " + row(c["max"]));
   }
 }
 

@@ -22,7 +22,7 @@ constexpr int kMaxAssembly = 200;
 
 // How much dearer a change of the modal coordinates is than a change of the frame coordinates
 // in the first attempt of the initial projections (see rigid_first below).
-constexpr double kElasticWeight = 1e6;
+constexpr double kElasticWeight = 1e12;
 
 // W = the block-diagonal mass matrix, plus elastic_weight times the diagonal of each flexible
 // body's modal block; the rows' penalties data.alpha = alpha_factor times W along each row,
