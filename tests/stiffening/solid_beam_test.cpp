@@ -5,6 +5,7 @@
 // Greenhill's self-weight buckling).
 #include "beam_series.hpp"
 #include "ffr/formats/campbell.hpp"
+#include "ffr/formats/sid_io.hpp"
 #include "ffr/preproc/pipeline.hpp"
 #include "../reduce/support.hpp"
 
@@ -145,4 +146,33 @@ TEST(SolidBeamStiffening, HangingAndStandingUnderGravity) {
   const double at_rest = test::cantilever_frequencies({}, 1)[0] * uf;
   EXPECT_GT(hang_ref, 1.05 * at_rest);   // the effect is large enough to be tested
   EXPECT_LT(stand_ref, 0.95 * at_rest);
+}
+
+TEST(BeamElementStiffening, OffMeansNoStiffeningGroupAndTheLinearCampbellDiagram) {
+  // The beam-element cantilever reduced again with "stiffening": false: the file has no
+  // /stiffening group, the modes are unchanged, and the Campbell diagram keeps only the
+  // centrifugal softening (its frequencies fall below the stiffened ones under spin).
+  test::TempDir dir("stiffoff");
+  test::write_text(dir / "line.geo", R"(Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Line(1) = {1, 2};
+Transfinite Curve{1} = 41; Physical Curve("beam") = {1}; Physical Point("root") = {1}; Physical Point("end") = {2};
+)");
+  test::write_text(dir / "line.json", R"({"geometry": "line.geo", "mesh": {"order": 1},
+      "beams": [{"group": "beam", "E": 2.1e11, "nu": 0.3, "rho": 7850, "y_axis": [0, 1, 0],
+                 "section": {"A": 1.2e-3, "Iy": 4e-8, "Iz": 3.6e-7, "J": 1.5e-7}}],
+      "interfaces": [{"name": "root", "group": "root"}, {"name": "tip", "group": "end"}],
+      "reduction": {"method": "clamped", "interface": "root", "modes": 12},
+      "stiffening": false, "visual": false})");
+  const auto out = dir / "off.sid.h5";
+  const auto r = test::run(test::bin("ffr-reduce").string() + " " + (dir / "line.json").string() + " -o " + out.string() + " --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(test::run("h5ls " + out.string()).output.find("sid"), std::string::npos);
+  EXPECT_EQ(test::run("h5ls " + out.string()).output.find("stiffening"), std::string::npos) << "no /stiffening group";
+  const formats::Sid off = formats::read_sid(out);
+  EXPECT_FALSE(off.stiffening.has_value());
+  const formats::Sid& on = beam_elements();
+  ASSERT_EQ(off.nq(), on.nq());
+  for (Eigen::Index k = 0; k < on.nq(); ++k) EXPECT_NEAR(off.refmod.frequency_hz(k) / on.refmod.frequency_hz(k), 1.0, 1e-9);
+  const double w = 3 * unit(I_flap);  // omega_bar = 3 about z (lag plane softens, flap stiffens)
+  const auto c_on = formats::campbell(on, 2, {w}), c_off = formats::campbell(off, 2, {w});
+  EXPECT_LT(c_off.frequency_hz[0][0], c_on.frequency_hz[0][0]);
 }
