@@ -41,20 +41,25 @@ Physical Surface("end") = Surface In BoundingBox{1 - 1e-6, -1, -1, 1 + 1e-6, 1, 
   return sid;
 }
 
-// The same cantilever of 2-node Timoshenko beam elements (Iy = b h^3/12 bends in z, the flap).
-const formats::Sid& beam_elements() {
-  static const formats::Sid sid = [] {
-    test::TempDir dir("stiffbeam");
-    test::write_text(dir / "line.geo", R"(Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Line(1) = {1, 2};
+// The same cantilever of 2-node Timoshenko beam elements (Iy = b h^3/12 bends in z, the flap):
+// writes its part file into `dir` and returns the path.
+std::filesystem::path write_beam_element_part(const test::TempDir& dir, bool stiffening) {
+  test::write_text(dir / "line.geo", R"(Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Line(1) = {1, 2};
 Transfinite Curve{1} = 41; Physical Curve("beam") = {1}; Physical Point("root") = {1}; Physical Point("end") = {2};
 )");
-    test::write_text(dir / "line.json", R"({"geometry": "line.geo", "mesh": {"order": 1},
+  test::write_text(dir / "line.json", std::string(R"({"geometry": "line.geo", "mesh": {"order": 1},
       "beams": [{"group": "beam", "E": 2.1e11, "nu": 0.3, "rho": 7850, "y_axis": [0, 1, 0],
                  "section": {"A": 1.2e-3, "Iy": 4e-8, "Iz": 3.6e-7, "J": 1.5e-7}}],
       "interfaces": [{"name": "root", "group": "root"}, {"name": "tip", "group": "end"}],
       "reduction": {"method": "clamped", "interface": "root", "modes": 12},
-      "stiffening": true, "visual": false})");
-    return preproc::run_pipeline(preproc::load_part(dir / "line.json"));
+      "stiffening": )") + (stiffening ? "true" : "false") + R"(, "visual": false})");
+  return dir / "line.json";
+}
+
+const formats::Sid& beam_elements() {
+  static const formats::Sid sid = [] {
+    test::TempDir dir("stiffbeam");
+    return preproc::run_pipeline(preproc::load_part(write_beam_element_part(dir, true)));
   }();
   return sid;
 }
@@ -153,17 +158,9 @@ TEST(BeamElementStiffening, OffMeansNoStiffeningGroupAndTheLinearCampbellDiagram
   // /stiffening group, the modes are unchanged, and the Campbell diagram keeps only the
   // centrifugal softening (its frequencies fall below the stiffened ones under spin).
   test::TempDir dir("stiffoff");
-  test::write_text(dir / "line.geo", R"(Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Line(1) = {1, 2};
-Transfinite Curve{1} = 41; Physical Curve("beam") = {1}; Physical Point("root") = {1}; Physical Point("end") = {2};
-)");
-  test::write_text(dir / "line.json", R"({"geometry": "line.geo", "mesh": {"order": 1},
-      "beams": [{"group": "beam", "E": 2.1e11, "nu": 0.3, "rho": 7850, "y_axis": [0, 1, 0],
-                 "section": {"A": 1.2e-3, "Iy": 4e-8, "Iz": 3.6e-7, "J": 1.5e-7}}],
-      "interfaces": [{"name": "root", "group": "root"}, {"name": "tip", "group": "end"}],
-      "reduction": {"method": "clamped", "interface": "root", "modes": 12},
-      "stiffening": false, "visual": false})");
+  const auto part = write_beam_element_part(dir, false);
   const auto out = dir / "off.sid.h5";
-  const auto r = test::run(test::bin("ffr-reduce").string() + " " + (dir / "line.json").string() + " -o " + out.string() + " --quiet");
+  const auto r = test::run(test::bin("ffr-reduce").string() + " " + part.string() + " -o " + out.string() + " --quiet");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(test::run("h5ls " + out.string()).output.find("sid"), std::string::npos);
   EXPECT_EQ(test::run("h5ls " + out.string()).output.find("stiffening"), std::string::npos) << "no /stiffening group";
