@@ -21,7 +21,7 @@ namespace {
 constexpr int kMaxAssembly = 200;
 
 // How much dearer a change of the modal coordinates is than a change of the frame coordinates
-// in the first attempt of the initial projections (see rigid_first below).
+// in the first attempt of the initial projections (see assemble_positions below).
 constexpr double kElasticWeight = 1e12;
 
 // W = the block-diagonal mass matrix, plus elastic_weight times the diagonal of each flexible
