@@ -258,17 +258,8 @@ void CholmodFactor::factorize_shifted(const SparseMatrix& A, const SparseMatrix&
     validate_symmetric(A, "A of A - sigma*B");
     validate_symmetric(B, "B of A - sigma*B");
   }
-  const SparseMatrix C = shifted_upper(A, B, sigma);
   // C is upper-only by construction; its symmetry follows from A's and B's.
-  const bool check = impl_->opt.check_symmetry;
-  impl_->opt.check_symmetry = false;
-  try {
-    impl_->factorize(C, sigma);
-  } catch (...) {
-    impl_->opt.check_symmetry = check;
-    throw;
-  }
-  impl_->opt.check_symmetry = check;
+  factorize_shifted_upper(shifted_upper(A, B, sigma), sigma);
 }
 
 void CholmodFactor::factorize_shifted_upper(const SparseMatrix& C, double sigma) {

@@ -52,6 +52,9 @@ void step(const Model& model, Data& data) {
   }
   data.qdd_prev = data.qdd0;
   data.lambda0 = data.lambda;
+  // The step's penalties, before the first iterate's lambda + alpha Phi uses them: whoever
+  // factorised last (the initial conditions, a projection) may have left other ones.
+  penalty_weights(model, data, data.W, s.penalty * 4.0 / h2, data.alpha);
 
   // Tangent policy. Without reuse, the tangent is rebuilt at the first iteration of every step;
   // with reuse, only when the last step needed many iterations. In both cases an iteration that

@@ -25,8 +25,7 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
     const Body& b = model.bodies[i];
     data.W.block(b.offset, b.offset, b.ncoord(), b.ncoord()) += data.bodies[i].M;
   }
-  // Each row's penalty: settings.penalty times the tangent's own stiffness along it.
-  penalty_weights(model, data, data.W, model.settings.penalty * 4.0 / (h * h), data.alpha);
+  // The rows' penalties data.alpha were set by step() at its start.
   data.T = data.W;
   add_penalty_tangent(model, data, data.alpha, 0.25 * h * h, data.T);
   // The constraint forces' own derivative, with the multipliers of the current iterate.

@@ -194,8 +194,6 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
     }
   }
   data.tangent_valid = false;
-  // The step's penalties (the first Newton iterate's lambda + alpha Phi must use them).
-  penalty_weights(model, data, data.W, model.settings.penalty * 4.0 / (h * h), data.alpha);
   return notes;
 }
 

@@ -31,7 +31,8 @@ double project_velocities(const Model& model, Data& data, double t);
 double project_accelerations(const Model& model, Data& data, double t);
 
 /// Factorises T = W + h^2/4 (alpha Phi_q^T Phi_q + sum lam_i Phi_i,qq) with W = M + h/2 C + h^2/4 K
-/// at the current state (lam: the multipliers to use in the constraints' second derivatives).
+/// at the current state (lam: the multipliers to use in the constraints' second derivatives;
+/// alpha: the step's penalties, which step() sets).
 void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& lam);
 
 /// Factorises data.T after symmetric diagonal scaling S T S, S = diag(|T_ii|^-1/2). The tangent
