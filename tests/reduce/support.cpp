@@ -1,5 +1,7 @@
 #include "support.hpp"
 
+#include "ffr/calculix/deck.hpp"
+
 #include <array>
 #include <cstdio>
 #include <fstream>
@@ -50,52 +52,6 @@ void gmsh_mesh(const std::filesystem::path& geo, const std::filesystem::path& ms
   if (r.status != 0 || !std::filesystem::exists(msh)) throw std::runtime_error("gmsh failed: " + r.output);
 }
 
-namespace {
-
-// CalculiX element name and node order (Abaqus convention) from gmsh's order.
-struct CcxType {
-  const char* name;
-  std::vector<int> order;  // ccx node i = gmsh node order[i]
-};
-
-CcxType ccx_type(preproc::ElementType t) {
-  using preproc::ElementType;
-  switch (t) {
-    case ElementType::Tet4: return {"C3D4", {0, 1, 2, 3}};
-    // gmsh: 4(0,1) 5(1,2) 6(2,0) 7(3,0) 8(3,2) 9(3,1); Abaqus: 5(1,2) 6(2,3) 7(3,1) 8(1,4) 9(2,4) 10(3,4)
-    case ElementType::Tet10: return {"C3D10", {0, 1, 2, 3, 4, 5, 6, 7, 9, 8}};
-    case ElementType::Hex8: return {"C3D8", {0, 1, 2, 3, 4, 5, 6, 7}};
-    // gmsh edges: 8(0,1) 9(0,3) 10(0,4) 11(1,2) 12(1,5) 13(2,3) 14(2,6) 15(3,7) 16(4,5) 17(4,7) 18(5,6) 19(6,7)
-    // Abaqus: 9(1,2) 10(2,3) 11(3,4) 12(4,1) 13(5,6) 14(6,7) 15(7,8) 16(8,5) 17(1,5) 18(2,6) 19(3,7) 20(4,8)
-    case ElementType::Hex20: return {"C3D20", {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15}};
-    default: throw std::invalid_argument(std::string("no CalculiX counterpart for ") + preproc::name(t));
-  }
-}
-
-std::vector<std::vector<double>> table_after(const std::string& text, const std::string& title, int columns) {
-  std::vector<std::vector<double>> rows;
-  const auto pos = text.find(title);
-  if (pos == std::string::npos) return rows;
-  std::istringstream in(text.substr(pos + title.size()));
-  std::string line;
-  bool started = false;
-  while (std::getline(in, line)) {
-    std::istringstream ls(line);
-    std::vector<double> v;
-    double x;
-    while (ls >> x) v.push_back(x);
-    if (static_cast<int>(v.size()) == columns + 1) {
-      started = true;
-      rows.push_back(std::vector<double>(v.begin() + 1, v.end()));
-    } else if (started) {
-      break;
-    }
-  }
-  return rows;
-}
-
-}  // namespace
-
 CcxModes run_ccx(const std::filesystem::path& workdir);
 
 void write_nodes(std::ostream& f, const preproc::Mesh& mesh) {
@@ -106,29 +62,7 @@ void write_nodes(std::ostream& f, const preproc::Mesh& mesh) {
 
 CcxModes calculix_frequency(const preproc::Mesh& mesh, const preproc::Material& mat, const std::string& group,
                             const std::string& fixed_group, int modes, const std::filesystem::path& workdir) {
-  std::ofstream f(workdir / "job.inp");
-  f.precision(17);
-  write_nodes(f, mesh);
-  std::size_t eid = 1;
-  for (const auto& b : mesh.blocks) {
-    if (preproc::dimension(b.type) != 3 || b.group != group) continue;  // each element once
-    const auto t = ccx_type(b.type);
-    f << "*ELEMENT, TYPE=" << t.name << ", ELSET=EALL\n";
-    for (preproc::Index e = 0; e < b.size(); ++e) {
-      f << eid++;
-      for (std::size_t i = 0; i < t.order.size(); ++i) f << (i % 12 == 11 ? ",\n" : ", ") << b.element(e)[t.order[i]] + 1;
-      f << "\n";
-    }
-  }
-  if (!fixed_group.empty()) {
-    f << "*NSET, NSET=FIX\n";
-    int k = 0;
-    for (auto n : mesh.node_groups.at(fixed_group)) f << n + 1 << (++k % 10 == 0 ? ",\n" : ", ");
-    f << "\n*BOUNDARY\nFIX, 1, 3\n";
-  }
-  f << "*MATERIAL, NAME=MAT\n*ELASTIC\n" << mat.E << ", " << mat.nu << "\n*DENSITY\n" << mat.rho << "\n";
-  f << "*SOLID SECTION, ELSET=EALL, MATERIAL=MAT\n*STEP\n*FREQUENCY\n" << modes << "\n*END STEP\n";
-  f.close();
+  calculix::write_frequency_deck(mesh, group, fixed_group, {mat.E, mat.nu, mat.rho}, modes, workdir / "job.inp");
   return run_ccx(workdir);
 }
 
@@ -177,8 +111,8 @@ CcxModes run_ccx(const std::filesystem::path& workdir) {
   if (r.status != 0 || text.find("E I G E N V A L U E") == std::string::npos)
     throw std::runtime_error("ccx failed: " + r.output.substr(0, 2000));
   CcxModes out;
-  for (const auto& row : table_after(text, "E I G E N V A L U E   O U T P U T", 4)) out.frequency_hz.push_back(row[2]);
-  const auto pf = table_after(text, "P A R T I C I P A T I O N   F A C T O R S", 6);
+  for (const auto& row : calculix::read_table(text, calculix::kEigenvalueTable, 4)) out.frequency_hz.push_back(row[2]);
+  const auto pf = calculix::read_table(text, calculix::kParticipationTable, 6);
   out.participation.resize(static_cast<Eigen::Index>(pf.size()), 6);
   for (std::size_t i = 0; i < pf.size(); ++i)
     for (int j = 0; j < 6; ++j) out.participation(static_cast<Eigen::Index>(i), j) = pf[i][static_cast<std::size_t>(j)];

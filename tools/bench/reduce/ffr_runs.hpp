@@ -2,7 +2,7 @@
 // ffr-reduce side of the benchmarks: the part files, the stage times it prints on stderr, and
 // the frequencies it wrote.
 
-#include "calculix.hpp"
+#include "ffr/calculix/deck.hpp"
 
 #include <filesystem>
 #include <string>
@@ -10,6 +10,8 @@
 #include <vector>
 
 namespace ffr::bench {
+
+using calculix::IsoMaterial;
 
 /// Part file for the plate: material on "body", the "clamp" face held (rigid interface), clamped modes.
 void write_solid_part(const std::filesystem::path& json, const std::filesystem::path& msh, const IsoMaterial& mat,

@@ -1,6 +1,6 @@
 // reduce_bench solid: ffr-reduce and CalculiX *FREQUENCY on the identical TET10 plate meshes.
 #include "bench.hpp"
-#include "calculix.hpp"
+#include "ffr/calculix/deck.hpp"
 #include "child_process.hpp"
 #include "ffr_runs.hpp"
 #include "meshes.hpp"
@@ -19,6 +19,8 @@
 
 namespace ffr::bench {
 namespace fs = std::filesystem;
+using calculix::read_frequencies;
+using calculix::write_frequency_deck;
 
 std::vector<std::pair<std::string, std::string>> thread_env(int t, bool calculix) {
   const std::string n = std::to_string(t);
@@ -189,7 +191,7 @@ void run_size(const Options& o, std::int64_t target, int modes, const IsoMateria
       r.ccx_ran = true;
       r.ccx_note = outcome(r.ccx, c.err);
       r.ccx_cpus = ccx_cpus_used(c.out);
-      r.f_ccx = read_ccx_frequencies(dir / (stem + ".dat"));
+      r.f_ccx = read_frequencies(dir / (stem + ".dat"));
       if (r.ccx.ok() && r.f_ccx.empty()) {
         r.ccx.exit_status = 1;
         r.ccx_note = "no eigenvalue table in " + (dir / (stem + ".dat")).string();

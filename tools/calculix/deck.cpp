@@ -1,11 +1,11 @@
-#include "calculix.hpp"
+#include "ffr/calculix/deck.hpp"
 
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
-namespace ffr::bench {
+namespace ffr::calculix {
 namespace {
 
 struct DeckType {
@@ -25,7 +25,7 @@ DeckType deck_type(preproc::ElementType t) {
     // gmsh numbers the edges by their first corner, Abaqus runs round the bottom face, the
     // top face, then the vertical edges.
     case ElementType::Hex20: return {"C3D20", {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15}};
-    default: throw std::invalid_argument(std::string("reduce_bench: no CalculiX element for ") + preproc::name(t));
+    default: throw std::invalid_argument(std::string("no CalculiX element for ") + preproc::name(t));
   }
 }
 
@@ -35,7 +35,7 @@ void write_frequency_deck(const preproc::Mesh& mesh, const std::string& group, c
                           const IsoMaterial& mat, int modes, const std::filesystem::path& inp) {
   std::FILE* f = std::fopen(inp.c_str(), "w");
   if (!f) throw std::runtime_error("cannot write " + inp.string());
-  std::fprintf(f, "** written by reduce_bench from the mesh ffr-reduce reads\n*NODE, NSET=NALL\n");
+  std::fprintf(f, "** written by ffr (tools/calculix) from the mesh ffr-reduce reads\n*NODE, NSET=NALL\n");
   for (preproc::Index n = 0; n < mesh.num_nodes(); ++n)
     std::fprintf(f, "%lld, %.17g, %.17g, %.17g\n", static_cast<long long>(n + 1), mesh.x(n, 0), mesh.x(n, 1), mesh.x(n, 2));
   long long eid = 1;
@@ -52,43 +52,54 @@ void write_frequency_deck(const preproc::Mesh& mesh, const std::string& group, c
   }
   if (eid == 1) {
     std::fclose(f);
-    throw std::runtime_error("reduce_bench: no 3D elements in group '" + group + "'");
+    throw std::runtime_error("CalculiX deck: no 3D elements in group '" + group + "'");
   }
-  const auto it = mesh.node_groups.find(fixed_group);
-  if (it == mesh.node_groups.end() || it->second.empty()) {
-    std::fclose(f);
-    throw std::runtime_error("reduce_bench: no node group '" + fixed_group + "'");
+  if (!fixed_group.empty()) {
+    const auto it = mesh.node_groups.find(fixed_group);
+    if (it == mesh.node_groups.end() || it->second.empty()) {
+      std::fclose(f);
+      throw std::runtime_error("CalculiX deck: no node group '" + fixed_group + "'");
+    }
+    std::fprintf(f, "*NSET, NSET=FIX\n");
+    int k = 0;
+    for (const auto n : it->second) std::fprintf(f, "%lld%s", static_cast<long long>(n + 1), ++k % 10 == 0 ? ",\n" : ", ");
+    std::fprintf(f, "\n*BOUNDARY\nFIX, 1, 3\n");
   }
-  std::fprintf(f, "*NSET, NSET=FIX\n");
-  int k = 0;
-  for (const auto n : it->second) std::fprintf(f, "%lld%s", static_cast<long long>(n + 1), ++k % 10 == 0 ? ",\n" : ", ");
-  std::fprintf(f, "\n*BOUNDARY\nFIX, 1, 3\n");
   std::fprintf(f, "*MATERIAL, NAME=MAT\n*ELASTIC\n%.17g, %.17g\n*DENSITY\n%.17g\n", mat.E, mat.nu, mat.rho);
   std::fprintf(f, "*SOLID SECTION, ELSET=EALL, MATERIAL=MAT\n*STEP\n*FREQUENCY\n%d\n*END STEP\n", modes);
   if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + inp.string());
 }
 
-std::vector<double> read_ccx_frequencies(const std::filesystem::path& dat) {
-  std::ifstream f(dat);
+std::vector<std::vector<double>> read_table(const std::string& text, const std::string& title, int columns) {
+  std::vector<std::vector<double>> rows;
+  const auto pos = text.find(title);
+  if (pos == std::string::npos) return rows;
+  std::istringstream in(text.substr(pos + title.size()));
   std::string line;
-  std::vector<double> hz;
-  while (std::getline(f, line))
-    if (line.find("E I G E N V A L U E   O U T P U T") != std::string::npos) break;
   bool started = false;
-  while (std::getline(f, line)) {
-    // Rows: mode, eigenvalue, omega [rad/time], frequency [cycles/time], imaginary part.
+  while (std::getline(in, line)) {
     std::istringstream ls(line);
     std::vector<double> v;
     double x;
     while (ls >> x) v.push_back(x);
-    if (v.size() == 5) {
+    if (static_cast<int>(v.size()) == columns + 1) {
       started = true;
-      hz.push_back(v[3]);
+      rows.push_back(std::vector<double>(v.begin() + 1, v.end()));
     } else if (started) {
       break;
     }
   }
+  return rows;
+}
+
+std::vector<double> read_frequencies(const std::filesystem::path& dat) {
+  std::ifstream f(dat);
+  std::stringstream text;
+  text << f.rdbuf();
+  // Rows: mode, eigenvalue, omega [rad/time], frequency [cycles/time], imaginary part.
+  std::vector<double> hz;
+  for (const auto& row : read_table(text.str(), kEigenvalueTable, 4)) hz.push_back(row[2]);
   return hz;
 }
 
-}  // namespace ffr::bench
+}  // namespace ffr::calculix
