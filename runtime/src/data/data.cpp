@@ -21,10 +21,11 @@ void size_marker(MarkerData& md, int nb) {
 Data::Data(const Model& model) {
   const int n = model.ncoord, m = model.nconstraints;
   q = qd = qdd = VectorXd::Zero(n);
-  lambda = lambda_eff = lambda0 = lambda_prev = VectorXd::Zero(m);
+  lambda = lambda_eff = lambda0 = VectorXd::Zero(m);
   Q = f = dq = r = tmp = tmp2 = vstar = qdd_prev = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);
-  sigma = c = alpha = VectorXd::Zero(m);
+  sigma = sigma_v = sigma_a = c = alpha = VectorXd::Zero(m);
   K = C = W = T = MatrixXd::Zero(n, n);
+  Phiq = MatrixXd::Zero(m, n);
   lu = Eigen::PartialPivLU<MatrixXd>(n);
   scale = VectorXd::Ones(n);
   Phi = Phit = gamma = VectorXd::Zero(m);

@@ -160,6 +160,19 @@ void evaluate_constraints(const Model& model, Data& data, double t) {
       case BlockKind::Joint: joint_rows(model, data, model.joints[b.index], r); break;
       case BlockKind::Motion: motion_row(model, data, b.index, t, r); break;
     }
+    // The same block in the dense Jacobian, which the products below use: one matrix-vector
+    // product instead of two small ones per block, several times per Newton iteration.
+    // The other columns of these rows stay zero from construction.
+    if (b.body1 != kGround) {
+      const Body& B = model.bodies[b.body1];
+      data.Phiq.block(b.row0, B.offset, b.rows, B.ncoord()) = data.J1[bi];
+    }
+    if (b.body2 != kGround) {
+      const Body& B = model.bodies[b.body2];
+      auto cols = data.Phiq.block(b.row0, B.offset, b.rows, B.ncoord());
+      if (b.body2 == b.body1) cols += data.J2[bi];
+      else cols = data.J2[bi];
+    }
   }
 }
 
@@ -176,34 +189,13 @@ void update_angle_references(const Model& model, Data& data) {
 }
 
 void add_constraint_forces(const Model& model, const Data& data, const VectorXd& lam, VectorXd& out) {
-  for (std::size_t bi = 0; bi < model.blocks.size(); ++bi) {
-    const ConstraintBlock& b = model.blocks[bi];
-    const auto l = lam.segment(b.row0, b.rows);
-    if (b.body1 != kGround) {
-      const Body& B = model.bodies[b.body1];
-      out.segment(B.offset, B.ncoord()).noalias() += data.J1[bi].transpose() * l;
-    }
-    if (b.body2 != kGround) {
-      const Body& B = model.bodies[b.body2];
-      out.segment(B.offset, B.ncoord()).noalias() += data.J2[bi].transpose() * l;
-    }
-  }
+  (void)model;
+  out.noalias() += data.Phiq.transpose() * lam;
 }
 
 void constraint_times(const Model& model, const Data& data, const VectorXd& v, VectorXd& out) {
-  for (std::size_t bi = 0; bi < model.blocks.size(); ++bi) {
-    const ConstraintBlock& b = model.blocks[bi];
-    auto o = out.segment(b.row0, b.rows);
-    o.setZero();
-    if (b.body1 != kGround) {
-      const Body& B = model.bodies[b.body1];
-      o.noalias() += data.J1[bi] * v.segment(B.offset, B.ncoord());
-    }
-    if (b.body2 != kGround) {
-      const Body& B = model.bodies[b.body2];
-      o.noalias() += data.J2[bi] * v.segment(B.offset, B.ncoord());
-    }
-  }
+  (void)model;
+  out.noalias() = data.Phiq * v;
 }
 
 void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, double f, MatrixXd& T) {

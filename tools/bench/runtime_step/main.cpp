@@ -58,9 +58,10 @@ Model slider_crank(const std::filesystem::path& dir, int points, int modes, doub
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool quick = false, no_reuse = false;
+  bool quick = false, no_reuse = false, step_only = false;
   for (int i = 1; i < argc; ++i) {
     quick = quick || std::strcmp(argv[i], "--quick") == 0;
+    step_only = step_only || std::strcmp(argv[i], "--step-only") == 0;
     no_reuse = no_reuse || std::strcmp(argv[i], "--no-reuse") == 0;
   }
   g_no_reuse = no_reuse;
@@ -74,6 +75,10 @@ int main(int argc, char** argv) {
   std::printf("coordinates %d, constraint rows %d\n", sc.ncoord, sc.nconstraints);
   std::printf("per step %.2f us  (Newton iterations %.2f, factorisations %.2f per step)  target <= 25 us: %s\n",
               t.us_per_step, t.iterations_per_step, t.factorizations_per_step, t.us_per_step <= 25 ? "met" : "NOT met");
+  if (step_only) {
+    std::filesystem::remove_all(dir);
+    return 0;
+  }
 
   std::printf("\n# 2. per-step time vs mesh size (10 modes each; rounds interleaved, best of each)\n");
   std::vector<int> sizes = quick ? std::vector<int>{11, 201, 2001} : std::vector<int>{11, 101, 1001, 5001, 20001};

@@ -65,6 +65,7 @@ struct Data {
   std::vector<BodyData> bodies;
   std::vector<MarkerData> markers;
   std::vector<MatrixXd> J1, J2; ///< per constraint block: [rows, nb1], [rows, nb2]
+  MatrixXd Phiq;                ///< the blocks assembled: Phi_q [m, n]
 
   // Global vectors and matrices (n = coordinates, m = constraint rows).
   VectorXd Q;                   ///< generalized forces (applied + velocity-dependent inertia)
@@ -82,9 +83,10 @@ struct Data {
   // Integrator work.
   VectorXd q0, qd0, qdd0;       ///< state at the start of the step
   VectorXd qd_hat, qdd_hat;     ///< trapezoidal predictors
-  VectorXd qdd_prev, lambda_prev; ///< accelerations and multipliers of the step before (predictor)
+  VectorXd qdd_prev;            ///< accelerations of the step before (predictor)
   bool have_previous = false;
   VectorXd f, dq, r, sigma, c, tmp, tmp2, vstar;
+  VectorXd sigma_v, sigma_a;    ///< multipliers of the last velocity and acceleration projections (warm start)
 
   // Joints: unwrapped angle of each revolute/cylindrical joint at the last accepted step.
   std::vector<double> angle_ref;
