@@ -7,6 +7,7 @@
 // 25 Hz crank); an error in the joints, the frame kinematics or the node data of the SID would
 // show at the millimetre level.
 #include "ffr/formats/results_io.hpp"
+#include "ffr/formats/sid_io.hpp"
 #include "../reduce/support.hpp"
 
 #include <gtest/gtest.h>
@@ -23,6 +24,38 @@ const formats::Results::Output& channel(const formats::Results& r, const std::st
   for (const auto& o : r.outputs)
     if (o.name == name) return o;
   throw std::runtime_error("no output channel " + name);
+}
+
+// meshes/rod/rod.json meshed with the given TET10 size, reduced, and the example model run with
+// it for `end` seconds. Returns the results and the SID.
+struct RodRun {
+  formats::Results results;
+  formats::Sid sid;
+  long dof = 0;
+};
+
+RodRun run_rod(const std::filesystem::path& dir, double size, double end) {
+  nlohmann::json part;
+  std::ifstream(test::source("meshes/rod/rod.json")) >> part;
+  part["geometry"] = test::source("meshes/rod/rod.geo").string();
+  part["mesh"]["size"] = size;
+  std::ofstream(dir / "rod.json") << part.dump(1);
+  const auto red = test::run(test::bin("ffr-reduce").string() + " " + (dir / "rod.json").string() + " -o " +
+                             (dir / "rod.sid.h5").string());
+  if (red.status != 0) throw std::runtime_error(red.output);
+  RodRun r;
+  const auto at = red.output.find("model: ");
+  if (at != std::string::npos) r.dof = std::stol(red.output.substr(at + 7));
+  nlohmann::json model;
+  std::ifstream(test::source("meshes/models/slider_crank_rod.json")) >> model;
+  model["solver"]["end"] = end;
+  std::ofstream(dir / "model.json") << model.dump(1);
+  const auto sim = test::run(test::bin("ffr-sim").string() + " " + (dir / "model.json").string() + " -o " +
+                             (dir / "out.h5").string() + " --quiet");
+  if (sim.status != 0) throw std::runtime_error(sim.output);
+  r.results = formats::read_results(dir / "out.h5");
+  r.sid = formats::read_sid(dir / "rod.sid.h5");
+  return r;
 }
 
 }  // namespace
@@ -65,4 +98,42 @@ TEST(Examples, SliderCrankWithTheReducedRodFollowsTheRigidKinematicsToMicrometre
                               " --plot slider_x,rod_mid_deformation --png " + png.string());
   EXPECT_EQ(plot.status, 0) << plot.output;
   EXPECT_TRUE(std::filesystem::exists(png));
+}
+
+// The same part meshed at two very different sizes (about 5k and 33k DOF): the runtime sees only
+// the invariants and node data, so the runs may differ only as much as the modes do. The
+// quasi-static deformation under the inertia loads goes as 1 / f^2, so the rod's deformation
+// may differ by about twice the largest relative frequency difference of the modes (bound:
+// three times that); the slider, whose motion differs from the rigid kinematics only by the
+// rod's deformation, by that fraction of the deformation. The step works on the same number
+// of coordinates, and Newton needs the same iterations (per-step time: tools/bench/runtime_step).
+TEST(Examples, TheRodMeshedCoarseAndFineGivesTheSameMotion) {
+  test::TempDir coarse_dir("example_rod_coarse"), fine_dir("example_rod_fine");
+  const RodRun coarse = run_rod(coarse_dir.path(), 0.012, 0.15);
+  const RodRun fine = run_rod(fine_dir.path(), 0.0045, 0.15);
+  ASSERT_GT(fine.dof, 5 * coarse.dof);
+  ASSERT_EQ(coarse.sid.nq(), fine.sid.nq());
+  double df = 0;
+  for (Eigen::Index k = 0; k < fine.sid.nq(); ++k)
+    df = std::max(df, std::abs(coarse.sid.refmod.frequency_hz(k) / fine.sid.refmod.frequency_hz(k) - 1));
+  const auto& mid_c = channel(coarse.results, "rod_mid_deformation").values;
+  const auto& mid_f = channel(fine.results, "rod_mid_deformation").values;
+  const auto& x_c = channel(coarse.results, "slider_x").values;
+  const auto& x_f = channel(fine.results, "slider_x").values;
+  ASSERT_EQ(mid_c.rows(), mid_f.rows());
+  double deform = 0, d_mid = 0, d_x = 0;
+  for (Eigen::Index i = 0; i < mid_f.rows(); ++i) {
+    deform = std::max(deform, mid_f.row(i).norm());
+    d_mid = std::max(d_mid, (mid_c.row(i) - mid_f.row(i)).norm());
+    d_x = std::max(d_x, std::abs(x_c(i, 0) - x_f(i, 0)));
+  }
+  const double it_c = double(coarse.results.newton_iterations) / double(coarse.results.steps);
+  const double it_f = double(fine.results.newton_iterations) / double(fine.results.steps);
+  std::printf("%ld vs %ld DOF: modes differ by up to %.2f %%; rod mid-point deformation up to %.3g m, runs differ by "
+              "%.3g m (%.2f %%); slider differs by %.3g m; Newton iterations per step %.2f vs %.2f\n",
+              coarse.dof, fine.dof, 100 * df, deform, d_mid, 100 * d_mid / deform, d_x, it_c, it_f);
+  EXPECT_GT(deform, 1e-6);
+  EXPECT_LT(d_mid, 3 * 2 * df * deform);
+  EXPECT_LT(d_x, 3 * 2 * df * deform);
+  EXPECT_NEAR(it_c, it_f, 0.05 * it_f);
 }
