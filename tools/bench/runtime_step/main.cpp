@@ -5,6 +5,11 @@
 //     Newton iterations and factorisations per step. Target: <= 25 us per step.
 //  2. The same model with rods of growing point count (11 ... 20001 points) and the same 10
 //     modes: the per-step time must not depend on the mesh (largest / smallest <= 1.05).
+//
+//  --sids MODEL.json PLACEHOLDER DOF1=SID1 DOF2=SID2 ...: instead, MODEL.json run with each SID
+//     (reduced by ffr-reduce from meshes of DOF1, DOF2, ... DOF) in place of the string
+//     "PLACEHOLDER"; mesh_independence.sh makes the SIDs and calls it.
+#include "sid_sizes.hpp"
 #include "models.hpp"
 
 #include "ffr/formats/sid_io.hpp"
@@ -58,6 +63,23 @@ Model slider_crank(const std::filesystem::path& dir, int points, int modes, doub
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc >= 4 && std::strcmp(argv[1], "--sids") == 0) {
+    std::vector<bench::SidCase> sids;
+    for (int i = 4; i < argc; ++i) {
+      const char* eq = std::strchr(argv[i], '=');
+      if (!eq) {
+        std::fprintf(stderr, "ffr-bench-runtime-step: expected DOF=SID, got %s\n", argv[i]);
+        return 2;
+      }
+      sids.push_back({std::string(eq + 1), std::atol(argv[i])});
+    }
+    try {
+      return bench::run_sid_sizes(argv[2], argv[3], sids, 5);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "ffr-bench-runtime-step: %s\n", e.what());
+      return 2;
+    }
+  }
   bool quick = false, no_reuse = false, step_only = false;
   for (int i = 1; i < argc; ++i) {
     quick = quick || std::strcmp(argv[i], "--quick") == 0;
