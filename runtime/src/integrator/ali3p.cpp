@@ -83,6 +83,7 @@ void step(const Model& model, Data& data) {
   } else {
     data.q.noalias() += h * data.qd0 + (0.5 * h2) * data.qdd0;
   }
+  predict_frames(model, data);
   data.qdd_prev = data.qdd0;
   data.lambda0 = data.lambda;
   // The step's penalties, before the first iterate's lambda + alpha Phi uses them: whoever
@@ -114,6 +115,7 @@ void step(const Model& model, Data& data) {
     data.f -= data.Q;
     add_constraint_forces(model, data, data.lambda_eff, data.f);
     data.f *= 0.25 * h2;
+    const bool refreshed_now = refactor;
     if (refactor) {
       refresh_tangent(model, data, t1, data.lambda);
       data.tangent_fresh_step = true;
@@ -129,7 +131,8 @@ void step(const Model& model, Data& data) {
     // iteration (rate theta = inc / prev_inc < 1) it is at most inc theta / (1 - theta)
     // (Hairer & Wanner, Solving ODEs II, IV.8), and the constraints left by the update are
     // the linearised violation (plus O(inc^2)).
-    const double theta = it >= 2 && prev_inc > 0 ? inc / prev_inc : 1.0;
+    // theta only measures the rate when both increments came from the same tangent.
+    const double theta = it >= 2 && prev_inc > 0 && !refreshed_now ? inc / prev_inc : 1.0;
     const double error_left = it == 1 ? inc : (theta < 1 ? inc * theta / (1 - theta) : std::numeric_limits<double>::infinity());
     if ((error_left < s.tolerance || inc < s.tolerance) && left < s.tolerance && viol < 1e3 * s.tolerance) {
       converged = true;

@@ -31,6 +31,8 @@ struct BodyData {
   MatrixXd feB, feG, feD;       ///< co-rotational path only: B, M_FE B, dw/dz_dot [3N, nb]
   VectorXd few;                 ///< co-rotational path only: 2 A_dot Phi y_dot [3N]
   VectorXd wq;                  ///< work [nq]
+  Vector3d step_alpha = Vector3d::Zero(); ///< angular acceleration at the last step's start (predict_frames)
+  bool have_step_alpha = false;
 };
 
 /// A marker's position and axes with their Jacobians (columns: the coordinates of its body).

@@ -25,6 +25,11 @@ std::vector<std::string> initialize(const Model& model, Data& data);
 /// Allocation-free.
 void step(const Model& model, Data& data);
 
+/// Replaces the frame vectors of the predictor data.q by each body's frame at the step start
+/// (data.q0) turned by the rotation its angular velocity and acceleration predict.
+/// Allocation-free.
+void predict_frames(const Model& model, Data& data);
+
 /// Projects data.qd (then data.qdd) onto the velocity (acceleration) constraints in the metric
 /// of the last factorised tangent. Needs evaluate() at the current q. Returns the scaled residual.
 double project_velocities(const Model& model, Data& data, double t);
