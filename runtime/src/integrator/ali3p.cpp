@@ -74,7 +74,8 @@ void step(const Model& model, Data& data) {
   // Predictor of the trapezoidal solution q + h qd + h^2/4 (qdd + qdd_next) with qdd_next
   // extrapolated from the last two accelerations (O(h^4) error instead of O(h^3): for a frame
   // turning by omega h per step the first iterate violates the constraints ~(omega h)^4, not
-  // ~(omega h)^3). The multipliers start from the last step's: extrapolating them is unstable
+  // ~(omega h)^3); the frame vectors are then replaced by turned frames (predict_frames). The
+  // multipliers start from the last step's: extrapolating them is unstable
   // with redundant constraints, whose multipliers are free in the null space of Phi_q^T (each
   // step's round-off there was doubled by 2 lambda_n - lambda_n-1 and grew without bound: the
   // benchmark's planar slider-crank failed after 0.62 s, SliderCrank.RedundantMultipliersStayBounded).

@@ -6,8 +6,8 @@
 //   x <- x - T^{-1} [W (x - x*) + h^2/4 Phi_q^T (sigma + alpha c(x))],  sigma <- sigma + alpha c(x)
 // With a fresh T the first pass is exactly Cuadrado's single projection; further passes drive the
 // violation to round-off (also with redundant constraints, where Phi_q is rank-deficient).
-// sigma starts from the previous step's (it changes little from step to step), so the passes
-// only have to correct that change: each pass shrinks the error by 1 / (1 + alpha S) only.
+// sigma starts from the previous step's projection (warm start; on the benchmark's slider-crank
+// this saves little, the step-to-step change of sigma being of the size of sigma itself).
 #include "ffr/runtime/constraints.hpp"
 #include "ffr/runtime/integrator.hpp"
 #include "ffr/runtime/kinematics.hpp"
