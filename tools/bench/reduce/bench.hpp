@@ -1,6 +1,8 @@
 #pragma once
 // Options shared by the two benchmarks of reduce_bench and their entry points.
 
+#include "child_process.hpp"
+
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -32,5 +34,13 @@ int run_shell(const Options& o);
 /// "OMP_NUM_THREADS=1 ... " prefix and the matching environment for a run with t threads.
 std::vector<std::pair<std::string, std::string>> thread_env(int t, bool calculix);
 std::string env_text(const std::vector<std::pair<std::string, std::string>>& env);
+
+/// RSS cap of a run: --mem-cap-mib, else MemAvailable minus 1 GiB.
+std::int64_t memory_cap_kib(const Options& o);
+
+/// The ffr-reduce run of `json` into dir/stem.sid.h5 with t threads (stdout and stderr in dir),
+/// and its command line appended to `commands` for the report.
+ChildSpec ffr_reduce_run(const Options& o, const std::filesystem::path& json, const std::filesystem::path& dir,
+                         const std::string& stem, int t, std::string& commands);
 
 }  // namespace ffr::bench

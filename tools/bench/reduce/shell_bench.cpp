@@ -54,15 +54,7 @@ int run_shell(const Options& o) {
     for (int t : o.threads) {
       const fs::path dir = o.workdir / (stem + "_t" + std::to_string(t));
       fs::create_directories(dir);
-      ChildSpec f;
-      f.argv = {o.ffr.string(), json.string(), "-o", (dir / (stem + ".sid.h5")).string(), "--threads", std::to_string(t)};
-      f.env = thread_env(t, false);
-      f.cwd = dir;
-      f.out = dir / "ffr.out";
-      f.err = dir / "ffr.err";
-      f.max_rss_kib = o.mem_cap_mib > 0 ? o.mem_cap_mib * 1024 : std::max<std::int64_t>(mem_available_kib() - (1 << 20), 1 << 20);
-      commands += "    " + env_text(f.env) + "ffr-reduce " + json.filename().string() + " -o " +
-                  (dir.filename() / (stem + ".sid.h5")).string() + " --threads " + std::to_string(t) + "\n";
+      const ChildSpec f = ffr_reduce_run(o, json, dir, stem, t, commands);
       wait_for_quiet(o.wait_load, o.wait_max_s, true);
       const ChildResult r = run_child(f);
       const auto st = read_stage_times(f.err);

@@ -41,6 +41,25 @@ std::string env_text(const std::vector<std::pair<std::string, std::string>>& env
   return s;
 }
 
+std::int64_t memory_cap_kib(const Options& o) {
+  if (o.mem_cap_mib > 0) return o.mem_cap_mib * 1024;
+  return std::max<std::int64_t>(mem_available_kib() - (1 << 20), 1 << 20);
+}
+
+ChildSpec ffr_reduce_run(const Options& o, const fs::path& json, const fs::path& dir, const std::string& stem, int t,
+                         std::string& commands) {
+  ChildSpec f;
+  f.argv = {o.ffr.string(), json.string(), "-o", (dir / (stem + ".sid.h5")).string(), "--threads", std::to_string(t)};
+  f.env = thread_env(t, false);
+  f.cwd = dir;
+  f.out = dir / "ffr.out";
+  f.err = dir / "ffr.err";
+  f.max_rss_kib = memory_cap_kib(o);
+  commands += "    " + env_text(f.env) + "ffr-reduce " + json.filename().string() + " -o " +
+              (dir.filename() / (stem + ".sid.h5")).string() + " --threads " + std::to_string(t) + "\n";
+  return f;
+}
+
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -64,11 +83,6 @@ double stage(const Row& r, const std::string& name) {
   for (const auto& [k, v] : r.stages)
     if (k == name) return v;
   return kNaN;
-}
-
-std::int64_t memory_cap_kib(const Options& o) {
-  if (o.mem_cap_mib > 0) return o.mem_cap_mib * 1024;
-  return std::max<std::int64_t>(mem_available_kib() - (1 << 20), 1 << 20);
 }
 
 // Largest "Using up to N cpu(s)" CalculiX printed.
@@ -149,15 +163,7 @@ void run_size(const Options& o, std::int64_t target, int modes, const IsoMateria
     r.mesh = mesh;
     r.threads = t;
 
-    ChildSpec f;
-    f.argv = {o.ffr.string(), json.string(), "-o", (dir / (stem + ".sid.h5")).string(), "--threads", std::to_string(t)};
-    f.env = thread_env(t, false);
-    f.cwd = dir;
-    f.out = dir / "ffr.out";
-    f.err = dir / "ffr.err";
-    f.max_rss_kib = memory_cap_kib(o);
-    commands += "    " + env_text(f.env) + "ffr-reduce " + json.filename().string() + " -o " +
-                (dir.filename() / (stem + ".sid.h5")).string() + " --threads " + std::to_string(t) + "\n";
+    const ChildSpec f = ffr_reduce_run(o, json, dir, stem, t, commands);
     wait_for_quiet(o.wait_load, o.wait_max_s, true);
     r.ffr = run_child(f);
     r.ffr_note = outcome(r.ffr, f.err);
