@@ -28,14 +28,23 @@ Energy energy(const Model& model, Data& data) {
   return e;
 }
 
+namespace {
+
+// int (r_dot - r0_dot) dm = A_dot md + A Pdm y_dot: a body's momentum relative to its origin's motion.
+Vector3d relative_momentum(const Body& b, const BodyData& bd, const VectorXd& qd) {
+  Vector3d p = bd.Ad * bd.md;
+  if (b.nq) p += bd.A * (b.Pdm * qd.segment(b.offset + 12, b.nq));
+  return p;
+}
+
+}  // namespace
+
 Vector3d linear_momentum(const Model& model, Data& data) {
   update_bodies(model, data);
   Vector3d p = Vector3d::Zero();
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
-    const BodyData& bd = data.bodies[i];
-    p += b.mass * data.qd.segment<3>(b.offset) + bd.Ad * bd.md;
-    if (b.nq) p += bd.A * (b.Pdm * data.qd.segment(b.offset + 12, b.nq));
+    p += b.mass * data.qd.segment<3>(b.offset) + relative_momentum(b, data.bodies[i], data.qd);
   }
   return p;
 }
@@ -47,8 +56,7 @@ Vector3d angular_momentum(const Model& model, Data& data) {
     const Body& b = model.bodies[i];
     const BodyData& bd = data.bodies[i];
     const Vector3d r0 = data.q.segment<3>(b.offset), r0d = data.qd.segment<3>(b.offset);
-    Vector3d pb = bd.Ad * bd.md;  // momentum of the body relative to its origin's motion
-    if (b.nq) pb += bd.A * (b.Pdm * data.qd.segment(b.offset + 12, b.nq));
+    const Vector3d pb = relative_momentum(b, bd, data.qd);
     H += b.mass * r0.cross(r0d) + r0.cross(pb) + (bd.A * bd.md).cross(r0d);
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < 3; ++c) H += bd.Jc(a, c) * Vector3d(bd.A.col(a)).cross(Vector3d(bd.Ad.col(c)));
