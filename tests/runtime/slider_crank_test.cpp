@@ -24,32 +24,26 @@ namespace {
 
 std::string model_json(double h, double end = 0.1, double penalty = 1e4) {
   using D = test::SimeonData;
-  char buf[4096];
+  bench::SliderCrank s;
+  s.sid_file = "rod.sid.h5";
   // Crank: a 0.15 m bar of mass M1 whose inertia about the hub is J1.
   const double Izz = D::J1 - D::M1 * (D::L1 / 2) * (D::L1 / 2);
-  std::snprintf(buf, sizeof buf, R"({
-  "bodies": [
-    {"name": "crank", "type": "rigid", "mass": %.17g, "com": [%.17g, 0, 0],
-     "inertia": [[1e-6, 0, 0], [0, %.17g, 0], [0, 0, %.17g]]},
-    {"name": "rod", "type": "flexible", "sid": "rod.sid.h5", "position": [%.17g, 0, 0],
-     "velocity": [0, %.17g, 0], "angular_velocity": [0, 0, -74.9957670],
-     "modal_coordinates": [0, 0, 0.103339863e-4, 0.169327969e-4],
-     "modal_velocities": [0.444896105, 0.463434311e-2, -0.178591076e-5, -0.268938672e-5]},
-    {"name": "slider", "type": "rigid", "mass": %.17g, "com": [0.450016933, 0, 0],
-     "inertia": [[1e-6, 0, 0], [0, 1e-6, 0], [0, 0, 1e-6]], "velocity": [-0.268938672e-5, 0, 0]}
-  ],
-  "joints": [
-    {"name": "hub", "type": "revolute", "body1": "ground", "body2": "crank", "at": [0, 0, 0], "axis": [0, 0, 1]},
-    {"name": "pin", "type": "revolute", "body1": "crank", "body2": "rod", "node2": "A", "axis": [0, 0, 1]},
-    {"name": "wrist", "type": "revolute", "body1": "rod", "body2": "slider", "node1": "B", "axis": [0, 0, 1]},
-    {"name": "guide", "type": "prismatic", "body1": "ground", "body2": "slider", "at": [0.450016933, 0, 0], "axis": [1, 0, 0]}
-  ],
-  "motions": [{"joint": "hub", "table": {"t": [0, 1], "value": [0, %.17g]}}],
-  "solver": {"end": %.17g, "step": %.17g, "penalty": %.17g},
-  "outputs": [{"name": "q", "type": "modal_coordinates", "body": "rod"}]
-})",
-                D::M1, D::L1 / 2, Izz, Izz, D::L1, D::L1 * D::OMEGA, D::M3, D::OMEGA, end, h, penalty);
-  return buf;
+  s.crank_mass = D::M1;
+  s.crank_com = D::L1 / 2;
+  s.crank_inertia = Eigen::Vector3d(1e-6, Izz, Izz);
+  s.rod_x = D::L1;
+  s.rod_vy = D::L1 * D::OMEGA;
+  s.rod_omega = -74.9957670;
+  s.modal_coordinates = {0, 0, 0.103339863e-4, 0.169327969e-4};
+  s.modal_velocities = {0.444896105, 0.463434311e-2, -0.178591076e-5, -0.268938672e-5};
+  s.slider_mass = D::M3;
+  s.slider_x = 0.450016933;
+  s.slider_vx = -0.268938672e-5;
+  s.omega = D::OMEGA;
+  s.step = h;
+  s.end = end;
+  s.penalty = penalty;
+  return bench::slider_crank_json(s);
 }
 
 struct Result {

@@ -25,29 +25,61 @@ void add_section_inertia(ffr::formats::Sid& sid, double b, double h) {
   sid.integrals.rrdm(2, 2) += m * b * b / 12;
 }
 
-std::string slider_crank_json(const std::string& sid_file, double step, double end, double omega) {
+namespace {
+
+std::string numbers(const std::vector<double>& v) {
+  std::string out;
+  char buf[32];
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    std::snprintf(buf, sizeof buf, "%s%.17g", i ? ", " : "", v[i]);
+    out += buf;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string slider_crank_json(const SliderCrank& s) {
+  std::string modal;
+  if (!s.modal_coordinates.empty()) modal += ", \"modal_coordinates\": [" + numbers(s.modal_coordinates) + "]";
+  if (!s.modal_velocities.empty()) modal += ", \"modal_velocities\": [" + numbers(s.modal_velocities) + "]";
+  char penalty[64] = "";
+  if (s.penalty > 0) std::snprintf(penalty, sizeof penalty, ", \"penalty\": %.17g", s.penalty);
   char buf[4096];
   std::snprintf(buf, sizeof buf, R"({
   "bodies": [
-    {"name": "crank", "type": "rigid", "mass": 0.36, "com": [0.075, 0, 0],
-     "inertia": [[1e-5, 0, 0], [0, 7.02e-4, 0], [0, 0, 7.02e-4]]},
-    {"name": "rod", "type": "flexible", "sid": "%s", "position": [0.15, 0, 0], "velocity": [0, %.17g, 0],
-     "angular_velocity": [0, 0, %.17g]},
-    {"name": "slider", "type": "rigid", "mass": 0.075552, "com": [0.45, 0, 0],
-     "inertia": [[1e-6, 0, 0], [0, 1e-6, 0], [0, 0, 1e-6]]}
+    {"name": "crank", "type": "rigid", "mass": %.17g, "com": [%.17g, 0, 0],
+     "inertia": [[%.17g, 0, 0], [0, %.17g, 0], [0, 0, %.17g]]},
+    {"name": "rod", "type": "flexible", "sid": "%s", "position": [%.17g, 0, 0], "velocity": [0, %.17g, 0],
+     "angular_velocity": [0, 0, %.17g]%s},
+    {"name": "slider", "type": "rigid", "mass": %.17g, "com": [%.17g, 0, 0],
+     "inertia": [[1e-6, 0, 0], [0, 1e-6, 0], [0, 0, 1e-6]], "velocity": [%.17g, 0, 0]}
   ],
   "joints": [
     {"name": "hub", "type": "revolute", "body1": "ground", "body2": "crank", "at": [0, 0, 0], "axis": [0, 0, 1]},
     {"name": "pin", "type": "revolute", "body1": "crank", "body2": "rod", "node2": "A", "axis": [0, 0, 1]},
     {"name": "wrist", "type": "revolute", "body1": "rod", "body2": "slider", "node1": "B", "axis": [0, 0, 1]},
-    {"name": "guide", "type": "prismatic", "body1": "ground", "body2": "slider", "at": [0.45, 0, 0], "axis": [1, 0, 0]}
+    {"name": "guide", "type": "prismatic", "body1": "ground", "body2": "slider", "at": [%.17g, 0, 0], "axis": [1, 0, 0]}
   ],
   "motions": [{"joint": "hub", "table": {"t": [0, 1], "value": [0, %.17g]}}],
-  "solver": {"end": %.17g, "step": %.17g},
+  "solver": {"end": %.17g, "step": %.17g%s},
   "outputs": [{"name": "q", "type": "modal_coordinates", "body": "rod"}]
 })",
-                sid_file.c_str(), 0.15 * omega, -0.5 * omega, omega, end, step);
+                s.crank_mass, s.crank_com, s.crank_inertia(0), s.crank_inertia(1), s.crank_inertia(2), s.sid_file.c_str(),
+                s.rod_x, s.rod_vy, s.rod_omega, modal.c_str(), s.slider_mass, s.slider_x, s.slider_vx, s.slider_x,
+                s.omega, s.end, s.step, penalty);
   return buf;
+}
+
+std::string slider_crank_json(const std::string& sid_file, double step, double end, double omega) {
+  SliderCrank s;
+  s.sid_file = sid_file;
+  s.rod_vy = 0.15 * omega;
+  s.rod_omega = -0.5 * omega;
+  s.omega = omega;
+  s.step = step;
+  s.end = end;
+  return slider_crank_json(s);
 }
 
 std::filesystem::path temp_dir(const std::string& tag) {

@@ -4,8 +4,11 @@
 #include "ffr/formats/synthetic.hpp"
 #include "ffr/runtime/runtime.hpp"
 
+#include <Eigen/Core>
+
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace bench {
 
@@ -17,9 +20,24 @@ ffr::formats::synthetic::ChainParams rod_params(int points, int modes);
 /// rotation about the bar's own axis from being massless. Added to /integrals/rrdm.
 void add_section_inertia(ffr::formats::Sid& sid, double b, double h);
 
-/// Slider-crank of the IVP Test Set geometry (crank 0.15 m, rod 0.3 m): rigid crank driven at
-/// omega [rad/s], the flexible rod (SID file), rigid slider; revolute joints about z and a
-/// prismatic guide (3 redundant conditions).
+/// Slider-crank along x: rigid crank (hub at the origin) driven at omega [rad/s], the flexible rod
+/// (SID file, its frame at the crank pin), rigid slider; revolute joints about z and a prismatic
+/// guide (3 redundant conditions).
+struct SliderCrank {
+  std::string sid_file;
+  double crank_mass = 0.36, crank_com = 0.075;      ///< com on the crank's axis [m]
+  Eigen::Vector3d crank_inertia{1e-5, 7.02e-4, 7.02e-4};  ///< principal, about the com
+  double rod_x = 0.15;                                ///< rod frame origin (the crank pin) [m]
+  double rod_vy = 0, rod_omega = 0;                   ///< initial velocity of the pin, angular rate
+  std::vector<double> modal_coordinates, modal_velocities;  ///< empty: at rest, undeformed
+  double slider_mass = 0.075552, slider_x = 0.45, slider_vx = 0;
+  double omega = 150.0, step = 1e-3, end = 1.0;
+  double penalty = 0;                                 ///< 0: the solver's default
+};
+std::string slider_crank_json(const SliderCrank& s);
+
+/// The benchmark's: IVP Test Set geometry (crank 0.15 m, rod 0.3 m), rod started with the
+/// crank's motion.
 std::string slider_crank_json(const std::string& sid_file, double step, double end, double omega);
 
 /// A fresh temporary directory.
