@@ -98,19 +98,22 @@ struct Fixture : ::testing::Test {
     generalized_forces(model, *data, t);
     return data->Q;
   }
-  // Dense Phi_q from the blocks.
-  MatrixXd jacobian() {
-    MatrixXd J = MatrixXd::Zero(model.nconstraints, model.ncoord);
-    for (std::size_t b = 0; b < model.blocks.size(); ++b) {
-      const auto& blk = model.blocks[b];
-      if (blk.body1 != kGround)
-        J.block(blk.row0, model.bodies[blk.body1].offset, blk.rows, data->J1[b].cols()) += data->J1[b];
-      if (blk.body2 != kGround)
-        J.block(blk.row0, model.bodies[blk.body2].offset, blk.rows, data->J2[b].cols()) += data->J2[b];
-    }
-    return J;
-  }
 };
+
+// Central differences of f: R^n -> R^m at x, column by column.
+template <class F>
+MatrixXd central_differences(const F& f, const VectorXd& x, double eps) {
+  MatrixXd D;
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    VectorXd a = x, b = x;
+    a(i) += eps;
+    b(i) -= eps;
+    const VectorXd col = (f(a) - f(b)) / (2 * eps);
+    if (i == 0) D.resize(col.size(), x.size());
+    D.col(i) = col;
+  }
+  return D;
+}
 
 double rel_err(const MatrixXd& a, const MatrixXd& b) { return (a - b).cwiseAbs().maxCoeff() / std::max(1.0, b.cwiseAbs().maxCoeff()); }
 
@@ -119,15 +122,8 @@ double rel_err(const MatrixXd& a, const MatrixXd& b) { return (a - b).cwiseAbs()
 TEST_F(Fixture, ConstraintJacobianMatchesFiniteDifferences) {
   set(q, qd, qdd);
   evaluate_constraints(model, *data, t);
-  const MatrixXd J = jacobian();
-  MatrixXd Jfd(J.rows(), J.cols());
-  const double eps = 1e-6;
-  for (Eigen::Index i = 0; i < q.size(); ++i) {
-    VectorXd a = q, b = q;
-    a(i) += eps;
-    b(i) -= eps;
-    Jfd.col(i) = (constraints(a, t) - constraints(b, t)) / (2 * eps);
-  }
+  const MatrixXd J = data->Phiq;  // the dense Jacobian the products use, assembled from the blocks
+  const MatrixXd Jfd = central_differences([&](const VectorXd& z) { return constraints(z, t); }, q, 1e-6);
   std::printf("constraint Jacobian: relative error %.2e (%ld x %ld)\n", rel_err(J, Jfd), (long)J.rows(), (long)J.cols());
   EXPECT_LT(rel_err(J, Jfd), 1e-7);
 }
@@ -136,7 +132,7 @@ TEST_F(Fixture, AccelerationBiasAndTimeDerivativesMatchFiniteDifferences) {
   // Along the path q(s) = q + s qd + s^2/2 qdd at time t + s.
   set(q, qd, qdd);
   evaluate_constraints(model, *data, t);
-  const MatrixXd J = jacobian();
+  const MatrixXd J = data->Phiq;
   const VectorXd Phit = data->Phit, gamma = data->gamma;
   const double eps = 1e-4;
   auto path = [&](double s) { return constraints(q + s * qd + 0.5 * s * s * qdd, t + s); };
@@ -152,19 +148,8 @@ TEST_F(Fixture, ForceTangentsMatchFiniteDifferences) {
   generalized_forces(model, *data, t);
   force_tangents(model, *data, t);
   const MatrixXd K = data->K, C = data->C;
-  MatrixXd Kfd(K.rows(), K.cols()), Cfd(C.rows(), C.cols());
-  const double eps = 1e-6;
-  for (Eigen::Index i = 0; i < q.size(); ++i) {
-    VectorXd a = q, b = q;
-    a(i) += eps;
-    b(i) -= eps;
-    Kfd.col(i) = -(forces(a, qd) - forces(b, qd)) / (2 * eps);
-    a = qd;
-    b = qd;
-    a(i) += eps;
-    b(i) -= eps;
-    Cfd.col(i) = -(forces(q, a) - forces(q, b)) / (2 * eps);
-  }
+  const MatrixXd Kfd = -central_differences([&](const VectorXd& z) { return forces(z, qd); }, q, 1e-6);
+  const MatrixXd Cfd = -central_differences([&](const VectorXd& zd) { return forces(q, zd); }, qd, 1e-6);
   std::printf("K: %.2e (max |K| %.2e), C: %.2e (max |C| %.2e)\n", rel_err(K, Kfd), K.cwiseAbs().maxCoeff(), rel_err(C, Cfd), C.cwiseAbs().maxCoeff());
   EXPECT_LT(rel_err(K, Kfd), 1e-6) << "worst K entry off by " << (K - Kfd).cwiseAbs().maxCoeff();
   EXPECT_LT(rel_err(C, Cfd), 1e-6) << "worst C entry off by " << (C - Cfd).cwiseAbs().maxCoeff();
@@ -185,14 +170,7 @@ TEST_F(Fixture, ConstraintHessianMatchesFiniteDifferences) {
   evaluate_constraints(model, *data, t);
   MatrixXd H = MatrixXd::Zero(model.ncoord, model.ncoord);
   add_constraint_hessian(model, *data, lam, 1.0, H);
-  MatrixXd Hfd(H.rows(), H.cols());
-  const double eps = 1e-6;
-  for (Eigen::Index i = 0; i < q.size(); ++i) {
-    VectorXd a = q, b = q;
-    a(i) += eps;
-    b(i) -= eps;
-    Hfd.col(i) = (force(a) - force(b)) / (2 * eps);
-  }
+  const MatrixXd Hfd = central_differences(force, q, 1e-6);
   std::printf("constraint Hessian: %.2e (max %.2e)\n", rel_err(H, Hfd), H.cwiseAbs().maxCoeff());
   EXPECT_LT(rel_err(H, Hfd), 1e-6);
 }
