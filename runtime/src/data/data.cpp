@@ -77,16 +77,7 @@ Data::Data(const Model& model) {
     size_marker(markers[i], b == kGround ? 0 : model.bodies[b].ncoord());
   }
 
-  J1.resize(model.blocks.size());
-  J2.resize(model.blocks.size());
   int pair_max = 0;
-  for (std::size_t i = 0; i < model.blocks.size(); ++i) {
-    const ConstraintBlock& b = model.blocks[i];
-    const int n1 = b.body1 == kGround ? 0 : model.bodies[b.body1].ncoord();
-    const int n2 = b.body2 == kGround ? 0 : model.bodies[b.body2].ncoord();
-    J1[i] = MatrixXd::Zero(b.rows, n1);
-    J2[i] = MatrixXd::Zero(b.rows, n2);
-  }
   int rows_max = 6, nb_all = 12;
   for (const auto& b : model.blocks) rows_max = std::max(rows_max, b.rows);
   for (const auto& b : model.bodies) nb_all = std::max(nb_all, b.ncoord());

@@ -15,10 +15,12 @@ using detail::expr;
 using detail::point;
 using detail::VecExpr;
 
+// One block's rows: values, and its Jacobian written straight into data.Phiq, J1 (J2) being the
+// columns of body 1 (2). For a ground side the block has no columns and is never written; a
+// joint between two markers of one body gets the same columns twice, and the rows add into them.
 struct Rows {
   Eigen::Ref<VectorXd> Phi, Phit, gamma;
-  MatrixXd& J1;
-  MatrixXd& J2;
+  detail::JacobianBlock J1, J2;
 };
 
 // The six conditions on a body's frame vectors: L/2 (u.u - 1), ..., L u.v, ... (each a length).
@@ -138,6 +140,13 @@ void motion_row(const Model& model, const Data& data, int m, double t, Rows& r) 
   r.gamma(0) = scale * (v.bias - target(2));
 }
 
+// The body's columns of a block's rows in data.Phiq (none for the ground).
+detail::JacobianBlock block_columns(const Model& model, Data& data, const ConstraintBlock& b, int body) {
+  if (body == kGround) return data.Phiq.block(b.row0, 0, b.rows, 0);
+  const Body& B = model.bodies[body];
+  return data.Phiq.block(b.row0, B.offset, b.rows, B.ncoord());
+}
+
 }  // namespace
 
 Vector3d motion_target(const Model& model, const Data& data, int m, double t) {
@@ -148,30 +157,18 @@ Vector3d motion_target(const Model& model, const Data& data, int m, double t) {
 }
 
 void evaluate_constraints(const Model& model, Data& data, double t) {
-  for (std::size_t bi = 0; bi < model.blocks.size(); ++bi) {
-    const ConstraintBlock& b = model.blocks[bi];
-    data.J1[bi].setZero();
-    data.J2[bi].setZero();
+  // The Jacobian is assembled dense (the products use it several times per Newton iteration);
+  // the columns of bodies a block does not touch stay zero from construction.
+  for (const ConstraintBlock& b : model.blocks) {
     Rows r{data.Phi.segment(b.row0, b.rows), data.Phit.segment(b.row0, b.rows), data.gamma.segment(b.row0, b.rows),
-           data.J1[bi], data.J2[bi]};
+           block_columns(model, data, b, b.body1), block_columns(model, data, b, b.body2)};
+    r.J1.setZero();
+    r.J2.setZero();
     r.Phit.setZero();
     switch (b.kind) {
       case BlockKind::RigidBody: rigid_body_rows(model, data, b.index, r); break;
       case BlockKind::Joint: joint_rows(model, data, model.joints[b.index], r); break;
       case BlockKind::Motion: motion_row(model, data, b.index, t, r); break;
-    }
-    // The same block in the dense Jacobian, which the products below use: one matrix-vector
-    // product instead of two small ones per block, several times per Newton iteration.
-    // The other columns of these rows stay zero from construction.
-    if (b.body1 != kGround) {
-      const Body& B = model.bodies[b.body1];
-      data.Phiq.block(b.row0, B.offset, b.rows, B.ncoord()) = data.J1[bi];
-    }
-    if (b.body2 != kGround) {
-      const Body& B = model.bodies[b.body2];
-      auto cols = data.Phiq.block(b.row0, B.offset, b.rows, B.ncoord());
-      if (b.body2 == b.body1) cols += data.J2[bi];
-      else cols = data.J2[bi];
     }
   }
 }
@@ -199,10 +196,9 @@ void constraint_times(const Model& model, const Data& data, const VectorXd& v, V
 }
 
 void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, double f, MatrixXd& T) {
-  for (std::size_t bi = 0; bi < model.blocks.size(); ++bi) {
-    const ConstraintBlock& b = model.blocks[bi];
-    const MatrixXd& J1 = data.J1[bi];
-    const MatrixXd& J2 = data.J2[bi];
+  for (const ConstraintBlock& b : model.blocks) {
+    const auto J1 = block_columns(model, data, b, b.body1);
+    const auto J2 = block_columns(model, data, b, b.body2);
     const auto a = alpha.segment(b.row0, b.rows);
     if (b.kind == BlockKind::RigidBody) {
       // Only the frame-vector columns are nonzero.
@@ -212,7 +208,8 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
       T.block<9, 9>(o, o).noalias() += Jw.transpose() * J1.middleCols<9>(3);
       continue;
     }
-    const bool h1 = b.body1 != kGround, h2 = b.body2 != kGround;
+    // A joint within one body has its rows once in Phiq: its term is that block's alone.
+    const bool h1 = b.body1 != kGround, h2 = b.body2 != kGround && b.body2 != b.body1;
     const int o1 = h1 ? model.bodies[b.body1].offset : 0, n1 = static_cast<int>(J1.cols());
     const int o2 = h2 ? model.bodies[b.body2].offset : 0, n2 = static_cast<int>(J2.cols());
     if (h1) {

@@ -41,12 +41,15 @@ inline VecTerm axis(const MarkerData& md, int k, int side, bool ground, double s
 inline VecExpr expr(VecTerm a) { VecExpr e; e.t[0] = a; e.n = 1; return e; }
 inline VecExpr expr(VecTerm a, VecTerm b) { VecExpr e; e.t[0] = a; e.t[1] = b; e.n = 2; return e; }
 
+/// A constraint block's columns of one body in the dense Jacobian data.Phiq.
+using JacobianBlock = Eigen::Block<MatrixXd>;
+
 /// Adds scale * d(a.b)/dz to row r of J1/J2. Returns nothing; value/bias are computed by dot().
-inline void dot_jacobian(const VecExpr& a, const VecExpr& b, double scale, MatrixXd& J1, MatrixXd& J2, int r) {
+inline void dot_jacobian(const VecExpr& a, const VecExpr& b, double scale, JacobianBlock& J1, JacobianBlock& J2, int r) {
   const Vector3d av = a.value(), bv = b.value();
   auto add = [&](const VecTerm& x, const Vector3d& other) {
     if (!x.J) return;
-    MatrixXd& J = x.side == 1 ? J1 : J2;
+    JacobianBlock& J = x.side == 1 ? J1 : J2;
     J.row(r).noalias() += (scale * x.sign) * other.transpose() * *x.J;
   };
   for (int i = 0; i < a.n; ++i) add(a.t[i], bv);

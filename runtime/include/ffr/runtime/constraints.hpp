@@ -4,7 +4,7 @@
 //  - per joint, conditions on its two markers (points coincide, axes perpendicular, ...),
 //  - per motion, joint coordinate minus the prescribed value.
 // Rows without a length unit are multiplied by the model length so every row is a length.
-// The Jacobian is kept per block (data.J1, data.J2); gamma is the acceleration bias
+// The Jacobian is data.Phiq (dense, each block writing its bodies' columns); gamma is the acceleration bias
 // (Phi_dd = Phi_q q_dd + gamma) including the prescribed accelerations.
 
 #include "ffr/runtime/data.hpp"

@@ -66,8 +66,7 @@ struct Data {
   // Per-element work.
   std::vector<BodyData> bodies;
   std::vector<MarkerData> markers;
-  std::vector<MatrixXd> J1, J2; ///< per constraint block: [rows, nb1], [rows, nb2]
-  MatrixXd Phiq;                ///< the blocks assembled: Phi_q [m, n]
+  MatrixXd Phiq;                ///< constraint Jacobian Phi_q [m, n], dense (zero outside the blocks)
 
   // Global vectors and matrices (n = coordinates, m = constraint rows).
   VectorXd Q;                   ///< generalized forces (applied + velocity-dependent inertia)
