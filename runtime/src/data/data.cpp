@@ -23,7 +23,7 @@ Data::Data(const Model& model) {
   q = qd = qdd = VectorXd::Zero(n);
   lambda = lambda_eff = lambda0 = VectorXd::Zero(m);
   Q = f = dq = r = tmp = tmp2 = vstar = qdd_prev = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);
-  sigma = sigma_v = sigma_a = c = alpha = VectorXd::Zero(m);
+  sigma = c = alpha = VectorXd::Zero(m);
   K = C = W = T = MatrixXd::Zero(n, n);
   Phiq = MatrixXd::Zero(m, n);
   lu = Eigen::PartialPivLU<MatrixXd>(n);

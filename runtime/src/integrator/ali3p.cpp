@@ -128,22 +128,24 @@ void step(const Model& model, Data& data) {
       ++refreshes;
     }
     double left = newton_direction(model, data, h);
+    double next_inc = scaled_norm(model, data.dq);
     // A tangent built at an earlier iterate under which the increment more than doubles is not
     // used: its update is discarded and the direction recomputed with a tangent built here.
     // (Applied, it can throw the iterate so far that no later tangent recovers: a Craig-Bampton
     // rod started at 1500 rpm with h = 1 ms went from a scaled increment of 0.017 to 11, then
     // diverged.)
-    if (!refreshed_now && it >= 2 && refreshes < kMaxRefreshes && !(scaled_norm(model, data.dq) < 2 * inc)) {
+    if (!refreshed_now && it >= 2 && refreshes < kMaxRefreshes && !(next_inc < 2 * inc)) {
       data.lambda -= data.sigma;
       refresh_tangent(model, data, t1, data.lambda);
       data.tangent_fresh_step = true;
       refreshed_now = true;
       ++refreshes;
       left = newton_direction(model, data, h);
+      next_inc = scaled_norm(model, data.dq);
     }
     data.q -= data.dq;
     prev_inc = inc;
-    inc = scaled_norm(model, data.dq);
+    inc = next_inc;
     if (!std::isfinite(inc)) throw SolverError(t1, inc, newton_failure(t1, it, inc, viol) + ": singular tangent");
     // Converged when the error left after this update is below the tolerance: for a contracting
     // iteration (rate theta = inc / prev_inc < 1) it is at most inc theta / (1 - theta)

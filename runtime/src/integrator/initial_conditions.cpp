@@ -160,12 +160,10 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
   // velocities if the frames alone could not satisfy the joints and motions).
   factor_metric(model, data, model.settings.penalty * 4.0 / (h * h), 0.25 * h * h, kElasticWeight);
   data.tangent_fresh_step = true;  // the metric is M here: no refresh with C and K
-  data.sigma_v.setZero();
   double vres = project_velocities(model, data, t0);
   if (vres > 1e-2 * model.settings.tolerance) {
     if (!(vres < 1e-6)) data.qd = given;
     factor_metric(model, data, model.settings.penalty * 4.0 / (h * h), 0.25 * h * h);
-    data.sigma_v.setZero();
     vres = project_velocities(model, data, t0);
   }
   if (vres > model.settings.tolerance)
@@ -197,9 +195,6 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
     }
   }
   data.tangent_valid = false;
-  // The steps' projections warm-start from these; the set-up's were in another metric.
-  data.sigma_v.setZero();
-  data.sigma_a.setZero();
   return notes;
 }
 

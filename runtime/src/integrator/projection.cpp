@@ -6,8 +6,6 @@
 //   x <- x - T^{-1} [W (x - x*) + h^2/4 Phi_q^T (sigma + alpha c(x))],  sigma <- sigma + alpha c(x)
 // With a fresh T the first pass is exactly Cuadrado's single projection; further passes drive the
 // violation to round-off (also with redundant constraints, where Phi_q is rank-deficient).
-// sigma starts from the previous step's projection (warm start; on the benchmark's slider-crank
-// this saves little, the step-to-step change of sigma being of the size of sigma itself).
 #include "ffr/runtime/constraints.hpp"
 #include "ffr/runtime/integrator.hpp"
 #include "ffr/runtime/kinematics.hpp"
@@ -18,10 +16,11 @@ namespace {
 constexpr int kMaxProjection = 40;
 
 // One projection with the current factorisation; x is left projected (or as far as it got).
-double project_once(const Model& model, Data& data, VectorXd& x, VectorXd& sigma, const VectorXd& bias, double unit) {
+double project_once(const Model& model, Data& data, VectorXd& x, const VectorXd& bias, double unit) {
   const double h = model.settings.step;
   const double h4 = 0.25 * h * h;
   const double target = 1e-2 * model.settings.tolerance;
+  data.sigma.setZero();
   constraint_times(model, data, x, data.c);
   data.c += bias;
   double res = data.c.cwiseAbs().maxCoeff() * unit;
@@ -29,13 +28,13 @@ double project_once(const Model& model, Data& data, VectorXd& x, VectorXd& sigma
   for (int k = 0; k < kMaxProjection && res > target; ++k) {
     data.tmp = x - data.vstar;
     data.r.noalias() = data.W * data.tmp;
-    data.c = h4 * (sigma + data.alpha.cwiseProduct(data.c));
+    data.c = h4 * (data.sigma + data.alpha.cwiseProduct(data.c));
     add_constraint_forces(model, data, data.c, data.r);
     solve_tangent(data, data.r, data.dq);
     x -= data.dq;
     constraint_times(model, data, x, data.c);
     data.c += bias;
-    sigma += data.alpha.cwiseProduct(data.c);
+    data.sigma += data.alpha.cwiseProduct(data.c);
     const double prev = res;
     res = data.c.cwiseAbs().maxCoeff() * unit;
     if (!(res < 1e3 * std::max(res0, target))) return res;  // diverging: stale factorisation
@@ -46,17 +45,16 @@ double project_once(const Model& model, Data& data, VectorXd& x, VectorXd& sigma
 
 // Projects x (saved first) and, if a stale factorisation cannot do it, refreshes the tangent at
 // the current state and starts again.
-double project(const Model& model, Data& data, VectorXd& x, VectorXd& sigma, const VectorXd& bias, double time_scale,
-               double t) {
+double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias, double time_scale, double t) {
   const double unit = time_scale / model.length;
   data.vstar = x;
-  double res = project_once(model, data, x, sigma, bias, unit);
+  double res = project_once(model, data, x, bias, unit);
   if (res > model.settings.tolerance && data.tangent_fresh_step == false) {
     x = data.vstar;
     refresh_tangent(model, data, t, data.lambda);
     data.tangent_fresh_step = true;
-    sigma.setZero();
-    res = project_once(model, data, x, sigma, bias, unit);
+    data.vstar = x;
+    res = project_once(model, data, x, bias, unit);
   }
   return res;
 }
@@ -65,7 +63,7 @@ double project(const Model& model, Data& data, VectorXd& x, VectorXd& sigma, con
 
 double project_velocities(const Model& model, Data& data, double t) {
   const double h = model.settings.step;
-  return project(model, data, data.qd, data.sigma_v, data.Phit, h, t);
+  return project(model, data, data.qd, data.Phit, h, t);
 }
 
 double project_accelerations(const Model& model, Data& data, double t) {
@@ -74,7 +72,7 @@ double project_accelerations(const Model& model, Data& data, double t) {
   update_bodies(model, data);
   update_markers(model, data);
   evaluate_constraints(model, data, t);
-  return project(model, data, data.qdd, data.sigma_a, data.gamma, h * h, t);
+  return project(model, data, data.qdd, data.gamma, h * h, t);
 }
 
 }  // namespace ffr::runtime

@@ -87,7 +87,6 @@ struct Data {
   VectorXd qdd_prev;            ///< accelerations of the step before (predictor)
   bool have_previous = false;
   VectorXd f, dq, r, sigma, c, tmp, tmp2, vstar;
-  VectorXd sigma_v, sigma_a;    ///< multipliers of the last velocity and acceleration projections (warm start)
 
   // Joints: unwrapped angle of each revolute/cylindrical joint at the last accepted step.
   std::vector<double> angle_ref;
