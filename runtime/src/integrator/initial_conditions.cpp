@@ -140,7 +140,6 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
   data.t = t0;
   data.qdd.setZero();
   data.have_previous = false;
-  for (BodyData& bd : data.bodies) bd.have_step_alpha = false;
   data.stats = Stats{};
   // Angles of driven joints are unwrapped around their targets from the start.
   for (std::size_t m = 0; m < model.motions.size(); ++m)

@@ -38,7 +38,7 @@ void predict_frames(const Model& model, Data& data) {
     // symmetric, alpha~ = skew(A_ddot A^T).
     const Vector3d omega = axial(Ad * A.transpose());
     const Vector3d alpha = axial(Add * A.transpose());
-    if (bd.have_step_alpha) {
+    if (data.have_previous) {  // a step before this one: step_alpha is its start's
       // Rotation vector of the step to third order, the rate of alpha from the last step (the
       // commutator terms vanish for a fixed axis and are of the order of the error otherwise).
       const Vector3d turn = h * omega + 0.5 * h * h * alpha + (h * h / 6) * (alpha - bd.step_alpha);
@@ -49,7 +49,6 @@ void predict_frames(const Model& model, Data& data) {
       }
     }
     bd.step_alpha = alpha;
-    bd.have_step_alpha = true;
   }
 }
 

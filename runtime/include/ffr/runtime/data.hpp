@@ -32,7 +32,6 @@ struct BodyData {
   VectorXd few;                 ///< co-rotational path only: 2 A_dot Phi y_dot [3N]
   VectorXd wq;                  ///< work [nq]
   Vector3d step_alpha = Vector3d::Zero(); ///< angular acceleration at the last step's start (predict_frames)
-  bool have_step_alpha = false;
 };
 
 /// A marker's position and axes with their Jacobians (columns: the coordinates of its body).
