@@ -1,5 +1,7 @@
 #include "ffr/preproc/threads.hpp"
 
+#include "solver/library_threads.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <thread>
@@ -14,6 +16,10 @@ unsigned max_threads() {
   return n > 0 ? n : std::max(1u, std::thread::hardware_concurrency());
 }
 
-void set_max_threads(unsigned n) { g_max_threads.store(n, std::memory_order_relaxed); }
+void set_max_threads(unsigned n) {
+  g_max_threads.store(n, std::memory_order_relaxed);
+  // The supernodal factorization and solves run in the BLAS: hold it to the same count.
+  detail::set_blas_threads(max_threads());
+}
 
 }  // namespace ffr::preproc

@@ -28,38 +28,47 @@ namespace {
 
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// Y += A X for an upper-only symmetric A and row-major X, Y: one pass over A, raw loops over
-// contiguous rows of width m (Eigen's dynamic-size row expressions cost more than the
-// arithmetic for the 4..30 columns of the eigen-solvers).
+// Y += A X for an upper-only symmetric A and row-major X, Y: one pass over A, each stored
+// entry applied to a row of X and to its mirror (Eigen's products of a column-major sparse
+// matrix with a column-major X, and its selfadjointView products, pass over A once per column).
+// W fixes the row width at compile time where the eigen-solvers need it: fixed-size rows are
+// vectorized, plain loops are not at -O2 (the compiler cannot rule out that X and Y alias).
+// Measured on the 100k-DOF plate's mass matrix (tools/bench/reduce): 4 columns 17.7 -> 12 ms,
+// 8 columns 31 -> 16 ms.
+template <int W>
 void upper_times_rows(const SparseMatrix& A, const RowMajorMatrix& X, RowMajorMatrix& Y) {
-  const Eigen::Index m = X.cols();
+  using Row = Eigen::Matrix<double, 1, W>;
+  const Eigen::Index m = W > 0 ? W : X.cols();
   const double* x = X.data();
   double* y = Y.data();
   const auto* outer = A.outerIndexPtr();
   const auto* nnz = A.innerNonZeroPtr();
   const auto* rows = A.innerIndexPtr();
   const double* vals = A.valuePtr();
-  std::vector<double> acc(static_cast<std::size_t>(m));
+  Row acc(1, m);
   for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
-    const double* xj = x + j * m;
-    std::fill(acc.begin(), acc.end(), 0.0);
+    const Eigen::Map<const Row> xj(x + j * m, 1, m);
+    acc.setZero();
     const auto end = nnz ? outer[j] + nnz[j] : outer[j + 1];
     for (auto k = outer[j]; k < end; ++k) {
       const Eigen::Index i = rows[k];
       const double a = vals[k];
       if (i < j) {
-        double* yi = y + i * m;
-        const double* xi = x + i * m;
-        for (Eigen::Index c = 0; c < m; ++c) {
-          yi[c] += a * xj[c];   // the stored A(i, j)
-          acc[c] += a * xi[c];  // its mirror A(j, i)
-        }
+        Eigen::Map<Row>(y + i * m, 1, m).noalias() += a * xj;           // the stored A(i, j)
+        acc.noalias() += a * Eigen::Map<const Row>(x + i * m, 1, m);  // its mirror A(j, i)
       } else if (i == j) {
-        for (Eigen::Index c = 0; c < m; ++c) acc[c] += a * xj[c];
+        acc.noalias() += a * xj;
       }
     }
-    double* yj = y + j * m;
-    for (Eigen::Index c = 0; c < m; ++c) yj[c] += acc[c];
+    Eigen::Map<Row>(y + j * m, 1, m) += acc;
+  }
+}
+
+void upper_times_rows(const SparseMatrix& A, const RowMajorMatrix& X, RowMajorMatrix& Y) {
+  switch (X.cols()) {
+    case 4: upper_times_rows<4>(A, X, Y); break;
+    case 8: upper_times_rows<8>(A, X, Y); break;
+    default: upper_times_rows<Eigen::Dynamic>(A, X, Y); break;
   }
 }
 

@@ -1,0 +1,18 @@
+#pragma once
+// Thread counts of the libraries under the eigen-solver, which do not follow ours.
+
+namespace ffr::preproc::detail {
+
+/// Runs CHOLMOD's own OpenMP loops on the calling thread. Debian's CHOLMOD asks for a
+/// compiled-in CHOLMOD_OMP_NUM_THREADS (4) in the supernodal factorization, whatever
+/// OMP_NUM_THREADS or --threads say; on a 2-core machine those threads fight the BLAS threads
+/// (measured on the 100k-DOF plate of tools/bench/reduce: factorization 3.2 s with them,
+/// 1.7 s without, at 1 thread; at 2 threads 1.8-2.2 s against 1.4 s). The BLAS is where the
+/// parallel work is. Per thread (OpenMP's max-active-levels is a per-task setting): call it
+/// on the thread that factorizes. No effect when no OpenMP runtime is loaded.
+void keep_openmp_on_this_thread();
+
+/// Sets OpenBLAS's thread count (openblas_set_num_threads), when OpenBLAS is the BLAS.
+void set_blas_threads(unsigned n);
+
+}  // namespace ffr::preproc::detail
