@@ -18,6 +18,7 @@ constexpr std::size_t kBatch = 512;
 struct Computed {
   ElementRef ref;
   std::vector<Index> dofs;
+  detail::Placement place;
   ElementMatrices em;
   double scaled_jacobian = 1.0;  ///< solids only
 };
@@ -57,13 +58,11 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   auto scatter = [&](std::vector<Computed>& batch) {
     std::lock_guard<std::mutex> lock(scatter_mutex);
     for (auto& c : batch) {
-      pattern.add(out.K, c.dofs, c.em.K, model);
+      pattern.add(out.K, c.place, c.em.K);
       if (opt.stiffness_only) continue;
-      pattern.add(out.M, c.dofs, c.em.M, model);
-      if (c.ref.block >= 0 && model.blocks[static_cast<std::size_t>(c.ref.block)].kind == ElementKind::Solid) {
-        const auto& blk = model.mesh->blocks[model.blocks[static_cast<std::size_t>(c.ref.block)].block];
-        pattern.add_node_scalar(out.Ms, blk.element(c.ref.index), num_nodes(blk.type), c.em.M);
-      }
+      pattern.add(out.M, c.place, c.em.M);
+      if (c.ref.block >= 0 && model.blocks[static_cast<std::size_t>(c.ref.block)].kind == ElementKind::Solid)
+        pattern.add_node_scalar(out.Ms, c.place, c.em.M);
       if (c.scaled_jacobian < out.worst_scaled_jacobian) {
         out.worst_scaled_jacobian = c.scaled_jacobian;
         out.worst_element = describe(model, c.ref);
@@ -92,7 +91,8 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
       batch.clear();
       try {
         for (std::size_t i = begin; i < end; ++i) {
-          Computed c{refs[i], element_dofs(model, refs[i]), {}, 1.0};
+          Computed c{refs[i], element_dofs(model, refs[i]), {}, {}, 1.0};
+          c.place = pattern.place(c.dofs, model);
           try {
             c.em = kernel(model, refs[i]);
             if (!opt.stiffness_only && refs[i].block >= 0 && model.blocks[static_cast<std::size_t>(refs[i].block)].kind == ElementKind::Solid) {

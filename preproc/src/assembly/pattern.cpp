@@ -133,41 +133,51 @@ SparseMatrix Pattern::make_node_matrix() const {
   return A;
 }
 
-void Pattern::add(SparseMatrix& A, const std::vector<Index>& dofs, const Eigen::MatrixXd& Ae, const FeModel& m) const {
+Placement Pattern::place(const std::vector<Index>& dofs, const FeModel& m) const {
+  Placement p;
   const auto nd = dofs.size();
-  // Entity and offset of each element DOF, and the adjacency slot of each entity pair.
-  std::vector<Index> ent(nd), off(nd);
+  p.ent_of.resize(nd);
+  p.off.resize(nd);
+  p.col0.resize(nd);
   for (std::size_t i = 0; i < nd; ++i) {
-    ent[i] = entity_of_dof(m, dofs[i]);
-    off[i] = dofs[i] - ent_dof0[static_cast<std::size_t>(ent[i])];
+    const Index e = entity_of_dof(m, dofs[i]);
+    const auto it = std::find(p.ents.begin(), p.ents.end(), e);
+    p.ent_of[i] = static_cast<int>(it - p.ents.begin());
+    if (it == p.ents.end()) p.ents.push_back(e);
+    p.off[i] = dofs[i] - ent_dof0[static_cast<std::size_t>(e)];
+    p.col0[i] = col_ptr[static_cast<std::size_t>(dofs[i])];
   }
+  const std::size_t ne = p.ents.size();
+  p.slot.resize(ne * ne);
+  for (std::size_t b = 0; b < ne; ++b)
+    for (std::size_t a = 0; a < ne; ++a) p.slot[b * ne + a] = find(p.ents[b], p.ents[a]);
+  return p;
+}
+
+void Pattern::add(SparseMatrix& A, const Placement& p, const Eigen::MatrixXd& Ae) const {
+  const auto nd = p.ent_of.size();
+  const auto ne = p.ents.size();
   double* val = A.valuePtr();
-  Index last_col_ent = -1, last_row_ent = -1, slot = -1;
   for (std::size_t j = 0; j < nd; ++j) {
-    const Index col0 = col_ptr[static_cast<std::size_t>(dofs[j])];
+    const Index* slots = p.slot.data() + static_cast<std::size_t>(p.ent_of[j]) * ne;
+    const double* col = Ae.data() + static_cast<Index>(j) * Ae.rows();
     for (std::size_t i = 0; i < nd; ++i) {
-      const double v = Ae(static_cast<Index>(i), static_cast<Index>(j));
-      if (v == 0.0) continue;
-      if (ent[j] != last_col_ent || ent[i] != last_row_ent) {
-        slot = find(ent[j], ent[i]);
-        last_col_ent = ent[j];
-        last_row_ent = ent[i];
-      }
-      val[col0 + adj_prefix[static_cast<std::size_t>(slot)] + off[i]] += v;
+      if (col[i] == 0.0) continue;
+      val[p.col0[j] + adj_prefix[static_cast<std::size_t>(slots[p.ent_of[i]])] + p.off[i]] += col[i];
     }
   }
 }
 
-void Pattern::add_node_scalar(SparseMatrix& Ms, const Index* nodes, int nn, const Eigen::MatrixXd& Me) const {
+void Pattern::add_node_scalar(SparseMatrix& Ms, const Placement& p, const Eigen::MatrixXd& Me) const {
   double* val = Ms.valuePtr();
-  for (int j = 0; j < nn; ++j) {
-    const Index cn = nodes[j];
-    const Index c0 = node_col_ptr[static_cast<std::size_t>(cn)];
-    const Index a0 = adj_ptr[static_cast<std::size_t>(cn)];
-    for (int i = 0; i < nn; ++i) {
-      const Index slot = find(cn, nodes[i]) - a0;  // mesh nodes precede interfaces in adj
-      val[c0 + slot] += Me(3 * i, 3 * j);
-    }
+  const auto ne = p.ents.size();
+  for (std::size_t b = 0; b < ne; ++b) {
+    const auto cn = static_cast<std::size_t>(p.ents[b]);
+    // Mesh nodes precede interface entities in adj, so the slot less the column's first
+    // slot is the position among the node neighbours.
+    const Index c0 = node_col_ptr[cn] - adj_ptr[cn];
+    for (std::size_t a = 0; a < ne; ++a)
+      val[c0 + p.slot[b * ne + a]] += Me(3 * static_cast<Index>(a), 3 * static_cast<Index>(b));
   }
 }
 

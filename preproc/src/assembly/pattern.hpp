@@ -1,13 +1,24 @@
 #pragma once
 // Sparsity pattern of the global matrices, built from element connectivity at the level of
 // "entities" (mesh nodes, then interface nodes), so that every column of an entity's DOFs
-// has the same sorted row set. Scattering an element matrix then needs one binary search
-// per pair of entities instead of per pair of DOFs.
+// has the same sorted row set. Placing an element then needs one binary search per pair of
+// its entities instead of per pair of DOFs; the placement is computed by the worker threads
+// and shared by K, M and the scalar mass Ms, so the serial scatter is only additions.
 #include "ffr/preproc/assembly/assembly.hpp"
 
 #include <vector>
 
 namespace ffr::preproc::detail {
+
+/// Where an element's matrices go: its distinct entities (in first-seen order), per element
+/// DOF the entity (local index), the offset in it and the start of its global column, and per
+/// pair of local entities (column-major) the position in Pattern::adj.
+struct Placement {
+  std::vector<Index> ents;
+  std::vector<int> ent_of;
+  std::vector<Index> off, col0;
+  std::vector<Index> slot;
+};
 
 struct Pattern {
   Index num_dofs = 0, num_nodes = 0;
@@ -22,10 +33,13 @@ struct Pattern {
   Index entity_of_dof(const FeModel& m, Index d) const;
   SparseMatrix make_matrix() const;       ///< zero-valued matrix with the DOF pattern
   SparseMatrix make_node_matrix() const;  ///< zero-valued num_nodes x num_nodes matrix
+  /// The placement of an element with these global DOFs.
+  Placement place(const std::vector<Index>& dofs, const FeModel& m) const;
   /// A += Ae over the element's DOFs.
-  void add(SparseMatrix& A, const std::vector<Index>& dofs, const Eigen::MatrixXd& Ae, const FeModel& m) const;
-  /// Ms += the scalar part Me(3i, 3j) of a solid element's mass over its nodes.
-  void add_node_scalar(SparseMatrix& Ms, const Index* nodes, int nn, const Eigen::MatrixXd& Me) const;
+  void add(SparseMatrix& A, const Placement& p, const Eigen::MatrixXd& Ae) const;
+  /// Ms += the scalar part Me(3a, 3b) of a solid element's mass (three DOFs per node, its
+  /// entities are its mesh nodes).
+  void add_node_scalar(SparseMatrix& Ms, const Placement& p, const Eigen::MatrixXd& Me) const;
 
  private:
   Index find(Index col_entity, Index row_entity) const;  ///< position of row_entity in adj of col_entity

@@ -138,7 +138,10 @@ int ffr_set_load(ffr_sim* sim, const char* body, const char* node, const double 
     d.ext_force[b](i, slot) = force ? force[i] : 0.0;
     d.ext_torque[b](i, slot) = torque ? torque[i] : 0.0;
   }
-  d.ext_active[b][static_cast<std::size_t>(slot)] = 1;
+  if (!d.ext_active[b][static_cast<std::size_t>(slot)]) {
+    d.ext_active[b][static_cast<std::size_t>(slot)] = 1;
+    d.ext_list[b].push_back(slot);
+  }
   return FFR_OK;
 }
 
@@ -149,6 +152,7 @@ int ffr_clear_loads(ffr_sim* sim) {
     d.ext_force[b].setZero();
     d.ext_torque[b].setZero();
     std::fill(d.ext_active[b].begin(), d.ext_active[b].end(), 0);
+    d.ext_list[b].clear();
   }
   return FFR_OK;
 }

@@ -52,10 +52,8 @@ void point_loads(const Model& model, Data& data, double t, bool add_q, bool tang
 
 void external_loads(const Model& model, Data& data, bool add_q, bool tangents) {
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
-    const auto& active = data.ext_active[b];
-    for (std::size_t s = 0; s < active.size(); ++s) {
-      if (!active[s]) continue;
-      const Marker& mk = model.load_slots[b][s];
+    for (const int s : data.ext_list[b]) {
+      const Marker& mk = model.load_slots[b][static_cast<std::size_t>(s)];
       MarkerData& md = data.ext_marker[b];
       marker_kinematics(model, mk, data, md);
       const Vector3d f = data.ext_force[b].col(static_cast<Eigen::Index>(s));

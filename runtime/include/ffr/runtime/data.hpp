@@ -93,9 +93,12 @@ struct Data {
   std::vector<char> motion_external;
   std::vector<Eigen::Vector3d> motion_value;  ///< value, rate, acceleration
 
-  // External loads (C API): per body, slot 0 = frame origin, slot 1 + p = node p.
+  // External loads (C API): per body, slot 0 = frame origin, slot 1 + p = node p. The step
+  // visits only the slots in ext_list (set ones, each once): a SID may carry thousands of
+  // nodes, and a pass over all of them at every evaluation made the step mesh-dependent.
   std::vector<Matrix3N> ext_force, ext_torque;
   std::vector<std::vector<char>> ext_active;
+  std::vector<std::vector<int>> ext_list;
   std::vector<MarkerData> ext_marker;  ///< work for one node per body
 
   // Force-element work, sized for the largest pair of bodies an element joins.
