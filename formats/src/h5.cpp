@@ -14,7 +14,8 @@ namespace ffr::formats {
 FormatError::FormatError(std::string file, std::string object, const std::string& what)
     : std::runtime_error(file + (object.empty() ? std::string() : ": " + object) + ": " + what),
       file_(std::move(file)),
-      object_(std::move(object)) {}
+      object_(std::move(object)),
+      detail_(what) {}
 
 namespace h5 {
 namespace {

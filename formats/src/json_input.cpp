@@ -39,9 +39,21 @@ std::vector<JsonNode> JsonNode::items() const {
   return out;
 }
 
+std::size_t JsonNode::size() const {
+  if (!j_->is_array()) fail("expected an array, found " + describe());
+  return j_->size();
+}
+
+JsonNode JsonNode::at(std::size_t i) const {
+  if (i >= size()) fail("has no element " + std::to_string(i));
+  return JsonNode(&(*j_)[i], path_ + "[" + std::to_string(i) + "]", file_);
+}
+
 void JsonNode::allow_only(std::initializer_list<const char*> keys) const {
   if (!j_->is_object()) fail("expected an object, found " + describe());
   for (auto it = j_->begin(); it != j_->end(); ++it) {
+    const std::string& k = it.key();
+    if (k.rfind('_', 0) == 0 || k == "comment" || k == "description") continue;  // annotations
     bool ok = false;
     for (const char* k : keys) ok = ok || it.key() == k;
     if (!ok) {
@@ -78,6 +90,12 @@ long long JsonNode::integer() const {
   return j_->get<long long>();
 }
 
+int JsonNode::small_integer() const {
+  const long long v = integer();
+  if (v < -1000000000LL || v > 1000000000LL) fail("integer out of range, found " + describe());
+  return static_cast<int>(v);
+}
+
 bool JsonNode::boolean() const {
   if (!j_->is_boolean()) fail("expected true or false, found " + describe());
   return j_->get<bool>();
@@ -92,6 +110,30 @@ std::vector<double> JsonNode::numbers() const {
   std::vector<double> out;
   for (const auto& n : items()) out.push_back(n.number());
   return out;
+}
+
+Eigen::VectorXd JsonNode::vector(int n) const {
+  const std::size_t len = size();
+  if (n >= 0 && len != static_cast<std::size_t>(n))
+    fail("expected " + std::to_string(n) + " numbers, found " + std::to_string(len));
+  if (n < 0 && len == 0) fail("must not be empty");
+  Eigen::VectorXd v(static_cast<Eigen::Index>(len));
+  for (std::size_t i = 0; i < len; ++i) v(static_cast<Eigen::Index>(i)) = at(i).number();
+  return v;
+}
+
+Eigen::MatrixXd JsonNode::matrix(int cols) const {
+  const std::size_t rows = size();
+  if (rows == 0) fail("must not be empty");
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(rows), cols);
+  for (std::size_t r = 0; r < rows; ++r) {
+    const JsonNode row = at(r);
+    if (cols == 1 && row.is_number())
+      m(static_cast<Eigen::Index>(r), 0) = row.number();
+    else
+      m.row(static_cast<Eigen::Index>(r)) = row.vector(cols).transpose();
+  }
+  return m;
 }
 
 Eigen::Vector3d JsonNode::vec3() const {
@@ -139,6 +181,12 @@ JsonDocument JsonDocument::parse(const std::string& text, const std::string& dis
     if (pos != std::string::npos) msg = msg.substr(pos);
     throw FormatError(display_name, "", "malformed JSON at line " + std::to_string(line) + ", column " +
                                             std::to_string(col) + " (" + msg + ")");
+  } catch (const nlohmann::json::exception& e) {
+    // e.g. "number overflow parsing '1e999'": a number that is not a finite double.
+    std::string msg = e.what();
+    const auto pos = msg.find("] ");
+    throw FormatError(display_name, "", "not a finite number in the JSON text: " +
+                                            (pos == std::string::npos ? msg : msg.substr(pos + 2)));
   }
   return d;
 }

@@ -54,12 +54,12 @@ TEST(BadInput, NonFiniteNumber) {
 
 TEST(BadInput, NegativeMass) {
   expect_error(model(R"({"name": "bar", "type": "rigid", "mass": -1, "inertia": [[1,0,0],[0,1,0],[0,0,1]]})"),
-               "bodies[0].mass", "must be positive");
+               "bodies[0].mass", "expected a positive number");
 }
 
 TEST(BadInput, TypoInKey) {
   expect_error(model(kRigid, R"("joints": [{"name": "j", "type": "revolute", "body1": "ground", "body2": "bar", "at": [0,0,0], "axsi": [0,0,1]}])"),
-               "joints[0].axsi", "unknown key");
+               "joints[0].axsi", "unknown field");
 }
 
 TEST(BadInput, ImpossibleInertia) {

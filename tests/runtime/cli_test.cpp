@@ -79,7 +79,7 @@ TEST(Cli, BadInputIsExitTwoWithFileAndField) {
   ffr::runtime::test::write_text(dir / "m.json", pendulum(R"(, "tolerance": -1)"));
   const Result r = run((dir / "m.json").string() + " -o " + (dir / "out.h5").string());
   EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_NE(r.output.find("m.json: solver.tolerance: must be positive"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("m.json: solver.tolerance: expected a positive number"), std::string::npos) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
 

@@ -4,8 +4,6 @@
 #include "parse.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 namespace ffr::runtime {
 namespace detail {
@@ -40,7 +38,7 @@ Matrix3d triad(const Vector3d& axis) {
 }
 
 Table parse_table(const Field& f, int ncomp) {
-  f.expect_object({"t", "value"});
+  f.allow_only({"t", "value"});
   const Eigen::VectorXd t = f.at("t").vector();
   const Field vf = f.at("value");
   const Eigen::MatrixXd v = vf.matrix(ncomp);
@@ -53,9 +51,9 @@ Table parse_table(const Field& f, int ncomp) {
 
 void parse_solver(const Field& root, ParseContext& ctx) {
   const Field s = root.at("solver");
-  s.expect_object({"start", "end", "step", "output_every", "tolerance", "max_iterations", "penalty", "reuse_jacobian"});
+  s.allow_only({"start", "end", "step", "output_every", "tolerance", "max_iterations", "penalty", "reuse_jacobian"});
   SolverSettings& st = ctx.model.settings;
-  if (auto f = s.get("start")) st.start = f->number();
+  if (auto f = s.find("start")) st.start = f->number();
   st.end = s.at("end").number();
   st.step = s.at("step").positive();
   if (!(st.end > st.start)) s.at("end").fail("must be after the start time");
@@ -63,54 +61,42 @@ void parse_solver(const Field& root, ParseContext& ctx) {
   if (n > 1e9) s.at("step").fail("gives more than 1e9 steps");
   if (std::abs(n - std::round(n)) > 1e-6 * std::max(1.0, n))
     s.at("step").fail("the run (end - start) is not a whole number of steps");
-  if (auto f = s.get("output_every")) {
-    st.output_every = f->integer();
+  if (auto f = s.find("output_every")) {
+    st.output_every = f->small_integer();
     if (st.output_every < 1) f->fail("must be at least 1");
   }
-  if (auto f = s.get("tolerance")) st.tolerance = f->positive();
-  if (auto f = s.get("max_iterations")) {
-    st.max_iterations = f->integer();
+  if (auto f = s.find("tolerance")) st.tolerance = f->positive();
+  if (auto f = s.find("max_iterations")) {
+    st.max_iterations = f->small_integer();
     if (st.max_iterations < 1) f->fail("must be at least 1");
   }
-  if (auto f = s.get("penalty")) st.penalty = f->positive();
-  if (auto f = s.get("reuse_jacobian")) st.reuse_jacobian = f->boolean();
+  if (auto f = s.find("penalty")) st.penalty = f->positive();
+  if (auto f = s.find("reuse_jacobian")) st.reuse_jacobian = f->boolean();
 }
 
 }  // namespace detail
 
-Model parse_model(const std::string& text, const std::filesystem::path& base_dir, const std::string& name) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // nlohmann's message carries the byte position ("at line 3, column 7").
-    std::string what = e.what();
-    const auto p = what.find("parse error");
-    throw ModelError(name, "", "malformed JSON: " + (p == std::string::npos ? what : what.substr(p)));
-  } catch (const nlohmann::json::exception& e) {
-    // e.g. "number overflow parsing '1e999'": a number that is not a finite double.
-    std::string what = e.what();
-    const auto p = what.find("] ");
-    throw ModelError(name, "", "not a finite number in the JSON text: " + (p == std::string::npos ? what : what.substr(p + 2)));
-  }
+namespace {
+
+Model parse_document(const formats::JsonDocument& doc, const std::filesystem::path& base_dir, const std::string& name) {
   Model m;
   m.source = name;
   detail::ParseContext ctx{name, base_dir, m};
-  const detail::Field root(j, name, "");
-  root.expect_object({"format_version", "units", "gravity", "bodies", "joints", "forces", "motions", "solver", "outputs"});
-  if (auto f = root.get("format_version"))
-    if (f->integer() != 1) f->fail("unsupported format_version (this build reads 1)");
-  if (auto f = root.get("units")) {
-    f->expect_object({"length", "mass", "time"});
+  const detail::Field root = doc.root();
+  root.allow_only({"format_version", "units", "gravity", "bodies", "joints", "forces", "motions", "solver", "outputs"});
+  if (auto f = root.find("format_version"))
+    if (f->small_integer() != 1) f->fail("unsupported format_version (this build reads 1)");
+  if (auto f = root.find("units")) {
+    f->allow_only({"length", "mass", "time"});
     for (const char* k : {"length", "mass", "time"})
-      if (auto u = f->get(k)) {
+      if (auto u = f->find(k)) {
         const std::string s = u->string();
         const bool si = (std::string(k) == "length" && s == "m") || (std::string(k) == "mass" && s == "kg") ||
                         (std::string(k) == "time" && s == "s");
         if (!si) u->fail("only SI units are supported (m, kg, s)");
       }
   }
-  if (auto g = root.get("gravity")) m.gravity = g->vec3();
+  if (auto g = root.find("gravity")) m.gravity = g->vec3();
   detail::parse_solver(root, ctx);
   detail::parse_bodies(root, ctx);
   detail::parse_joints(root, ctx);
@@ -121,15 +107,26 @@ Model parse_model(const std::string& text, const std::filesystem::path& base_dir
   return m;
 }
 
+// The model file's own errors come as FormatError from the JSON reader; the runtime reports
+// bad input as ModelError (file, field, what), which the C API and ffr-sim map to their codes.
+template <class Read>
+Model as_model_errors(Read&& read) {
+  try {
+    return read();
+  } catch (const formats::FormatError& e) {
+    throw ModelError(e.file(), e.object(), e.detail());
+  }
+}
+
+}  // namespace
+
+Model parse_model(const std::string& text, const std::filesystem::path& base_dir, const std::string& name) {
+  return as_model_errors([&] { return parse_document(formats::JsonDocument::parse(text, name), base_dir, name); });
+}
+
 Model load_model(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw ModelError(path.string(), "", "no such file");
-  if (std::filesystem::is_directory(path, ec)) throw ModelError(path.string(), "", "is a directory, not a model file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ModelError(path.string(), "", "cannot open for reading");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_model(ss.str(), path.parent_path(), path.string());
+  return as_model_errors(
+      [&] { return parse_document(formats::JsonDocument::load(path), path.parent_path(), path.string()); });
 }
 
 }  // namespace ffr::runtime

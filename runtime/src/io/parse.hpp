@@ -1,12 +1,17 @@
 #pragma once
 // The model-file parser, split by section (internal).
 
+#include "ffr/formats/json_input.hpp"
+#include "ffr/runtime/errors.hpp"
 #include "ffr/runtime/model.hpp"
-#include "json_reader.hpp"
 
 #include <filesystem>
 
 namespace ffr::runtime::detail {
+
+// The model file is read like every user JSON file (formats/json_input.hpp): each access names
+// its field, unknown keys are refused; parse_model turns its FormatError into a ModelError.
+using Field = formats::JsonNode;
 
 struct ParseContext {
   std::string file;               ///< model file name for messages

@@ -27,16 +27,13 @@ formats::Sid read_sid_for(const Field& f, const std::filesystem::path& base) {
     return formats::read_sid(p);
   } catch (const formats::FormatError& e) {
     // Keep the SID's own file and dataset, say where the model refers to it.
-    std::string what = e.what();
-    const std::string prefix = e.file() + (e.object().empty() ? "" : ": " + e.object()) + ": ";
-    if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
-    throw ModelError(e.file(), e.object(), what + " (" + f.file() + ": " + f.path() + ")");
+    throw ModelError(e.file(), e.object(), e.detail() + " (" + f.file() + ": " + f.path() + ")");
   }
 }
 
 void initial_motion(const Field& b, Body& body) {
-  if (auto f = b.get("velocity")) body.v0 = f->vec3();
-  if (auto f = b.get("angular_velocity")) body.w0 = f->vec3();
+  if (auto f = b.find("velocity")) body.v0 = f->vec3();
+  if (auto f = b.find("angular_velocity")) body.w0 = f->vec3();
 }
 
 }  // namespace
@@ -46,24 +43,24 @@ void parse_bodies(const Field& root, ParseContext& ctx) {
   std::set<std::string> names{"ground"};
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Field b = list.at(i);
-    if (!b.json().is_object()) b.fail("expected an object");
+    if (!b.raw().is_object()) b.fail("expected an object");
     const std::string name = b.at("name").string();
     if (name.empty()) b.at("name").fail("must not be empty");
     if (!names.insert(name).second) b.at("name").fail("duplicate body name '" + name + "'" + (name == "ground" ? " (ground always exists)" : ""));
     const std::string type = b.at("type").string();
     if (type == "rigid") {
-      b.expect_object({"name", "type", "mass", "com", "inertia", "position", "orientation", "velocity", "angular_velocity"});
+      b.allow_only({"name", "type", "mass", "com", "inertia", "position", "orientation", "velocity", "angular_velocity"});
       const double mass = b.at("mass").positive();
-      const auto pos = b.get("position");
-      const auto com = b.get("com");
+      const auto pos = b.find("position");
+      const auto com = b.find("com");
       const Vector3d position = pos ? pos->vec3() : com ? com->vec3() : Vector3d::Zero();
       const Vector3d c = com ? com->vec3() : position;
-      Body body = make_rigid_body(name, mass, c, b.at("inertia").mat3(), position, orientation(b.get("orientation")),
+      Body body = make_rigid_body(name, mass, c, b.at("inertia").mat3(), position, orientation(b.find("orientation")),
                                   ctx.file, b.path());
       initial_motion(b, body);
       ctx.model.bodies.push_back(std::move(body));
     } else if (type == "flexible") {
-      b.expect_object({"name", "type", "sid", "position", "orientation", "damping", "stiffening", "velocity",
+      b.allow_only({"name", "type", "sid", "position", "orientation", "damping", "stiffening", "velocity",
                        "angular_velocity", "modal_coordinates", "modal_velocities"});
       const Field sidf = b.at("sid");
       const formats::Sid sid = read_sid_for(sidf, ctx.base);
@@ -72,18 +69,18 @@ void parse_bodies(const Field& root, ParseContext& ctx) {
                          "only SI SID files are supported (found " + sid.units_length + ", " + sid.units_mass + ", " +
                              sid.units_time + ")");
       std::optional<double> ratio;
-      if (auto d = b.get("damping")) {
-        d->expect_object({"ratio"});
-        ratio = d->at("ratio").nonnegative();
+      if (auto d = b.find("damping")) {
+        d->allow_only({"ratio"});
+        ratio = d->at("ratio").non_negative();
         if (*ratio >= 1) d->at("ratio").fail("must be below 1 (critical damping)");
       }
       const bool stiff = b.has("stiffening") ? b.at("stiffening").boolean() : true;
       Body body = make_flexible_body(name, sid, b.has("position") ? b.at("position").vec3() : Vector3d::Zero(),
-                                     orientation(b.get("orientation")), ratio, stiff, ctx.file, b.path(), &ctx.model.notes);
+                                     orientation(b.find("orientation")), ratio, stiff, ctx.file, b.path(), &ctx.model.notes);
       body.source = sidf.string();
       initial_motion(b, body);
-      if (auto f = b.get("modal_coordinates")) body.y0 = f->vector(body.nq);
-      if (auto f = b.get("modal_velocities")) body.yd0 = f->vector(body.nq);
+      if (auto f = b.find("modal_coordinates")) body.y0 = f->vector(body.nq);
+      if (auto f = b.find("modal_velocities")) body.yd0 = f->vector(body.nq);
       ctx.model.bodies.push_back(std::move(body));
     } else {
       b.at("type").fail("unknown body type '" + type + "' (expected rigid or flexible)");

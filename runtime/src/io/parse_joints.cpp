@@ -72,10 +72,10 @@ void connection_points(const Field& j, const Model& m, Attachment& a1, Attachmen
   a1.body = body_ref(j.at("body1"), m);
   a2.body = body_ref(j.at("body2"), m);
   if (a1.body == a2.body) j.at("body2").fail("a connection needs two different bodies");
-  if (auto n = j.get("node1")) a1.node = node_ref(*n, m, a1.body);
-  if (auto n = j.get("node2")) a2.node = node_ref(*n, m, a2.body);
+  if (auto n = j.find("node1")) a1.node = node_ref(*n, m, a1.body);
+  if (auto n = j.find("node2")) a2.node = node_ref(*n, m, a2.body);
   Vector3d P;
-  if (auto at = j.get("at")) {
+  if (auto at = j.find("at")) {
     P = at->vec3();
   } else if (a1.node >= 0) {
     P = node_position(m, a1.body, a1.node);
@@ -98,7 +98,7 @@ void parse_joints(const Field& root, ParseContext& ctx) {
   Model& m = ctx.model;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Field j = list.at(i);
-    j.expect_object({"name", "type", "body1", "body2", "at", "node1", "node2", "axis", "axis1", "axis2"});
+    j.allow_only({"name", "type", "body1", "body2", "at", "node1", "node2", "axis", "axis1", "axis2"});
     Joint jt;
     jt.name = j.at("name").string();
     if (jt.name.empty()) j.at("name").fail("must not be empty");
@@ -114,7 +114,7 @@ void parse_joints(const Field& root, ParseContext& ctx) {
         E1 = E2 = triad(unit_axis(j.at("axis")));
         break;
       case JointType::Fixed:
-        if (auto a = j.get("axis")) E1 = E2 = triad(unit_axis(*a));
+        if (auto a = j.find("axis")) E1 = E2 = triad(unit_axis(*a));
         break;
       case JointType::Universal: {
         const Vector3d x1 = unit_axis(j.at("axis1")), x2 = unit_axis(j.at("axis2"));

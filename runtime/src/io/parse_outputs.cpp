@@ -32,13 +32,13 @@ void parse_motions(const Field& root, ParseContext& ctx) {
   std::set<int> driven;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Field f = list.at(i);
-    f.expect_object({"joint", "table", "coordinate"});
+    f.allow_only({"joint", "table", "coordinate"});
     Motion mo;
     mo.joint = joint_ref(f.at("joint"), m);
     const Joint& j = m.joints[mo.joint];
     const auto coords = joint_coordinates(f.at("joint"), j);
     mo.coordinate = coords.front();
-    if (auto c = f.get("coordinate")) {
+    if (auto c = f.find("coordinate")) {
       const std::string s = c->string();
       if (s == "angle") mo.coordinate = JointCoordinate::Angle;
       else if (s == "displacement") mo.coordinate = JointCoordinate::Displacement;
@@ -61,7 +61,7 @@ void parse_outputs(const Field& root, ParseContext& ctx) {
   std::set<std::string> names;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Field f = list.at(i);
-    f.expect_object({"name", "type", "body", "node", "at", "joint"});
+    f.allow_only({"name", "type", "body", "node", "at", "joint"});
     Output o;
     o.name = f.at("name").string();
     if (o.name.empty() || o.name.find('/') != std::string::npos || o.name == "." || o.name == "..")
@@ -83,7 +83,7 @@ void parse_outputs(const Field& root, ParseContext& ctx) {
       if (o.body == kGround) f.at("body").fail("the ground does not move");
       o.size = 3;
       const Body& b = m.bodies[o.body];
-      if (auto n = f.get("node")) {
+      if (auto n = f.find("node")) {
         o.node = node_ref(*n, m, o.body);
       } else if (b.flexible && !f.has("at")) {
         f.fail("needs \"node\" (or \"at\", a point rigidly on the body's frame)");

@@ -27,9 +27,11 @@ class FormatError : public std::runtime_error {
   FormatError(std::string file, std::string object, const std::string& what);
   const std::string& file() const { return file_; }
   const std::string& object() const { return object_; }
+  /// The message without the file and object in front.
+  const std::string& detail() const { return detail_; }
 
  private:
-  std::string file_, object_;
+  std::string file_, object_, detail_;
 };
 
 namespace h5 {

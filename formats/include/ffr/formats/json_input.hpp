@@ -1,7 +1,8 @@
 #pragma once
 // Reading user JSON input (part files, model files) with errors that name the file and the
 // field: "part.json: materials[0].E: expected a positive number, found -7e10". Every accessor
-// validates; unknown keys can be refused so a typo is not silently ignored.
+// validates; unknown keys can be refused so a typo is not silently ignored. Annotation keys
+// ("comment", "description", and any key starting with '_') are allowed in every object.
 
 #include "ffr/formats/h5.hpp"  // FormatError
 
@@ -38,18 +39,26 @@ class JsonNode {
   std::optional<JsonNode> find(const std::string& key) const;
   /// Elements of an array (fails if not an array).
   std::vector<JsonNode> items() const;
-  /// Refuses members other than these (catches typos such as "thikness").
+  /// Length of an array (fails if not an array).
+  std::size_t size() const;
+  /// Element i of an array.
+  JsonNode at(std::size_t i) const;
+  /// Refuses members other than these and the annotation keys (catches typos such as
+  /// "thikness").
   void allow_only(std::initializer_list<const char*> keys) const;
 
   double number() const;           ///< finite number
   double positive() const;         ///< finite and > 0
   double non_negative() const;     ///< finite and >= 0
   long long integer() const;       ///< integral number
+  int small_integer() const;       ///< integral number within +-1e9 (a count, an index, a version)
   bool boolean() const;
   std::string string() const;
   Eigen::Vector3d vec3() const;    ///< [x, y, z]
   Eigen::Matrix3d mat3() const;    ///< [[..],[..],[..]]
   std::vector<double> numbers() const;
+  Eigen::VectorXd vector(int n = -1) const;  ///< n numbers (n < 0: at least one)
+  Eigen::MatrixXd matrix(int cols) const;    ///< rows of `cols` numbers (cols = 1: plain numbers too)
 
   // Optional-with-default helpers.
   double number_or(const std::string& key, double dflt) const;
@@ -66,7 +75,7 @@ class JsonNode {
 };
 
 /// A parsed JSON document. Malformed JSON (including NaN/Infinity literals) is a FormatError
-/// naming the file, line and column.
+/// naming the file, line and column; so is a number too large for a double (1e999).
 class JsonDocument {
  public:
   static JsonDocument load(const std::filesystem::path& path);

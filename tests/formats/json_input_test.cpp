@@ -1,0 +1,74 @@
+// The reader of user JSON files (part files, model files): every refusal names the file and
+// the field, annotation keys pass everywhere, and numbers a double cannot hold are refused.
+#include "ffr/formats/json_input.hpp"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+
+using ffr::formats::FormatError;
+using ffr::formats::JsonDocument;
+
+namespace {
+
+// The message of the FormatError that f throws ("" if none).
+std::string refusal(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const FormatError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(JsonInput, AnnotationKeysPassAndTyposAreRefusedWithTheAllowedList) {
+  const auto doc = JsonDocument::parse(
+      R"({"comment": "c", "_note": 1, "solver": {"description": "d", "_x": [], "step": 1e-3, "stpe": 2}})", "m.json");
+  const auto root = doc.root();
+  EXPECT_NO_THROW(root.allow_only({"solver"}));
+  const std::string msg = refusal([&] { root.at("solver").allow_only({"step"}); });
+  EXPECT_NE(msg.find("m.json: solver.stpe: unknown field (allowed here: step)"), std::string::npos) << msg;
+}
+
+TEST(JsonInput, ArraysOfNumbersNameTheElement) {
+  const auto doc = JsonDocument::parse(R"({"v": [1, 2, "x"], "m": [[1, 2], [3]], "e": [], "s": [4, 5]})", "f.json");
+  const auto root = doc.root();
+  EXPECT_EQ(root.at("s").vector(), Eigen::Vector2d(4, 5));
+  EXPECT_EQ(root.at("s").matrix(1), Eigen::Vector2d(4, 5));
+  EXPECT_EQ(root.at("s").size(), 2u);
+  std::string msg = refusal([&] { root.at("v").vector(); });
+  EXPECT_NE(msg.find("f.json: v[2]: expected a number"), std::string::npos) << msg;
+  msg = refusal([&] { root.at("s").vector(3); });
+  EXPECT_NE(msg.find("f.json: s: expected 3 numbers, found 2"), std::string::npos) << msg;
+  msg = refusal([&] { root.at("m").matrix(2); });
+  EXPECT_NE(msg.find("f.json: m[1]: expected 2 numbers, found 1"), std::string::npos) << msg;
+  msg = refusal([&] { root.at("e").vector(); });
+  EXPECT_NE(msg.find("f.json: e: must not be empty"), std::string::npos) << msg;
+  msg = refusal([&] { root.at("s").at(2); });
+  EXPECT_NE(msg.find("f.json: s: has no element 2"), std::string::npos) << msg;
+}
+
+TEST(JsonInput, IntegersOutOfRangeAndUnrepresentableNumbersAreRefused) {
+  const auto doc = JsonDocument::parse(R"({"n": 3, "big": 5000000000, "half": 1.5})", "f.json");
+  EXPECT_EQ(doc.root().at("n").small_integer(), 3);
+  std::string msg = refusal([&] { doc.root().at("big").small_integer(); });
+  EXPECT_NE(msg.find("f.json: big: integer out of range"), std::string::npos) << msg;
+  msg = refusal([&] { doc.root().at("half").small_integer(); });
+  EXPECT_NE(msg.find("f.json: half: expected an integer"), std::string::npos) << msg;
+  msg = refusal([] { JsonDocument::parse(R"({"mass": 1e999})", "g.json"); });
+  EXPECT_NE(msg.find("g.json: not a finite number in the JSON text"), std::string::npos) << msg;
+}
+
+TEST(JsonInput, TheMessageWithoutFileAndFieldIsKept) {
+  const auto doc = JsonDocument::parse(R"({"E": -7})", "p.json");
+  try {
+    doc.root().at("E").positive();
+    FAIL() << "a negative modulus passed";
+  } catch (const FormatError& e) {
+    EXPECT_EQ(e.file(), "p.json");
+    EXPECT_EQ(e.object(), "E");
+    EXPECT_EQ(e.detail(), "expected a positive number, found -7");
+  }
+}
