@@ -27,8 +27,8 @@ options:
   --vtk FILE            also write the mesh with every mode shape for ParaView (.vtk)
   --backend NAME        eigen-solver: block (default; block Lanczos, falls back to spectra),
                         spectra or arpack (overrides the part file)
-  --threads N           worker threads of assembly and invariants (default: all cores);
-                        BLAS threads follow OPENBLAS_NUM_THREADS
+  --threads N           threads of assembly, invariants and the BLAS under the factorization
+                        (default: all cores; without it the BLAS follows OPENBLAS_NUM_THREADS)
   --max-memory GIB      refuse (before computing it) a factorization that needs more than this
                         many GiB; default: the memory available on the machine
   --quiet               no progress output (errors are still printed)
