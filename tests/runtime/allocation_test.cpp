@@ -78,8 +78,7 @@ TEST(Allocation, StepsAllocateNothing) {
   const Model model = test::model_from(json, dir.path);
   Data data(model);
   initialize(model, data);
-  data.ext_active[3][1] = 1;  // an external load at the flap's node A
-  data.ext_force[3].col(1) = Eigen::Vector3d(0.1, 0, 0);
+  set_external_load(data, 3, 1, Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d::Zero());  // at the flap's node A
   Recorder rec(model, 1000);
   step(model, data);  // first step: nothing left to size
   const long before = g_allocations.load();

@@ -65,11 +65,8 @@ struct Fixture : ::testing::Test {
     model = test::model_from(model_json(), dir.path);
     data = std::make_unique<Data>(model);
     // External loads on a node and a frame origin too.
-    data->ext_active[0][2] = 1;
-    data->ext_force[0].col(2) = Eigen::Vector3d(0.5, -1, 2);
-    data->ext_torque[0].col(2) = Eigen::Vector3d(0.1, 0.2, -0.3);
-    data->ext_active[1][0] = 1;
-    data->ext_torque[1].col(0) = Eigen::Vector3d(-0.2, 0.1, 0.4);
+    set_external_load(*data, 0, 2, Eigen::Vector3d(0.5, -1, 2), Eigen::Vector3d(0.1, 0.2, -0.3));
+    set_external_load(*data, 1, 0, Eigen::Vector3d::Zero(), Eigen::Vector3d(-0.2, 0.1, 0.4));
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-1, 1);
     q = data->q;

@@ -133,27 +133,15 @@ int ffr_set_load(ffr_sim* sim, const char* body, const char* node, const double 
     if (p < 0) return fail(FFR_ERROR_NOT_FOUND, std::string("ffr_set_load: body '") + body + "' has no node '" + node + "'");
     slot = 1 + p;
   }
-  auto& d = *sim->data;
-  for (int i = 0; i < 3; ++i) {
-    d.ext_force[b](i, slot) = force ? force[i] : 0.0;
-    d.ext_torque[b](i, slot) = torque ? torque[i] : 0.0;
-  }
-  if (!d.ext_active[b][static_cast<std::size_t>(slot)]) {
-    d.ext_active[b][static_cast<std::size_t>(slot)] = 1;
-    d.ext_list[b].push_back(slot);
-  }
+  const Eigen::Vector3d f = force ? Eigen::Vector3d(force[0], force[1], force[2]) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d tau = torque ? Eigen::Vector3d(torque[0], torque[1], torque[2]) : Eigen::Vector3d::Zero();
+  set_external_load(*sim->data, b, slot, f, tau);
   return FFR_OK;
 }
 
 int ffr_clear_loads(ffr_sim* sim) {
   if (!sim) return fail(FFR_ERROR_ARGUMENT, "ffr_clear_loads: sim is NULL");
-  auto& d = *sim->data;
-  for (std::size_t b = 0; b < d.ext_active.size(); ++b) {
-    d.ext_force[b].setZero();
-    d.ext_torque[b].setZero();
-    std::fill(d.ext_active[b].begin(), d.ext_active[b].end(), 0);
-    d.ext_list[b].clear();
-  }
+  clear_external_loads(*sim->data);
   return FFR_OK;
 }
 

@@ -104,19 +104,33 @@ Data::Data(const Model& model) {
 
   ext_force.resize(model.bodies.size());
   ext_torque.resize(model.bodies.size());
-  ext_active.resize(model.bodies.size());
   ext_list.resize(model.bodies.size());
   ext_marker.resize(model.bodies.size());
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const auto slots = static_cast<Eigen::Index>(model.load_slots.size() > i ? model.load_slots[i].size() : 1);
     ext_force[i] = Matrix3N::Zero(3, slots);
     ext_torque[i] = Matrix3N::Zero(3, slots);
-    ext_active[i].assign(static_cast<std::size_t>(slots), 0);
     ext_list[i].clear();
     ext_list[i].reserve(static_cast<std::size_t>(slots));  // setting loads never allocates
     size_marker(ext_marker[i], model.bodies[i].ncoord());
   }
   t = model.settings.start;
+}
+
+void set_external_load(Data& data, int body, int slot, const Vector3d& force, const Vector3d& torque) {
+  const auto b = static_cast<std::size_t>(body);
+  data.ext_force[b].col(slot) = force;
+  data.ext_torque[b].col(slot) = torque;
+  auto& list = data.ext_list[b];
+  if (std::find(list.begin(), list.end(), slot) == list.end()) list.push_back(slot);
+}
+
+void clear_external_loads(Data& data) {
+  for (std::size_t b = 0; b < data.ext_list.size(); ++b) {
+    data.ext_force[b].setZero();
+    data.ext_torque[b].setZero();
+    data.ext_list[b].clear();
+  }
 }
 
 }  // namespace ffr::runtime

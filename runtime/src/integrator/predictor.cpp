@@ -9,22 +9,16 @@
 // axis. On the benchmark's slider-crank it takes the second factorisation, which Newton needed
 // in 76 % of the steps, down to 44 % (tools/bench/runtime_step/RESULTS.md).
 #include "ffr/runtime/integrator.hpp"
+#include "ffr/runtime/kinematics.hpp"
 
 #include <Eigen/Geometry>
 
 namespace ffr::runtime {
 namespace {
 
-Matrix3d frame(const VectorXd& z, int offset) {
-  Matrix3d A;
-  for (int k = 0; k < 3; ++k) A.col(k) = z.segment<3>(offset + 3 + 3 * k);
-  return A;
-}
-
-// The vector of the skew-symmetric part of S.
-Vector3d axial(const Matrix3d& S) {
-  return 0.5 * Vector3d(S(2, 1) - S(1, 2), S(0, 2) - S(2, 0), S(1, 0) - S(0, 1));
-}
+// A body's frame [u v w] (or its rate, its acceleration): the nine coordinates after r0,
+// stored column after column.
+Eigen::Map<const Matrix3d> frame(const VectorXd& z, int offset) { return Eigen::Map<const Matrix3d>(z.data() + offset + 3); }
 
 }  // namespace
 
@@ -33,11 +27,11 @@ void predict_frames(const Model& model, Data& data) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const int o = model.bodies[i].offset;
     BodyData& bd = data.bodies[i];
-    const Matrix3d A = frame(data.q0, o), Ad = frame(data.qd0, o), Add = frame(data.qdd0, o);
-    // Global angular velocity and acceleration: A_dot A^T = omega~ and, since A_dot A_dot^T is
-    // symmetric, alpha~ = skew(A_ddot A^T).
-    const Vector3d omega = axial(Ad * A.transpose());
-    const Vector3d alpha = axial(Add * A.transpose());
+    const Matrix3d A = frame(data.q0, o);
+    // Global angular velocity and acceleration from the body-frame ones (A^T A_dot = omega~ and,
+    // A_dot^T A_dot being symmetric, alpha~ = skew(A^T A_ddot)).
+    const Vector3d omega = A * body_omega(A, frame(data.qd0, o));
+    const Vector3d alpha = A * body_omega(A, frame(data.qdd0, o));
     if (data.have_previous) {  // a step before this one: step_alpha is its start's
       // Rotation vector of the step to third order, the rate of alpha from the last step (the
       // commutator terms vanish for a fixed axis and are of the order of the error otherwise).
@@ -45,7 +39,7 @@ void predict_frames(const Model& model, Data& data) {
       const double angle = turn.norm();
       if (angle > 0) {
         const Matrix3d A_next = Eigen::AngleAxisd(angle, turn / angle).toRotationMatrix() * A;
-        for (int k = 0; k < 3; ++k) data.q.segment<3>(o + 3 + 3 * k) = A_next.col(k);
+        Eigen::Map<Matrix3d>(data.q.data() + o + 3) = A_next;
       }
     }
     bd.step_alpha = alpha;

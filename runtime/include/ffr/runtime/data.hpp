@@ -93,11 +93,11 @@ struct Data {
   std::vector<char> motion_external;
   std::vector<Eigen::Vector3d> motion_value;  ///< value, rate, acceleration
 
-  // External loads (C API): per body, slot 0 = frame origin, slot 1 + p = node p. The step
-  // visits only the slots in ext_list (set ones, each once): a SID may carry thousands of
-  // nodes, and a pass over all of them at every evaluation made the step mesh-dependent.
+  // External loads (set_external_load): per body, slot 0 = frame origin, slot 1 + p = node p.
+  // The step visits only the slots in ext_list (the set ones, each once): a SID may carry
+  // thousands of nodes, and a pass over all of them at every evaluation made the step
+  // mesh-dependent.
   std::vector<Matrix3N> ext_force, ext_torque;
-  std::vector<std::vector<char>> ext_active;
   std::vector<std::vector<int>> ext_list;
   std::vector<MarkerData> ext_marker;  ///< work for one node per body
 
@@ -116,5 +116,11 @@ struct Data {
   VectorXd alpha;               ///< penalty of each constraint row in use (penalty_weights)
   MatrixXd Jw;                  ///< work: a penalty-weighted Jacobian block
 };
+
+/// Applies force and torque (global axes) at a body's load slot (0 = frame origin, 1 + p = its
+/// node p) from the next evaluation on, until clear_external_loads. Allocation-free.
+void set_external_load(Data& data, int body, int slot, const Vector3d& force, const Vector3d& torque);
+/// Removes every external load.
+void clear_external_loads(Data& data);
 
 }  // namespace ffr::runtime
