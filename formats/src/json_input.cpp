@@ -1,8 +1,8 @@
 #include "ffr/formats/json_input.hpp"
 
+#include "ffr/formats/text_file.hpp"
+
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 namespace ffr::formats {
 
@@ -192,14 +192,7 @@ JsonDocument JsonDocument::parse(const std::string& text, const std::string& dis
 }
 
 JsonDocument JsonDocument::load(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw FormatError(path.string(), "", "no such file");
-  if (std::filesystem::is_directory(path, ec)) throw FormatError(path.string(), "", "is a directory, not a file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FormatError(path.string(), "", "cannot open for reading");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse(ss.str(), path.string());
+  return parse(read_text_file(path), path.string());
 }
 
 }  // namespace ffr::formats

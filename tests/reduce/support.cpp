@@ -1,6 +1,7 @@
 #include "support.hpp"
 
 #include "ffr/calculix/deck.hpp"
+#include "ffr/formats/text_file.hpp"
 
 #include <array>
 #include <cstdio>
@@ -54,12 +55,6 @@ void gmsh_mesh(const std::filesystem::path& geo, const std::filesystem::path& ms
 
 CcxModes run_ccx(const std::filesystem::path& workdir);
 
-void write_nodes(std::ostream& f, const preproc::Mesh& mesh) {
-  f << "*NODE\n";
-  for (preproc::Index n = 0; n < mesh.num_nodes(); ++n)
-    f << n + 1 << ", " << mesh.x(n, 0) << ", " << mesh.x(n, 1) << ", " << mesh.x(n, 2) << "\n";
-}
-
 CcxModes calculix_frequency(const preproc::Mesh& mesh, const preproc::Material& mat, const std::string& group,
                             const std::string& fixed_group, int modes, const std::filesystem::path& workdir) {
   calculix::write_frequency_deck(mesh, group, fixed_group, {mat.E, mat.nu, mat.rho}, modes, workdir / "job.inp");
@@ -70,8 +65,7 @@ CcxModes calculix_frequency_structural(const preproc::Mesh& mesh, const preproc:
                                        const CcxSection& section, const std::string& fixed_group, int modes,
                                        const std::filesystem::path& workdir) {
   std::ofstream f(workdir / "job.inp");
-  f.precision(17);
-  write_nodes(f, mesh);
+  calculix::write_nodes(f, mesh);
   std::size_t eid = 1;
   for (const auto& b : mesh.blocks) {
     if (b.group != group) continue;
@@ -104,14 +98,11 @@ CcxModes calculix_frequency_structural(const preproc::Mesh& mesh, const preproc:
 
 CcxModes run_ccx(const std::filesystem::path& workdir) {
   const auto r = run("cd " + workdir.string() + " && OMP_NUM_THREADS=1 ccx -i job");
-  std::ifstream dat(workdir / "job.dat");
-  std::stringstream ss;
-  ss << dat.rdbuf();
-  const std::string text = ss.str();
+  const std::string text = std::filesystem::exists(workdir / "job.dat") ? formats::read_text_file(workdir / "job.dat") : "";
   if (r.status != 0 || text.find("E I G E N V A L U E") == std::string::npos)
     throw std::runtime_error("ccx failed: " + r.output.substr(0, 2000));
   CcxModes out;
-  for (const auto& row : calculix::read_table(text, calculix::kEigenvalueTable, 4)) out.frequency_hz.push_back(row[2]);
+  out.frequency_hz = calculix::frequencies(text);
   const auto pf = calculix::read_table(text, calculix::kParticipationTable, 6);
   out.participation.resize(static_cast<Eigen::Index>(pf.size()), 6);
   for (std::size_t i = 0; i < pf.size(); ++i)

@@ -1,6 +1,7 @@
 #include "ffr/calculix/deck.hpp"
 
-#include <cstdio>
+#include "ffr/formats/text_file.hpp"
+
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -31,43 +32,48 @@ DeckType deck_type(preproc::ElementType t) {
 
 }  // namespace
 
+void write_nodes(std::ostream& f, const preproc::Mesh& mesh) {
+  f.precision(17);
+  f << "*NODE, NSET=NALL\n";
+  for (preproc::Index n = 0; n < mesh.num_nodes(); ++n)
+    f << n + 1 << ", " << mesh.x(n, 0) << ", " << mesh.x(n, 1) << ", " << mesh.x(n, 2) << "\n";
+}
+
 void write_frequency_deck(const preproc::Mesh& mesh, const std::string& group, const std::string& fixed_group,
                           const IsoMaterial& mat, int modes, const std::filesystem::path& inp) {
-  std::FILE* f = std::fopen(inp.c_str(), "w");
+  // Checked first, so that no deck is left behind for a run that cannot be set up.
+  bool any = false;
+  for (const auto& b : mesh.blocks) any = any || (preproc::dimension(b.type) == 3 && b.group == group && b.size() > 0);
+  if (!any) throw std::runtime_error("CalculiX deck: no 3D elements in group '" + group + "'");
+  const auto fixed = fixed_group.empty() ? mesh.node_groups.end() : mesh.node_groups.find(fixed_group);
+  if (!fixed_group.empty() && (fixed == mesh.node_groups.end() || fixed->second.empty()))
+    throw std::runtime_error("CalculiX deck: no node group '" + fixed_group + "'");
+
+  std::ofstream f(inp);
   if (!f) throw std::runtime_error("cannot write " + inp.string());
-  std::fprintf(f, "** written by ffr (tools/calculix) from the mesh ffr-reduce reads\n*NODE, NSET=NALL\n");
-  for (preproc::Index n = 0; n < mesh.num_nodes(); ++n)
-    std::fprintf(f, "%lld, %.17g, %.17g, %.17g\n", static_cast<long long>(n + 1), mesh.x(n, 0), mesh.x(n, 1), mesh.x(n, 2));
+  f << "** written by ffr (tools/calculix) from the mesh ffr-reduce reads\n";
+  write_nodes(f, mesh);
   long long eid = 1;
   for (const auto& b : mesh.blocks) {
     if (preproc::dimension(b.type) != 3 || b.group != group) continue;
     const DeckType t = deck_type(b.type);
-    std::fprintf(f, "*ELEMENT, TYPE=%s, ELSET=EALL\n", t.name);
+    f << "*ELEMENT, TYPE=" << t.name << ", ELSET=EALL\n";
     for (preproc::Index e = 0; e < b.size(); ++e) {
-      std::fprintf(f, "%lld", eid++);
-      for (std::size_t i = 0; i < t.order.size(); ++i)
-        std::fprintf(f, "%s%lld", i % 12 == 11 ? ",\n" : ", ", static_cast<long long>(b.element(e)[t.order[i]] + 1));
-      std::fprintf(f, "\n");
+      f << eid++;
+      for (std::size_t i = 0; i < t.order.size(); ++i) f << (i % 12 == 11 ? ",\n" : ", ") << b.element(e)[t.order[i]] + 1;
+      f << "\n";
     }
   }
-  if (eid == 1) {
-    std::fclose(f);
-    throw std::runtime_error("CalculiX deck: no 3D elements in group '" + group + "'");
-  }
-  if (!fixed_group.empty()) {
-    const auto it = mesh.node_groups.find(fixed_group);
-    if (it == mesh.node_groups.end() || it->second.empty()) {
-      std::fclose(f);
-      throw std::runtime_error("CalculiX deck: no node group '" + fixed_group + "'");
-    }
-    std::fprintf(f, "*NSET, NSET=FIX\n");
+  if (fixed != mesh.node_groups.end()) {
+    f << "*NSET, NSET=FIX\n";
     int k = 0;
-    for (const auto n : it->second) std::fprintf(f, "%lld%s", static_cast<long long>(n + 1), ++k % 10 == 0 ? ",\n" : ", ");
-    std::fprintf(f, "\n*BOUNDARY\nFIX, 1, 3\n");
+    for (const auto n : fixed->second) f << n + 1 << (++k % 10 == 0 ? ",\n" : ", ");
+    f << "\n*BOUNDARY\nFIX, 1, 3\n";
   }
-  std::fprintf(f, "*MATERIAL, NAME=MAT\n*ELASTIC\n%.17g, %.17g\n*DENSITY\n%.17g\n", mat.E, mat.nu, mat.rho);
-  std::fprintf(f, "*SOLID SECTION, ELSET=EALL, MATERIAL=MAT\n*STEP\n*FREQUENCY\n%d\n*END STEP\n", modes);
-  if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + inp.string());
+  f << "*MATERIAL, NAME=MAT\n*ELASTIC\n" << mat.E << ", " << mat.nu << "\n*DENSITY\n" << mat.rho << "\n";
+  f << "*SOLID SECTION, ELSET=EALL, MATERIAL=MAT\n*STEP\n*FREQUENCY\n" << modes << "\n*END STEP\n";
+  f.close();
+  if (!f) throw std::runtime_error("cannot write " + inp.string());
 }
 
 std::vector<std::vector<double>> read_table(const std::string& text, const std::string& title, int columns) {
@@ -92,14 +98,17 @@ std::vector<std::vector<double>> read_table(const std::string& text, const std::
   return rows;
 }
 
-std::vector<double> read_frequencies(const std::filesystem::path& dat) {
-  std::ifstream f(dat);
-  std::stringstream text;
-  text << f.rdbuf();
+std::vector<double> frequencies(const std::string& dat_text) {
   // Rows: mode, eigenvalue, omega [rad/time], frequency [cycles/time], imaginary part.
   std::vector<double> hz;
-  for (const auto& row : read_table(text.str(), kEigenvalueTable, 4)) hz.push_back(row[2]);
+  for (const auto& row : read_table(dat_text, kEigenvalueTable, 4)) hz.push_back(row[2]);
   return hz;
+}
+
+std::vector<double> read_frequencies(const std::filesystem::path& dat) {
+  std::error_code ec;
+  if (!std::filesystem::exists(dat, ec)) return {};
+  return frequencies(formats::read_text_file(dat));
 }
 
 }  // namespace ffr::calculix

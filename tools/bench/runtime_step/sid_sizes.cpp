@@ -3,14 +3,13 @@
 // invariants and node data, so the step must cost the same whatever the mesh.
 #include "sid_sizes.hpp"
 
+#include "ffr/formats/text_file.hpp"
 #include "ffr/runtime/runtime.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 using namespace ffr::runtime;
@@ -42,19 +41,11 @@ Run run_once(const Model& model) {
   return r;
 }
 
-std::string read_text(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  if (!in) throw std::runtime_error(p.string() + ": cannot read");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 }  // namespace
 
 int run_sid_sizes(const std::filesystem::path& model_path, const std::string& placeholder,
                   const std::vector<SidCase>& sids, int rounds) {
-  const std::string text = read_text(model_path);
+  const std::string text = ffr::formats::read_text_file(model_path);
   const std::string key = "\"" + placeholder + "\"";
   const auto at = text.find(key);
   if (at == std::string::npos) throw std::runtime_error(model_path.string() + ": no \"" + placeholder + "\" to replace");

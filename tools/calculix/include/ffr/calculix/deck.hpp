@@ -6,6 +6,7 @@
 #include "ffr/preproc/mesh/mesh.hpp"
 
 #include <filesystem>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,9 @@ namespace ffr::calculix {
 struct IsoMaterial {
   double E = 2.1e11, nu = 0.3, rho = 7850;
 };
+
+/// The *NODE section of a deck: every mesh node (1-based ids), full precision.
+void write_nodes(std::ostream& f, const preproc::Mesh& mesh);
 
 /// Writes `inp`: every 3D element of `group` (C3D4/C3D10/C3D8/C3D20, Abaqus node order),
 /// the nodes of `fixed_group` held in x, y, z (none if it is empty: free-free), one material,
@@ -29,8 +33,11 @@ inline const std::string kParticipationTable = "P A R T I C I P A T I O N   F A 
 /// first other line after its first row. Empty if the title is absent.
 std::vector<std::vector<double>> read_table(const std::string& text, const std::string& title, int columns);
 
-/// Frequencies [Hz] of the "E I G E N V A L U E   O U T P U T" table of a ccx .dat file
-/// (empty if there is none).
+/// Frequencies [Hz] of the "E I G E N V A L U E   O U T P U T" table in the text of a ccx
+/// .dat file (empty if there is none).
+std::vector<double> frequencies(const std::string& dat_text);
+
+/// The same from the file (empty if there is no file).
 std::vector<double> read_frequencies(const std::filesystem::path& dat);
 
 }  // namespace ffr::calculix
