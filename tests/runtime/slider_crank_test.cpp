@@ -11,7 +11,7 @@
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
 
-#include "models.hpp"  // tools/bench/runtime_step: the benchmark's slider-crank
+#include "models.hpp"  // tools/models: the benchmark's slider-crank
 
 #include <gtest/gtest.h>
 

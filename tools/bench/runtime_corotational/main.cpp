@@ -30,18 +30,16 @@ struct Timing {
 
 Timing run(const Model& model, int repeats) {
   Timing t{1e300, 1e300, 0, {}};
-  const auto n = step_count(model);
   for (int r = 0; r < repeats; ++r) {
     Data data(model);
     initialize(model, data);
-    auto t0 = std::chrono::steady_clock::now();
-    for (std::int64_t i = 0; i < n; ++i) step(model, data);
-    t.step_us = std::min(t.step_us, 1e6 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / static_cast<double>(n));
-    t.iterations = static_cast<double>(data.stats.newton_iterations) / static_cast<double>(n);
+    const bench::StepTiming st = bench::run_timed(model, data);
+    t.step_us = std::min(t.step_us, st.us_per_step);
+    t.iterations = st.iterations_per_step;
     t.q = data.q;
     // The inertia evaluation alone: what the two ways differ in, per Newton iteration.
     const int reps = 2000;
-    t0 = std::chrono::steady_clock::now();
+    const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < reps; ++k) {
       update_bodies(model, data);
       mass_matrices(model, data);

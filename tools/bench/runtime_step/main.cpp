@@ -18,7 +18,6 @@
 #include "ffr/formats/sid_io.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <cstdlib>
@@ -30,26 +29,18 @@ namespace {
 
 bool g_no_reuse = false;
 
-struct Timing {
-  double us_per_step;
-  double iterations_per_step;
-  double factorizations_per_step;
-};
+using Timing = bench::StepTiming;
 
+// The best of `repeats` runs.
 Timing time_model(const Model& model, int repeats) {
-  double best = 1e300, iters = 0, facts = 0;
-  const auto n = step_count(model);
+  Timing best;
   for (int r = 0; r < repeats; ++r) {
     Data data(model);
     initialize(model, data);
-    const auto t0 = std::chrono::steady_clock::now();
-    for (std::int64_t i = 0; i < n; ++i) step(model, data);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    best = std::min(best, s);
-    iters = static_cast<double>(data.stats.newton_iterations) / static_cast<double>(n);
-    facts = static_cast<double>(data.stats.factorizations) / static_cast<double>(n);
+    const Timing t = bench::run_timed(model, data);
+    if (r == 0 || t.us_per_step < best.us_per_step) best = t;
   }
-  return {1e6 * best / static_cast<double>(n), iters, facts};
+  return best;
 }
 
 Model slider_crank(const std::filesystem::path& dir, int points, int modes, double h, double end) {

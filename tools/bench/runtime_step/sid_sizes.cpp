@@ -4,10 +4,10 @@
 #include "sid_sizes.hpp"
 
 #include "ffr/formats/text_file.hpp"
+#include "models.hpp"
 #include "ffr/runtime/runtime.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -27,17 +27,9 @@ Run run_once(const Model& model) {
   Run r;
   Data data(model);
   initialize(model, data);
-  const auto n = step_count(model);
-  r.slider.reserve(static_cast<std::size_t>(n));
-  const int last = model.bodies.back().offset;
-  const auto t0 = std::chrono::steady_clock::now();
-  for (std::int64_t i = 0; i < n; ++i) {
-    step(model, data);
-    r.slider.push_back(data.q(last));  // reserved: no allocation in the timed loop
-  }
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.us_per_step = 1e6 * s / static_cast<double>(n);
-  r.iterations_per_step = static_cast<double>(data.stats.newton_iterations) / static_cast<double>(n);
+  const StepTiming t = run_timed(model, data, &r.slider);
+  r.us_per_step = t.us_per_step;
+  r.iterations_per_step = t.iterations_per_step;
   return r;
 }
 

@@ -1,5 +1,7 @@
 #include "models.hpp"
 
+#include <chrono>
+
 #include "ffr/formats/sid_io.hpp"
 
 #include <cstdio>
@@ -80,6 +82,21 @@ std::string slider_crank_json(const std::string& sid_file, double step, double e
   s.step = step;
   s.end = end;
   return slider_crank_json(s);
+}
+
+StepTiming run_timed(const ffr::runtime::Model& model, ffr::runtime::Data& data, std::vector<double>* trace) {
+  const auto n = ffr::runtime::step_count(model);
+  const int last = model.bodies.back().offset;
+  if (trace) trace->reserve(trace->size() + static_cast<std::size_t>(n));
+  const auto t0 = std::chrono::steady_clock::now();
+  for (std::int64_t i = 0; i < n; ++i) {
+    ffr::runtime::step(model, data);
+    if (trace) trace->push_back(data.q(last));
+  }
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto per_step = [n](double x) { return x / static_cast<double>(n); };
+  return {per_step(1e6 * s), per_step(static_cast<double>(data.stats.newton_iterations)),
+          per_step(static_cast<double>(data.stats.factorizations))};
 }
 
 std::filesystem::path temp_dir(const std::string& tag) {
