@@ -43,7 +43,7 @@ void parse_bodies(const Field& root, ParseContext& ctx) {
   std::set<std::string> names{"ground"};
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Field b = list.at(i);
-    if (!b.raw().is_object()) b.fail("expected an object");
+    if (!b.is_object()) b.fail("expected an object");
     const std::string name = b.at("name").string();
     if (name.empty()) b.at("name").fail("must not be empty");
     if (!names.insert(name).second) b.at("name").fail("duplicate body name '" + name + "'" + (name == "ground" ? " (ground always exists)" : ""));

@@ -35,7 +35,7 @@ void parse_forces(const Field& root, ParseContext& ctx) {
   const Field list = root.at("forces");
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Field f = list.at(i);
-    if (!f.raw().is_object()) f.fail("expected an object");
+    if (!f.is_object()) f.fail("expected an object");
     const std::string type = f.at("type").string();
     if (type == "spring_damper") {
       f.allow_only({"name", "type", "body1", "at1", "node1", "body2", "at2", "node2", "k", "c", "length0"});
