@@ -26,7 +26,7 @@ Data::Data(const Model& model) {
   sigma = c = alpha = VectorXd::Zero(m);
   K = C = W = T = MatrixXd::Zero(n, n);
   Phiq = MatrixXd::Zero(m, n);
-  lu = Eigen::PartialPivLU<MatrixXd>(n);
+  lu.resize(n);
   scale = VectorXd::Ones(n);
   Phi = Phit = gamma = VectorXd::Zero(m);
 

@@ -5,6 +5,7 @@
 #include "ffr/runtime/kinematics.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace ffr::runtime {
 
@@ -25,6 +26,11 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
     const Body& b = model.bodies[i];
     data.W.block(b.offset, b.offset, b.ncoord(), b.ncoord()) += data.bodies[i].M;
   }
+  refresh_constraint_tangent(model, data, lam);
+}
+
+void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& lam) {
+  const double h = model.settings.step;
   // The rows' penalties data.alpha were set by step() at its start.
   data.T = data.W;
   add_penalty_tangent(model, data, data.alpha, 0.25 * h * h, data.T);
@@ -45,8 +51,13 @@ void factorize_tangent(Data& data) {
 }
 
 void solve_tangent(Data& data, const VectorXd& rhs, VectorXd& out) {
-  data.tmp2 = data.scale.cwiseProduct(rhs);
-  out = data.lu.solve(data.tmp2);
+  // A singular tangent gives a non-finite direction, which the callers report.
+  if (!data.lu.ok()) {
+    out.setConstant(std::numeric_limits<double>::quiet_NaN());
+    return;
+  }
+  out = data.scale.cwiseProduct(rhs);
+  data.lu.solve_in_place(out);
   out.array() *= data.scale.array();
 }
 

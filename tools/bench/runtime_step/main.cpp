@@ -114,14 +114,18 @@ int main(int argc, char** argv) {
     }
   std::printf("%10s %10s %12s %14s %14s %8s\n", "points", "us/step", "iterations", "us/iteration", "factorisations", "ratio");
   const double base = best[0].us_per_step / best[0].iterations_per_step;
-  double worst = 0;
+  double slowest = 0, fastest = 1e300;
   for (std::size_t i = 0; i < sizes.size(); ++i) {
     const double per_it = best[i].us_per_step / best[i].iterations_per_step;
-    worst = std::max(worst, per_it / base);
+    slowest = std::max(slowest, per_it);
+    fastest = std::min(fastest, per_it);
     std::printf("%10d %10.2f %12.2f %14.2f %14.2f %8.3f\n", sizes[i], best[i].us_per_step, best[i].iterations_per_step, per_it,
                 best[i].factorizations_per_step, per_it / base);
   }
-  std::printf("time per Newton iteration, largest / smallest %.3f (required <= 1.05): %s\n", worst,
+  // Slowest over fastest, whichever sizes they are: a ratio to the first size alone reads 1
+  // when the smallest mesh happens to be the slowest.
+  const double worst = slowest / fastest;
+  std::printf("time per Newton iteration, slowest / fastest %.3f (required <= 1.05): %s\n", worst,
               worst <= 1.05 ? "met" : "NOT met");
   std::filesystem::remove_all(dir);
   return 0;

@@ -3,9 +3,9 @@
 // (and initialize()), a time step allocates nothing: all work goes into these members.
 
 #include "ffr/runtime/model.hpp"
+#include "ffr/runtime/small_lu.hpp"
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 
 #include <array>
 #include <cstdint>
@@ -75,7 +75,7 @@ struct Data {
   VectorXd lambda0;             ///< multipliers at the start of the step
   MatrixXd W;                   ///< M + h/2 C + h^2/4 K at the last factorisation (projection metric)
   MatrixXd T;                   ///< tangent W + h^2/4 Phi_q^T alpha Phi_q
-  Eigen::PartialPivLU<MatrixXd> lu; ///< of the scaled tangent S T S (see factorize_tangent)
+  SmallLU lu;                   ///< of the scaled tangent S T S (see factorize_tangent)
   VectorXd scale;               ///< S = diag(|T_ii|^-1/2): equilibration of masses vs stiffnesses
   bool tangent_valid = false;
   bool tangent_fresh_step = false; ///< factorised during the current step (or set-up)

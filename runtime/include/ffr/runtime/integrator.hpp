@@ -39,6 +39,9 @@ double project_accelerations(const Model& model, Data& data, double t);
 /// at the current state (lam: the multipliers to use in the constraints' second derivatives;
 /// alpha: the step's penalties, which step() sets).
 void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& lam);
+/// The same with the W of the last refresh: only the constraint terms are rebuilt at the
+/// current state (what a tangent built a little way off misses most, see step()).
+void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& lam);
 
 /// Factorises data.T after symmetric diagonal scaling S T S, S = diag(|T_ii|^-1/2). The tangent
 /// mixes masses (down to ~1e-6 for a bar's section inertia) with h^2/4 K of stiff modes and the

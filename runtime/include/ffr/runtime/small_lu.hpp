@@ -1,0 +1,41 @@
+#pragma once
+// LU factorisation with partial pivoting of the small dense tangent (tens of coordinates),
+// in place in buffers sized once: compute() and solve() allocate nothing.
+//
+// Why not Eigen::PartialPivLU: at this size its blocked algorithm spends most of its time in
+// set-up, and it cannot know that a multibody tangent is mostly zero (a body couples only
+// with the bodies it is jointed to). Here the right-looking elimination updates only the
+// columns that have a nonzero in the pivot row, over the rows down to the pivot column's
+// last nonzero; the solves likewise run each column of L and U only over its nonzero span.
+// Pivoting is the usual partial pivoting over the whole column.
+
+#include <Eigen/Core>
+
+namespace ffr::runtime {
+
+class SmallLU {
+ public:
+  SmallLU() = default;
+  explicit SmallLU(Eigen::Index n) { resize(n); }
+  void resize(Eigen::Index n);
+
+  /// Factorises A (copied into the own buffer). Returns false, and info() reports it, when a
+  /// pivot column is exactly zero (the matrix is singular).
+  bool compute(const Eigen::MatrixXd& A);
+  /// x <- A^-1 x with the last factorisation; x may hold the right-hand side.
+  void solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const;
+
+  bool ok() const { return ok_; }
+  Eigen::Index rows() const { return lu_.rows(); }
+  /// The packed factors (unit lower L below the diagonal, U on and above), rows permuted.
+  const Eigen::MatrixXd& factors() const { return lu_; }
+
+ private:
+  Eigen::MatrixXd lu_;
+  Eigen::VectorXi perm_;    ///< row k was swapped with row perm_(k) at step k
+  Eigen::VectorXi lower_;   ///< last nonzero row of L's column k (k when none)
+  Eigen::VectorXi upper_;   ///< first nonzero row of U's column k above the diagonal (k when none)
+  bool ok_ = false;
+};
+
+}  // namespace ffr::runtime
