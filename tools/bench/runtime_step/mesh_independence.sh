@@ -2,7 +2,7 @@
 # Mesh independence of the runtime step with real SID files: the rod of meshes/rod reduced by
 # ffr-reduce (Craig-Bampton, 12 modes) from meshes of about 1k, 10k, 100k and 1M DOF, then the
 # demo's slider-crank (meshes/models/slider_crank_rod.json, 3000 steps) run with each SID,
-# interleaved, best of 5: the per-step time must not grow with the mesh (slowest / fastest
+# interleaved, best of 15: the per-step time must not grow with the mesh (slowest / fastest
 # <= 1.05). The 1M-DOF reduction takes a few minutes and about 12 GB.
 #
 #   tools/bench/runtime_step/mesh_independence.sh [--quick] [--workdir DIR]
