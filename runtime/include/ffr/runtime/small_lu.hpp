@@ -2,12 +2,13 @@
 // LU factorisation with partial pivoting of the small dense tangent (tens of coordinates),
 // in place in buffers sized once: compute() and solve() allocate nothing.
 //
-// Why not Eigen::PartialPivLU: at this size its blocked algorithm spends most of its time in
-// set-up, and it cannot know that a multibody tangent is mostly zero (a body couples only
-// with the bodies it is jointed to). Here the right-looking elimination updates only the
-// columns that have a nonzero in the pivot row, over the rows down to the pivot column's
-// last nonzero; the solves likewise run each column of L and U only over its nonzero span.
-// Pivoting is the usual partial pivoting over the whole column.
+// Why not Eigen::PartialPivLU: it cannot know that a multibody tangent has zero blocks (a body
+// couples only with the bodies it is jointed to). Here the right-looking elimination updates
+// only the columns that have a nonzero in the pivot row, over the rows down to the pivot
+// column's last nonzero; the solves likewise run each column of L and U only over its nonzero
+// span. Pivoting is partial pivoting over the column (its rows below the last nonzero are
+// zero). On the runtime benchmark's 46 x 46 tangent a factorisation took about 6.3 us of the
+// step (perf) against 10.3 us for equilibration and PartialPivLU timed alone before.
 
 #include <Eigen/Core>
 
@@ -19,8 +20,8 @@ class SmallLU {
   explicit SmallLU(Eigen::Index n) { resize(n); }
   void resize(Eigen::Index n);
 
-  /// Factorises A (copied into the own buffer). Returns false, and info() reports it, when a
-  /// pivot column is exactly zero (the matrix is singular).
+  /// Factorises A (copied into the own buffer). Returns false, and ok() stays false until the
+  /// next success, when a pivot column is exactly zero or NaN (the matrix is singular).
   bool compute(const Eigen::MatrixXd& A);
   /// x <- A^-1 x with the last factorisation; x may hold the right-hand side.
   void solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const;
