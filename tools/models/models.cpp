@@ -96,7 +96,7 @@ StepTiming run_timed(const ffr::runtime::Model& model, ffr::runtime::Data& data,
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto per_step = [n](double x) { return x / static_cast<double>(n); };
   return {per_step(1e6 * s), per_step(static_cast<double>(data.stats.newton_iterations)),
-          per_step(static_cast<double>(data.stats.factorizations))};
+          per_step(static_cast<double>(data.stats.factorizations)), per_step(static_cast<double>(data.stats.solves))};
 }
 
 std::filesystem::path temp_dir(const std::string& tag) {

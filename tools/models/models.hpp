@@ -42,7 +42,7 @@ std::string slider_crank_json(const std::string& sid_file, double step, double e
 
 /// Per-step figures of one run of a model's whole time loop.
 struct StepTiming {
-  double us_per_step = 0, iterations_per_step = 0, factorizations_per_step = 0;
+  double us_per_step = 0, iterations_per_step = 0, factorizations_per_step = 0, solves_per_step = 0;
 };
 
 /// Runs `data` (constructed and initialized for `model`) to the end of the model's time span,

@@ -51,6 +51,7 @@ void factorize_tangent(Data& data) {
 }
 
 void solve_tangent(Data& data, const VectorXd& rhs, VectorXd& out) {
+  ++data.stats.solves;
   // A singular tangent gives a non-finite direction, which the callers report.
   if (!data.lu.ok()) {
     out.setConstant(std::numeric_limits<double>::quiet_NaN());

@@ -49,6 +49,7 @@ struct Stats {
   std::int64_t steps = 0;
   std::int64_t newton_iterations = 0;
   std::int64_t factorizations = 0;
+  std::int64_t solves = 0;       ///< solves with the factorised tangent (Newton, projections)
   int last_iterations = 0;
   double last_increment = 0;    ///< scaled
   double last_violation = 0;    ///< max |Phi| / length after the step
