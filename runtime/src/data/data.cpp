@@ -22,7 +22,7 @@ Data::Data(const Model& model) {
   const int n = model.ncoord, m = model.nconstraints;
   q = qd = qdd = VectorXd::Zero(n);
   lambda = lambda_eff = lambda0 = VectorXd::Zero(m);
-  Q = f = dq = r = tmp = tmp2 = vstar = qdd_prev = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);
+  Q = f = dq = r = tmp = vstar = qdd_prev = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);
   sigma = c = alpha = VectorXd::Zero(m);
   K = C = W = T = MatrixXd::Zero(n, n);
   Phiq = MatrixXd::Zero(m, n);

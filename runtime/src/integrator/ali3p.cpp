@@ -113,6 +113,7 @@ void step(const Model& model, Data& data) {
   // derivatives use the multipliers lambda, not lambda + alpha Phi: at the predictor the
   // constraints are violated by O(h^3) and the penalised multipliers swing far off.
   bool refactor = !data.tangent_valid || !s.reuse_jacobian || data.stats.last_iterations > 5;
+  bool constraints_only = false;  // the next refresh keeps W (see kStaleTangent)
   int refreshes = 0;
   data.tangent_fresh_step = false;
   double inc = 0, prev_inc = 0, viol = 0;
@@ -133,15 +134,14 @@ void step(const Model& model, Data& data) {
     add_constraint_forces(model, data, data.lambda_eff, data.f);
     data.f *= 0.25 * h2;
     bool refreshed_now = refactor;
-    if (it == 2 && refreshes == 1 && data.tangent_fresh_step && s.penalty * inc > kStaleTangent) {
-      // W (masses, force tangents) moved by O(increment) only: rebuild the constraint terms.
-      refresh_constraint_tangent(model, data, data.lambda);
-      refreshed_now = true;
-      ++refreshes;
-    } else if (refactor) {
-      refresh_tangent(model, data, t1, data.lambda);
+    if (refactor) {
+      if (constraints_only) {
+        refresh_constraint_tangent(model, data, data.lambda);
+      } else {
+        refresh_tangent(model, data, t1, data.lambda);
+      }
       data.tangent_fresh_step = true;
-      refactor = false;
+      refactor = constraints_only = false;
       ++refreshes;
     }
     double left = newton_direction(model, data, h);
@@ -187,6 +187,9 @@ void step(const Model& model, Data& data) {
     } else {
       stalled = 0;
     }
+    // The predictor's tangent, far from this iterate: rebuild its constraint terms here (W, the
+    // masses and force tangents, moved by O(increment) only).
+    if (it == 1 && refreshed_now && s.penalty * inc > kStaleTangent) refactor = constraints_only = true;
     if (it >= 2 && inc > 0.5 * prev_inc && refreshes < kMaxRefreshes) {
       refactor = true;
       // A stale tangent (reused from an earlier step) may already have thrown the iterate and

@@ -46,8 +46,7 @@ void factorize_tangent(Data& data) {
     const double d = std::abs(data.T(i, i));
     data.scale(i) = d > 0 ? 1.0 / std::sqrt(d) : 1.0;
   }
-  data.T = data.scale.asDiagonal() * data.T * data.scale.asDiagonal();
-  data.lu.compute(data.T);
+  data.lu.compute(data.scale.asDiagonal() * data.T * data.scale.asDiagonal());
 }
 
 void solve_tangent(Data& data, const VectorXd& rhs, VectorXd& out) {

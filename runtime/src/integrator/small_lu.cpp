@@ -17,9 +17,8 @@ void SmallLU::resize(Index n) {
   ok_ = false;
 }
 
-bool SmallLU::compute(const Eigen::MatrixXd& A) {
+bool SmallLU::factorize() {
   const Index n = lu_.rows();
-  lu_ = A;  // same size: no allocation
   ok_ = false;
   for (Index k = 0; k < n; ++k) {
     auto ck = lu_.col(k);

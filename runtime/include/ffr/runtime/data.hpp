@@ -86,7 +86,7 @@ struct Data {
   VectorXd qd_hat, qdd_hat;     ///< trapezoidal predictors
   VectorXd qdd_prev;            ///< accelerations of the step before (predictor)
   bool have_previous = false;
-  VectorXd f, dq, r, sigma, c, tmp, tmp2, vstar;
+  VectorXd f, dq, r, sigma, c, tmp, vstar;
 
   // Joints: unwrapped angle of each revolute/cylindrical joint at the last accepted step.
   std::vector<double> angle_ref;

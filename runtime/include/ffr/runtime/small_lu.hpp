@@ -20,19 +20,23 @@ class SmallLU {
   explicit SmallLU(Eigen::Index n) { resize(n); }
   void resize(Eigen::Index n);
 
-  /// Factorises A (copied into the own buffer). Returns false, and ok() stays false until the
-  /// next success, when a pivot column is exactly zero or NaN (the matrix is singular).
-  bool compute(const Eigen::MatrixXd& A);
+  /// Factorises A (any n x n expression, evaluated into the own buffer: a scaled matrix is
+  /// scaled there, not copied first). Returns false, and ok() stays false until the next
+  /// success, when a pivot column is exactly zero or NaN (the matrix is singular).
+  template <class Derived>
+  bool compute(const Eigen::MatrixBase<Derived>& A) {
+    lu_ = A;  // same size: no allocation
+    return factorize();
+  }
   /// x <- A^-1 x with the last factorisation; x may hold the right-hand side.
   void solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const;
 
   bool ok() const { return ok_; }
-  Eigen::Index rows() const { return lu_.rows(); }
-  /// The packed factors (unit lower L below the diagonal, U on and above), rows permuted.
-  const Eigen::MatrixXd& factors() const { return lu_; }
 
  private:
-  Eigen::MatrixXd lu_;
+  bool factorize();  // in place on lu_
+
+  Eigen::MatrixXd lu_;  ///< packed factors: unit lower L below the diagonal, U on and above
   Eigen::VectorXi perm_;    ///< row k was swapped with row perm_(k) at step k
   Eigen::VectorXi lower_;   ///< last nonzero row of L's column k (k when none)
   Eigen::VectorXi upper_;   ///< first nonzero row of U's column k above the diagonal (k when none)
