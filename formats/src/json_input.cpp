@@ -52,10 +52,10 @@ JsonNode JsonNode::at(std::size_t i) const {
 void JsonNode::allow_only(std::initializer_list<const char*> keys) const {
   if (!j_->is_object()) fail("expected an object, found " + describe());
   for (auto it = j_->begin(); it != j_->end(); ++it) {
-    const std::string& k = it.key();
-    if (k.rfind('_', 0) == 0 || k == "comment" || k == "description") continue;  // annotations
+    const std::string& key = it.key();
+    if (key.rfind('_', 0) == 0 || key == "comment" || key == "description") continue;  // annotations
     bool ok = false;
-    for (const char* k : keys) ok = ok || it.key() == k;
+    for (const char* k : keys) ok = ok || key == k;
     if (!ok) {
       std::string list;
       for (const char* k : keys) list += (list.empty() ? "" : ", ") + std::string(k);

@@ -1,9 +1,8 @@
 #include "models.hpp"
 
-#include <chrono>
-
 #include "ffr/formats/sid_io.hpp"
 
+#include <chrono>
 #include <cstdio>
 #include <random>
 
