@@ -1,6 +1,6 @@
 # Finds the preprocessor's native dependencies that ship no CMake package on Debian:
-# gmsh (C++ API), CHOLMOD (SuiteSparse), ARPACK-ng. Defines imported targets
-# ffr_dep::gmsh, ffr_dep::cholmod, ffr_dep::arpack, ffr_dep::lapack.
+# gmsh (C++ API), CHOLMOD (SuiteSparse), METIS, ARPACK-ng. Defines imported targets
+# ffr_dep::gmsh, ffr_dep::cholmod, ffr_dep::metis, ffr_dep::arpack, ffr_dep::lapack.
 
 find_path(GMSH_INCLUDE_DIR gmsh.h REQUIRED)
 find_library(GMSH_LIBRARY gmsh REQUIRED)
@@ -15,6 +15,13 @@ add_library(ffr_dep::cholmod UNKNOWN IMPORTED)
 set_target_properties(ffr_dep::cholmod PROPERTIES IMPORTED_LOCATION ${CHOLMOD_LIBRARY}
   INTERFACE_INCLUDE_DIRECTORIES ${CHOLMOD_INCLUDE_DIR}
   INTERFACE_LINK_LIBRARIES ${SUITESPARSECONFIG_LIBRARY})
+
+# METIS directly (CHOLMOD uses it too): the nodal ordering of the factorization's graph.
+find_path(METIS_INCLUDE_DIR metis.h REQUIRED)
+find_library(METIS_LIBRARY metis REQUIRED)
+add_library(ffr_dep::metis UNKNOWN IMPORTED)
+set_target_properties(ffr_dep::metis PROPERTIES IMPORTED_LOCATION ${METIS_LIBRARY}
+  INTERFACE_INCLUDE_DIRECTORIES ${METIS_INCLUDE_DIR})
 
 find_library(ARPACK_LIBRARY arpack REQUIRED)
 find_package(LAPACK REQUIRED)

@@ -37,6 +37,7 @@ TEST(CholmodFactor, AnalyzeReportsStatisticsAndMetis) {
   // Upper triangle incl. diagonal of a symmetric matrix: (nnz + n) / 2.
   EXPECT_EQ(s.nnz_A, (A.nonZeros() + A.rows()) / 2);
   EXPECT_EQ(s.ordering, "METIS");
+  EXPECT_EQ(s.ordering_vertices, s.n);  // one DOF a node: CHOLMOD's own METIS call on the matrix graph
   // nnz(L) at least the lower triangle of A, and supernodal storage holds at least nnz(L).
   EXPECT_GE(s.nnz_L, static_cast<double>(s.nnz_A));
   EXPECT_GE(static_cast<double>(s.factor_entries), s.nnz_L);
@@ -66,6 +67,32 @@ TEST(CholmodFactor, ManyRightHandSidesMatchSimplicialLDLT) {
   Eigen::VectorXd x = B.col(5);
   f.solve(x.data(), x.data());
   EXPECT_LT((x - Xref.col(5)).norm() / Xref.col(5).norm(), 1e-12);
+}
+
+// Three DOFs a node, numbered together (a vector Laplacian S (x) B3): METIS orders the node
+// graph, a third of the columns; the factor must be as sparse as CHOLMOD's own nested
+// dissection of the DOF graph makes it, and solve.
+TEST(CholmodFactor, OrdersTheNodeGraphOfAVectorProblem) {
+  const SparseMatrix S = spd3d();
+  Eigen::MatrixXd b3(3, 3);
+  b3 << 2.0, 0.5, 0.1, 0.5, 3.0, 0.2, 0.1, 0.2, 4.0;
+  const SparseMatrix A = ffr::test::kron(S, b3.sparseView());
+  CholmodFactor f;
+  const FactorStatistics s = f.analyze(A);
+  EXPECT_EQ(s.ordering, "METIS");
+  EXPECT_EQ(s.ordering_vertices, S.rows());
+  FactorOptions o;
+  o.ordering = Ordering::Nesdis;
+  CholmodFactor g(o);
+  const FactorStatistics sg = g.analyze(A);
+  EXPECT_EQ(sg.ordering_vertices, A.rows());
+  EXPECT_LT(s.nnz_L, 1.15 * sg.nnz_L) << "nodal METIS " << s.nnz_L << ", NESDIS " << sg.nnz_L;
+  f.factorize(A);
+  const Eigen::MatrixXd B = random_block(A.rows(), 3, 4);
+  EXPECT_LT((A * f.solve(B) - B).norm() / B.norm(), 1e-12);
+  // Upper-only storage of the same matrix gives the same node graph.
+  CholmodFactor u;
+  EXPECT_EQ(u.analyze(ffr::test::upper(A)).ordering_vertices, S.rows());
 }
 
 TEST(CholmodFactor, UpperOnlyStorageGivesTheSameSolution) {

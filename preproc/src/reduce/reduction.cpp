@@ -120,7 +120,9 @@ std::string factor_line(const FactorStatistics& f) {
   std::ostringstream o;
   o.precision(3);
   o << "factor: n = " << f.n << ", nnz(L) = " << f.nnz_L << ", " << f.flops / 1e9 << " GFlop, "
-    << static_cast<double>(f.peak_bytes) / (1u << 20) << " MiB peak (" << f.ordering << ")";
+    << static_cast<double>(f.peak_bytes) / (1u << 20) << " MiB peak (" << f.ordering;
+  if (f.ordering_vertices != f.n) o << " on " << f.ordering_vertices << " nodes";
+  o << ")";
   return o.str();
 }
 

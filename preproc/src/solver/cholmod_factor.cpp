@@ -1,6 +1,7 @@
 #include "ffr/preproc/solver/cholmod_factor.hpp"
 
 #include "cholmod_bridge.hpp"
+#include "nodal_ordering.hpp"
 #include "ffr/preproc/solver/memory.hpp"
 
 #include <algorithm>
@@ -137,7 +138,18 @@ void CholmodFactor::Impl::analyze(const SparseMatrix& A) {
   pattern = upper_pattern_hash(A, &upper_nnz);
   cholmod_sparse view = detail::view_upper(A);
   const auto t0 = Clock::now();
-  L = cholmod_l_analyze(&view, c);
+  // METIS on the node graph where the matrix has one (see nodal_ordering.hpp); CHOLMOD then
+  // only post-orders it and does the symbolic factorization.
+  detail::NodalOrdering nodal;
+  if (opt.ordering == Ordering::Metis) nodal = detail::nodal_metis_ordering(A);
+  if (!nodal.perm.empty()) {
+    c->nmethods = 1;
+    c->method[0].ordering = CHOLMOD_GIVEN;
+    static_assert(sizeof(SuiteSparse_long) == sizeof(std::int64_t));
+    L = cholmod_l_analyze_p(&view, reinterpret_cast<SuiteSparse_long*>(nodal.perm.data()), nullptr, 0, c);
+  } else {
+    L = cholmod_l_analyze(&view, c);
+  }
   if (!L || c->status < CHOLMOD_OK) fail(cholmod_error("symbolic analysis (cholmod_l_analyze)"));
   if (!L->is_super) fail("symbolic analysis did not produce a supernodal factor");
 
@@ -149,7 +161,8 @@ void CholmodFactor::Impl::analyze(const SparseMatrix& A) {
   s.flops = c->fl;
   s.factor_entries = static_cast<std::int64_t>(L->xsize);
   s.supernodes = static_cast<std::int64_t>(L->nsuper);
-  s.ordering = ordering_name(L->ordering);
+  s.ordering = nodal.perm.empty() ? ordering_name(L->ordering) : "METIS";
+  s.ordering_vertices = nodal.perm.empty() ? s.n : nodal.groups;
   // Estimates in bytes (8-byte doubles and SuiteSparse_long):
   //  factor   = values (xsize) + supernode row indices (ssize) + super/pi/px arrays +
   //             Perm, ColCount, IPerm and per-column bookkeeping (~4n);
