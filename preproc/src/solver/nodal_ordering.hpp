@@ -6,7 +6,8 @@
 // CHOLMOD's own METIS call orders that expanded graph: on the 100k-DOF plate of
 // tools/bench/reduce it took most of the 1.0-1.2 s symbolic analysis. Ordering the node graph
 // (vertices weighted by their DOF count) and expanding the order gives the same kind of
-// nested-dissection order on a graph about 3x smaller in vertices and 9x in edges.
+// nested-dissection order on a graph about 3x smaller in vertices and 9x in edges. Measured on
+// that plate: analysis 0.92-1.13 s -> 0.59-0.82 s, nnz(L) 4.59e7 -> 4.61e7.
 
 #include "ffr/preproc/solver/sparse_types.hpp"
 
