@@ -74,8 +74,9 @@ void upper_times_rows(const SparseMatrix& A, const RowMajorMatrix& X, RowMajorMa
 }
 
 // Width of the next chunk of columns: the widest compiled row width that fits (a pass over A
-// per chunk; the dynamic-width kernel is not vectorized and took 84-106 ms for 20 columns of
-// the 100k-DOF plate's K, against 26 + 9 ms for chunks of 16 and 4).
+// per chunk). The dynamic-width kernel is not vectorized: 20 columns of the 100k-DOF plate's K
+// took it 84-106 ms in ffr-reduce; on a 108k-DOF 3-DOF-a-node matrix, best of 15, 20 columns
+// took 53.6-56.8 ms with it and 34.3-34.8 ms in chunks of 16 and 4.
 Eigen::Index chunk_width(Eigen::Index left) {
   for (Eigen::Index w : {16, 8, 4})
     if (left >= w) return w;
