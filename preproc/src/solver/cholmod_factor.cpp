@@ -2,6 +2,7 @@
 
 #include "cholmod_bridge.hpp"
 #include "nodal_ordering.hpp"
+#include "supernodal_solve.hpp"
 #include "ffr/preproc/solver/memory.hpp"
 
 #include <algorithm>
@@ -84,20 +85,14 @@ struct CholmodFactor::Impl {
   bool numeric = false;  // L holds numeric values (possibly of a failed factorization)
   std::uint64_t pattern = 0;
   FactorInfo info;
-  // solve2 workspace, reused across calls so the Lanczos loop does not allocate.
-  cholmod_dense* X = nullptr;
-  cholmod_dense* Y = nullptr;
-  cholmod_dense* E = nullptr;
+  // The substitutions on L's numeric values (and their workspace, reused across calls so the
+  // Lanczos loop does not allocate); set by each successful factorization.
+  std::unique_ptr<detail::SupernodalSolver> solver;
 
   explicit Impl(FactorOptions o) : opt(o) {}
   ~Impl() {
-    free_workspace();
+    solver.reset();
     if (L) cholmod_l_free_factor(&L, common.get());
-  }
-  void free_workspace() {
-    cholmod_l_free_dense(&X, common.get());
-    cholmod_l_free_dense(&Y, common.get());
-    cholmod_l_free_dense(&E, common.get());
   }
   [[noreturn]] void fail(const std::string& msg) {
     info.status = FactorStatus::Failed;
@@ -129,7 +124,7 @@ void CholmodFactor::Impl::analyze(const SparseMatrix& A) {
     case Ordering::Amd: c->nmethods = 1; c->method[0].ordering = CHOLMOD_AMD; break;
     case Ordering::Natural: c->nmethods = 1; c->method[0].ordering = CHOLMOD_NATURAL; break;
   }
-  free_workspace();
+  solver.reset();
   if (L) cholmod_l_free_factor(&L, c);
   numeric = false;
   info = FactorInfo{};
@@ -233,6 +228,7 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
   cholmod_common* c = common.get();
   cholmod_sparse view = detail::view_upper(A);
   const auto t0 = Clock::now();
+  solver.reset();
   const int ok = cholmod_l_factorize(&view, L, c);
   numeric = true;
   info.stats.factorize_seconds = seconds_since(t0);
@@ -249,6 +245,7 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
   info.stats.min_pivot_ratio = rmin;
   info.stats.min_pivot_column = pr.column;
   if (opt.min_pivot_ratio > 0 && !(rmin >= opt.min_pivot_ratio)) throw_not_posdef(jmin, true, rmin);
+  solver = std::make_unique<detail::SupernodalSolver>(*L);
   info.status = FactorStatus::Factorized;
   info.message.clear();
 }
@@ -300,29 +297,15 @@ Eigen::MatrixXd CholmodFactor::solve(const Eigen::Ref<const Eigen::MatrixXd>& B)
     throw std::invalid_argument(os.str());
   }
   Eigen::MatrixXd X(B.rows(), B.cols());
-  constexpr Eigen::Index kChunk = 32;  // columns per solve: bounds the workspace to 3*n*32
-  for (Eigen::Index j0 = 0; j0 < B.cols(); j0 += kChunk) {
-    const Eigen::Index k = std::min(kChunk, B.cols() - j0);
-    cholmod_dense b = detail::view_dense(B.col(j0).data(), B.rows(), k, B.outerStride());
-    if (!cholmod_l_solve2(CHOLMOD_A, m.L, &b, nullptr, &m.X, nullptr, &m.Y, &m.E,
-                          m.common.get()))
-      throw SolverError(m.cholmod_error("solve (cholmod_l_solve2)"));
-    for (Eigen::Index q = 0; q < k; ++q)
-      std::memcpy(X.col(j0 + q).data(), static_cast<double*>(m.X->x) + q * m.X->d,
-                  sizeof(double) * B.rows());
-  }
+  m.solver->solve(B.data(), B.outerStride(), B.cols(), X.data(), X.rows());
   return X;
 }
 
 void CholmodFactor::solve(const double* b, double* x) const {
   Impl& m = *impl_;
   if (!factorized()) throw std::logic_error("CholmodFactor::solve: no valid factorization");
-  const auto n = static_cast<size_t>(m.info.stats.n);
-  cholmod_dense bv = detail::view_dense(b, n, 1, n);
-  if (!cholmod_l_solve2(CHOLMOD_A, m.L, &bv, nullptr, &m.X, nullptr, &m.Y, &m.E,
-                        m.common.get()))
-    throw SolverError(m.cholmod_error("solve (cholmod_l_solve2)"));
-  std::memmove(x, m.X->x, sizeof(double) * n);
+  const auto n = m.info.stats.n;
+  m.solver->solve(b, n, 1, x, n);
 }
 
 std::int64_t CholmodFactor::rows() const { return impl_->info.stats.n; }

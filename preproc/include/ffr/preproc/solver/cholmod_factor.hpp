@@ -108,7 +108,7 @@ class CholmodFactor {
   void factorize_shifted_upper(const SparseMatrix& C, double sigma);
 
   /// X = A^{-1} B for a dense block of right-hand sides (one column per load case). Columns
-  /// are solved in chunks so the extra memory stays O(n * chunk).
+  /// are solved up to 16 at a time, so the extra memory stays 16n doubles.
   Eigen::MatrixXd solve(const Eigen::Ref<const Eigen::MatrixXd>& B) const;
 
   /// x = A^{-1} b for one vector (the eigen-solver's operator); b and x may alias.
