@@ -3,6 +3,7 @@
 // input validation.
 #include "ffr/preproc/solver/cholmod_factor.hpp"
 #include "ffr/preproc/solver/memory.hpp"
+#include "ffr/preproc/threads.hpp"
 #include "pencils.hpp"
 
 #include <Eigen/SparseCholesky>
@@ -92,6 +93,34 @@ TEST(CholmodFactor, EveryBlockWidthMatchesSimplicialLDLT) {
       EXPECT_LT((X - Xref).norm() / Xref.norm(), 1e-12) << k << " columns, " << to_string(ordering);
     }
   }
+}
+
+// With two threads the substitutions split the elimination tree (solve_schedule.hpp): subtrees
+// on each thread, the separators near the root on one. The vector Laplacian's factor is large
+// enough for it; the solution must be the serial one up to the summation order.
+TEST(CholmodFactor, ThreadedSubstitutionsMatchTheSerialOnes) {
+  const SparseMatrix S = spd3d();
+  Eigen::MatrixXd b3(3, 3);
+  b3 << 2.0, 0.5, 0.1, 0.5, 3.0, 0.2, 0.1, 0.2, 4.0;
+  const SparseMatrix A = ffr::test::kron(S, b3.sparseView());
+  const Eigen::MatrixXd B = random_block(A.rows(), 21, 5);  // widths 16, 4 and 1
+  struct Restore {
+    ~Restore() { set_max_threads(0); }
+  } restore;
+  set_max_threads(1);
+  CholmodFactor serial;
+  serial.factorize(A);
+  ASSERT_EQ(serial.info().stats.solve_threads, 1);
+  set_max_threads(2);
+  CholmodFactor threaded;
+  threaded.factorize(A);
+  ASSERT_EQ(threaded.info().stats.solve_threads, 2) << "factor entries " << threaded.info().stats.factor_entries;
+  const Eigen::MatrixXd X = serial.solve(B), Xt = threaded.solve(B);
+  EXPECT_LT((Xt - X).norm() / X.norm(), 1e-13);
+  EXPECT_LT((A * Xt - B).norm() / B.norm(), 1e-12);
+  Eigen::VectorXd x = B.col(20);
+  threaded.solve(x.data(), x.data());
+  EXPECT_LT((x - X.col(20)).norm() / X.col(20).norm(), 1e-13);
 }
 
 // Three DOFs a node, numbered together (a vector Laplacian S (x) B3): METIS orders the node

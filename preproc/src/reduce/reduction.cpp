@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <algorithm>
 #include <sstream>
 
 namespace ffr::preproc {
@@ -111,8 +112,9 @@ std::string timing_line(double constraints, double analyze, double factorize, co
   o.precision(3);
   o << "timing: constraints " << constraints << " s, analyze " << analyze << " s, factorize " << factorize << " s";
   if (eig)
-    o << ", lanczos " << eig->lanczos_seconds << " s, solves " << eig->operator_applications << ", checks "
-      << eig->verify_seconds << " s";
+    o << ", lanczos " << eig->lanczos_seconds << " s, solves " << eig->operator_applications << " (on "
+      << std::max(1, eig->factor.solve_threads) << " thread" << (eig->factor.solve_threads > 1 ? "s" : "")
+      << "), checks " << eig->verify_seconds << " s";
   return o.str();
 }
 

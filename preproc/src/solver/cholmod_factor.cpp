@@ -4,6 +4,7 @@
 #include "nodal_ordering.hpp"
 #include "supernodal_solve.hpp"
 #include "ffr/preproc/solver/memory.hpp"
+#include "ffr/preproc/threads.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -245,7 +246,8 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
   info.stats.min_pivot_ratio = rmin;
   info.stats.min_pivot_column = pr.column;
   if (opt.min_pivot_ratio > 0 && !(rmin >= opt.min_pivot_ratio)) throw_not_posdef(jmin, true, rmin);
-  solver = std::make_unique<detail::SupernodalSolver>(*L);
+  solver = std::make_unique<detail::SupernodalSolver>(*L, max_threads());
+  info.stats.solve_threads = static_cast<int>(solver->threads());
   info.status = FactorStatus::Factorized;
   info.message.clear();
 }

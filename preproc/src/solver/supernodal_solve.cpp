@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <thread>
 
 // The kernels are compiled for AVX2/FMA and AVX-512 as well, chosen at load time: with the
 // right-hand sides interleaved, one fused multiply-add per factor entry keeps up with memory,
@@ -141,86 +142,106 @@ inline void dot_p(int p, const double* L, Index ld, Index m, const double* G, do
   }
 }
 
+// Forward step of supernode s. Updates to rows with a slot (the top of a threaded sweep, see
+// solve_schedule.hpp) go to the accumulator acc instead of y.
 template <int W>
-void forward(const View& v, double* y, double* t) {
-  for (Index s = 0; s < v.nsuper; ++s) {
-    const Index k1 = v.super[s], nscol = v.super[s + 1] - k1;
-    const Index nsrow = v.pi[s + 1] - v.pi[s], m = nsrow - nscol;
-    const double* L = v.values + v.px[s];
-    const SuiteSparse_long* below = v.rows + v.pi[s] + nscol;
-    double* yd = y + k1 * W;
-    std::fill(t, t + m * W, 0.0);
-    for (Index j0 = 0; j0 < nscol; j0 += kPanel) {
-      const int p = static_cast<int>(std::min<Index>(kPanel, nscol - j0));
-      // The panel's own triangle.
-      for (int q = 0; q < p; ++q) {
-        const Index j = j0 + q;
-        double* yj = yd + j * W;
-        const double d = L[j + j * nsrow];
-        for (int c = 0; c < W; ++c) yj[c] /= d;
-        for (int r = q + 1; r < p; ++r) {
-          const double l = L[j0 + r + j * nsrow];
-            for (int c = 0; c < W; ++c) yd[(j0 + r) * W + c] -= l * yj[c];
-        }
+void forward_node(const View& v, Index s, double* y, double* t, const std::int32_t* slot, double* acc) {
+  const Index k1 = v.super[s], nscol = v.super[s + 1] - k1;
+  const Index nsrow = v.pi[s + 1] - v.pi[s], m = nsrow - nscol;
+  const double* L = v.values + v.px[s];
+  const SuiteSparse_long* below = v.rows + v.pi[s] + nscol;
+  double* yd = y + k1 * W;
+  std::fill(t, t + m * W, 0.0);
+  for (Index j0 = 0; j0 < nscol; j0 += kPanel) {
+    const int p = static_cast<int>(std::min<Index>(kPanel, nscol - j0));
+    // The panel's own triangle.
+    for (int q = 0; q < p; ++q) {
+      const Index j = j0 + q;
+      double* yj = yd + j * W;
+      const double d = L[j + j * nsrow];
+      for (int c = 0; c < W; ++c) yj[c] /= d;
+      for (int r = q + 1; r < p; ++r) {
+        const double l = L[j0 + r + j * nsrow];
+        for (int c = 0; c < W; ++c) yd[(j0 + r) * W + c] -= l * yj[c];
       }
-      // The rest of L11 below the panel, then L21 into the update rows.
-      const double* Lp = L + j0 * nsrow;
-      update_p<W>(p, Lp + j0 + p, nsrow, nscol - j0 - p, yd + j0 * W, yd + (j0 + p) * W);
-      update_p<W>(p, Lp + nscol, nsrow, m, yd + j0 * W, t);
     }
-    for (Index i = 0; i < m; ++i) {
-      double* yi = y + below[i] * W;
-      for (int c = 0; c < W; ++c) yi[c] += t[i * W + c];
+    // The rest of L11 below the panel, then L21 into the update rows.
+    const double* Lp = L + j0 * nsrow;
+    update_p<W>(p, Lp + j0 + p, nsrow, nscol - j0 - p, yd + j0 * W, yd + (j0 + p) * W);
+    update_p<W>(p, Lp + nscol, nsrow, m, yd + j0 * W, t);
+  }
+  for (Index i = 0; i < m; ++i) {
+    const Index r = below[i];
+    double* yi = slot && slot[r] >= 0 ? acc + static_cast<Index>(slot[r]) * W : y + r * W;
+    for (int c = 0; c < W; ++c) yi[c] += t[i * W + c];
+  }
+}
+
+// Back step of supernode s: reads the rows below its diagonal block, writes its own.
+template <int W>
+void backward_node(const View& v, Index s, double* y, double* t) {
+  const Index k1 = v.super[s], nscol = v.super[s + 1] - k1;
+  const Index nsrow = v.pi[s + 1] - v.pi[s], m = nsrow - nscol;
+  const double* L = v.values + v.px[s];
+  const SuiteSparse_long* below = v.rows + v.pi[s] + nscol;
+  double* yd = y + k1 * W;
+  for (Index i = 0; i < m; ++i) {
+    const double* yi = y + below[i] * W;
+    for (int c = 0; c < W; ++c) t[i * W + c] = yi[c];
+  }
+  // Panels from the last: the rows below a panel are final when it is reached.
+  const Index last = ((nscol - 1) / kPanel) * kPanel;
+  for (Index j0 = last; j0 >= 0; j0 -= kPanel) {
+    const int p = static_cast<int>(std::min<Index>(kPanel, nscol - j0));
+    const double* Lp = L + j0 * nsrow;
+    dot_p<W>(p, Lp + nscol, nsrow, m, t, yd + j0 * W);
+    dot_p<W>(p, Lp + j0 + p, nsrow, nscol - j0 - p, yd + (j0 + p) * W, yd + j0 * W);
+    for (int q = p - 1; q >= 0; --q) {
+      const Index j = j0 + q;
+      double* yj = yd + j * W;
+      for (int r = q + 1; r < p; ++r) {
+        const double l = L[j0 + r + j * nsrow];
+        for (int c = 0; c < W; ++c) yj[c] -= l * yd[(j0 + r) * W + c];
+      }
+      const double d = L[j + j * nsrow];
+      for (int c = 0; c < W; ++c) yj[c] /= d;
     }
   }
 }
 
+struct Sweep {
+  const SupernodeRange* ranges;
+  std::size_t count;
+  bool forward;
+  const std::int32_t* slot;  ///< forward only: redirect updates of the top's rows ...
+  double* acc;               ///< ... into this accumulator
+};
+
 template <int W>
-void backward(const View& v, double* y, double* t) {
-  for (Index s = v.nsuper - 1; s >= 0; --s) {
-    const Index k1 = v.super[s], nscol = v.super[s + 1] - k1;
-    const Index nsrow = v.pi[s + 1] - v.pi[s], m = nsrow - nscol;
-    const double* L = v.values + v.px[s];
-    const SuiteSparse_long* below = v.rows + v.pi[s] + nscol;
-    double* yd = y + k1 * W;
-    for (Index i = 0; i < m; ++i) {
-      const double* yi = y + below[i] * W;
-      for (int c = 0; c < W; ++c) t[i * W + c] = yi[c];
-    }
-    // Panels from the last: the rows below a panel are final when it is reached.
-    const Index last = ((nscol - 1) / kPanel) * kPanel;
-    for (Index j0 = last; j0 >= 0; j0 -= kPanel) {
-      const int p = static_cast<int>(std::min<Index>(kPanel, nscol - j0));
-      const double* Lp = L + j0 * nsrow;
-      dot_p<W>(p, Lp + nscol, nsrow, m, t, yd + j0 * W);
-      dot_p<W>(p, Lp + j0 + p, nsrow, nscol - j0 - p, yd + (j0 + p) * W, yd + j0 * W);
-      for (int q = p - 1; q >= 0; --q) {
-        const Index j = j0 + q;
-        double* yj = yd + j * W;
-        for (int r = q + 1; r < p; ++r) {
-          const double l = L[j0 + r + j * nsrow];
-            for (int c = 0; c < W; ++c) yj[c] -= l * yd[(j0 + r) * W + c];
-        }
-        const double d = L[j + j * nsrow];
-        for (int c = 0; c < W; ++c) yj[c] /= d;
-      }
-    }
+void sweep_width(const View& v, const Sweep& w, double* y, double* t) {
+  if (w.forward) {
+    for (std::size_t k = 0; k < w.count; ++k)
+      for (Index s = w.ranges[k].first; s <= w.ranges[k].last; ++s) forward_node<W>(v, s, y, t, w.slot, w.acc);
+  } else {
+    for (std::size_t k = w.count; k-- > 0;)
+      for (Index s = w.ranges[k].last; s >= w.ranges[k].first; --s) backward_node<W>(v, s, y, t);
   }
 }
 
-// Both sweeps for one interleaved block, one clone per instruction set.
-FFR_KERNEL_CLONES void solve_block(const View& v, int width, double* y, double* t) {
+// One sweep over a list of supernode ranges for an interleaved block, one clone per
+// instruction set.
+FFR_KERNEL_CLONES void sweep(const View& v, int width, const Sweep& w, double* y, double* t) {
   switch (width) {
-    case 16: forward<16>(v, y, t); backward<16>(v, y, t); break;
-    case 8: forward<8>(v, y, t); backward<8>(v, y, t); break;
-    case 4: forward<4>(v, y, t); backward<4>(v, y, t); break;
-    default: forward<1>(v, y, t); backward<1>(v, y, t); break;
+    case 16: sweep_width<16>(v, w, y, t); break;
+    case 8: sweep_width<8>(v, w, y, t); break;
+    case 4: sweep_width<4>(v, w, y, t); break;
+    default: sweep_width<1>(v, w, y, t); break;
   }
 }
 
 }  // namespace
 
-SupernodalSolver::SupernodalSolver(const cholmod_factor& L)
+SupernodalSolver::SupernodalSolver(const cholmod_factor& L, unsigned threads)
     : n_(static_cast<std::int64_t>(L.n)),
       nsuper_(static_cast<std::int64_t>(L.nsuper)),
       perm_(static_cast<const SuiteSparse_long*>(L.Perm)),
@@ -228,30 +249,79 @@ SupernodalSolver::SupernodalSolver(const cholmod_factor& L)
       pi_(static_cast<const SuiteSparse_long*>(L.pi)),
       px_(static_cast<const SuiteSparse_long*>(L.px)),
       rows_(static_cast<const SuiteSparse_long*>(L.s)),
-      values_(static_cast<const double*>(L.x)) {
+      values_(static_cast<const double*>(L.x)),
+      schedule_(make_solve_schedule(L, threads, kMinParallelEntries)) {
   assert(L.is_super && L.is_ll && L.xtype == CHOLMOD_REAL);
   for (Index s = 0; s < nsuper_; ++s)
     max_update_rows_ = std::max<Index>(max_update_rows_, (pi_[s + 1] - pi_[s]) - (super_[s + 1] - super_[s]));
+  const std::size_t nt = std::max<std::size_t>(1, schedule_.parts.size());
+  t_.resize(nt);
+  acc_.resize(nt);
+}
+
+unsigned SupernodalSolver::threads() const {
+  return static_cast<unsigned>(std::max<std::size_t>(1, schedule_.parts.size()));
+}
+
+void SupernodalSolver::sweep_block(int width) {
+  const View v{nsuper_, super_, pi_, px_, rows_, values_};
+  double* y = y_.data();
+  const SupernodeRange all{0, nsuper_ - 1};
+  if (schedule_.parts.empty()) {
+    sweep(v, width, Sweep{&all, 1, true, nullptr, nullptr}, y, t_[0].data());
+    sweep(v, width, Sweep{&all, 1, false, nullptr, nullptr}, y, t_[0].data());
+    return;
+  }
+  const std::size_t nt = schedule_.parts.size(), ntop = schedule_.top_columns.size();
+  // Each part on its own thread (the first on this one); the threads are joined before
+  // anything else reads what they wrote.
+  auto in_parallel = [&](auto&& body) {
+    std::vector<std::thread> pool;
+    pool.reserve(nt - 1);
+    for (std::size_t k = 1; k < nt; ++k) pool.emplace_back(body, k);
+    body(std::size_t{0});
+    for (auto& th : pool) th.join();
+  };
+  in_parallel([&](std::size_t k) {
+    std::fill(acc_[k].begin(), acc_[k].begin() + static_cast<std::ptrdiff_t>(ntop * width), 0.0);
+    const auto& part = schedule_.parts[k];
+    sweep(v, width, Sweep{part.data(), part.size(), true, schedule_.slot.data(), acc_[k].data()}, y, t_[k].data());
+  });
+  for (std::size_t i = 0; i < ntop; ++i) {
+    double* yi = y + schedule_.top_columns[i] * width;
+    for (std::size_t k = 0; k < nt; ++k)
+      for (int c = 0; c < width; ++c) yi[c] += acc_[k][i * width + c];
+  }
+  const auto& top = schedule_.top;
+  sweep(v, width, Sweep{top.data(), top.size(), true, nullptr, nullptr}, y, t_[0].data());
+  sweep(v, width, Sweep{top.data(), top.size(), false, nullptr, nullptr}, y, t_[0].data());
+  in_parallel([&](std::size_t k) {
+    const auto& part = schedule_.parts[k];
+    sweep(v, width, Sweep{part.data(), part.size(), false, nullptr, nullptr}, y, t_[k].data());
+  });
 }
 
 void SupernodalSolver::solve(const double* B, std::int64_t ldb, std::int64_t ncols, double* X,
                              std::int64_t ldx) {
-  const View v{nsuper_, super_, pi_, px_, rows_, values_};
   for (Index j0 = 0; j0 < ncols;) {
     const Index left = ncols - j0;
-    // Eight at a time, then four (a last two or three padded with zero columns: the factor is
-    // read once either way), and a single column alone.
+    // Sixteen, eight or four at a time (a last two or three padded with zero columns: the
+    // factor is read once either way), and a single column alone.
     const int width = left >= 16 ? 16 : left >= 8 ? 8 : left >= 2 ? 4 : 1;
     const Index k = std::min<Index>(width, left);
-    if (y_.size() < static_cast<std::size_t>(n_ * width)) y_.resize(static_cast<std::size_t>(n_ * width));
-    if (t_.size() < static_cast<std::size_t>(max_update_rows_ * width))
-      t_.resize(static_cast<std::size_t>(max_update_rows_ * width));
+    const auto w = static_cast<std::size_t>(width);
+    if (y_.size() < static_cast<std::size_t>(n_) * w) y_.resize(static_cast<std::size_t>(n_) * w);
+    for (std::size_t p = 0; p < t_.size(); ++p) {
+      if (t_[p].size() < static_cast<std::size_t>(max_update_rows_) * w) t_[p].resize(static_cast<std::size_t>(max_update_rows_) * w);
+      if (!schedule_.parts.empty() && acc_[p].size() < schedule_.top_columns.size() * w)
+        acc_[p].resize(schedule_.top_columns.size() * w);
+    }
     double* y = y_.data();
     for (Index r = 0; r < n_; ++r) {
       const Index src = perm_ ? perm_[r] : r;
       for (Index c = 0; c < width; ++c) y[r * width + c] = c < k ? B[src + (j0 + c) * ldb] : 0.0;
     }
-    solve_block(v, width, y, t_.data());
+    sweep_block(width);
     for (Index r = 0; r < n_; ++r) {
       const Index dst = perm_ ? perm_[r] : r;
       for (Index c = 0; c < k; ++c) X[dst + (j0 + c) * ldx] = y[r * width + c];

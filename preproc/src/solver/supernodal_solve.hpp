@@ -11,6 +11,8 @@
 // right-hand sides interleaved (row-major) so that each factor entry meets all of them in
 // one vector operation.
 
+#include "solve_schedule.hpp"
+
 #include <cholmod.h>
 
 #include <cstdint>
@@ -21,7 +23,16 @@ namespace ffr::preproc::detail {
 class SupernodalSolver {
  public:
   /// Keeps pointers into L (not a copy): L must stay numeric and alive while solve() is used.
-  explicit SupernodalSolver(const cholmod_factor& L);
+  /// With threads > 1 and a factor of at least kMinParallelEntries values, the sweeps run on
+  /// up to that many threads (solve_schedule.hpp).
+  explicit SupernodalSolver(const cholmod_factor& L, unsigned threads = 1);
+
+  /// Smaller factors are solved on one thread: a sweep over a 2^20-entry (8 MB) factor
+  /// takes about a millisecond, where starting and joining threads starts to show.
+  static constexpr std::int64_t kMinParallelEntries = std::int64_t{1} << 20;
+
+  /// Threads the sweeps use (1: serial).
+  unsigned threads() const;
 
   /// X = A^-1 B for the A = P^T L L^T P that L factorises; B and X are n x ncols column-major
   /// with leading dimensions ldb and ldx (they may alias: B is read before X is written, per
@@ -37,8 +48,12 @@ class SupernodalSolver {
   const SuiteSparse_long* rows_ = nullptr;
   const double* values_ = nullptr;
   std::int64_t max_update_rows_ = 0;  ///< largest nsrow - nscol over the supernodes
-  std::vector<double> y_;             ///< n x width, row-major (interleaved)
-  std::vector<double> t_;             ///< one supernode's update rows x width
+  SolveSchedule schedule_;
+  std::vector<double> y_;                ///< n x width, row-major (interleaved)
+  std::vector<std::vector<double>> t_;   ///< per thread: one supernode's update rows x width
+  std::vector<std::vector<double>> acc_; ///< per thread: its updates of the top's rows
+
+  void sweep_block(int width);  ///< forward and back on y_
 };
 
 }  // namespace ffr::preproc::detail

@@ -68,6 +68,7 @@ struct FactorStatistics {
   double min_pivot_ratio = 0;      ///< min over j of L_jj^2 / A_jj after factorize
   std::int64_t min_pivot_column = -1;  ///< the column (input numbering) where it occurs
   std::uint64_t cholmod_peak_bytes = 0;  ///< measured peak of CHOLMOD's allocations
+  int solve_threads = 0;           ///< threads of the substitutions after factorize (max_threads() at most)
 };
 
 enum class FactorStatus { Empty, Analyzed, Factorized, Failed };
