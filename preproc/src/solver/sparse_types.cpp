@@ -1,5 +1,7 @@
 #include "ffr/preproc/solver/sparse_types.hpp"
 
+#include "row_parts.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -36,17 +38,16 @@ using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eig
 // Measured on the 100k-DOF plate's mass matrix (tools/bench/reduce): 4 columns 17.7 -> 12 ms,
 // 8 columns 31 -> 16 ms.
 template <int W>
-void upper_times_rows(const SparseMatrix& A, const RowMajorMatrix& X, RowMajorMatrix& Y) {
+void upper_times_rows(const SparseMatrix& A, const RowMajorMatrix& X, Eigen::Index j0, Eigen::Index j1, double* y) {
   using Row = Eigen::Matrix<double, 1, W>;
   const Eigen::Index m = W > 0 ? W : X.cols();
   const double* x = X.data();
-  double* y = Y.data();
   const auto* outer = A.outerIndexPtr();
   const auto* nnz = A.innerNonZeroPtr();
   const auto* rows = A.innerIndexPtr();
   const double* vals = A.valuePtr();
   Row acc(1, m);
-  for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
+  for (Eigen::Index j = j0; j < j1; ++j) {
     const Eigen::Map<const Row> xj(x + j * m, 1, m);
     acc.setZero();
     const auto end = nnz ? outer[j] + nnz[j] : outer[j + 1];
@@ -64,13 +65,34 @@ void upper_times_rows(const SparseMatrix& A, const RowMajorMatrix& X, RowMajorMa
   }
 }
 
+// Y = A X over the columns of A split into parts of about equal stored entries. A part writes
+// the rows of its own columns and, through the mirrored entries, rows of earlier columns; so
+// each part after the first accumulates into its own zeroed buffer, added to Y at the end.
 void upper_times_rows(const SparseMatrix& A, const RowMajorMatrix& X, RowMajorMatrix& Y) {
-  switch (X.cols()) {
-    case 4: upper_times_rows<4>(A, X, Y); break;
-    case 8: upper_times_rows<8>(A, X, Y); break;
-    case 16: upper_times_rows<16>(A, X, Y); break;
-    default: upper_times_rows<Eigen::Dynamic>(A, X, Y); break;
-  }
+  const Eigen::Index n = A.outerSize();
+  const unsigned parts = detail::parts_for(A.nonZeros(), Eigen::Index{1} << 20);
+  std::vector<RowMajorMatrix> extra(parts > 1 ? parts - 1 : 0);
+  const auto* outer = A.outerIndexPtr();
+  const auto split = [&](unsigned p) -> Eigen::Index {
+    if (p == 0) return 0;
+    if (p >= parts) return n;
+    const auto target = static_cast<std::int64_t>(static_cast<double>(outer[n]) * p / parts);
+    return static_cast<Eigen::Index>(std::lower_bound(outer, outer + n + 1, target) - outer);
+  };
+  detail::run_parts(parts, split, [&](unsigned p, Eigen::Index j0, Eigen::Index j1) {
+    double* y = Y.data();
+    if (p > 0) {
+      extra[p - 1] = RowMajorMatrix::Zero(j1, X.cols());  // rows beyond j1 are not written
+      y = extra[p - 1].data();
+    }
+    switch (X.cols()) {
+      case 4: upper_times_rows<4>(A, X, j0, j1, y); break;
+      case 8: upper_times_rows<8>(A, X, j0, j1, y); break;
+      case 16: upper_times_rows<16>(A, X, j0, j1, y); break;
+      default: upper_times_rows<Eigen::Dynamic>(A, X, j0, j1, y); break;
+    }
+  });
+  for (const RowMajorMatrix& e : extra) Y.topRows(e.rows()) += e;
 }
 
 // Width of the next chunk of columns: the widest compiled row width that fits (a pass over A
