@@ -149,6 +149,28 @@ TEST(CholmodFactor, OrdersTheNodeGraphOfAVectorProblem) {
   EXPECT_EQ(u.analyze(ffr::test::upper(A)).ordering_vertices, S.rows());
 }
 
+// Products with an upper-only matrix split its columns over the threads (above 2^18 stored
+// entries), each part after the first into its own buffer. Every chunk width (16, 8, 4 and the
+// dynamic rest) against the product with the full matrix, on one and on two threads.
+TEST(SymMultiply, UpperOnlyOnTwoThreadsMatchesTheFullProduct) {
+  const SparseMatrix S = spd3d();
+  Eigen::MatrixXd b3(3, 3);
+  b3 << 2.0, 0.5, 0.1, 0.5, 3.0, 0.2, 0.1, 0.2, 4.0;
+  const SparseMatrix A = ffr::test::kron(S, b3.sparseView());
+  const SparseMatrix U = ffr::test::upper(A);
+  ASSERT_GT(U.nonZeros(), 1 << 18);
+  const Eigen::MatrixXd X = random_block(A.rows(), 31, 6);
+  const Eigen::MatrixXd ref = A * X;
+  struct Restore {
+    ~Restore() { set_max_threads(0); }
+  } restore;
+  for (const unsigned threads : {1u, 2u}) {
+    set_max_threads(threads);
+    const Eigen::MatrixXd Y = sym_multiply(U, SymmetricStorage::UpperOnly, X);
+    EXPECT_LT((Y - ref).norm() / ref.norm(), 1e-14) << threads << " threads";
+  }
+}
+
 TEST(CholmodFactor, UpperOnlyStorageGivesTheSameSolution) {
   const SparseMatrix A = spd3d();
   CholmodFactor full, up;

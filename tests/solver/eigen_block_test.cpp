@@ -3,6 +3,7 @@
 // its two ways out: the frequency-limit query and the fall back to Spectra for problems too
 // small for its basis.
 #include "ffr/preproc/solver/eigen_solver.hpp"
+#include "ffr/preproc/threads.hpp"
 #include "pencils.hpp"
 
 #include <gtest/gtest.h>
@@ -68,4 +69,35 @@ TEST(EigenBlock, TooSmallForTheBasisFallsBackToSpectra) {
   EXPECT_EQ(s.info().backend_used, EigenBackend::Spectra);
   ASSERT_EQ(r.lambda.size(), 10);
   for (int k = 0; k < 10; ++k) EXPECT_NEAR(r.lambda[k], ref[k], 1e-10 * ref[k]) << k;
+}
+
+// On two threads the substitutions split the elimination tree and the orthogonalisation splits
+// the rows (above its size threshold once this 9240-DOF box's basis has 29 vectors or more).
+// The modes must be those of one thread, and the closed-form eigenvalues; and the block
+// backend must not have failed over to Spectra (it does when the orthogonalisation is wrong).
+TEST(EigenBlock, TwoThreadsGiveTheModesOfOne) {
+  const auto p = ffr::test::box(23, 1.0, 22, 0.9, 21, 0.8, Ends::FixedFixed);
+  const auto ref = ffr::test::box_eigenvalues(23, 1.0, 22, 0.9, 21, 0.8, Ends::FixedFixed, 20);
+  struct Restore {
+    ~Restore() { set_max_threads(0); }
+  } restore;
+  EigenOptions o;
+  o.nev = 20;
+  o.backend = EigenBackend::Block;
+  set_max_threads(1);
+  EigenSolver one(o);
+  const EigenResult r1 = one.compute(p.K, ffr::test::upper(p.M));
+  set_max_threads(2);
+  EigenSolver two(o);
+  const EigenResult r2 = two.compute(p.K, ffr::test::upper(p.M));
+  EXPECT_EQ(one.info().factor.solve_threads, 1);
+  EXPECT_EQ(two.info().factor.solve_threads, 2);
+  EXPECT_EQ(two.info().backend_used, EigenBackend::Block);
+  ASSERT_EQ(r2.lambda.size(), 20);
+  for (int k = 0; k < 20; ++k) {
+    EXPECT_NEAR(r2.lambda[k], ref[k], 1e-10 * ref[k]) << k;
+    EXPECT_NEAR(r2.lambda[k], r1.lambda[k], 1e-12 * ref[k]) << k;
+  }
+  EXPECT_LT(r2.max_relative_residual, 1e-10);
+  EXPECT_LT(r2.orthonormality_error, 1e-12);
 }

@@ -60,7 +60,7 @@ bool cholesky_qr(MatrixXd& W, MatrixXd& MW, MatrixXd& R) {
 // parts, the partial c summed between them.
 MatrixXd project_out(const Eigen::Ref<const MatrixXd>& Q, const MatrixXd& MW, MatrixXd& W) {
   const Index n = Q.rows(), k = Q.cols();
-  const unsigned parts = parts_for(n * k, Index{1} << 20);
+  const unsigned parts = parts_for(n * k, Index{1} << 18);
   const auto split = [&](unsigned p) { return n * static_cast<Index>(p) / static_cast<Index>(parts); };
   std::vector<MatrixXd> partial(parts);
   run_parts(parts, split, [&](unsigned p, Index r0, Index r1) {

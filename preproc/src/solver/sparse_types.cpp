@@ -70,7 +70,7 @@ void upper_times_rows(const SparseMatrix& A, const RowMajorMatrix& X, Eigen::Ind
 // each part after the first accumulates into its own zeroed buffer, added to Y at the end.
 void upper_times_rows(const SparseMatrix& A, const RowMajorMatrix& X, RowMajorMatrix& Y) {
   const Eigen::Index n = A.outerSize();
-  const unsigned parts = detail::parts_for(A.nonZeros(), Eigen::Index{1} << 20);
+  const unsigned parts = detail::parts_for(A.nonZeros(), Eigen::Index{1} << 18);
   std::vector<RowMajorMatrix> extra(parts > 1 ? parts - 1 : 0);
   const auto* outer = A.outerIndexPtr();
   const auto split = [&](unsigned p) -> Eigen::Index {
