@@ -111,10 +111,13 @@ std::string timing_line(double constraints, double analyze, double factorize, co
   std::ostringstream o;
   o.precision(3);
   o << "timing: constraints " << constraints << " s, analyze " << analyze << " s, factorize " << factorize << " s";
-  if (eig)
-    o << ", lanczos " << eig->lanczos_seconds << " s, solves " << eig->operator_applications << " (on "
-      << std::max(1, eig->factor.solve_threads) << " thread" << (eig->factor.solve_threads > 1 ? "s" : "")
-      << "), checks " << eig->verify_seconds << " s";
+  if (eig) {
+    const FactorStatistics& f = eig->factor;
+    o << ", lanczos " << eig->lanczos_seconds << " s, solves " << eig->operator_applications << " (on ";
+    if (f.solve_threads > 1) o << f.solve_threads << " threads, " << std::lround(100 * f.solve_parallel_fraction) << " % of the factor in parallel";
+    else o << "1 thread";
+    o << "), checks " << eig->verify_seconds << " s";
+  }
   return o.str();
 }
 

@@ -248,6 +248,7 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
   if (opt.min_pivot_ratio > 0 && !(rmin >= opt.min_pivot_ratio)) throw_not_posdef(jmin, true, rmin);
   solver = std::make_unique<detail::SupernodalSolver>(*L, max_threads());
   info.stats.solve_threads = static_cast<int>(solver->threads());
+  info.stats.solve_parallel_fraction = solver->parallel_fraction();
   info.status = FactorStatus::Factorized;
   info.message.clear();
 }

@@ -33,6 +33,8 @@ class SupernodalSolver {
 
   /// Threads the sweeps use (1: serial).
   unsigned threads() const;
+  /// Share of the factor's entries swept in parallel (0 when serial).
+  double parallel_fraction() const { return schedule_.parallel_fraction; }
 
   /// X = A^-1 B for the A = P^T L L^T P that L factorises; B and X are n x ncols column-major
   /// with leading dimensions ldb and ldx (they may alias: B is read before X is written, per

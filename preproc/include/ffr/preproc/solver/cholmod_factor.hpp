@@ -69,6 +69,7 @@ struct FactorStatistics {
   std::int64_t min_pivot_column = -1;  ///< the column (input numbering) where it occurs
   std::uint64_t cholmod_peak_bytes = 0;  ///< measured peak of CHOLMOD's allocations
   int solve_threads = 0;           ///< threads of the substitutions after factorize (max_threads() at most)
+  double solve_parallel_fraction = 0;  ///< share of the factor's entries they sweep in parallel
 };
 
 enum class FactorStatus { Empty, Analyzed, Factorized, Failed };
