@@ -2,8 +2,10 @@
 #include "ffr/preproc/assembly/assembly.hpp"
 #include "ffr/preproc/elements/solid.hpp"
 #include "ffr/preproc/threads.hpp"
+#include "coloring.hpp"
 #include "pattern.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <exception>
@@ -13,14 +15,18 @@
 namespace ffr::preproc {
 namespace {
 
-constexpr std::size_t kBatch = 512;
+// Elements a worker takes at a time from a colour class (a class of the 100k-DOF plate holds
+// a few hundred elements).
+constexpr std::size_t kBatch = 32;
 
-struct Computed {
-  ElementRef ref;
-  std::vector<Index> dofs;
-  detail::Placement place;
-  ElementMatrices em;
-  double scaled_jacobian = 1.0;  ///< solids only
+// What each worker sums besides the matrices, merged after the last class.
+struct Sums {
+  double mass = 0;
+  Eigen::Vector3d rdm = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d rrdm = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d rotary_I = Eigen::Matrix3d::Zero();
+  double worst_scaled_jacobian = 1.0;
+  std::size_t worst = static_cast<std::size_t>(-1);  ///< element index in refs
 };
 
 std::string describe(const FeModel& model, const ElementRef& ref) {
@@ -49,89 +55,114 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   for (const auto& pb : model.blocks) out.has_structural = out.has_structural || pb.kind != ElementKind::Solid;
   out.has_structural = out.has_structural || !model.masses.empty();
 
-  std::mutex scatter_mutex;
-  std::atomic<std::size_t> next_batch{0};
+  // Each element's DOFs and the entities they belong to; colour classes of elements with no
+  // entity in common, whose scatters touch disjoint entries (coloring.hpp).
+  std::vector<std::vector<Index>> dofs(refs.size()), ents(refs.size());
+  for (std::size_t i = 0; i < refs.size(); ++i) {
+    dofs[i] = element_dofs(model, refs[i]);
+    for (const Index d : dofs[i]) {
+      const Index e = pattern.entity_of_dof(model, d);
+      if (std::find(ents[i].begin(), ents[i].end(), e) == ents[i].end()) ents[i].push_back(e);
+    }
+  }
+  const auto classes = detail::color_elements(ents, static_cast<Index>(pattern.ent_dof0.size()));
+  ents = {};
+
+  const unsigned nthreads = std::max(1u, opt.threads > 0 ? static_cast<unsigned>(opt.threads) : max_threads());
+  std::vector<Sums> sums(nthreads);
   std::atomic<bool> failed{false};
   std::exception_ptr error;
-  std::atomic<std::size_t> done{0};
+  std::mutex error_mutex;
+  std::size_t done = 0;
 
-  auto scatter = [&](std::vector<Computed>& batch) {
-    std::lock_guard<std::mutex> lock(scatter_mutex);
-    for (auto& c : batch) {
-      pattern.add(out.K, c.place, c.em.K);
-      if (opt.stiffness_only) continue;
-      pattern.add(out.M, c.place, c.em.M);
-      if (c.ref.block >= 0 && model.blocks[static_cast<std::size_t>(c.ref.block)].kind == ElementKind::Solid)
-        pattern.add_node_scalar(out.Ms, c.place, c.em.M);
-      if (c.scaled_jacobian < out.worst_scaled_jacobian) {
-        out.worst_scaled_jacobian = c.scaled_jacobian;
-        out.worst_element = describe(model, c.ref);
+  // Computes element i and adds it to the matrices (no other thread writes its entries now).
+  auto element = [&](std::size_t i, Sums& sum) {
+    const ElementRef& ref = refs[i];
+    const detail::Placement place = pattern.place(dofs[i], model);
+    ElementMatrices em;
+    double scaled_jacobian = 1.0;
+    const bool solid = ref.block >= 0 && model.blocks[static_cast<std::size_t>(ref.block)].kind == ElementKind::Solid;
+    try {
+      em = kernel(model, ref);
+      if (!opt.stiffness_only && solid) {
+        const auto& blk = model.mesh->blocks[model.blocks[static_cast<std::size_t>(ref.block)].block];
+        scaled_jacobian = solid_quality(blk.type, model.mesh->element_coords(blk, ref.index)).min_scaled_jacobian;
       }
-      for (const auto& s : c.em.samples) {
-        out.mass += s.w;
-        out.rdm += s.w * s.c;
-        out.rrdm += s.w * s.c * s.c.transpose();
-      }
-      if (c.em.M_rotary.size() > 0) {
-        Eigen::Matrix<double, Eigen::Dynamic, 3> R(static_cast<Index>(c.dofs.size()), 3);
-        for (std::size_t i = 0; i < c.dofs.size(); ++i) R.row(static_cast<Index>(i)) = model.rigid_motion(c.dofs[i]).tail<3>();
-        out.rotary_I += R.transpose() * c.em.M_rotary * R;
-      }
+    } catch (const ElementError& e) {
+      throw formats::FormatError(model.part ? model.part->geometry.string() : "mesh", describe(model, ref), e.what());
     }
-    done += batch.size();
+    if (static_cast<std::size_t>(em.K.rows()) != dofs[i].size() || (!opt.stiffness_only && em.M.rows() != em.K.rows()))
+      throw std::logic_error("kernel returned matrices of the wrong size for " + describe(model, ref));
+    pattern.add(out.K, place, em.K);
+    if (opt.stiffness_only) return;
+    pattern.add(out.M, place, em.M);
+    if (solid) pattern.add_node_scalar(out.Ms, place, em.M);
+    // Solids below the ideal 1 only; the lowest element index wins a tie, whatever thread met
+    // it first.
+    if (solid && scaled_jacobian < 1.0 &&
+        (scaled_jacobian < sum.worst_scaled_jacobian || (scaled_jacobian == sum.worst_scaled_jacobian && i < sum.worst))) {
+      sum.worst_scaled_jacobian = scaled_jacobian;
+      sum.worst = i;
+    }
+    for (const auto& smp : em.samples) {
+      sum.mass += smp.w;
+      sum.rdm += smp.w * smp.c;
+      sum.rrdm += smp.w * smp.c * smp.c.transpose();
+    }
+    if (em.M_rotary.size() > 0) {
+      Eigen::Matrix<double, Eigen::Dynamic, 3> R(static_cast<Index>(dofs[i].size()), 3);
+      for (std::size_t k = 0; k < dofs[i].size(); ++k) R.row(static_cast<Index>(k)) = model.rigid_motion(dofs[i][k]).tail<3>();
+      sum.rotary_I += R.transpose() * em.M_rotary * R;
+    }
   };
 
-  auto worker = [&] {
-    std::vector<Computed> batch;
-    while (!failed) {
-      const std::size_t b = next_batch++;
-      const std::size_t begin = b * kBatch;
-      if (begin >= refs.size()) break;
-      const std::size_t end = std::min(refs.size(), begin + kBatch);
-      batch.clear();
-      try {
-        for (std::size_t i = begin; i < end; ++i) {
-          Computed c{refs[i], element_dofs(model, refs[i]), {}, {}, 1.0};
-          c.place = pattern.place(c.dofs, model);
-          try {
-            c.em = kernel(model, refs[i]);
-            if (!opt.stiffness_only && refs[i].block >= 0 && model.blocks[static_cast<std::size_t>(refs[i].block)].kind == ElementKind::Solid) {
-              const auto& blk = model.mesh->blocks[model.blocks[static_cast<std::size_t>(refs[i].block)].block];
-              c.scaled_jacobian = solid_quality(blk.type, model.mesh->element_coords(blk, refs[i].index)).min_scaled_jacobian;
-            }
-          } catch (const ElementError& e) {
-            throw formats::FormatError(model.part ? model.part->geometry.string() : "mesh", describe(model, refs[i]),
-                                       e.what());
-          }
-          if (static_cast<std::size_t>(c.em.K.rows()) != c.dofs.size() || (!opt.stiffness_only && c.em.M.rows() != c.em.K.rows()))
-            throw std::logic_error("kernel returned matrices of the wrong size for " + describe(model, refs[i]));
-          batch.push_back(std::move(c));
+  auto last_report = std::chrono::steady_clock::now();
+  for (const auto& cls : classes) {
+    std::atomic<std::size_t> next{0};
+    auto worker = [&](unsigned t) {
+      while (!failed) {
+        const std::size_t b = next.fetch_add(kBatch);
+        if (b >= cls.size()) break;
+        try {
+          for (std::size_t k = b; k < std::min(cls.size(), b + kBatch); ++k) element(cls[k], sums[t]);
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(error_mutex);
+          if (!error) error = std::current_exception();
+          failed = true;
         }
-        scatter(batch);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(scatter_mutex);
-        if (!error) error = std::current_exception();
-        failed = true;
       }
+    };
+    const unsigned nt = static_cast<unsigned>(std::min<std::size_t>(nthreads, (cls.size() + kBatch - 1) / kBatch));
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < nt; ++t) pool.emplace_back(worker, t);
+    worker(0);
+    for (auto& th : pool) th.join();
+    if (failed) break;
+    done += cls.size();
+    if (opt.progress && std::chrono::steady_clock::now() - last_report > std::chrono::milliseconds(200)) {
+      opt.progress(static_cast<double>(done) / static_cast<double>(refs.size()));
+      last_report = std::chrono::steady_clock::now();
     }
-  };
-
-  const unsigned nthreads = opt.threads > 0 ? static_cast<unsigned>(opt.threads) : max_threads();
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < nthreads; ++t) pool.emplace_back(worker);
-  if (opt.progress) {
-    // The calling thread reports progress while helping with the work.
-    std::thread reporter_helper(worker);
-    while (done < refs.size() && !failed) {
-      opt.progress(refs.empty() ? 1.0 : static_cast<double>(done) / static_cast<double>(refs.size()));
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    }
-    reporter_helper.join();
-  } else {
-    worker();
   }
-  for (auto& t : pool) t.join();
   if (error) std::rethrow_exception(error);
+  Sums total;
+  for (const Sums& sum : sums) {
+    total.mass += sum.mass;
+    total.rdm += sum.rdm;
+    total.rrdm += sum.rrdm;
+    total.rotary_I += sum.rotary_I;
+    if (sum.worst_scaled_jacobian < total.worst_scaled_jacobian ||
+        (sum.worst_scaled_jacobian == total.worst_scaled_jacobian && sum.worst < total.worst)) {
+      total.worst_scaled_jacobian = sum.worst_scaled_jacobian;
+      total.worst = sum.worst;
+    }
+  }
+  out.mass += total.mass;
+  out.rdm += total.rdm;
+  out.rrdm += total.rrdm;
+  out.rotary_I += total.rotary_I;
+  out.worst_scaled_jacobian = total.worst_scaled_jacobian;
+  if (total.worst < refs.size()) out.worst_element = describe(model, refs[total.worst]);
   // Rigid-body integrals of the solids from Ms, exactly (c is interpolated isoparametrically).
   if (out.Ms.nonZeros() > 0) {
     const Eigen::VectorXd ones = Eigen::VectorXd::Ones(out.Ms.rows());

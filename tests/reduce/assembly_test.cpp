@@ -1,0 +1,92 @@
+// Global assembly against an independent sum: the element matrices of every element added at
+// its DOFs through Eigen triplets (no pattern, no colouring, no threads). The threaded assembly
+// scatters colour classes of elements with no node in common without a lock, one class after
+// another, so it must also give the same bits on one thread and on two.
+#include "ffr/preproc/assembly/assembly.hpp"
+#include "ffr/preproc/model/fe_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+using namespace ffr;
+using preproc::Index;
+
+namespace {
+
+// nx x ny x nz HEX8 cells of a unit-spaced grid (slightly sheared so that no two elements are
+// equal), one material group, interfaces on the x = 0 and x = nx faces.
+struct Grid {
+  preproc::Mesh mesh;
+  preproc::PartSpec part;
+  Grid(int nx, int ny, int nz) {
+    auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
+    mesh.x.resize((nx + 1) * (ny + 1) * (nz + 1), 3);
+    for (int k = 0; k <= nz; ++k)
+      for (int j = 0; j <= ny; ++j)
+        for (int i = 0; i <= nx; ++i) mesh.x.row(id(i, j, k)) << i + 0.1 * j, j + 0.05 * k, k + 0.02 * i;
+    preproc::ElementBlock b{preproc::ElementType::Hex8, "body", {}, {}};
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i)
+          for (int v : {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
+                        id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)})
+            b.conn.push_back(v);
+    mesh.blocks.push_back(b);
+    std::vector<Index> all, left, right;
+    for (int k = 0; k <= nz; ++k)
+      for (int j = 0; j <= ny; ++j) {
+        left.push_back(id(0, j, k));
+        right.push_back(id(nx, j, k));
+      }
+    for (Index n = 0; n < mesh.x.rows(); ++n) all.push_back(n);
+    mesh.node_groups["body"] = all;
+    mesh.node_groups["left"] = left;
+    mesh.node_groups["right"] = right;
+    part.file = "grid.json";
+    part.materials.push_back({"body", {2.1e11, 0.3, 7850.0}});
+    part.interfaces.push_back({"L", "left", "rigid", {}});
+    part.interfaces.push_back({"R", "right", "averaged", {}});
+  }
+};
+
+preproc::SparseMatrix triplet_sum(const preproc::FeModel& model, bool mass) {
+  std::vector<Eigen::Triplet<double>> trip;
+  for (const auto& ref : preproc::all_elements(model)) {
+    const auto em = preproc::element_matrices(model, ref);
+    const Eigen::MatrixXd& A = mass ? em.M : em.K;
+    const auto dofs = preproc::element_dofs(model, ref);
+    for (std::size_t b = 0; b < dofs.size(); ++b)
+      for (std::size_t a = 0; a < dofs.size(); ++a)
+        trip.emplace_back(dofs[a], dofs[b], A(static_cast<Index>(a), static_cast<Index>(b)));
+  }
+  preproc::SparseMatrix S(model.num_dofs, model.num_dofs);
+  S.setFromTriplets(trip.begin(), trip.end());
+  return S;
+}
+
+double relative_difference(const preproc::SparseMatrix& A, const preproc::SparseMatrix& B) {
+  return preproc::SparseMatrix(A - B).norm() / B.norm();
+}
+
+}  // namespace
+
+TEST(Assembly, MatchesTheElementSumAndIsTheSameOnTwoThreads) {
+  Grid grid(9, 7, 5);
+  const auto model = preproc::build_model(grid.mesh, grid.part);
+  preproc::AssemblyOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const auto a1 = preproc::assemble(model, one);
+  const auto a2 = preproc::assemble(model, two);
+  EXPECT_LT(relative_difference(a1.K, triplet_sum(model, false)), 1e-14);
+  EXPECT_LT(relative_difference(a1.M, triplet_sum(model, true)), 1e-14);
+  // Every entry is summed in the order of the colour classes, whatever the thread count.
+  ASSERT_EQ(a1.K.nonZeros(), a2.K.nonZeros());
+  EXPECT_TRUE(std::equal(a1.K.valuePtr(), a1.K.valuePtr() + a1.K.nonZeros(), a2.K.valuePtr()));
+  EXPECT_TRUE(std::equal(a1.M.valuePtr(), a1.M.valuePtr() + a1.M.nonZeros(), a2.M.valuePtr()));
+  // Mass: density times volume. The grid is the linear image of 9 x 7 x 5 unit cubes under
+  // [[1, 0.1, 0], [0, 1, 0.05], [0.02, 0, 1]], whose determinant is 1.0001.
+  EXPECT_NEAR(a2.mass, 7850.0 * 315 * 1.0001, 1e-12 * 7850.0 * 315);
+  EXPECT_EQ(a1.worst_element, a2.worst_element);
+}
