@@ -5,9 +5,10 @@
 // time, and each application streams the whole Cholesky factor through memory twice
 // (forward and backward substitution). For the factors of 10^5..10^6-DOF parts that is
 // bandwidth-bound and dominated the reduction (measured: tools/bench/reduce/README.md). A
-// block of p vectors streams the factor once for all p (CHOLMOD's supernodal solve turns
-// into dense matrix-matrix kernels), so the cost per vector drops several-fold, while the
-// block Krylov space needs only slightly more vectors than the single-vector one.
+// block of p vectors streams the factor once for all p (the substitutions apply each factor
+// entry to the p interleaved vectors at once, supernodal_solve.hpp), so the cost per vector
+// drops several-fold, while the block Krylov space needs only slightly more vectors than the
+// single-vector one.
 //
 // Operator A = P (K - sigma M)^{-1} P^T M, self-adjoint in the M inner product, with
 // eigenvalues theta = 1 / (lambda - sigma) > 0 (sigma below the wanted spectrum). With an

@@ -11,6 +11,8 @@
 // and applies them to all right-hand sides of the interleaved block.
 #include "supernodal_solve.hpp"
 
+#include "supernodal_panels.hpp"
+
 #include <algorithm>
 #include <cassert>
 #include <thread>
@@ -38,109 +40,9 @@ struct View {
   const double* values;
 };
 
-constexpr int kPanel = 4;  // columns of L per sweep step
-
-// Four doubles, loaded and stored at any 8-byte alignment. GCC's vector extension, not
-// auto-vectorisation: left to itself, GCC vectorised the interleaved loops across rows with
-// permutations and stack spills, slower than CHOLMOD's solve.
-// The file is compiled at -O3 in every optimised build (preproc/CMakeLists.txt): at -O2 GCC
-// kept the short loops over a panel's columns as loops over arrays in memory, and the sweep
-// ran at two thirds of the speed.
-typedef double v4 __attribute__((vector_size(32), aligned(8), may_alias));
-
-// T[i] -= sum_q L(i, q) Y[q] for i < m, q < P: P columns of L from L (leading dimension ld)
-// against P rows of the interleaved block Y, into m interleaved rows of T.
-template <int W, int P>
-inline void panel_update(const double* L, Index ld, Index m, const double* Y, double* T) {
-  if constexpr (W == 1) {
-    // One right-hand side: plain AXPYs down the columns, vectorised across rows.
-    double y[P];
-    for (int q = 0; q < P; ++q) y[q] = Y[q];
-    for (Index i = 0; i < m; ++i) {
-      double acc = T[i];
-      for (int q = 0; q < P; ++q) acc -= L[i + q * ld] * y[q];
-      T[i] = acc;
-    }
-  } else {
-    constexpr int NV = W / 4;
-    v4 y[P][NV];
-    for (int q = 0; q < P; ++q)
-      for (int k = 0; k < NV; ++k) y[q][k] = *reinterpret_cast<const v4*>(Y + q * W + 4 * k);
-    for (Index i = 0; i < m; ++i) {
-      v4 acc[NV];
-      for (int k = 0; k < NV; ++k) acc[k] = *reinterpret_cast<const v4*>(T + i * W + 4 * k);
-      for (int q = 0; q < P; ++q) {
-        const double l = L[i + q * ld];
-        for (int k = 0; k < NV; ++k) acc[k] -= l * y[q][k];
-      }
-      for (int k = 0; k < NV; ++k) *reinterpret_cast<v4*>(T + i * W + 4 * k) = acc[k];
-    }
-  }
-}
-
-// Y[q] -= sum_i L(i, q) G[i] for q < P: the transposed panel against m interleaved rows G.
-template <int W, int P>
-inline void panel_dot(const double* L, Index ld, Index m, const double* G, double* Y) {
-  if constexpr (W == 1) {
-    // One right-hand side: dot products, with four partial sums per column across rows.
-    v4 acc[P] = {};
-    Index i = 0;
-    for (; i + 4 <= m; i += 4) {
-      const v4 g = *reinterpret_cast<const v4*>(G + i);
-      for (int q = 0; q < P; ++q) acc[q] += *reinterpret_cast<const v4*>(L + i + q * ld) * g;
-    }
-    for (int q = 0; q < P; ++q) {
-      double sum = (acc[q][0] + acc[q][1]) + (acc[q][2] + acc[q][3]);
-      for (Index r = i; r < m; ++r) sum += L[r + q * ld] * G[r];
-      Y[q] -= sum;
-    }
-  } else {
-    // Two rows per iteration into two sets of sums: with one set, each sum waits for its
-    // previous FMA, and the sweep ran at 7-8 GB/s instead of 10-12 (grid pencil, 840 MB factor).
-    constexpr int NV = W / 4;
-    v4 acc[2][P][NV] = {};
-    Index i = 0;
-    for (; i + 2 <= m; i += 2)
-      for (int h = 0; h < 2; ++h) {
-        v4 g[NV];
-        for (int k = 0; k < NV; ++k) g[k] = *reinterpret_cast<const v4*>(G + (i + h) * W + 4 * k);
-        for (int q = 0; q < P; ++q) {
-          const double l = L[i + h + q * ld];
-          for (int k = 0; k < NV; ++k) acc[h][q][k] += l * g[k];
-        }
-      }
-    for (; i < m; ++i) {
-      v4 g[NV];
-      for (int k = 0; k < NV; ++k) g[k] = *reinterpret_cast<const v4*>(G + i * W + 4 * k);
-      for (int q = 0; q < P; ++q) {
-        const double l = L[i + q * ld];
-        for (int k = 0; k < NV; ++k) acc[0][q][k] += l * g[k];
-      }
-    }
-    for (int q = 0; q < P; ++q)
-      for (int k = 0; k < NV; ++k) *reinterpret_cast<v4*>(Y + q * W + 4 * k) -= acc[0][q][k] + acc[1][q][k];
-  }
-}
-
-// The P-wide panel operations for a run-time panel width p (the last panel of a supernode).
-template <int W>
-inline void update_p(int p, const double* L, Index ld, Index m, const double* Y, double* T) {
-  switch (p) {
-    case 4: panel_update<W, 4>(L, ld, m, Y, T); break;
-    case 3: panel_update<W, 3>(L, ld, m, Y, T); break;
-    case 2: panel_update<W, 2>(L, ld, m, Y, T); break;
-    default: panel_update<W, 1>(L, ld, m, Y, T); break;
-  }
-}
-template <int W>
-inline void dot_p(int p, const double* L, Index ld, Index m, const double* G, double* Y) {
-  switch (p) {
-    case 4: panel_dot<W, 4>(L, ld, m, G, Y); break;
-    case 3: panel_dot<W, 3>(L, ld, m, G, Y); break;
-    case 2: panel_dot<W, 2>(L, ld, m, G, Y); break;
-    default: panel_dot<W, 1>(L, ld, m, G, Y); break;
-  }
-}
+using panels::dot_p;
+using panels::kPanel;
+using panels::update_p;
 
 // Forward step of supernode s. Updates to rows with a slot (the top of a threaded sweep, see
 // solve_schedule.hpp) go to the accumulator acc instead of y.

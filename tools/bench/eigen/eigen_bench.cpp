@@ -3,6 +3,7 @@
 //
 //   eigen_bench [--sizes 50000,200000,1000000] [--dpn 3|1] [--nev 20]
 //               [--backend spectra|arpack] [--ordering metis|nesdis|amd|auto]
+//               [--threads T]      threads of ffr's solver and of OpenBLAS (default: all cores)
 //               [--rhs 0]          also time a block solve with that many right-hand sides,
 //                                  beside CHOLMOD's own cholmod_l_solve2 (best of 3 each)
 //               [--analyze-only 1] symbolic analysis only: sizes and memory estimate (for
@@ -19,6 +20,7 @@
 
 #include "ffr/preproc/solver/eigen_solver.hpp"
 #include "ffr/preproc/solver/memory.hpp"
+#include "ffr/preproc/threads.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -37,6 +39,7 @@ namespace {
 struct Args {
   std::vector<std::int64_t> sizes{50000, 200000, 1000000};
   int dpn = 3, nev = 20, rhs = 0;
+  unsigned threads = 0;  ///< 0: all cores
   bool analyze_only = false;
   EigenBackend backend = EigenBackend::Spectra;
   Ordering ordering = Ordering::Metis;
@@ -45,7 +48,7 @@ struct Args {
 [[noreturn]] void usage(const std::string& msg) {
   std::fprintf(stderr,
                "eigen_bench: %s\nusage: eigen_bench [--sizes N1,N2,..] [--dpn 1|3] [--nev K] "
-               "[--backend spectra|arpack] [--ordering metis|nesdis|amd|auto] [--rhs R]\n",
+               "[--backend spectra|arpack] [--ordering metis|nesdis|amd|auto] [--rhs R] [--threads T]\n",
                msg.c_str());
   std::exit(2);
 }
@@ -77,6 +80,8 @@ Args parse(int argc, char** argv) {
       a.analyze_only = parse_int(v, "--analyze-only") != 0;
     } else if (k == "--rhs") {
       a.rhs = static_cast<int>(parse_int(v, "--rhs"));
+    } else if (k == "--threads") {
+      a.threads = static_cast<unsigned>(parse_int(v, "--threads"));
     } else if (k == "--backend") {
       const std::string b = v;
       if (b == "spectra") a.backend = EigenBackend::Spectra;
@@ -102,6 +107,7 @@ double mib(std::uint64_t b) { return static_cast<double>(b) / (1024.0 * 1024.0);
 
 int main(int argc, char** argv) {
   const Args args = parse(argc, argv);
+  set_max_threads(args.threads);  // ours and OpenBLAS's (so CHOLMOD's solve gets as many)
   std::printf("eigen_bench: Q1 box 2x1x1 clamped at x=0, %s, nev = %d, backend %s, ordering %s\n",
               args.dpn == 3 ? "3 DOF/node (elasticity-like K (x) D)" : "scalar Laplacian",
               args.nev, to_string(args.backend), to_string(args.ordering));
