@@ -246,7 +246,9 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
   info.stats.min_pivot_ratio = rmin;
   info.stats.min_pivot_column = pr.column;
   if (opt.min_pivot_ratio > 0 && !(rmin >= opt.min_pivot_ratio)) throw_not_posdef(jmin, true, rmin);
-  solver = std::make_unique<detail::SupernodalSolver>(*L, max_threads());
+  // At most 8 threads, as the other threaded vector work (row_parts.hpp): every sweep starts
+  // and joins them.
+  solver = std::make_unique<detail::SupernodalSolver>(*L, std::min(max_threads(), 8u));
   info.stats.solve_threads = static_cast<int>(solver->threads());
   info.stats.solve_parallel_fraction = solver->parallel_fraction();
   info.status = FactorStatus::Factorized;
