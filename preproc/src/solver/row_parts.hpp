@@ -41,7 +41,12 @@ void run_parts(unsigned parts, Split&& split, Body&& body) {
   };
   std::vector<std::thread> pool;
   pool.reserve(parts - 1);
-  for (unsigned p = 1; p < parts; ++p) pool.emplace_back(guarded, p);
+  try {
+    for (unsigned p = 1; p < parts; ++p) pool.emplace_back(guarded, p);
+  } catch (...) {  // no thread to be had: join those started, then report it
+    for (auto& t : pool) t.join();
+    throw;
+  }
   guarded(0);
   for (auto& t : pool) t.join();
   for (auto& e : errors)

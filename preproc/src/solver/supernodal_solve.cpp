@@ -11,11 +11,11 @@
 // and applies them to all right-hand sides of the interleaved block.
 #include "supernodal_solve.hpp"
 
+#include "row_parts.hpp"
 #include "supernodal_panels.hpp"
 
 #include <algorithm>
 #include <cassert>
-#include <thread>
 
 // The kernels are compiled for AVX2/FMA and AVX-512 as well, chosen at load time: with the
 // right-hand sides interleaved, one fused multiply-add per factor entry keeps up with memory,
@@ -178,11 +178,8 @@ void SupernodalSolver::sweep_block(int width) {
   // Each part on its own thread (the first on this one); the threads are joined before
   // anything else reads what they wrote.
   auto in_parallel = [&](auto&& body) {
-    std::vector<std::thread> pool;
-    pool.reserve(nt - 1);
-    for (std::size_t k = 1; k < nt; ++k) pool.emplace_back(body, k);
-    body(std::size_t{0});
-    for (auto& th : pool) th.join();
+    run_parts(static_cast<unsigned>(nt), [](unsigned p) { return p; },
+              [&](unsigned k, unsigned, unsigned) { body(static_cast<std::size_t>(k)); });
   };
   in_parallel([&](std::size_t k) {
     std::fill(acc_[k].begin(), acc_[k].begin() + static_cast<std::ptrdiff_t>(ntop * width), 0.0);
