@@ -5,6 +5,7 @@
 // (dot-product) direction.
 
 #include <cstdint>
+#include <type_traits>
 
 namespace ffr::preproc::detail::panels {
 
@@ -95,23 +96,27 @@ inline void panel_dot(const double* L, Index ld, Index m, const double* G, doubl
 }
 
 // The P-wide panel operations for a run-time panel width p (the last panel of a supernode).
-template <int W>
-inline void update_p(int p, const double* L, Index ld, Index m, const double* Y, double* T) {
+template <int W, bool Dot>
+inline void panel_p(int p, const double* L, Index ld, Index m, const double* in, double* out) {
+  const auto run = [&](auto width) {
+    constexpr int P = decltype(width)::value;
+    if constexpr (Dot) panel_dot<W, P>(L, ld, m, in, out);
+    else panel_update<W, P>(L, ld, m, in, out);
+  };
   switch (p) {
-    case 4: panel_update<W, 4>(L, ld, m, Y, T); break;
-    case 3: panel_update<W, 3>(L, ld, m, Y, T); break;
-    case 2: panel_update<W, 2>(L, ld, m, Y, T); break;
-    default: panel_update<W, 1>(L, ld, m, Y, T); break;
+    case 4: run(std::integral_constant<int, 4>{}); break;
+    case 3: run(std::integral_constant<int, 3>{}); break;
+    case 2: run(std::integral_constant<int, 2>{}); break;
+    default: run(std::integral_constant<int, 1>{}); break;
   }
 }
 template <int W>
+inline void update_p(int p, const double* L, Index ld, Index m, const double* Y, double* T) {
+  panel_p<W, false>(p, L, ld, m, Y, T);
+}
+template <int W>
 inline void dot_p(int p, const double* L, Index ld, Index m, const double* G, double* Y) {
-  switch (p) {
-    case 4: panel_dot<W, 4>(L, ld, m, G, Y); break;
-    case 3: panel_dot<W, 3>(L, ld, m, G, Y); break;
-    case 2: panel_dot<W, 2>(L, ld, m, G, Y); break;
-    default: panel_dot<W, 1>(L, ld, m, G, Y); break;
-  }
+  panel_p<W, true>(p, L, ld, m, G, Y);
 }
 
 }  // namespace ffr::preproc::detail::panels
