@@ -28,6 +28,19 @@ Eigen::MatrixXd random_block(Eigen::Index n, Eigen::Index k, unsigned seed) {
 // A 3D Q1 Laplacian with Dirichlet ends: SPD, 3375 DOF, fill large enough for supernodes.
 SparseMatrix spd3d() { return ffr::test::box(16, 1.0, 16, 1.3, 16, 0.7, Ends::FixedFixed).K; }
 
+// Three DOFs a node, numbered together: the vector Laplacian spd3d() (x) B3, 10 125 DOF, with a
+// factor large enough for the threaded substitutions.
+SparseMatrix vector_laplacian() {
+  Eigen::MatrixXd b3(3, 3);
+  b3 << 2.0, 0.5, 0.1, 0.5, 3.0, 0.2, 0.1, 0.2, 4.0;
+  return ffr::test::kron(spd3d(), b3.sparseView());
+}
+
+// Back to the default thread count when a test that sets it ends, also on a failed ASSERT.
+struct RestoreThreads {
+  ~RestoreThreads() { set_max_threads(0); }
+};
+
 }  // namespace
 
 TEST(CholmodFactor, AnalyzeReportsStatisticsAndMetis) {
@@ -99,14 +112,9 @@ TEST(CholmodFactor, EveryBlockWidthMatchesSimplicialLDLT) {
 // on each thread, the separators near the root on one. The vector Laplacian's factor is large
 // enough for it; the solution must be the serial one up to the summation order.
 TEST(CholmodFactor, ThreadedSubstitutionsMatchTheSerialOnes) {
-  const SparseMatrix S = spd3d();
-  Eigen::MatrixXd b3(3, 3);
-  b3 << 2.0, 0.5, 0.1, 0.5, 3.0, 0.2, 0.1, 0.2, 4.0;
-  const SparseMatrix A = ffr::test::kron(S, b3.sparseView());
+  const SparseMatrix A = vector_laplacian();
   const Eigen::MatrixXd B = random_block(A.rows(), 21, 5);  // widths 16, 4 and 1
-  struct Restore {
-    ~Restore() { set_max_threads(0); }
-  } restore;
+  const RestoreThreads restore;
   set_max_threads(1);
   CholmodFactor serial;
   serial.factorize(A);
@@ -127,14 +135,11 @@ TEST(CholmodFactor, ThreadedSubstitutionsMatchTheSerialOnes) {
 // graph, a third of the columns; the factor must be as sparse as CHOLMOD's own nested
 // dissection of the DOF graph makes it, and solve.
 TEST(CholmodFactor, OrdersTheNodeGraphOfAVectorProblem) {
-  const SparseMatrix S = spd3d();
-  Eigen::MatrixXd b3(3, 3);
-  b3 << 2.0, 0.5, 0.1, 0.5, 3.0, 0.2, 0.1, 0.2, 4.0;
-  const SparseMatrix A = ffr::test::kron(S, b3.sparseView());
+  const SparseMatrix A = vector_laplacian();
   CholmodFactor f;
   const FactorStatistics s = f.analyze(A);
   EXPECT_EQ(s.ordering, "METIS");
-  EXPECT_EQ(s.ordering_vertices, S.rows());
+  EXPECT_EQ(s.ordering_vertices, A.rows() / 3);
   FactorOptions o;
   o.ordering = Ordering::Nesdis;
   CholmodFactor g(o);
@@ -146,24 +151,19 @@ TEST(CholmodFactor, OrdersTheNodeGraphOfAVectorProblem) {
   EXPECT_LT((A * f.solve(B) - B).norm() / B.norm(), 1e-12);
   // Upper-only storage of the same matrix gives the same node graph.
   CholmodFactor u;
-  EXPECT_EQ(u.analyze(ffr::test::upper(A)).ordering_vertices, S.rows());
+  EXPECT_EQ(u.analyze(ffr::test::upper(A)).ordering_vertices, A.rows() / 3);
 }
 
 // Products with an upper-only matrix split its columns over the threads (above 2^18 stored
 // entries), each part after the first into its own buffer. Every chunk width (16, 8, 4 and the
 // dynamic rest) against the product with the full matrix, on one and on two threads.
 TEST(SymMultiply, UpperOnlyOnTwoThreadsMatchesTheFullProduct) {
-  const SparseMatrix S = spd3d();
-  Eigen::MatrixXd b3(3, 3);
-  b3 << 2.0, 0.5, 0.1, 0.5, 3.0, 0.2, 0.1, 0.2, 4.0;
-  const SparseMatrix A = ffr::test::kron(S, b3.sparseView());
+  const SparseMatrix A = vector_laplacian();
   const SparseMatrix U = ffr::test::upper(A);
   ASSERT_GT(U.nonZeros(), 1 << 18);
   const Eigen::MatrixXd X = random_block(A.rows(), 31, 6);
   const Eigen::MatrixXd ref = A * X;
-  struct Restore {
-    ~Restore() { set_max_threads(0); }
-  } restore;
+  const RestoreThreads restore;
   for (const unsigned threads : {1u, 2u}) {
     set_max_threads(threads);
     const Eigen::MatrixXd Y = sym_multiply(U, SymmetricStorage::UpperOnly, X);

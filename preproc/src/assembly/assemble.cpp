@@ -2,15 +2,13 @@
 #include "ffr/preproc/assembly/assembly.hpp"
 #include "ffr/preproc/elements/solid.hpp"
 #include "ffr/preproc/threads.hpp"
+#include "../run_parts.hpp"
 #include "coloring.hpp"
 #include "pattern.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <exception>
-#include <mutex>
-#include <thread>
 
 namespace ffr::preproc {
 namespace {
@@ -27,6 +25,21 @@ struct Sums {
   Eigen::Matrix3d rotary_I = Eigen::Matrix3d::Zero();
   double worst_scaled_jacobian = 1.0;
   std::size_t worst = static_cast<std::size_t>(-1);  ///< element index in refs
+
+  /// Keeps element i if it is worse (the lower index on a tie, whatever thread met it first).
+  void consider(double scaled_jacobian, std::size_t i) {
+    if (scaled_jacobian < worst_scaled_jacobian || (scaled_jacobian == worst_scaled_jacobian && i < worst)) {
+      worst_scaled_jacobian = scaled_jacobian;
+      worst = i;
+    }
+  }
+  void merge(const Sums& o) {
+    mass += o.mass;
+    rdm += o.rdm;
+    rrdm += o.rrdm;
+    rotary_I += o.rotary_I;
+    consider(o.worst_scaled_jacobian, o.worst);
+  }
 };
 
 std::string describe(const FeModel& model, const ElementRef& ref) {
@@ -71,8 +84,6 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   const unsigned nthreads = std::max(1u, opt.threads > 0 ? static_cast<unsigned>(opt.threads) : max_threads());
   std::vector<Sums> sums(nthreads);
   std::atomic<bool> failed{false};
-  std::exception_ptr error;
-  std::mutex error_mutex;
   std::size_t done = 0;
 
   // Computes element i and adds it to the matrices (no other thread writes its entries now).
@@ -97,13 +108,7 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
     if (opt.stiffness_only) return;
     pattern.add(out.M, place, em.M);
     if (solid) pattern.add_node_scalar(out.Ms, place, em.M);
-    // Solids below the ideal 1 only; the lowest element index wins a tie, whatever thread met
-    // it first.
-    if (solid && scaled_jacobian < 1.0 &&
-        (scaled_jacobian < sum.worst_scaled_jacobian || (scaled_jacobian == sum.worst_scaled_jacobian && i < sum.worst))) {
-      sum.worst_scaled_jacobian = scaled_jacobian;
-      sum.worst = i;
-    }
+    if (solid && scaled_jacobian < 1.0) sum.consider(scaled_jacobian, i);  // solids below the ideal 1
     for (const auto& smp : em.samples) {
       sum.mass += smp.w;
       sum.rdm += smp.w * smp.c;
@@ -119,44 +124,26 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   auto last_report = std::chrono::steady_clock::now();
   for (const auto& cls : classes) {
     std::atomic<std::size_t> next{0};
-    auto worker = [&](unsigned t) {
-      while (!failed) {
-        const std::size_t b = next.fetch_add(kBatch);
-        if (b >= cls.size()) break;
-        try {
-          for (std::size_t k = b; k < std::min(cls.size(), b + kBatch); ++k) element(cls[k], sums[t]);
-        } catch (...) {
-          std::lock_guard<std::mutex> lock(error_mutex);
-          if (!error) error = std::current_exception();
-          failed = true;
-        }
-      }
-    };
     const unsigned nt = static_cast<unsigned>(std::min<std::size_t>(nthreads, (cls.size() + kBatch - 1) / kBatch));
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < nt; ++t) pool.emplace_back(worker, t);
-    worker(0);
-    for (auto& th : pool) th.join();
-    if (failed) break;
+    // Workers take batches of the class; one that throws stops the others at their next batch,
+    // and run_parts rethrows its error once all have finished.
+    detail::run_parts(nt, [](unsigned p) { return p; }, [&](unsigned t, unsigned, unsigned) {
+      try {
+        for (std::size_t b = 0; !failed && (b = next.fetch_add(kBatch)) < cls.size();)
+          for (std::size_t k = b; k < std::min(cls.size(), b + kBatch); ++k) element(cls[k], sums[t]);
+      } catch (...) {
+        failed = true;
+        throw;
+      }
+    });
     done += cls.size();
     if (opt.progress && std::chrono::steady_clock::now() - last_report > std::chrono::milliseconds(200)) {
       opt.progress(static_cast<double>(done) / static_cast<double>(refs.size()));
       last_report = std::chrono::steady_clock::now();
     }
   }
-  if (error) std::rethrow_exception(error);
   Sums total;
-  for (const Sums& sum : sums) {
-    total.mass += sum.mass;
-    total.rdm += sum.rdm;
-    total.rrdm += sum.rrdm;
-    total.rotary_I += sum.rotary_I;
-    if (sum.worst_scaled_jacobian < total.worst_scaled_jacobian ||
-        (sum.worst_scaled_jacobian == total.worst_scaled_jacobian && sum.worst < total.worst)) {
-      total.worst_scaled_jacobian = sum.worst_scaled_jacobian;
-      total.worst = sum.worst;
-    }
-  }
+  for (const Sums& sum : sums) total.merge(sum);
   out.mass += total.mass;
   out.rdm += total.rdm;
   out.rrdm += total.rrdm;

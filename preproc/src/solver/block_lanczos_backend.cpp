@@ -23,7 +23,7 @@
 // a failure; the caller then falls back to Spectra, so the backend never has to handle it.
 
 #include "eigen_backends.hpp"
-#include "row_parts.hpp"
+#include "../run_parts.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -246,7 +245,7 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
   info.stats.min_pivot_ratio = rmin;
   info.stats.min_pivot_column = pr.column;
   if (opt.min_pivot_ratio > 0 && !(rmin >= opt.min_pivot_ratio)) throw_not_posdef(jmin, true, rmin);
-  // At most 8 threads, as the other threaded vector work (row_parts.hpp): every sweep starts
+  // At most 8 threads, as the other threaded vector work (run_parts.hpp): every sweep starts
   // and joins them.
   solver = std::make_unique<detail::SupernodalSolver>(*L, std::min(max_threads(), 8u));
   info.stats.solve_threads = static_cast<int>(solver->threads());

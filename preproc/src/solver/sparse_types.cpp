@@ -1,6 +1,6 @@
 #include "ffr/preproc/solver/sparse_types.hpp"
 
-#include "row_parts.hpp"
+#include "../run_parts.hpp"
 
 #include <algorithm>
 #include <cmath>

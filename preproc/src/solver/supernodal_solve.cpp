@@ -11,7 +11,7 @@
 // and applies them to all right-hand sides of the interleaved block.
 #include "supernodal_solve.hpp"
 
-#include "row_parts.hpp"
+#include "../run_parts.hpp"
 #include "supernodal_panels.hpp"
 
 #include <algorithm>
@@ -31,14 +31,7 @@ namespace {
 
 using Index = std::int64_t;
 
-struct View {
-  Index nsuper;
-  const SuiteSparse_long* super;
-  const SuiteSparse_long* pi;
-  const SuiteSparse_long* px;
-  const SuiteSparse_long* rows;
-  const double* values;
-};
+using View = SupernodalView;
 
 using panels::dot_p;
 using panels::kPanel;
@@ -145,17 +138,16 @@ FFR_KERNEL_CLONES void sweep(const View& v, int width, const Sweep& w, double* y
 
 SupernodalSolver::SupernodalSolver(const cholmod_factor& L, unsigned threads)
     : n_(static_cast<std::int64_t>(L.n)),
-      nsuper_(static_cast<std::int64_t>(L.nsuper)),
       perm_(static_cast<const SuiteSparse_long*>(L.Perm)),
-      super_(static_cast<const SuiteSparse_long*>(L.super)),
-      pi_(static_cast<const SuiteSparse_long*>(L.pi)),
-      px_(static_cast<const SuiteSparse_long*>(L.px)),
-      rows_(static_cast<const SuiteSparse_long*>(L.s)),
-      values_(static_cast<const double*>(L.x)),
+      view_{static_cast<std::int64_t>(L.nsuper), static_cast<const SuiteSparse_long*>(L.super),
+            static_cast<const SuiteSparse_long*>(L.pi), static_cast<const SuiteSparse_long*>(L.px),
+            static_cast<const SuiteSparse_long*>(L.s), static_cast<const double*>(L.x)},
       schedule_(make_solve_schedule(L, threads, kMinParallelEntries)) {
   assert(L.is_super && L.is_ll && L.xtype == CHOLMOD_REAL);
-  for (Index s = 0; s < nsuper_; ++s)
-    max_update_rows_ = std::max<Index>(max_update_rows_, (pi_[s + 1] - pi_[s]) - (super_[s + 1] - super_[s]));
+  for (Index s = 0; s < view_.nsuper; ++s) {
+    const Index nsrow = view_.pi[s + 1] - view_.pi[s], nscol = view_.super[s + 1] - view_.super[s];
+    max_update_rows_ = std::max(max_update_rows_, nsrow - nscol);
+  }
   const std::size_t nt = std::max<std::size_t>(1, schedule_.parts.size());
   t_.resize(nt);
   acc_.resize(nt);
@@ -166,9 +158,9 @@ unsigned SupernodalSolver::threads() const {
 }
 
 void SupernodalSolver::sweep_block(int width) {
-  const View v{nsuper_, super_, pi_, px_, rows_, values_};
+  const View& v = view_;
   double* y = y_.data();
-  const SupernodeRange all{0, nsuper_ - 1};
+  const SupernodeRange all{0, v.nsuper - 1};
   if (schedule_.parts.empty()) {
     sweep(v, width, Sweep{&all, 1, true, nullptr, nullptr}, y, t_[0].data());
     sweep(v, width, Sweep{&all, 1, false, nullptr, nullptr}, y, t_[0].data());

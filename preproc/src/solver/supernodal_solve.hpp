@@ -20,6 +20,17 @@
 
 namespace ffr::preproc::detail {
 
+/// The arrays of a numeric supernodal factor the sweeps read (CHOLMOD's layout, see
+/// supernodal_solve.cpp).
+struct SupernodalView {
+  std::int64_t nsuper = 0;
+  const SuiteSparse_long* super = nullptr;
+  const SuiteSparse_long* pi = nullptr;
+  const SuiteSparse_long* px = nullptr;
+  const SuiteSparse_long* rows = nullptr;
+  const double* values = nullptr;
+};
+
 class SupernodalSolver {
  public:
   /// Keeps pointers into L (not a copy): L must stay numeric and alive while solve() is used.
@@ -42,13 +53,9 @@ class SupernodalSolver {
   void solve(const double* B, std::int64_t ldb, std::int64_t ncols, double* X, std::int64_t ldx);
 
  private:
-  std::int64_t n_ = 0, nsuper_ = 0;
+  std::int64_t n_ = 0;
   const SuiteSparse_long* perm_ = nullptr;  ///< null: identity
-  const SuiteSparse_long* super_ = nullptr;
-  const SuiteSparse_long* pi_ = nullptr;
-  const SuiteSparse_long* px_ = nullptr;
-  const SuiteSparse_long* rows_ = nullptr;
-  const double* values_ = nullptr;
+  SupernodalView view_;
   std::int64_t max_update_rows_ = 0;  ///< largest nsrow - nscol over the supernodes
   SolveSchedule schedule_;
   std::vector<double> y_;                ///< n x width, row-major (interleaved)

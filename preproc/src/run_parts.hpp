@@ -1,9 +1,10 @@
 #pragma once
-// Runs a body over contiguous parts of a range on up to max_threads() threads, the first part
-// on the calling thread. For the memory-bound vector work of the eigen-solver (products with M,
-// the orthogonalisation against the Lanczos basis): one core does not saturate the memory
-// bus here (one stream 20-24 GB/s, two concurrent streams about 20 GB/s each), so two threads
-// nearly halve them. Small ranges stay on one thread: starting one costs tens of microseconds.
+// Runs a body over parts of a range, one thread per part, the first part on the calling thread;
+// the preprocessor's fork-join mechanism (the assembly's colour classes, the eigen-solver's
+// substitutions, products with M and orthogonalisation). parts_for() sizes the memory-bound
+// vector work of the eigen-solver: one core does not saturate the memory bus here (one stream
+// 20-24 GB/s, two concurrent streams about 20 GB/s each), so two threads nearly halve it, and
+// small ranges stay on one thread: starting one costs tens of microseconds.
 
 #include "ffr/preproc/threads.hpp"
 
