@@ -114,6 +114,8 @@ struct EigenInfo {
   int rounds = 0;
   int iterations = 0;                   ///< restarts of the last round
   std::int64_t operator_applications = 0;
+  /// Block backend: subspace-iteration steps taken because the Ritz vectors missed a check (0 or 1)
+  int refinements = 0;
   double factorize_seconds = 0;         ///< analysis + numeric factorization
   double lanczos_seconds = 0;
   double verify_seconds = 0;            ///< Rayleigh-Ritz clean-up and checks
