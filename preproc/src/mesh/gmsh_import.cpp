@@ -2,6 +2,7 @@
 
 #include "ffr/formats/h5.hpp"
 #include "gmsh_session.hpp"
+#include "node_order.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -81,14 +82,18 @@ Mesh extract(const std::string& file) {
   std::vector<double> coord, param;
   gmsh::model::mesh::getNodes(tags, coord, param, -1, -1, false, false);
   if (tags.empty()) throw FormatError(file, "", "the mesh has no nodes");
+  // Nodes numbered along a space-filling curve, not in gmsh's order (node_order.hpp).
+  const std::vector<Index> order = detail::spatial_order(coord.data(), static_cast<Index>(tags.size()));
   mesh.x.resize(static_cast<Index>(tags.size()), 3);
+  mesh.node_tags.resize(tags.size());
   std::unordered_map<std::size_t, Index> index;
   index.reserve(tags.size() * 2);
   for (std::size_t i = 0; i < tags.size(); ++i) {
-    index[tags[i]] = static_cast<Index>(i);
-    for (int c = 0; c < 3; ++c) mesh.x(static_cast<Index>(i), c) = coord[3 * i + c];
+    const auto from = static_cast<std::size_t>(order[i]);
+    index[tags[from]] = static_cast<Index>(i);
+    mesh.node_tags[i] = tags[from];
+    for (int c = 0; c < 3; ++c) mesh.x(static_cast<Index>(i), c) = coord[3 * from + c];
   }
-  mesh.node_tags = tags;
 
   gmsh::vectorpair groups;
   gmsh::model::getPhysicalGroups(groups);

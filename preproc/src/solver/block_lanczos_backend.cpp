@@ -24,6 +24,7 @@
 
 #include "eigen_backends.hpp"
 #include "../run_parts.hpp"
+#include "tall_skinny.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -57,20 +58,20 @@ bool cholesky_qr(MatrixXd& W, MatrixXd& MW, MatrixXd& R) {
 }
 
 // One classical Gram-Schmidt pass in the M inner product: c = Q^T MW, W <- W - Q c; returns c.
-// Both products stream the basis once (up to 70 MB on the 100k-DOF plate); they run over row
-// parts, the partial c summed between them.
+// Both products stream the basis once (up to 70 MB on the 100k-DOF plate; tall_skinny.hpp);
+// they run over row parts, the partial c summed between them.
 MatrixXd project_out(const Eigen::Ref<const MatrixXd>& Q, const MatrixXd& MW, MatrixXd& W) {
-  const Index n = Q.rows(), k = Q.cols();
+  const Index n = Q.rows(), k = Q.cols(), p = W.cols();
   const unsigned parts = parts_for(n * k, Index{1} << 18);
-  const auto split = [&](unsigned p) { return n * static_cast<Index>(p) / static_cast<Index>(parts); };
-  std::vector<MatrixXd> partial(parts);
-  run_parts(parts, split, [&](unsigned p, Index r0, Index r1) {
-    partial[p].noalias() = Q.middleRows(r0, r1 - r0).transpose() * MW.middleRows(r0, r1 - r0);
+  const auto split = [&](unsigned part) { return n * static_cast<Index>(part) / static_cast<Index>(parts); };
+  std::vector<MatrixXd> partial(parts, MatrixXd::Zero(k, p));
+  run_parts(parts, split, [&](unsigned part, Index r0, Index r1) {
+    add_transposed_product(Q.data(), Q.outerStride(), k, MW.data(), MW.outerStride(), p, r0, r1, partial[part].data());
   });
   MatrixXd c = partial[0];
-  for (unsigned p = 1; p < parts; ++p) c += partial[p];
+  for (unsigned part = 1; part < parts; ++part) c += partial[part];
   run_parts(parts, split, [&](unsigned, Index r0, Index r1) {
-    W.middleRows(r0, r1 - r0).noalias() -= Q.middleRows(r0, r1 - r0) * c;
+    subtract_product(Q.data(), Q.outerStride(), k, c.data(), p, r0, r1, W.data(), W.outerStride());
   });
   return c;
 }

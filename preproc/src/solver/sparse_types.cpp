@@ -1,6 +1,7 @@
 #include "ffr/preproc/solver/sparse_types.hpp"
 
 #include "../run_parts.hpp"
+#include "kernel_clones.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -33,35 +34,66 @@ using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eig
 // Y += A X for an upper-only symmetric A and row-major X, Y: one pass over A, each stored
 // entry applied to a row of X and to its mirror (Eigen's products of a column-major sparse
 // matrix with a column-major X, and its selfadjointView products, pass over A once per column).
-// W fixes the row width at compile time where the eigen-solvers need it: fixed-size rows are
-// vectorized, plain loops are not at -O2 (the compiler cannot rule out that X and Y alias).
-// Measured on the 100k-DOF plate's mass matrix (tools/bench/reduce): 4 columns 17.7 -> 12 ms,
-// 8 columns 31 -> 16 ms.
+// W fixes the row width at compile time where the eigen-solvers need it (a multiple of 4: rows
+// of simd::v4; 0 for any width, not vectorized).
 template <int W>
 void upper_times_rows(const SparseMatrix& A, const RowMajorMatrix& X, Eigen::Index j0, Eigen::Index j1, double* y) {
-  using Row = Eigen::Matrix<double, 1, W>;
-  const Eigen::Index m = W > 0 ? W : X.cols();
-  const double* x = X.data();
   const auto* outer = A.outerIndexPtr();
   const auto* nnz = A.innerNonZeroPtr();
   const auto* rows = A.innerIndexPtr();
   const double* vals = A.valuePtr();
-  Row acc(1, m);
-  for (Eigen::Index j = j0; j < j1; ++j) {
-    const Eigen::Map<const Row> xj(x + j * m, 1, m);
-    acc.setZero();
-    const auto end = nnz ? outer[j] + nnz[j] : outer[j + 1];
-    for (auto k = outer[j]; k < end; ++k) {
-      const Eigen::Index i = rows[k];
-      const double a = vals[k];
-      if (i < j) {
-        Eigen::Map<Row>(y + i * m, 1, m).noalias() += a * xj;           // the stored A(i, j)
-        acc.noalias() += a * Eigen::Map<const Row>(x + i * m, 1, m);  // its mirror A(j, i)
-      } else if (i == j) {
-        acc.noalias() += a * xj;
+  const double* x = X.data();
+  if constexpr (W > 0) {
+    using detail::simd::load;
+    using detail::simd::store;
+    using detail::simd::v4;
+    constexpr int NV = W / 4;
+    for (Eigen::Index j = j0; j < j1; ++j) {
+      v4 xj[NV], acc[NV] = {};
+      for (int k = 0; k < NV; ++k) xj[k] = load(x + j * W + 4 * k);
+      const auto end = nnz ? outer[j] + nnz[j] : outer[j + 1];
+      for (auto e = outer[j]; e < end; ++e) {
+        const Eigen::Index i = rows[e];
+        const double a = vals[e];
+        if (i < j) {
+          for (int k = 0; k < NV; ++k) {
+            store(y + i * W + 4 * k, load(y + i * W + 4 * k) + a * xj[k]);  // the stored A(i, j)
+            acc[k] += a * load(x + i * W + 4 * k);                          // its mirror A(j, i)
+          }
+        } else if (i == j) {
+          for (int k = 0; k < NV; ++k) acc[k] += a * xj[k];
+        }
+      }
+      for (int k = 0; k < NV; ++k) store(y + j * W + 4 * k, load(y + j * W + 4 * k) + acc[k]);
+    }
+  } else {
+    const Eigen::Index m = X.cols();
+    for (Eigen::Index j = j0; j < j1; ++j) {
+      const auto end = nnz ? outer[j] + nnz[j] : outer[j + 1];
+      for (auto e = outer[j]; e < end; ++e) {
+        const Eigen::Index i = rows[e];
+        const double a = vals[e];
+        if (i < j) {
+          for (Eigen::Index c = 0; c < m; ++c) {
+            y[i * m + c] += a * x[j * m + c];
+            y[j * m + c] += a * x[i * m + c];
+          }
+        } else if (i == j) {
+          for (Eigen::Index c = 0; c < m; ++c) y[j * m + c] += a * x[j * m + c];
+        }
       }
     }
-    Eigen::Map<Row>(y + j * m, 1, m) += acc;
+  }
+}
+
+// The widths the eigen-solvers use, each compiled for AVX-512 and AVX2 as well.
+FFR_KERNEL_CLONES
+void upper_times_rows_any(const SparseMatrix& A, const RowMajorMatrix& X, Eigen::Index j0, Eigen::Index j1, double* y) {
+  switch (X.cols()) {
+    case 4: upper_times_rows<4>(A, X, j0, j1, y); break;
+    case 8: upper_times_rows<8>(A, X, j0, j1, y); break;
+    case 16: upper_times_rows<16>(A, X, j0, j1, y); break;
+    default: upper_times_rows<0>(A, X, j0, j1, y); break;
   }
 }
 
@@ -85,12 +117,7 @@ void upper_times_rows(const SparseMatrix& A, const RowMajorMatrix& X, RowMajorMa
       extra[p - 1] = RowMajorMatrix::Zero(j1, X.cols());  // rows beyond j1 are not written
       y = extra[p - 1].data();
     }
-    switch (X.cols()) {
-      case 4: upper_times_rows<4>(A, X, j0, j1, y); break;
-      case 8: upper_times_rows<8>(A, X, j0, j1, y); break;
-      case 16: upper_times_rows<16>(A, X, j0, j1, y); break;
-      default: upper_times_rows<Eigen::Dynamic>(A, X, j0, j1, y); break;
-    }
+    upper_times_rows_any(A, X, j0, j1, y);
   });
   for (const RowMajorMatrix& e : extra) Y.topRows(e.rows()) += e;
 }

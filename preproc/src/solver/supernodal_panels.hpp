@@ -4,6 +4,8 @@
 // applied to an interleaved block of W right-hand sides, in the forward (update) and the back
 // (dot-product) direction.
 
+#include "kernel_clones.hpp"
+
 #include <cstdint>
 #include <type_traits>
 
@@ -13,13 +15,12 @@ using Index = std::int64_t;
 
 constexpr int kPanel = 4;  // columns of L per sweep step
 
-// Four doubles, loaded and stored at any 8-byte alignment. GCC's vector extension, not
-// auto-vectorisation: left to itself, GCC vectorised the interleaved loops across rows with
+// Four doubles (simd::v4, kernel_clones.hpp): GCC's vector extension, not auto-vectorisation: left to itself, GCC vectorised the interleaved loops across rows with
 // permutations and stack spills, slower than CHOLMOD's solve.
 // supernodal_solve.cpp is compiled at -O3 in every optimised build (preproc/CMakeLists.txt):
 // at -O2 GCC kept the short loops over a panel's columns as loops over arrays in memory, and
 // the sweep ran at two thirds of the speed.
-typedef double v4 __attribute__((vector_size(32), aligned(8), may_alias));
+using simd::v4;
 
 // T[i] -= sum_q L(i, q) Y[q] for i < m, q < P: P columns of L from L (leading dimension ld)
 // against P rows of the interleaved block Y, into m interleaved rows of T.

@@ -12,19 +12,15 @@
 #include "supernodal_solve.hpp"
 
 #include "../run_parts.hpp"
+#include "kernel_clones.hpp"
 #include "supernodal_panels.hpp"
 
 #include <algorithm>
 #include <cassert>
 
-// The kernels are compiled for AVX2/FMA and AVX-512 as well, chosen at load time: with the
+// The kernels are compiled for AVX2/FMA and AVX-512 as well (kernel_clones.hpp): with the
 // right-hand sides interleaved, one fused multiply-add per factor entry keeps up with memory,
 // where the baseline SSE2 code needs four instructions per entry and does not.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define FFR_KERNEL_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"), flatten))
-#else
-#define FFR_KERNEL_CLONES
-#endif
 
 namespace ffr::preproc::detail {
 namespace {
