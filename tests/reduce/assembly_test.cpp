@@ -77,11 +77,15 @@ TEST(Assembly, MatchesTheElementSumAndIsTheSameOnTwoThreads) {
   preproc::AssemblyOptions one, two;
   one.threads = 1;
   two.threads = 2;
+  // Blocks of 4 of the 315 elements: colour classes of many blocks, which the two threads
+  // share (with the default 64, this grid has 5 blocks, one or two a class).
+  one.block_elements = two.block_elements = 4;
   const auto a1 = preproc::assemble(model, one);
   const auto a2 = preproc::assemble(model, two);
   EXPECT_LT(relative_difference(a1.K, triplet_sum(model, false)), 1e-14);
   EXPECT_LT(relative_difference(a1.M, triplet_sum(model, true)), 1e-14);
-  // Every entry is summed in the order of the colour classes, whatever the thread count.
+  // Every entry is summed in the order of the colour classes and, within a block, of its
+  // elements, whatever the thread count.
   ASSERT_EQ(a1.K.nonZeros(), a2.K.nonZeros());
   EXPECT_TRUE(std::equal(a1.K.valuePtr(), a1.K.valuePtr() + a1.K.nonZeros(), a2.K.valuePtr()));
   EXPECT_TRUE(std::equal(a1.M.valuePtr(), a1.M.valuePtr() + a1.M.nonZeros(), a2.M.valuePtr()));

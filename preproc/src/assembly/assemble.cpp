@@ -9,13 +9,10 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstddef>
 
 namespace ffr::preproc {
 namespace {
-
-// Elements a worker takes at a time from a colour class (a class of the 100k-DOF plate holds
-// a few hundred elements).
-constexpr std::size_t kBatch = 32;
 
 // What each worker sums besides the matrices, merged after the last class.
 struct Sums {
@@ -78,7 +75,7 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
       if (std::find(ents[i].begin(), ents[i].end(), e) == ents[i].end()) ents[i].push_back(e);
     }
   }
-  const auto classes = detail::color_elements(ents, static_cast<Index>(pattern.ent_dof0.size()));
+  const auto blocks = detail::color_blocks(ents, static_cast<Index>(pattern.ent_dof0.size()), opt.block_elements);
   ents = {};
 
   const unsigned nthreads = std::max(1u, opt.threads > 0 ? static_cast<unsigned>(opt.threads) : max_threads());
@@ -122,21 +119,23 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   };
 
   auto last_report = std::chrono::steady_clock::now();
-  for (const auto& cls : classes) {
+  for (const auto& cls : blocks.classes) {
     std::atomic<std::size_t> next{0};
-    const unsigned nt = static_cast<unsigned>(std::min<std::size_t>(nthreads, (cls.size() + kBatch - 1) / kBatch));
-    // Workers take batches of the class; one that throws stops the others at their next batch,
-    // and run_parts rethrows its error once all have finished.
+    const unsigned nt = static_cast<unsigned>(std::min<std::size_t>(nthreads, cls.size()));
+    // Workers take whole blocks of the class (the elements of a block share entries); one that
+    // throws stops the others at their next block, and run_parts rethrows its error once all
+    // have finished.
     detail::run_parts(nt, [](unsigned p) { return p; }, [&](unsigned t, unsigned, unsigned) {
       try {
-        for (std::size_t b = 0; !failed && (b = next.fetch_add(kBatch)) < cls.size();)
-          for (std::size_t k = b; k < std::min(cls.size(), b + kBatch); ++k) element(cls[k], sums[t]);
+        for (std::size_t k = 0; !failed && (k = next.fetch_add(1)) < cls.size();)
+          for (std::size_t e = blocks.block_ptr[cls[k]]; e < blocks.block_ptr[cls[k] + 1]; ++e)
+            element(blocks.order[e], sums[t]);
       } catch (...) {
         failed = true;
         throw;
       }
     });
-    done += cls.size();
+    for (const std::size_t b : cls) done += blocks.block_ptr[b + 1] - blocks.block_ptr[b];
     if (opt.progress && std::chrono::steady_clock::now() - last_report > std::chrono::milliseconds(200)) {
       opt.progress(static_cast<double>(done) / static_cast<double>(refs.size()));
       last_report = std::chrono::steady_clock::now();

@@ -1,6 +1,9 @@
 // Greedy element colouring (see coloring.hpp).
 #include "coloring.hpp"
 
+#include <algorithm>
+#include <utility>
+
 namespace ffr::preproc::detail {
 
 std::vector<std::vector<std::size_t>> color_elements(const std::vector<std::vector<Index>>& ents, Index num_entities) {
@@ -34,6 +37,30 @@ std::vector<std::vector<std::size_t>> color_elements(const std::vector<std::vect
     classes[c].push_back(e);
   }
   return classes;
+}
+
+ElementBlocks color_blocks(const std::vector<std::vector<Index>>& ents, Index num_entities, std::size_t block_size) {
+  ElementBlocks out;
+  const std::size_t ne = ents.size();
+  std::vector<std::pair<Index, std::size_t>> key(ne);
+  for (std::size_t e = 0; e < ne; ++e)
+    key[e] = {ents[e].empty() ? num_entities : *std::min_element(ents[e].begin(), ents[e].end()), e};
+  std::sort(key.begin(), key.end());
+  out.order.resize(ne);
+  for (std::size_t k = 0; k < ne; ++k) out.order[k] = key[k].second;
+  const std::size_t bs = std::max<std::size_t>(1, block_size);
+  std::vector<std::vector<Index>> block_ents;
+  for (std::size_t b0 = 0; b0 < ne; b0 += bs) {
+    out.block_ptr.push_back(b0);
+    std::vector<Index> u;
+    for (std::size_t k = b0; k < std::min(ne, b0 + bs); ++k) u.insert(u.end(), ents[out.order[k]].begin(), ents[out.order[k]].end());
+    std::sort(u.begin(), u.end());
+    u.erase(std::unique(u.begin(), u.end()), u.end());
+    block_ents.push_back(std::move(u));
+  }
+  out.block_ptr.push_back(ne);
+  out.classes = color_elements(block_ents, num_entities);
+  return out;
 }
 
 }  // namespace ffr::preproc::detail

@@ -30,6 +30,11 @@ std::vector<ElementRef> all_elements(const FeModel& model);
 
 struct AssemblyOptions {
   int threads = 0;                                   ///< 0: hardware concurrency
+  /// Elements per block of neighbours: the unit of work of a thread (the elements of a block
+  /// share entries of K and M; blocks of one colour class share none). The 100k-DOF plate's
+  /// 20662 elements make 323 blocks of 64; blocks of 32 to 256 assembled it equally fast at
+  /// one thread (0.74-0.93 s, against 1.2 s with the elements coloured one by one).
+  std::size_t block_elements = 64;
   std::function<void(double fraction)> progress;     ///< called from the calling thread
   /// Only K (no mass, no Ms, no quality): for geometric-stiffness assemblies.
   bool stiffness_only = false;
