@@ -157,14 +157,14 @@ Vector3d motion_target(const Model& model, const Data& data, int m, double t) {
 }
 
 void evaluate_constraints(const Model& model, Data& data, double t) {
-  // The Jacobian is assembled dense (the products use it several times per Newton iteration);
-  // the columns of bodies a block does not touch stay zero from construction.
+  // The Jacobian is assembled dense (the products use it several times per Newton iteration),
+  // the blocks adding into it. It is zeroed whole, in one pass over contiguous memory: zeroing
+  // each block's columns took a memset call per column of a few rows (3-5 % of a step).
+  data.Phiq.setZero();
+  data.Phit.setZero();
   for (const ConstraintBlock& b : model.blocks) {
     Rows r{data.Phi.segment(b.row0, b.rows), data.Phit.segment(b.row0, b.rows), data.gamma.segment(b.row0, b.rows),
            block_columns(model, data, b, b.body1), block_columns(model, data, b, b.body2)};
-    r.J1.setZero();
-    r.J2.setZero();
-    r.Phit.setZero();
     switch (b.kind) {
       case BlockKind::RigidBody: rigid_body_rows(model, data, b.index, r); break;
       case BlockKind::Joint: joint_rows(model, data, model.joints[b.index], r); break;
