@@ -82,6 +82,7 @@ Data::Data(const Model& model) {
   for (const auto& b : model.blocks) rows_max = std::max(rows_max, b.rows);
   for (const auto& b : model.bodies) nb_all = std::max(nb_all, b.ncoord());
   Jw = MatrixXd::Zero(rows_max, nb_all);
+  penalty_rows = VectorXd::Zero(rows_max);
   auto pair = [&](int m1, int m2) {
     const int b1 = model.markers[m1].body, b2 = model.markers[m2].body;
     return (b1 == kGround ? 0 : model.bodies[b1].ncoord()) + (b2 == kGround ? 0 : model.bodies[b2].ncoord());

@@ -2,6 +2,7 @@
 #include "ffr/runtime/constraints.hpp"
 
 #include "rows.hpp"
+#include "weighted_gram.hpp"
 
 #include <cmath>
 
@@ -196,16 +197,22 @@ void constraint_times(const Model& model, const Data& data, const VectorXd& v, V
 }
 
 void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, double f, MatrixXd& T) {
+  const Eigen::Index ld = data.Phiq.rows();
+  double* buf = data.Jw.data();  // work space of rows_max x (all coordinates of a body) doubles
   for (const ConstraintBlock& b : model.blocks) {
     const auto J1 = block_columns(model, data, b, b.body1);
     const auto J2 = block_columns(model, data, b, b.body2);
-    const auto a = alpha.segment(b.row0, b.rows);
+    double* w = data.penalty_rows.data();
+    for (int r = 0; r < b.rows; ++r) w[r] = f * alpha(b.row0 + r);
+    const auto gram = [&](const detail::JacobianBlock& Ja, const detail::JacobianBlock& Jb, int oa, int ob, int first, int na,
+                          int nb) {
+      detail::add_weighted_gram(Ja.data() + first * ld, Jb.data() + first * ld, ld, b.rows, na, nb, w, buf,
+                                &T(oa + first, ob + first), T.rows());
+    };
     if (b.kind == BlockKind::RigidBody) {
       // Only the frame-vector columns are nonzero.
-      const int o = model.bodies[b.body1].offset + 3;
-      auto Jw = data.Jw.topLeftCorner(b.rows, 9);
-      Jw.noalias() = (f * a).asDiagonal() * J1.middleCols<9>(3);
-      T.block<9, 9>(o, o).noalias() += Jw.transpose() * J1.middleCols<9>(3);
+      const int o = model.bodies[b.body1].offset;
+      gram(J1, J1, o, o, 3, 9, 9);
       continue;
     }
     // A joint within one body has its rows once in Phiq: its term is that block's alone.
@@ -213,16 +220,12 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
     const int o1 = h1 ? model.bodies[b.body1].offset : 0, n1 = static_cast<int>(J1.cols());
     const int o2 = h2 ? model.bodies[b.body2].offset : 0, n2 = static_cast<int>(J2.cols());
     if (h1) {
-      auto Jw = data.Jw.topLeftCorner(b.rows, n1);
-      Jw.noalias() = (f * a).asDiagonal() * J1;
-      T.block(o1, o1, n1, n1).noalias() += Jw.transpose() * J1;
-      if (h2) T.block(o1, o2, n1, n2).noalias() += Jw.transpose() * J2;
+      gram(J1, J1, o1, o1, 0, n1, n1);
+      if (h2) detail::add_weighted_gram(J1.data(), J2.data(), ld, b.rows, n1, n2, w, buf, &T(o1, o2), T.rows());
     }
     if (h2) {
-      auto Jw = data.Jw.topLeftCorner(b.rows, n2);
-      Jw.noalias() = (f * a).asDiagonal() * J2;
-      T.block(o2, o2, n2, n2).noalias() += Jw.transpose() * J2;
-      if (h1) T.block(o2, o1, n2, n1).noalias() += Jw.transpose() * J1;
+      gram(J2, J2, o2, o2, 0, n2, n2);
+      if (h1) detail::add_weighted_gram(J2.data(), J1.data(), ld, b.rows, n2, n1, w, buf, &T(o2, o1), T.rows());
     }
   }
 }

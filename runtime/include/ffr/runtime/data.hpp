@@ -116,6 +116,7 @@ struct Data {
   Stats stats;
   VectorXd alpha;               ///< penalty of each constraint row in use (penalty_weights)
   MatrixXd Jw;                  ///< work: a penalty-weighted Jacobian block
+  VectorXd penalty_rows;        ///< work: the penalty weights of one block's rows
 };
 
 /// Applies force and torque (global axes) at a body's load slot (0 = frame origin, 1 + p = its
