@@ -1,5 +1,7 @@
 #include "weighted_gram.hpp"
 
+#include <algorithm>
+
 // Compiled at -O3 (runtime/CMakeLists.txt) and for AVX2/AVX-512 as well: the inner loop has a
 // run-time length, which GCC vectorises at -O3 only.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
@@ -9,6 +11,28 @@
 #endif
 
 namespace ffr::runtime::detail {
+namespace {
+
+// T(:, c) += sum_r Jb(r, c) buf(:, r) for every column c, R rows at once: one loop over the
+// column's entries for all rows (a loop per row and column, with its set-up, cost more than
+// its few multiply-adds).
+template <int R>
+inline void add_columns(const double* Jb, Eigen::Index ld, int rows, int na, int nb, const double* buf, double* T,
+                        Eigen::Index ldt) {
+  const int nr = R > 0 ? R : rows;
+  for (int c = 0; c < nb; ++c) {
+    double* __restrict t = T + c * ldt;
+    double s[R > 0 ? R : 8];
+    for (int r = 0; r < nr; ++r) s[r] = Jb[r + c * ld];
+    for (int i = 0; i < na; ++i) {
+      double acc = t[i];
+      for (int r = 0; r < nr; ++r) acc += s[r] * buf[i + r * na];
+      t[i] = acc;
+    }
+  }
+}
+
+}  // namespace
 
 FFR_GRAM_CLONES
 void add_weighted_gram(const double* Ja, const double* Jb, Eigen::Index ld, int rows, int na, int nb,
@@ -16,15 +40,16 @@ void add_weighted_gram(const double* Ja, const double* Jb, Eigen::Index ld, int 
   // buf = (diag(w) Ja)^T, na x rows: each row of Ja becomes a contiguous column.
   for (int r = 0; r < rows; ++r)
     for (int i = 0; i < na; ++i) buf[i + r * na] = w[r] * Ja[r + i * ld];
-  // Column c of T gets sum_r Jb(r, c) buf(:, r); most entries of a joint's rows are zero.
-  for (int c = 0; c < nb; ++c) {
-    double* __restrict t = T + c * ldt;
-    for (int r = 0; r < rows; ++r) {
-      const double s = Jb[r + c * ld];
-      if (s == 0.0) continue;
-      const double* __restrict b = buf + r * na;
-      for (int i = 0; i < na; ++i) t[i] += s * b[i];
-    }
+  switch (rows) {
+    case 1: add_columns<1>(Jb, ld, rows, na, nb, buf, T, ldt); break;
+    case 2: add_columns<2>(Jb, ld, rows, na, nb, buf, T, ldt); break;
+    case 3: add_columns<3>(Jb, ld, rows, na, nb, buf, T, ldt); break;
+    case 4: add_columns<4>(Jb, ld, rows, na, nb, buf, T, ldt); break;
+    case 5: add_columns<5>(Jb, ld, rows, na, nb, buf, T, ldt); break;
+    case 6: add_columns<6>(Jb, ld, rows, na, nb, buf, T, ldt); break;
+    default:
+      for (int r0 = 0; r0 < rows; r0 += 6)  // blocks of at most 6 rows
+        add_columns<0>(Jb + r0, ld, std::min(6, rows - r0), na, nb, buf + r0 * na, T, ldt);
   }
 }
 
