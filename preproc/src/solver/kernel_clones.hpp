@@ -12,6 +12,13 @@
 #define FFR_KERNEL_CLONES
 #endif
 
+// The baseline clone passes v4 by value without AVX registers, and GCC notes at every use that
+// this ABI differs from the AVX clones' (-Wpsabi). The helpers are inline and never cross a
+// clone boundary, so the note is off for the rest of the including file (the kernel files only).
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
 namespace ffr::preproc::detail::simd {
 
 // Four doubles, loaded and stored at any 8-byte alignment: GCC's vector extension, which the

@@ -4,6 +4,7 @@
 #include "kernel_clones.hpp"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace ffr::preproc::detail {
 namespace {
@@ -67,48 +68,42 @@ inline void axpys(const double* q, Index ldq, const double* c, Index ldc, Index 
     }
 }
 
+// Calls kernel(R, G, j, l, a, m) (R and G as std::integral_constant) for the tiles of R columns
+// of Q from j and G columns of the thin block from l, over the rows [a, a + m) of each chunk:
+// tiles of 4 x 4 where they fit, then the rest by 1.
+template <class Kernel>
+inline void for_each_tile(Index k, Index p, Index r0, Index r1, Kernel&& kernel) {
+  using One = std::integral_constant<int, 1>;
+  using Four = std::integral_constant<int, 4>;
+  for (Index a = r0; a < r1; a += kChunk) {
+    const Index m = std::min(kChunk, r1 - a);
+    const auto columns_of_q = [&](auto R, Index j) {
+      Index l = 0;
+      for (; l + 4 <= p; l += 4) kernel(R, Four{}, j, l, a, m);
+      for (; l < p; ++l) kernel(R, One{}, j, l, a, m);
+    };
+    Index j = 0;
+    for (; j + 4 <= k; j += 4) columns_of_q(Four{}, j);
+    for (; j < k; ++j) columns_of_q(One{}, j);
+  }
+}
+
 }  // namespace
 
 FFR_KERNEL_CLONES
 void add_transposed_product(const double* Q, Index ldq, Index k, const double* V, Index ldv, Index p, Index r0,
                             Index r1, double* C) {
-  for (Index a = r0; a < r1; a += kChunk) {
-    const Index m = std::min(kChunk, r1 - a);
-    Index j = 0;
-    for (; j + 4 <= k; j += 4) {
-      const double* q = Q + j * ldq + a;
-      Index l = 0;
-      for (; l + 4 <= p; l += 4) dots<4, 4>(q, ldq, V + l * ldv + a, ldv, m, C + j + l * k, k);
-      for (; l < p; ++l) dots<4, 1>(q, ldq, V + l * ldv + a, ldv, m, C + j + l * k, k);
-    }
-    for (; j < k; ++j) {
-      const double* q = Q + j * ldq + a;
-      Index l = 0;
-      for (; l + 4 <= p; l += 4) dots<1, 4>(q, ldq, V + l * ldv + a, ldv, m, C + j + l * k, k);
-      for (; l < p; ++l) dots<1, 1>(q, ldq, V + l * ldv + a, ldv, m, C + j + l * k, k);
-    }
-  }
+  for_each_tile(k, p, r0, r1, [&](auto R, auto G, Index j, Index l, Index a, Index m) {
+    dots<R(), G()>(Q + j * ldq + a, ldq, V + l * ldv + a, ldv, m, C + j + l * k, k);
+  });
 }
 
 FFR_KERNEL_CLONES
 void subtract_product(const double* Q, Index ldq, Index k, const double* C, Index p, Index r0, Index r1, double* V,
                       Index ldv) {
-  for (Index a = r0; a < r1; a += kChunk) {
-    const Index m = std::min(kChunk, r1 - a);
-    Index j = 0;
-    for (; j + 4 <= k; j += 4) {
-      const double* q = Q + j * ldq + a;
-      Index l = 0;
-      for (; l + 4 <= p; l += 4) axpys<4, 4>(q, ldq, C + j + l * k, k, m, V + l * ldv + a, ldv);
-      for (; l < p; ++l) axpys<4, 1>(q, ldq, C + j + l * k, k, m, V + l * ldv + a, ldv);
-    }
-    for (; j < k; ++j) {
-      const double* q = Q + j * ldq + a;
-      Index l = 0;
-      for (; l + 4 <= p; l += 4) axpys<1, 4>(q, ldq, C + j + l * k, k, m, V + l * ldv + a, ldv);
-      for (; l < p; ++l) axpys<1, 1>(q, ldq, C + j + l * k, k, m, V + l * ldv + a, ldv);
-    }
-  }
+  for_each_tile(k, p, r0, r1, [&](auto R, auto G, Index j, Index l, Index a, Index m) {
+    axpys<R(), G()>(Q + j * ldq + a, ldq, C + j + l * k, k, m, V + l * ldv + a, ldv);
+  });
 }
 
 }  // namespace ffr::preproc::detail
