@@ -198,12 +198,13 @@ void constraint_times(const Model& model, const Data& data, const VectorXd& v, V
 
 void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, double f, MatrixXd& T) {
   const Eigen::Index ld = data.Phiq.rows();
-  double* buf = data.Jw.data();  // work space of rows_max x (all coordinates of a body) doubles
+  double* buf = data.Jw.data();  // rows_max x (a body's coordinates) doubles of work space
   for (const ConstraintBlock& b : model.blocks) {
     const auto J1 = block_columns(model, data, b, b.body1);
     const auto J2 = block_columns(model, data, b, b.body2);
     double* w = data.penalty_rows.data();
     for (int r = 0; r < b.rows; ++r) w[r] = f * alpha(b.row0 + r);
+    // T(oa + first.., ob + first..) += Ja^T diag(w) Jb over na x nb columns from column `first`.
     const auto gram = [&](const detail::JacobianBlock& Ja, const detail::JacobianBlock& Jb, int oa, int ob, int first, int na,
                           int nb) {
       detail::add_weighted_gram(Ja.data() + first * ld, Jb.data() + first * ld, ld, b.rows, na, nb, w, buf,
@@ -221,11 +222,11 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
     const int o2 = h2 ? model.bodies[b.body2].offset : 0, n2 = static_cast<int>(J2.cols());
     if (h1) {
       gram(J1, J1, o1, o1, 0, n1, n1);
-      if (h2) detail::add_weighted_gram(J1.data(), J2.data(), ld, b.rows, n1, n2, w, buf, &T(o1, o2), T.rows());
+      if (h2) gram(J1, J2, o1, o2, 0, n1, n2);
     }
     if (h2) {
       gram(J2, J2, o2, o2, 0, n2, n2);
-      if (h1) detail::add_weighted_gram(J2.data(), J1.data(), ld, b.rows, n2, n1, w, buf, &T(o2, o1), T.rows());
+      if (h1) gram(J2, J1, o2, o1, 0, n2, n1);
     }
   }
 }

@@ -115,7 +115,7 @@ struct Data {
 
   Stats stats;
   VectorXd alpha;               ///< penalty of each constraint row in use (penalty_weights)
-  MatrixXd Jw;                  ///< work: a penalty-weighted Jacobian block
+  MatrixXd Jw;                  ///< work: a penalty-weighted Jacobian block (add_penalty_tangent)
   VectorXd penalty_rows;        ///< work: the penalty weights of one block's rows
 };
 

@@ -41,7 +41,9 @@ struct ElementBlock {
 
 struct Mesh {
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> x;  ///< node coordinates, body frame
-  std::vector<std::size_t> node_tags;                           ///< gmsh node tag per node (may be empty)
+  /// gmsh node tag per node (may be empty). gmsh_import numbers the nodes along a space-filling
+  /// curve, not in gmsh's order (src/mesh/node_order.hpp): the tags are the way back.
+  std::vector<std::size_t> node_tags;
   std::vector<ElementBlock> blocks;
   std::map<std::string, std::vector<Index>> node_groups;        ///< physical group -> sorted node indices
 
