@@ -172,3 +172,40 @@ TEST(Diff, TransformModesMatchesDirectSumsOfTheRotatedShapes) {
   // And the transformed body still satisfies every basis-independent identity.
   EXPECT_TRUE(validate(transformed).ok());
 }
+
+// Modes are aligned by their surface shapes only where both files have the same vertices in
+// the same order. Here B's surface lists the vertices shifted by one, and each vertex's shape
+// of mode 1 is minus its neighbour's: paired by position, B's surface says "mode 1 flipped"
+// louder than every other feature. The alignment must not take it: it must find exactly the real
+// flips, every member but the surface must compare equal, and the surface is reported.
+TEST(Diff, RenumberedSurfacesDoNotMisleadTheAlignment) {
+  Sid a = symmetric_chain();
+  const Eigen::Index nv = 400, nq = a.nq();
+  a.visual.vertices.resize(nv, 3);
+  a.visual.triangles.resize(nv - 2, 3);
+  a.visual.modes.assign(static_cast<std::size_t>(nq), {});
+  for (Eigen::Index i = 0; i < nv; ++i) a.visual.vertices.row(i) << 0.01 * static_cast<double>(i), 0.0, 0.0;
+  for (Eigen::Index t = 0; t + 2 < nv; ++t) a.visual.triangles.row(t) << t, t + 1, t + 2;
+  for (Eigen::Index k = 0; k < nq; ++k) {
+    auto& m = a.visual.modes[static_cast<std::size_t>(k)];
+    m.resize(nv, 3);
+    for (Eigen::Index i = 0; i < nv; ++i)  // mode 1 alternates in sign from vertex to vertex
+      m.row(i) << (k == 1 ? (i % 2 ? -100.0 : 100.0) : 0.1 * static_cast<double>(k + 1)), 0.0, 0.0;
+  }
+  Eigen::VectorXd s = Eigen::VectorXd::Ones(nq);
+  s[0] = s[3] = -1;
+  Sid b = transform_modes(a, s.asDiagonal());
+  // B's vertex i is A's vertex i + 1 (cyclically), with its shapes.
+  const Visual va = b.visual;
+  for (Eigen::Index i = 0; i < nv; ++i) {
+    b.visual.vertices.row(i) = va.vertices.row((i + 1) % nv);
+    for (Eigen::Index k = 0; k < nq; ++k)
+      b.visual.modes[static_cast<std::size_t>(k)].row(i) = va.modes[static_cast<std::size_t>(k)].row((i + 1) % nv);
+  }
+  for (Eigen::Index t = 0; t + 2 < nv; ++t) b.visual.triangles.row(t) << (t + nv - 1) % nv, t, t + 1;
+  const DiffReport r = diff(a, b);
+  // Modes 0 and 1, 2 and 3 are repeated pairs: the flips show in the pairs' rotations.
+  EXPECT_LT((r.alignment.T - MatrixXd(s.asDiagonal())).cwiseAbs().maxCoeff(), 1e-9) << r.alignment.T;
+  EXPECT_FALSE(r.equivalent);
+  for (const auto& d : r.worst) EXPECT_EQ(d.dataset.rfind("/visual/", 0), 0u) << dump(r);
+}

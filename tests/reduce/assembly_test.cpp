@@ -1,9 +1,13 @@
 // Global assembly against an independent sum: the element matrices of every element added at
 // its DOFs through Eigen triplets (no pattern, no colouring, no threads). The threaded assembly
 // scatters colour classes of elements with no node in common without a lock, one class after
-// another, so it must also give the same bits on one thread and on two.
+// another, so it must also give the same bits on one thread and on two. The visual surface
+// built from the same grid must not depend on the node numbering.
 #include "ffr/preproc/assembly/assembly.hpp"
 #include "ffr/preproc/model/fe_model.hpp"
+#include "ffr/preproc/visual/visual.hpp"
+
+#include <algorithm>
 
 #include <gtest/gtest.h>
 
@@ -93,4 +97,37 @@ TEST(Assembly, MatchesTheElementSumAndIsTheSameOnTwoThreads) {
   // [[1, 0.1, 0], [0, 1, 0.05], [0.02, 0, 1]], whose determinant is 1.0001.
   EXPECT_NEAR(a2.mass, 7850.0 * 315 * 1.0001, 1e-12 * 7850.0 * 315);
   EXPECT_EQ(a1.worst_element, a2.worst_element);
+}
+
+// The visual surface follows the mesh file's node tags, not the internal node numbering (a
+// space-filling curve at import): the same grid with its nodes numbered in reverse, tags kept,
+// gives the same vertices, triangles and mode shapes.
+TEST(Surface, IsTheSameForAnyNodeNumbering) {
+  Grid g(3, 2, 2);
+  const Index N = g.mesh.x.rows();
+  for (Index n = 0; n < N; ++n) g.mesh.node_tags.push_back(static_cast<std::size_t>(n + 1));
+  preproc::Mesh r = g.mesh;  // node i of r is node N - 1 - i of g
+  const auto flip = [&](Index n) { return N - 1 - n; };
+  for (Index n = 0; n < N; ++n) {
+    r.x.row(n) = g.mesh.x.row(flip(n));
+    r.node_tags[static_cast<std::size_t>(n)] = g.mesh.node_tags[static_cast<std::size_t>(flip(n))];
+  }
+  for (auto& c : r.blocks[0].conn) c = flip(c);
+  for (auto& [name, nodes] : r.node_groups) {
+    for (auto& n : nodes) n = flip(n);
+    std::sort(nodes.begin(), nodes.end());
+  }
+  const auto surface = [](const preproc::Mesh& mesh, const preproc::PartSpec& part) {
+    const auto model = preproc::build_model(mesh, part);
+    Eigen::MatrixXd Phi = Eigen::MatrixXd::Zero(model.num_dofs, 2);  // shapes given by position
+    for (Index n = 0; n < mesh.x.rows(); ++n)
+      for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < 2; ++k) Phi(model.dof(n, a), k) = (k + 1) * mesh.x(n, a) + a;
+    return preproc::surface_with_modes(model, Phi);
+  };
+  const auto s1 = surface(g.mesh, g.part), s2 = surface(r, g.part);
+  ASSERT_GT(s1.triangles.rows(), 0);
+  EXPECT_EQ(s1.vertices, s2.vertices);
+  EXPECT_EQ(s1.triangles, s2.triangles);
+  for (std::size_t k = 0; k < 2; ++k) EXPECT_EQ(s1.modes[k], s2.modes[k]) << k;
 }

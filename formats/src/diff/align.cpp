@@ -16,6 +16,11 @@ namespace {
 
 using Eigen::MatrixXd;
 
+bool same_vertices(const Visual& a, const Visual& b, const Size& z) {
+  if (a.empty() || b.empty() || a.vertices.rows() != b.vertices.rows()) return false;
+  return (a.vertices - b.vertices).cwiseAbs().maxCoeff() <= 1e-9 * z.L;
+}
+
 // Rows of linear functionals of the modes, one column per mode, each block scaled to O(1).
 MatrixXd features(const Sid& s, const Sid& other, const std::vector<std::string>& common_nodes, const Size& z) {
   std::vector<MatrixXd> blocks;
@@ -27,7 +32,11 @@ MatrixXd features(const Sid& s, const Sid& other, const std::vector<std::string>
     blocks.push_back(n.phi / z.phi);
     blocks.push_back(n.psi * (z.L / z.phi));
   }
-  if (!s.visual.empty() && !other.visual.empty() && s.visual.vertices.rows() == other.visual.vertices.rows()) {
+  // The surfaces' mode shapes only where both files have the same vertices in the same order:
+  // a renumbered surface of the same size would pair unrelated vertices and could outweigh the
+  // other features (a SID of the same plate from two versions of ffr-reduce was aligned with
+  // wrong signs that way, and its invariants reported as different).
+  if (same_vertices(s.visual, other.visual, z)) {
     MatrixXd v(3 * s.visual.vertices.rows(), s.nq());
     for (Eigen::Index k = 0; k < s.nq(); ++k)
       v.col(k) = Eigen::Map<const Eigen::VectorXd>(s.visual.modes[k].data(), v.rows());

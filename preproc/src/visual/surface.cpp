@@ -10,7 +10,11 @@ namespace ffr::preproc {
 formats::Visual surface_with_modes(const FeModel& model, const Eigen::MatrixXd& Phi) {
   const Mesh& mesh = *model.mesh;
   // Faces seen once among solid elements are on the boundary; shell faces are all visible.
-  std::map<std::vector<Index>, std::pair<std::vector<Index>, int>> solid_faces;  // sorted key -> (ordered face, count)
+  // The faces are keyed by their sorted node tags, not node indices, so the surface's order
+  // (faces, then vertices in order of first use) follows the mesh file and not the internal
+  // node numbering (a space-filling curve since the sixth session; with the indices, a SID of
+  // an unchanged part had its surface renumbered).
+  std::map<std::vector<std::size_t>, std::pair<std::vector<Index>, int>> solid_faces;  // sorted tags -> (ordered face, count)
   std::vector<std::vector<Index>> faces;
   for (const auto& pb : model.blocks) {
     const auto& blk = mesh.blocks[pb.block];
@@ -25,7 +29,8 @@ formats::Visual surface_with_modes(const FeModel& model, const Eigen::MatrixXd& 
           faces.push_back(face);
           continue;
         }
-        std::vector<Index> key = face;
+        std::vector<std::size_t> key;
+        for (const Index n : face) key.push_back(mesh.node_tag(n));
         std::sort(key.begin(), key.end());
         auto [it, fresh] = solid_faces.try_emplace(key, face, 0);
         ++it->second.second;
