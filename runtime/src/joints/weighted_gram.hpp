@@ -1,6 +1,7 @@
 #pragma once
-// T += Ja^T diag(w) Jb for the few rows of one constraint block: the penalty term of the
-// tangent (add_penalty_tangent).
+// T += Ja^T diag(w) Jb for a few rows: the penalty term of the tangent (add_penalty_tangent,
+// the rows of one constraint block) and the products J_a^T J_b of the constraint Hessian (the
+// three rows of two marker quantities' Jacobians).
 //
 // Why not Eigen's product: for a block of 5 or 6 rows and 9 to 22 columns a side, its GEMM
 // packed both operands first, and that was 7-9 % of a time step of the runtime benchmark.
