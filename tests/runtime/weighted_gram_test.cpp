@@ -1,6 +1,8 @@
-// The penalty tangent's kernel T += Ja^T diag(w) Jb (runtime/src/joints/weighted_gram.hpp)
-// against Eigen's dense product, for every row count it branches on (1 to 6, and more in
-// blocks of six), blocks with a leading dimension larger than their rows, and zero entries.
+// The small dense kernels of a time step against Eigen's products: the penalty tangent's
+// T += Ja^T diag(w) Jb (runtime/src/joints/weighted_gram.hpp) for every row count it branches
+// on (1 to 6, and more in blocks of six), blocks with a leading dimension larger than their
+// rows, and zero entries; and the matrix-vector products (integrator/dense_products.hpp).
+#include "integrator/dense_products.hpp"
 #include "joints/weighted_gram.hpp"
 
 #include <gtest/gtest.h>
@@ -31,4 +33,30 @@ TEST(WeightedGram, MatchesTheDenseProductForEveryRowCount) {
       EXPECT_LT((T - ref).cwiseAbs().maxCoeff(), 1e-13) << rows << " rows, " << na << " x " << nb;
     }
   }
+}
+
+// The step's matrix-vector products (runtime/src/integrator/dense_products.hpp) against
+// Eigen's, for sizes with every remainder of their blocks of four and vectors with zero runs
+// (whose columns the product skips).
+TEST(DenseProducts, MatchEigenForEveryShape) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int m : {1, 3, 4, 5, 39, 46})
+    for (int n : {1, 2, 4, 6, 7, 46}) {
+      Eigen::MatrixXd A(m, n);
+      for (Eigen::Index j = 0; j < n; ++j)
+        for (Eigen::Index i = 0; i < m; ++i) A(i, j) = u(rng);
+      Eigen::VectorXd x(n), lam(m), y0(m), z0(n);
+      for (Eigen::Index j = 0; j < n; ++j) x(j) = j % 5 < 2 ? 0.0 : u(rng);
+      for (Eigen::Index i = 0; i < m; ++i) lam(i) = u(rng), y0(i) = u(rng);
+      for (Eigen::Index j = 0; j < n; ++j) z0(j) = u(rng);
+      Eigen::VectorXd y = y0, z = z0;
+      ffr::runtime::detail::times(A, x, y, false);
+      EXPECT_LT((y - A * x).cwiseAbs().maxCoeff(), 1e-14) << m << " x " << n;
+      y = y0;
+      ffr::runtime::detail::times(A, x, y, true);
+      EXPECT_LT((y - (y0 + A * x)).cwiseAbs().maxCoeff(), 1e-14) << m << " x " << n;
+      ffr::runtime::detail::add_transpose_times(A, lam, z);
+      EXPECT_LT((z - (z0 + A.transpose() * lam)).cwiseAbs().maxCoeff(), 1e-13) << m << " x " << n;
+    }
 }

@@ -9,6 +9,7 @@
 #include "ffr/runtime/constraints.hpp"
 #include "ffr/runtime/integrator.hpp"
 #include "ffr/runtime/kinematics.hpp"
+#include "dense_products.hpp"
 
 namespace ffr::runtime {
 namespace {
@@ -27,7 +28,7 @@ double project_once(const Model& model, Data& data, VectorXd& x, const VectorXd&
   const double res0 = res;
   for (int k = 0; k < kMaxProjection && res > target; ++k) {
     data.tmp = x - data.vstar;
-    data.r.noalias() = data.W * data.tmp;
+    detail::times(data.W, data.tmp, data.r, false);
     data.c = h4 * (data.sigma + data.alpha.cwiseProduct(data.c));
     add_constraint_forces(model, data, data.c, data.r);
     solve_tangent(data, data.r, data.dq);

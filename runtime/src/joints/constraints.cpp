@@ -3,6 +3,7 @@
 
 #include "rows.hpp"
 #include "weighted_gram.hpp"
+#include "../integrator/dense_products.hpp"
 
 #include <cmath>
 
@@ -188,12 +189,12 @@ void update_angle_references(const Model& model, Data& data) {
 
 void add_constraint_forces(const Model& model, const Data& data, const VectorXd& lam, VectorXd& out) {
   (void)model;
-  out.noalias() += data.Phiq.transpose() * lam;
+  detail::add_transpose_times(data.Phiq, lam, out);
 }
 
 void constraint_times(const Model& model, const Data& data, const VectorXd& v, VectorXd& out) {
   (void)model;
-  out.noalias() = data.Phiq * v;
+  detail::times(data.Phiq, v, out, false);
 }
 
 void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, double f, MatrixXd& T) {
