@@ -1,20 +1,12 @@
 #include "dense_products.hpp"
 
-// Compiled at -O3 (runtime/CMakeLists.txt) and for AVX2/AVX-512 as well (dense_products.hpp).
-// GCC notes at every use of a 32-byte vector in the baseline clone that its ABI differs from
-// the AVX clones' (-Wpsabi); the vectors never cross a function boundary here.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wpsabi"
-#endif
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define FFR_GEMV_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define FFR_GEMV_CLONES
-#endif
+#include "kernel_clones.hpp"
+
+// Compiled at -O3 and for AVX2/AVX-512 as well (kernel_clones.hpp).
 
 namespace ffr::runtime::detail {
 
-FFR_GEMV_CLONES
+FFR_RT_CLONES
 void times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y, bool accumulate) {
   const Eigen::Index m = A.rows(), n = A.cols();
   const double* __restrict a = A.data();
@@ -39,12 +31,7 @@ void times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& 
   }
 }
 
-// Four doubles at any 8-byte alignment (GCC's vector extension): the dot products below are
-// reductions, which GCC does not vectorise by itself without reassociating (-ffast-math).
-typedef double v4 __attribute__((vector_size(32), aligned(8), may_alias));
-inline v4 load4(const double* p) { return *reinterpret_cast<const v4*>(p); }
-
-FFR_GEMV_CLONES
+FFR_RT_CLONES
 void add_transpose_times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
   const Eigen::Index m = A.rows(), n = A.cols(), m4 = m - m % 4;
   const double* __restrict a = A.data();
@@ -54,13 +41,13 @@ void add_transpose_times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eig
   Eigen::Index j = 0;
   for (; j + 4 <= n; j += 4) {
     const double* c = a + j * m;
-    v4 s0 = {}, s1 = {}, s2 = {}, s3 = {};
+    simd::v4 s0 = {}, s1 = {}, s2 = {}, s3 = {};
     for (Eigen::Index i = 0; i < m4; i += 4) {
-      const v4 xi = load4(xv + i);
-      s0 += load4(c + i) * xi;
-      s1 += load4(c + m + i) * xi;
-      s2 += load4(c + 2 * m + i) * xi;
-      s3 += load4(c + 3 * m + i) * xi;
+      const simd::v4 xi = simd::load(xv + i);
+      s0 += simd::load(c + i) * xi;
+      s1 += simd::load(c + m + i) * xi;
+      s2 += simd::load(c + 2 * m + i) * xi;
+      s3 += simd::load(c + 3 * m + i) * xi;
     }
     double t[4] = {(s0[0] + s0[1]) + (s0[2] + s0[3]), (s1[0] + s1[1]) + (s1[2] + s1[3]),
                    (s2[0] + s2[1]) + (s2[2] + s2[3]), (s3[0] + s3[1]) + (s3[2] + s3[3])};

@@ -2,6 +2,8 @@
 // (see small_lu.hpp for why it is not Eigen::PartialPivLU).
 #include "ffr/runtime/small_lu.hpp"
 
+#include "kernel_clones.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -19,17 +21,11 @@ void SmallLU::resize(Index n) {
   ok_ = false;
 }
 
-// The kernels are plain loops over raw columns, compiled at -O3 (runtime/CMakeLists.txt) and
-// for AVX2 and AVX-512 as well as the baseline: Eigen's dynamic segments cost a call and an
-// alignment prologue per AXPY, and a factorisation of the benchmark's tangent makes about a
-// thousand AXPYs of 10 to 40 entries.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define FFR_LU_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define FFR_LU_CLONES
-#endif
-
-FFR_LU_CLONES
+// The kernels are plain loops over raw columns, compiled at -O3 and for AVX2 and AVX-512 as well
+// (kernel_clones.hpp): Eigen's dynamic segments cost a call and an alignment prologue per AXPY,
+// and a factorisation of the benchmark's tangent makes about a thousand AXPYs of 10 to 40
+// entries.
+FFR_RT_CLONES
 bool SmallLU::factorize() {
   const Index n = lu_.rows();
   double* a = lu_.data();
@@ -85,7 +81,7 @@ bool SmallLU::factorize() {
 // applied by its stored reciprocals. One AXPY a column and a division a row, as before, left
 // the solve dominated by the loops' set-up and the chain of divisions (0.7 us a solve of the
 // benchmark's 46 x 46 tangent, 13 solves a step).
-FFR_LU_CLONES
+FFR_RT_CLONES
 void SmallLU::solve_in_place(Eigen::Ref<Eigen::VectorXd> xv) const {
   const Index n = lu_.rows();
   const double* a = lu_.data();

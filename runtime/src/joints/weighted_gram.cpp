@@ -1,14 +1,10 @@
 #include "weighted_gram.hpp"
 
+#include "../integrator/kernel_clones.hpp"
+
 #include <algorithm>
 
-// Compiled at -O3 (runtime/CMakeLists.txt) and for AVX2/AVX-512 as well: the inner loop has a
-// run-time length, which GCC vectorises at -O3 only.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define FFR_GRAM_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define FFR_GRAM_CLONES
-#endif
+// Compiled at -O3 and for AVX2/AVX-512 as well (../integrator/kernel_clones.hpp).
 
 namespace ffr::runtime::detail {
 namespace {
@@ -34,7 +30,7 @@ inline void add_columns(const double* Jb, Eigen::Index ld, int rows, int na, int
 
 }  // namespace
 
-FFR_GRAM_CLONES
+FFR_RT_CLONES
 void add_weighted_gram(const double* Ja, const double* Jb, Eigen::Index ld, int rows, int na, int nb,
                        const double* w, double* buf, double* T, Eigen::Index ldt) {
   // buf = (diag(w) Ja)^T, na x rows: each row of Ja becomes a contiguous column.
