@@ -9,6 +9,7 @@ namespace ffr::runtime::detail {
 FFR_RT_CLONES
 void times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y, bool accumulate) {
   const Eigen::Index m = A.rows(), n = A.cols();
+  eigen_assert(x.size() == n && y.size() == m);
   const double* __restrict a = A.data();
   const double* __restrict xv = x.data();
   double* __restrict yv = y.data();
@@ -34,6 +35,7 @@ void times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& 
 FFR_RT_CLONES
 void add_transpose_times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
   const Eigen::Index m = A.rows(), n = A.cols(), m4 = m - m % 4;
+  eigen_assert(x.size() == m && y.size() == n);
   const double* __restrict a = A.data();
   const double* __restrict xv = x.data();
   double* __restrict yv = y.data();

@@ -11,9 +11,11 @@
 namespace ffr::runtime::detail {
 
 /// y = A x (accumulate = false) or y += A x, for A (m x n, column-major, leading dimension m).
+/// x and y must not overlap. Columns whose coefficients are zero are skipped, so a non-finite
+/// entry there does not reach y (the callers test the state, not these products, for NaN).
 void times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y, bool accumulate);
 
-/// y += A^T x.
+/// y += A^T x (x and y must not overlap).
 void add_transpose_times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y);
 
 }  // namespace ffr::runtime::detail
