@@ -205,16 +205,19 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
     const auto J2 = block_columns(model, data, b, b.body2);
     double* w = data.penalty_rows.data();
     for (int r = 0; r < b.rows; ++r) w[r] = f * alpha(b.row0 + r);
-    // T(oa + first.., ob + first..) += Ja^T diag(w) Jb over na x nb columns from column `first`.
-    const auto gram = [&](const detail::JacobianBlock& Ja, const detail::JacobianBlock& Jb, int oa, int ob, int first, int na,
-                          int nb) {
-      detail::add_weighted_gram(Ja.data() + first * ld, Jb.data() + first * ld, ld, b.rows, na, nb, w, buf,
-                                &T(oa + first, ob + first), T.rows());
+    // Side a's rows weighted once (buf), then its products with each side's columns from
+    // column `first`: T(oa + first.., ob + first..) += Ja^T diag(w) Jb.
+    const auto weigh = [&](const detail::JacobianBlock& Ja, int first, int na) {
+      detail::weight_rows(Ja.data() + first * ld, ld, b.rows, na, w, buf);
+    };
+    const auto add = [&](const detail::JacobianBlock& Jb, int oa, int ob, int first, int na, int nb) {
+      detail::add_weighted_product(buf, b.rows, na, Jb.data() + first * ld, ld, nb, &T(oa + first, ob + first), T.rows());
     };
     if (b.kind == BlockKind::RigidBody) {
       // Only the frame-vector columns are nonzero.
       const int o = model.bodies[b.body1].offset;
-      gram(J1, J1, o, o, 3, 9, 9);
+      weigh(J1, 3, 9);
+      add(J1, o, o, 3, 9, 9);
       continue;
     }
     // A joint within one body has its rows once in Phiq: its term is that block's alone.
@@ -222,12 +225,14 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
     const int o1 = h1 ? model.bodies[b.body1].offset : 0, n1 = static_cast<int>(J1.cols());
     const int o2 = h2 ? model.bodies[b.body2].offset : 0, n2 = static_cast<int>(J2.cols());
     if (h1) {
-      gram(J1, J1, o1, o1, 0, n1, n1);
-      if (h2) gram(J1, J2, o1, o2, 0, n1, n2);
+      weigh(J1, 0, n1);
+      add(J1, o1, o1, 0, n1, n1);
+      if (h2) add(J2, o1, o2, 0, n1, n2);
     }
     if (h2) {
-      gram(J2, J2, o2, o2, 0, n2, n2);
-      if (h1) gram(J2, J1, o2, o1, 0, n2, n1);
+      weigh(J2, 0, n2);
+      add(J2, o2, o2, 0, n2, n2);
+      if (h1) add(J1, o2, o1, 0, n2, n1);
     }
   }
 }

@@ -31,11 +31,14 @@ inline void add_columns(const double* Jb, Eigen::Index ld, int rows, int na, int
 }  // namespace
 
 FFR_RT_CLONES
-void add_weighted_gram(const double* Ja, const double* Jb, Eigen::Index ld, int rows, int na, int nb,
-                       const double* w, double* buf, double* T, Eigen::Index ldt) {
-  // buf = (diag(w) Ja)^T, na x rows: each row of Ja becomes a contiguous column.
+void weight_rows(const double* Ja, Eigen::Index ld, int rows, int na, const double* w, double* buf) {
   for (int r = 0; r < rows; ++r)
     for (int i = 0; i < na; ++i) buf[i + r * na] = w[r] * Ja[r + i * ld];
+}
+
+FFR_RT_CLONES
+void add_weighted_product(const double* buf, int rows, int na, const double* Jb, Eigen::Index ld, int nb, double* T,
+                          Eigen::Index ldt) {
   switch (rows) {
     case 1: add_columns<1>(Jb, ld, rows, na, nb, buf, T, ldt); break;
     case 2: add_columns<2>(Jb, ld, rows, na, nb, buf, T, ldt); break;
@@ -47,6 +50,12 @@ void add_weighted_gram(const double* Ja, const double* Jb, Eigen::Index ld, int 
       for (int r0 = 0; r0 < rows; r0 += 6)  // blocks of at most 6 rows
         add_columns<0>(Jb + r0, ld, std::min(6, rows - r0), na, nb, buf + r0 * na, T, ldt);
   }
+}
+
+void add_weighted_gram(const double* Ja, const double* Jb, Eigen::Index ld, int rows, int na, int nb,
+                       const double* w, double* buf, double* T, Eigen::Index ldt) {
+  weight_rows(Ja, ld, rows, na, w, buf);
+  add_weighted_product(buf, rows, na, Jb, ld, nb, T, ldt);
 }
 
 }  // namespace ffr::runtime::detail

@@ -10,9 +10,17 @@
 
 namespace ffr::runtime::detail {
 
-/// T(0:na, 0:nb) += Ja^T diag(w) Jb, where Ja (rows x na) and Jb (rows x nb) are column-major
-/// with leading dimension ld (blocks of the constraint Jacobian), T has leading dimension ldt,
-/// and buf holds at least na * rows doubles of work space.
+/// buf = (diag(w) Ja)^T (na x rows, column-major): the weighted rows of Ja (rows x na,
+/// column-major with leading dimension ld, a block of the constraint Jacobian), each made a
+/// contiguous column. buf holds at least na * rows doubles.
+void weight_rows(const double* Ja, Eigen::Index ld, int rows, int na, const double* w, double* buf);
+
+/// T(0:na, 0:nb) += buf Jb, for buf from weight_rows and Jb (rows x nb, leading dimension ld);
+/// T has leading dimension ldt. One buf serves every Jb against the same Ja.
+void add_weighted_product(const double* buf, int rows, int na, const double* Jb, Eigen::Index ld, int nb, double* T,
+                          Eigen::Index ldt);
+
+/// T(0:na, 0:nb) += Ja^T diag(w) Jb: weight_rows then add_weighted_product.
 void add_weighted_gram(const double* Ja, const double* Jb, Eigen::Index ld, int rows, int na, int nb,
                        const double* w, double* buf, double* T, Eigen::Index ldt);
 
