@@ -1,12 +1,15 @@
-// Greedy element colouring (see coloring.hpp).
+// Greedy colouring of element blocks (see coloring.hpp).
 #include "coloring.hpp"
 
 #include <algorithm>
 #include <utility>
 
 namespace ffr::preproc::detail {
+namespace {
 
-std::vector<std::vector<std::size_t>> color_elements(const std::vector<std::vector<Index>>& ents, Index num_entities) {
+// Classes of item indices (into ents) with no entity in common within a class, each in
+// increasing order. ents[e] lists the entities item e writes to; num_entities bounds them.
+std::vector<std::vector<std::size_t>> color_sets(const std::vector<std::vector<Index>>& ents, Index num_entities) {
   const std::size_t ne = ents.size();
   // Elements of each entity (CSR).
   std::vector<std::size_t> ptr(static_cast<std::size_t>(num_entities) + 1, 0);
@@ -39,6 +42,8 @@ std::vector<std::vector<std::size_t>> color_elements(const std::vector<std::vect
   return classes;
 }
 
+}  // namespace
+
 ElementBlocks color_blocks(const std::vector<std::vector<Index>>& ents, Index num_entities, std::size_t block_size) {
   ElementBlocks out;
   const std::size_t ne = ents.size();
@@ -59,7 +64,7 @@ ElementBlocks color_blocks(const std::vector<std::vector<Index>>& ents, Index nu
     block_ents.push_back(std::move(u));
   }
   out.block_ptr.push_back(ne);
-  out.classes = color_elements(block_ents, num_entities);
+  out.classes = color_sets(block_ents, num_entities);
   return out;
 }
 

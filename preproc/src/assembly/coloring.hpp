@@ -1,9 +1,9 @@
 #pragma once
-// Element colouring for the lock-free scatter of the assembly.
+// Colouring for the lock-free scatter of the assembly.
 //
-// Two elements that share no entity (mesh node or interface node) write disjoint entries of K,
-// M and Ms. Greedy colouring in element order gives classes of such elements, so each class can
-// be scattered by several threads at once without a lock; the classes run one after another.
+// Two sets of elements that share no entity (mesh node or interface node) write disjoint
+// entries of K, M and Ms. Greedy colouring gives classes of such sets, so each class can be
+// scattered by several threads at once without a lock; the classes run one after another.
 // Why: the scatter was serialised under one mutex, and with two threads two thirds of the
 // assembly's samples of the 100k-DOF plate were in it (perf), the second thread waiting.
 
@@ -13,10 +13,6 @@
 #include <vector>
 
 namespace ffr::preproc::detail {
-
-/// Classes of element indices (into ents) with no entity in common within a class, each in
-/// increasing order. ents[e] lists the entities element e writes to; num_entities bounds them.
-std::vector<std::vector<std::size_t>> color_elements(const std::vector<std::vector<Index>>& ents, Index num_entities);
 
 /// Elements in blocks of neighbours, and colour classes of blocks: no two blocks of a class
 /// share an entity, so the blocks of a class can be scattered by several threads at once, each
