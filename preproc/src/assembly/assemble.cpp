@@ -57,10 +57,10 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   const detail::Pattern pattern = detail::build_pattern(model, refs);
   Assembled out;
   out.elements = static_cast<Index>(refs.size());
-  out.K = pattern.make_matrix();
+  pattern.make_matrix(out.K);
   if (!opt.stiffness_only) {
-    out.M = pattern.make_matrix();
-    out.Ms = pattern.make_node_matrix();
+    pattern.make_matrix(out.M);
+    pattern.make_node_matrix(out.Ms);
   }
   for (const auto& pb : model.blocks) out.has_structural = out.has_structural || pb.kind != ElementKind::Solid;
   out.has_structural = out.has_structural || !model.masses.empty();

@@ -102,8 +102,8 @@ Index Pattern::find(Index col_entity, Index row_entity) const {
   return static_cast<Index>(it - adj.begin());
 }
 
-SparseMatrix Pattern::make_matrix() const {
-  SparseMatrix A(num_dofs, num_dofs);
+void Pattern::make_matrix(SparseMatrix& A) const {
+  A.resize(num_dofs, num_dofs);
   A.resizeNonZeros(col_ptr.back());
   std::copy(col_ptr.begin(), col_ptr.end(), A.outerIndexPtr());
   for (Index e = 0; e < static_cast<Index>(ent_ndof.size()); ++e) {
@@ -117,11 +117,10 @@ SparseMatrix Pattern::make_matrix() const {
     }
   }
   std::fill(A.valuePtr(), A.valuePtr() + col_ptr.back(), 0.0);
-  return A;
 }
 
-SparseMatrix Pattern::make_node_matrix() const {
-  SparseMatrix A(num_nodes, num_nodes);
+void Pattern::make_node_matrix(SparseMatrix& A) const {
+  A.resize(num_nodes, num_nodes);
   A.resizeNonZeros(node_col_ptr.back());
   std::copy(node_col_ptr.begin(), node_col_ptr.end(), A.outerIndexPtr());
   for (Index n = 0; n < num_nodes; ++n) {
@@ -130,7 +129,6 @@ SparseMatrix Pattern::make_node_matrix() const {
       if (adj[static_cast<std::size_t>(k)] < num_nodes) A.innerIndexPtr()[pos++] = adj[static_cast<std::size_t>(k)];
   }
   std::fill(A.valuePtr(), A.valuePtr() + node_col_ptr.back(), 0.0);
-  return A;
 }
 
 Placement Pattern::place(const std::vector<Index>& dofs, const FeModel& m) const {

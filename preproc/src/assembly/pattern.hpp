@@ -31,8 +31,11 @@ struct Pattern {
   std::vector<Index> node_col_ptr;  ///< CSC column starts of the node-level (scalar) matrix
 
   Index entity_of_dof(const FeModel& m, Index d) const;
-  SparseMatrix make_matrix() const;       ///< zero-valued matrix with the DOF pattern
-  SparseMatrix make_node_matrix() const;  ///< zero-valued num_nodes x num_nodes matrix
+  /// A = the zero-valued matrix with the DOF pattern. Filled in place: Eigen 3.4's
+  /// SparseMatrix has no move assignment, so `out.K = make()` copied K and M whole (245 MB of
+  /// fresh pages on the 100k plate).
+  void make_matrix(SparseMatrix& A) const;
+  void make_node_matrix(SparseMatrix& A) const;  ///< zero-valued num_nodes x num_nodes matrix
   /// The placement of an element with these global DOFs.
   Placement place(const std::vector<Index>& dofs, const FeModel& m) const;
   /// A += Ae over the element's DOFs.
