@@ -1,6 +1,6 @@
 #pragma once
 // The inner kernels of the supernodal substitutions (supernodal_solve.cpp, their only user,
-// which compiles them once per instruction set): a panel of up to four columns of a supernode
+// which compiles them once per instruction set): a panel of up to eight columns of a supernode
 // applied to an interleaved block of W right-hand sides, in the forward (update) and the back
 // (dot-product) direction.
 
@@ -13,7 +13,15 @@ namespace ffr::preproc::detail::panels {
 
 using Index = std::int64_t;
 
-constexpr int kPanel = 4;  // columns of L per sweep step
+// Columns of L per sweep step for W interleaved right-hand sides. Eight for up to four: the
+// update rows of T (and, going back, the gathered rows) are read and written once per panel, so
+// wider panels halve that traffic against the same stream of L; on the 100k-DOF plate (92
+// solves of 4 right-hand sides) the Lanczos stage was faster in seven of seven alternating
+// runs, by 1-11 % (2.52-3.00 s against 2.59-3.09 s with four). Four for wider blocks, whose P x W values of Y no longer fit the
+// 16 vector registers of AVX2 with eight (16 right-hand sides: 0.235-0.314 s a solve against
+// 0.210-0.227 s with four, tools/bench/eigen on a 100k-DOF grid).
+template <int W>
+constexpr int kPanel = W >= 8 ? 4 : 8;
 
 // Four doubles (simd::v4, kernel_clones.hpp): GCC's vector extension, not auto-vectorisation: left to itself, GCC vectorised the interleaved loops across rows with
 // permutations and stack spills, slower than CHOLMOD's solve.
@@ -105,6 +113,10 @@ inline void panel_p(int p, const double* L, Index ld, Index m, const double* in,
     else panel_update<W, P>(L, ld, m, in, out);
   };
   switch (p) {
+    case 8: run(std::integral_constant<int, 8>{}); break;
+    case 7: run(std::integral_constant<int, 7>{}); break;
+    case 6: run(std::integral_constant<int, 6>{}); break;
+    case 5: run(std::integral_constant<int, 5>{}); break;
     case 4: run(std::integral_constant<int, 4>{}); break;
     case 3: run(std::integral_constant<int, 3>{}); break;
     case 2: run(std::integral_constant<int, 2>{}); break;

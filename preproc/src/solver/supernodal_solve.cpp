@@ -7,8 +7,9 @@
 //
 // Forward (L y = P b), supernodes in order:  y1 <- L11^-1 y1,   y[rows of L21] -= L21 y1.
 // Back (L^T z = y), in reverse order:        y1 <- L11^-T (y1 - L21^T y[rows of L21]).
-// Both sweep the columns of a supernode four at a time: each step reads four columns of L once
-// and applies them to all right-hand sides of the interleaved block.
+// Both sweep the columns of a supernode in panels of eight (four for wide blocks, panels::kPanel):
+// each step reads the panel's columns of L once and applies them to all right-hand sides of
+// the interleaved block.
 #include "supernodal_solve.hpp"
 
 #include "../run_parts.hpp"
@@ -43,8 +44,9 @@ void forward_node(const View& v, Index s, double* y, double* t, const std::int32
   const SuiteSparse_long* below = v.rows + v.pi[s] + nscol;
   double* yd = y + k1 * W;
   std::fill(t, t + m * W, 0.0);
-  for (Index j0 = 0; j0 < nscol; j0 += kPanel) {
-    const int p = static_cast<int>(std::min<Index>(kPanel, nscol - j0));
+  constexpr int kP = kPanel<W>;
+  for (Index j0 = 0; j0 < nscol; j0 += kP) {
+    const int p = static_cast<int>(std::min<Index>(kP, nscol - j0));
     // The panel's own triangle.
     for (int q = 0; q < p; ++q) {
       const Index j = j0 + q;
@@ -81,9 +83,10 @@ void backward_node(const View& v, Index s, double* y, double* t) {
     for (int c = 0; c < W; ++c) t[i * W + c] = yi[c];
   }
   // Panels from the last: the rows below a panel are final when it is reached.
-  const Index last = ((nscol - 1) / kPanel) * kPanel;
-  for (Index j0 = last; j0 >= 0; j0 -= kPanel) {
-    const int p = static_cast<int>(std::min<Index>(kPanel, nscol - j0));
+  constexpr int kP = kPanel<W>;
+  const Index last = ((nscol - 1) / kP) * kP;
+  for (Index j0 = last; j0 >= 0; j0 -= kP) {
+    const int p = static_cast<int>(std::min<Index>(kP, nscol - j0));
     const double* Lp = L + j0 * nsrow;
     dot_p<W>(p, Lp + nscol, nsrow, m, t, yd + j0 * W);
     dot_p<W>(p, Lp + j0 + p, nsrow, nscol - j0 - p, yd + (j0 + p) * W, yd + j0 * W);
