@@ -17,9 +17,9 @@ using Index = std::int64_t;
 // update rows of T (and, going back, the gathered rows) are read and written once per panel, so
 // wider panels halve that traffic against the same stream of L; on the 100k-DOF plate (92
 // solves of 4 right-hand sides) the Lanczos stage was faster in seven of seven alternating
-// runs, by 1-11 % (2.52-3.00 s against 2.59-3.09 s with four). Four for wider blocks, whose P x W values of Y no longer fit the
-// 16 vector registers of AVX2 with eight (16 right-hand sides: 0.235-0.314 s a solve against
-// 0.210-0.227 s with four, tools/bench/eigen on a 100k-DOF grid).
+// runs, by 1-11 % (2.52-3.00 s against 2.59-3.09 s with four). Four for wider blocks, whose
+// P x W values of Y no longer fit the 16 vector registers of AVX2 with eight (16 right-hand
+// sides: 0.235-0.314 s a solve against 0.210-0.227 s with four, tools/bench/eigen, 100k grid).
 template <int W>
 constexpr int kPanel = W >= 8 ? 4 : 8;
 
