@@ -11,14 +11,28 @@
 using namespace ffr::preproc;
 using ffr::test::Ends;
 
-TEST(EigenBlock, BoxAgreesWithClosedFormAndDense) {
-  // Same box as EigenBackends.SpectraArpackAndDenseAgree: 960 DOF, simple spectrum.
-  const auto p = ffr::test::box(13, 1.0, 11, 0.85, 9, 0.65, Ends::FixedFixed);
-  const auto ref = ffr::test::box_eigenvalues(13, 1.0, 11, 0.85, 9, 0.65, Ends::FixedFixed, 20);
+namespace {
+
+// The box of EigenBackends.SpectraArpackAndDenseAgree (960 DOF, simple spectrum), its first
+// nev closed-form eigenvalues, and block-backend options below them.
+struct BoxCase {
+  ffr::test::Pencil p = ffr::test::box(13, 1.0, 11, 0.85, 9, 0.65, Ends::FixedFixed);
+  std::vector<double> ref;
   EigenOptions o;
-  o.nev = 20;
-  o.sigma = -5.0;
-  o.backend = EigenBackend::Block;
+  explicit BoxCase(int nev) : ref(ffr::test::box_eigenvalues(13, 1.0, 11, 0.85, 9, 0.65, Ends::FixedFixed, nev)) {
+    o.nev = nev;
+    o.sigma = -5.0;
+    o.backend = EigenBackend::Block;
+  }
+};
+
+}  // namespace
+
+TEST(EigenBlock, BoxAgreesWithClosedFormAndDense) {
+  BoxCase c(20);
+  const auto& p = c.p;
+  const auto& ref = c.ref;
+  EigenOptions& o = c.o;
   EigenSolver sb(o);
   const EigenResult rb = sb.compute(p.K, p.M);
   EXPECT_EQ(sb.info().backend_used, EigenBackend::Block);
@@ -109,12 +123,10 @@ TEST(EigenBlock, TwoThreadsGiveTheModesOfOne) {
 // bare Ritz vectors of this box miss the 1e-8 residual check (1e-7 and looser miss it even
 // after the step); the refined ones must pass it and meet the closed-form eigenvalues.
 TEST(EigenBlock, VectorsThatMissTheChecksGetOneSubspaceStep) {
-  const auto p = ffr::test::box(13, 1.0, 11, 0.85, 9, 0.65, Ends::FixedFixed);
-  const auto ref = ffr::test::box_eigenvalues(13, 1.0, 11, 0.85, 9, 0.65, Ends::FixedFixed, 12);
-  EigenOptions o;
-  o.nev = 12;
-  o.sigma = -5.0;
-  o.backend = EigenBackend::Block;
+  BoxCase c(12);
+  const auto& p = c.p;
+  const auto& ref = c.ref;
+  EigenOptions& o = c.o;
   o.lanczos_tol = 1e-8;
   EigenSolver s(o);
   const EigenResult r = s.compute(p.K, p.M);
