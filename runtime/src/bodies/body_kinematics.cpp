@@ -21,6 +21,26 @@ Eigen::Matrix<double, 3, 9> gbar(const Matrix3d& A) {
   return G;
 }
 
+namespace {
+
+// The parts of a body's kinematics that depend on the velocities: the frame's rate, the angular
+// velocity and the products PPdm y_dot (A must be current).
+void body_rates(const Body& b, const Data& data, BodyData& bd) {
+  const int o = b.offset;
+  for (int a = 0; a < 3; ++a) bd.Ad.col(a) = data.qd.segment<3>(o + 3 + 3 * a);
+  bd.omega = body_omega(bd.A, bd.Ad);
+  if (b.nq == 0) return;
+  const auto yd = data.qd.segment(o + 12, b.nq);
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c) bd.Pyd.col(3 * a + c).noalias() = b.PPdm[a][c] * yd;
+}
+
+}  // namespace
+
+void update_body_rates(const Model& model, Data& data) {
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) body_rates(model.bodies[i], data, data.bodies[i]);
+}
+
 void update_bodies(const Model& model, Data& data) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
@@ -28,10 +48,9 @@ void update_bodies(const Model& model, Data& data) {
     const int o = b.offset;
     for (int a = 0; a < 3; ++a) {
       bd.A.col(a) = data.q.segment<3>(o + 3 + 3 * a);
-      bd.Ad.col(a) = data.qd.segment<3>(o + 3 + 3 * a);
       bd.Add.col(a) = data.qdd.segment<3>(o + 3 + 3 * a);
     }
-    bd.omega = body_omega(bd.A, bd.Ad);
+    body_rates(b, data, bd);
     bd.alpha = body_omega(bd.A, bd.Add);
     bd.acc.noalias() = bd.A.transpose() * (data.qdd.segment<3>(o) - model.gravity);
     if (b.nq == 0) {
@@ -47,9 +66,6 @@ void update_bodies(const Model& model, Data& data) {
       for (int c = 0; c < 3; ++c) bd.PPy[a].row(c).noalias() = y.transpose() * b.PPdm[a][c];
       bd.S[a] = b.rPdm[a] + bd.PPy[a];
     }
-    const auto yd = data.qd.segment(o + 12, b.nq);
-    for (int a = 0; a < 3; ++a)
-      for (int c = 0; c < 3; ++c) bd.Pyd.col(3 * a + c).noalias() = b.PPdm[a][c] * yd;
     // Jc(a,c) = J0 + R(a,c) + R(c,a) + y^T PPdm[a][c] y with R(a,c) = rPdm[a].row(c) y.
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < 3; ++c)

@@ -69,10 +69,11 @@ double project_velocities(const Model& model, Data& data, double t) {
 
 double project_accelerations(const Model& model, Data& data, double t) {
   const double h = model.settings.step;
-  // gamma depends on the (projected) velocities.
-  update_bodies(model, data);
-  update_markers(model, data);
-  evaluate_constraints(model, data, t);
+  // gamma depends on the (projected) velocities; q, and with it the Jacobian, has not changed
+  // since the final evaluation of the step.
+  update_body_rates(model, data);
+  update_marker_rates(model, data);
+  evaluate_constraint_biases(model, data, t);
   return project(model, data, data.qdd, data.gamma, h * h, t);
 }
 

@@ -23,6 +23,7 @@ using detail::VecExpr;
 struct Rows {
   Eigen::Ref<VectorXd> Phi, Phit, gamma;
   detail::JacobianBlock J1, J2;
+  bool jacobian = true;  ///< false: values and biases only, J1 and J2 untouched
 };
 
 // The six conditions on a body's frame vectors: L/2 (u.u - 1), ..., L u.v, ... (each a length).
@@ -36,6 +37,7 @@ void rigid_body_rows(const Model& model, const Data& data, int body, Rows& r) {
     const double s = diag ? 0.5 * L : L;
     r.Phi(i) = s * (bd.A.col(a).dot(bd.A.col(b)) - (diag ? 1.0 : 0.0));
     r.gamma(i) = 2 * s * bd.Ad.col(a).dot(bd.Ad.col(b));
+    if (!r.jacobian) continue;
     r.J1.block<1, 3>(i, 3 + 3 * a) += s * bd.A.col(b).transpose();
     r.J1.block<1, 3>(i, 3 + 3 * b) += s * bd.A.col(a).transpose();
   }
@@ -56,12 +58,13 @@ void dot_row(const VecExpr& a, const VecExpr& b, double scale, Rows& r, int row)
   const auto v = dot(a, b);
   r.Phi(row) = scale * v.value;
   r.gamma(row) = scale * v.bias;
-  dot_jacobian(a, b, scale, r.J1, r.J2, row);
+  if (r.jacobian) dot_jacobian(a, b, scale, r.J1, r.J2, row);
 }
 
 void coincident_points(const JointSides& s, Rows& r, int row) {
   r.Phi.segment<3>(row) = s.m2->p - s.m1->p;
   r.gamma.segment<3>(row) = s.m2->pb - s.m1->pb;
+  if (!r.jacobian) return;
   if (!s.g1) r.J1.middleRows(row, 3) -= s.m1->Jp;
   if (!s.g2) r.J2.middleRows(row, 3) += s.m2->Jp;
 }
@@ -135,7 +138,7 @@ detail::DotValue coordinate(const Model& model, const Data& data, int joint, Joi
 void motion_row(const Model& model, const Data& data, int m, double t, Rows& r) {
   const Motion& mo = model.motions[m];
   const double scale = mo.coordinate == JointCoordinate::Angle ? model.length : 1.0;
-  const auto v = coordinate(model, data, mo.joint, mo.coordinate, &r, 0, scale);
+  const auto v = coordinate(model, data, mo.joint, mo.coordinate, r.jacobian ? &r : nullptr, 0, scale);
   const Vector3d target = motion_target(model, data, m, t);
   r.Phi(0) = scale * (v.value - target(0));
   r.Phit(0) = -scale * target(1);
@@ -158,15 +161,17 @@ Vector3d motion_target(const Model& model, const Data& data, int m, double t) {
   return v;
 }
 
-void evaluate_constraints(const Model& model, Data& data, double t) {
+namespace {
+
+void evaluate_rows(const Model& model, Data& data, double t, bool jacobian) {
   // The Jacobian is assembled dense (the products use it several times per Newton iteration),
   // the blocks adding into it. It is zeroed whole, in one pass over contiguous memory: zeroing
   // each block's columns took a memset call per column of a few rows (3-5 % of a step).
-  data.Phiq.setZero();
+  if (jacobian) data.Phiq.setZero();
   data.Phit.setZero();
   for (const ConstraintBlock& b : model.blocks) {
     Rows r{data.Phi.segment(b.row0, b.rows), data.Phit.segment(b.row0, b.rows), data.gamma.segment(b.row0, b.rows),
-           block_columns(model, data, b, b.body1), block_columns(model, data, b, b.body2)};
+           block_columns(model, data, b, b.body1), block_columns(model, data, b, b.body2), jacobian};
     switch (b.kind) {
       case BlockKind::RigidBody: rigid_body_rows(model, data, b.index, r); break;
       case BlockKind::Joint: joint_rows(model, data, model.joints[b.index], r); break;
@@ -174,6 +179,12 @@ void evaluate_constraints(const Model& model, Data& data, double t) {
     }
   }
 }
+
+}  // namespace
+
+void evaluate_constraints(const Model& model, Data& data, double t) { evaluate_rows(model, data, t, true); }
+
+void evaluate_constraint_biases(const Model& model, Data& data, double t) { evaluate_rows(model, data, t, false); }
 
 double joint_coordinate(const Model& model, const Data& data, int joint, JointCoordinate c) {
   return coordinate(model, data, joint, c, nullptr, 0, 1.0).value;

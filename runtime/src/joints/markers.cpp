@@ -41,10 +41,25 @@ void marker_kinematics(const Model& model, const Marker& mk, const Data& data, M
   if (on_node) md.xbar.noalias() += mk.phi * data.q.segment(o + 12, b.nq);
   md.p = data.q.segment<3>(o);
   md.p.noalias() += bd.A * md.xbar;
+  local_jacobian(bd.A, md.xbar, on_node ? &mk.phi : nullptr, true, md.Jp);
+  for (int k = 0; k < 3; ++k) {
+    md.ebar[k] = mk.E.col(k);
+    if (on_node) md.ebar[k].noalias() += mk.phiE[k] * data.q.segment(o + 12, b.nq);
+    md.e[k].noalias() = bd.A * md.ebar[k];
+    local_jacobian(bd.A, md.ebar[k], on_node ? &mk.phiE[k] : nullptr, false, md.Je[k]);
+  }
+  marker_rates(model, mk, data, md);
+}
+
+void marker_rates(const Model& model, const Marker& mk, const Data& data, MarkerData& md) {
+  if (mk.body == kGround) return;  // at rest; set by marker_kinematics
+  const Body& b = model.bodies[mk.body];
+  const BodyData& bd = data.bodies[mk.body];
+  const int o = b.offset;
+  const bool on_node = mk.node >= 0 && b.nq > 0;
   md.pd = data.qd.segment<3>(o);
   md.pd.noalias() += bd.Ad * md.xbar;
   md.pb.setZero();
-  local_jacobian(bd.A, md.xbar, on_node ? &mk.phi : nullptr, true, md.Jp);
   if (on_node) {
     const auto yd = data.qd.segment(o + 12, b.nq);
     const Vector3d py = mk.phi * yd;
@@ -52,11 +67,7 @@ void marker_kinematics(const Model& model, const Marker& mk, const Data& data, M
     md.pb.noalias() = 2.0 * bd.Ad * py;
   }
   for (int k = 0; k < 3; ++k) {
-    md.ebar[k] = mk.E.col(k);
-    if (on_node) md.ebar[k].noalias() += mk.phiE[k] * data.q.segment(o + 12, b.nq);
-    md.e[k].noalias() = bd.A * md.ebar[k];
     md.ed[k].noalias() = bd.Ad * md.ebar[k];
-    local_jacobian(bd.A, md.ebar[k], on_node ? &mk.phiE[k] : nullptr, false, md.Je[k]);
     if (on_node) {
       const Vector3d py = mk.phiE[k] * data.qd.segment(o + 12, b.nq);
       md.ed[k].noalias() += bd.A * py;
@@ -70,6 +81,10 @@ void marker_kinematics(const Model& model, const Marker& mk, const Data& data, M
 void update_markers(const Model& model, Data& data) {
   for (std::size_t i = 0; i < model.markers.size(); ++i)
     marker_kinematics(model, model.markers[i], data, data.markers[i]);
+}
+
+void update_marker_rates(const Model& model, Data& data) {
+  for (std::size_t i = 0; i < model.markers.size(); ++i) marker_rates(model, model.markers[i], data, data.markers[i]);
 }
 
 Vector3d initial_marker_position(const Model& model, const Marker& mk) {

@@ -15,6 +15,10 @@ namespace ffr::runtime {
 /// Phi, Phit, gamma and the Jacobian blocks at time t. Needs update_bodies and update_markers.
 void evaluate_constraints(const Model& model, Data& data, double t);
 
+/// Phi, Phit and gamma only, the Jacobian left as it is: for a change of the velocities at the
+/// same q (needs update_body_rates and update_marker_rates).
+void evaluate_constraint_biases(const Model& model, Data& data, double t);
+
 /// out += Phi_q^T lam.
 void add_constraint_forces(const Model& model, const Data& data, const VectorXd& lam, VectorXd& out);
 

@@ -21,8 +21,17 @@ void update_bodies(const Model& model, Data& data);
 /// Positions, axes, Jacobians and acceleration biases of every marker. Needs update_bodies.
 void update_markers(const Model& model, Data& data);
 
+/// After a change of the velocities only (q unchanged since update_bodies and update_markers):
+/// the velocity-dependent parts of bodies (frame rates, angular velocity, PPdm y_dot) and of
+/// markers (velocities, acceleration biases). Half the work of the full updates; the velocity
+/// projection's change of q_dot is all the acceleration projection needs redone.
+void update_body_rates(const Model& model, Data& data);
+void update_marker_rates(const Model& model, Data& data);
+
 /// One marker's kinematics (used for markers and for node loads). Allocation-free if md is sized.
 void marker_kinematics(const Model& model, const Marker& marker, const Data& data, MarkerData& md);
+/// Its velocity-dependent part alone (velocities and biases), from md's xbar and ebar.
+void marker_rates(const Model& model, const Marker& marker, const Data& data, MarkerData& md);
 
 /// Global position of a marker in the model's initial configuration (before any assembly).
 Vector3d initial_marker_position(const Model& model, const Marker& marker);
