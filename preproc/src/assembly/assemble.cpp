@@ -55,11 +55,12 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   const auto kernel = opt.kernel ? opt.kernel : [](const FeModel& m, const ElementRef& r) { return element_matrices(m, r); };
 
   const detail::Pattern pattern = detail::build_pattern(model, refs);
+  const unsigned nthreads = std::max(1u, opt.threads > 0 ? static_cast<unsigned>(opt.threads) : max_threads());
   Assembled out;
   out.elements = static_cast<Index>(refs.size());
-  pattern.make_matrix(out.K);
+  pattern.make_matrix(out.K, nthreads);
   if (!opt.stiffness_only) {
-    pattern.make_matrix(out.M);
+    pattern.make_matrix(out.M, nthreads);
     pattern.make_node_matrix(out.Ms);
   }
   for (const auto& pb : model.blocks) out.has_structural = out.has_structural || pb.kind != ElementKind::Solid;
@@ -78,7 +79,6 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   const auto blocks = detail::color_blocks(ents, static_cast<Index>(pattern.ent_dof0.size()), opt.block_elements);
   ents = {};
 
-  const unsigned nthreads = std::max(1u, opt.threads > 0 ? static_cast<unsigned>(opt.threads) : max_threads());
   std::vector<Sums> sums(nthreads);
   std::atomic<bool> failed{false};
   std::size_t done = 0;

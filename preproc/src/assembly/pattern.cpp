@@ -1,5 +1,7 @@
 #include "pattern.hpp"
 
+#include "../run_parts.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -102,21 +104,34 @@ Index Pattern::find(Index col_entity, Index row_entity) const {
   return static_cast<Index>(it - adj.begin());
 }
 
-void Pattern::make_matrix(SparseMatrix& A) const {
+void Pattern::make_matrix(SparseMatrix& A, unsigned threads) const {
   A.resize(num_dofs, num_dofs);
   A.resizeNonZeros(col_ptr.back());
   std::copy(col_ptr.begin(), col_ptr.end(), A.outerIndexPtr());
-  for (Index e = 0; e < static_cast<Index>(ent_ndof.size()); ++e) {
-    const int nd = ent_ndof[static_cast<std::size_t>(e)];
-    for (int a = 0; a < nd; ++a) {
-      Index pos = col_ptr[static_cast<std::size_t>(ent_dof0[static_cast<std::size_t>(e)] + a)];
-      for (Index k = adj_ptr[static_cast<std::size_t>(e)]; k < adj_ptr[static_cast<std::size_t>(e) + 1]; ++k) {
-        const Index b = adj[static_cast<std::size_t>(k)];
-        for (int r = 0; r < ent_ndof[static_cast<std::size_t>(b)]; ++r) A.innerIndexPtr()[pos++] = ent_dof0[static_cast<std::size_t>(b)] + r;
+  // Each entity writes the row indices and zero values of its own columns, so parts of the
+  // entities can be filled by separate threads. Why: this is the first touch of K's and M's
+  // 250 MB on the 100k plate, serial 0.15 s (mostly page faults), a third of the assembly at
+  // 2 threads. (Every stored entry is in a column of some entity's DOFs.)
+  const Index E = static_cast<Index>(ent_ndof.size());
+  const unsigned parts = col_ptr.back() < (Index{1} << 16) ? 1u : std::max(1u, threads);
+  run_parts(parts, [&](unsigned p) { return E * static_cast<Index>(p) / static_cast<Index>(parts); },
+            [&](unsigned, Index e0, Index e1) {
+    Index* inner = A.innerIndexPtr();
+    double* val = A.valuePtr();
+    for (Index e = e0; e < e1; ++e) {
+      const int nd = ent_ndof[static_cast<std::size_t>(e)];
+      if (nd == 0) continue;
+      const Index c0 = ent_dof0[static_cast<std::size_t>(e)];
+      std::fill(val + col_ptr[static_cast<std::size_t>(c0)], val + col_ptr[static_cast<std::size_t>(c0 + nd)], 0.0);
+      for (int a = 0; a < nd; ++a) {
+        Index pos = col_ptr[static_cast<std::size_t>(c0 + a)];
+        for (Index k = adj_ptr[static_cast<std::size_t>(e)]; k < adj_ptr[static_cast<std::size_t>(e) + 1]; ++k) {
+          const Index b = adj[static_cast<std::size_t>(k)];
+          for (int r = 0; r < ent_ndof[static_cast<std::size_t>(b)]; ++r) inner[pos++] = ent_dof0[static_cast<std::size_t>(b)] + r;
+        }
       }
     }
-  }
-  std::fill(A.valuePtr(), A.valuePtr() + col_ptr.back(), 0.0);
+  });
 }
 
 void Pattern::make_node_matrix(SparseMatrix& A) const {
