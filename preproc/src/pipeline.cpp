@@ -86,7 +86,8 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   stage("model: " + std::to_string(model.num_dofs) + " DOF, " + std::to_string(model.interfaces.size()) +
         " interface(s), " + std::to_string(model.masses.size()) + " attached mass(es) [" + fmt(sw.lap()) + " s]");
 
-  // 3. Assembly.
+  // 3. Assembly, with the eigen-solve's symbolic analysis on another thread meanwhile.
+  EarlyAnalysis early = EarlyAnalysis::start(model, part.reduction);
   AssemblyOptions aopt;
   aopt.progress = [&](double f) { progress("assembly " + std::to_string(static_cast<int>(100 * f)) + " %"); };
   Assembled fe = assemble(model, aopt);
@@ -102,8 +103,8 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   // Only the stiffening's static solves use K and M after the reduction; otherwise they are
   // freed before the factorization, the memory peak of the run.
   const bool keep_matrices = part.stiffening || !part.preload.empty();
-  ReductionResult red = keep_matrices ? reduce(model, fe, part.reduction, rlog)
-                                      : reduce_consuming_matrices(model, fe, part.reduction, rlog);
+  ReductionResult red = keep_matrices ? reduce(model, fe, part.reduction, rlog, &early)
+                                      : reduce_consuming_matrices(model, fe, part.reduction, rlog, &early);
   {
     std::string f;
     for (Index i = 0; i < std::min<Index>(red.lambda.size(), 6); ++i)

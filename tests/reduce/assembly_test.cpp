@@ -6,6 +6,7 @@
 #include "ffr/preproc/assembly/assembly.hpp"
 #include "ffr/preproc/model/fe_model.hpp"
 #include "ffr/preproc/visual/visual.hpp"
+#include "support.hpp"
 
 #include <algorithm>
 
@@ -17,42 +18,6 @@ using namespace ffr;
 using preproc::Index;
 
 namespace {
-
-// nx x ny x nz HEX8 cells of a unit-spaced grid (slightly sheared so that no two elements are
-// equal), one material group, interfaces on the x = 0 and x = nx faces.
-struct Grid {
-  preproc::Mesh mesh;
-  preproc::PartSpec part;
-  Grid(int nx, int ny, int nz) {
-    auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
-    mesh.x.resize((nx + 1) * (ny + 1) * (nz + 1), 3);
-    for (int k = 0; k <= nz; ++k)
-      for (int j = 0; j <= ny; ++j)
-        for (int i = 0; i <= nx; ++i) mesh.x.row(id(i, j, k)) << i + 0.1 * j, j + 0.05 * k, k + 0.02 * i;
-    preproc::ElementBlock b{preproc::ElementType::Hex8, "body", {}, {}};
-    for (int k = 0; k < nz; ++k)
-      for (int j = 0; j < ny; ++j)
-        for (int i = 0; i < nx; ++i)
-          for (int v : {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
-                        id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)})
-            b.conn.push_back(v);
-    mesh.blocks.push_back(b);
-    std::vector<Index> all, left, right;
-    for (int k = 0; k <= nz; ++k)
-      for (int j = 0; j <= ny; ++j) {
-        left.push_back(id(0, j, k));
-        right.push_back(id(nx, j, k));
-      }
-    for (Index n = 0; n < mesh.x.rows(); ++n) all.push_back(n);
-    mesh.node_groups["body"] = all;
-    mesh.node_groups["left"] = left;
-    mesh.node_groups["right"] = right;
-    part.file = "grid.json";
-    part.materials.push_back({"body", {2.1e11, 0.3, 7850.0}});
-    part.interfaces.push_back({"L", "left", "rigid", {}});
-    part.interfaces.push_back({"R", "right", "averaged", {}});
-  }
-};
 
 preproc::SparseMatrix triplet_sum(const preproc::FeModel& model, bool mass) {
   std::vector<Eigen::Triplet<double>> trip;
@@ -76,7 +41,7 @@ double relative_difference(const preproc::SparseMatrix& A, const preproc::Sparse
 }  // namespace
 
 TEST(Assembly, MatchesTheElementSumAndIsTheSameOnTwoThreads) {
-  Grid grid(9, 7, 5);
+  test::HexGrid grid(9, 7, 5);
   const auto model = preproc::build_model(grid.mesh, grid.part);
   preproc::AssemblyOptions one, two;
   one.threads = 1;
@@ -108,7 +73,7 @@ TEST(Assembly, MatchesTheElementSumAndIsTheSameOnTwoThreads) {
 // space-filling curve at import): the same grid with its nodes numbered in reverse, tags kept,
 // gives the same vertices, triangles and mode shapes.
 TEST(Surface, IsTheSameForAnyNodeNumbering) {
-  Grid g(3, 2, 2);
+  test::HexGrid g(3, 2, 2);
   const Index N = g.mesh.x.rows();
   for (Index n = 0; n < N; ++n) g.mesh.node_tags.push_back(static_cast<std::size_t>(n + 1));
   preproc::Mesh r = g.mesh;  // node i of r is node N - 1 - i of g

@@ -39,6 +39,37 @@ RunResult run(const std::string& command) {
 std::filesystem::path bin(const std::string& tool) { return std::filesystem::path(FFR_BINARY_DIR) / "bin" / tool; }
 std::filesystem::path source(const std::string& rel) { return std::filesystem::path(FFR_SOURCE_DIR) / rel; }
 
+HexGrid::HexGrid(int nx, int ny, int nz) {
+  using preproc::Index;
+  auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
+  mesh.x.resize((nx + 1) * (ny + 1) * (nz + 1), 3);
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) mesh.x.row(id(i, j, k)) << i + 0.1 * j, j + 0.05 * k, k + 0.02 * i;
+  preproc::ElementBlock b{preproc::ElementType::Hex8, "body", {}, {}};
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        for (int v : {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
+                      id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)})
+          b.conn.push_back(v);
+  mesh.blocks.push_back(b);
+  std::vector<Index> all, left, right;
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j) {
+      left.push_back(id(0, j, k));
+      right.push_back(id(nx, j, k));
+    }
+  for (Index n = 0; n < mesh.x.rows(); ++n) all.push_back(n);
+  mesh.node_groups["body"] = all;
+  mesh.node_groups["left"] = left;
+  mesh.node_groups["right"] = right;
+  part.file = "grid.json";
+  part.materials.push_back({"body", {2.1e11, 0.3, 7850.0}});
+  part.interfaces.push_back({"L", "left", "rigid", {}});
+  part.interfaces.push_back({"R", "right", "averaged", {}});
+}
+
 void write_text(const std::filesystem::path& p, const std::string& text) {
   std::ofstream f(p);
   f << text;

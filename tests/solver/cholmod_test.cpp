@@ -193,10 +193,19 @@ TEST(CholmodFactor, RefactorizationReusesAnalysisAndShiftedMatchesExplicit) {
   EXPECT_LT((SparseMatrix(shifted_upper(p.K, p.M, -3.0)) - ffr::test::upper(C)).norm(),
             1e-14 * C.norm());
   // Same pattern, new shift: no new analysis (the recorded analysis time is unchanged).
+  EXPECT_EQ(f.info().stats.analyses, 1);
   f.factorize_shifted(p.K, p.M, -5.0);
   EXPECT_EQ(f.info().stats.analyze_seconds, t_analyze);
+  EXPECT_EQ(f.info().stats.analyses, 1);
   const SparseMatrix C5 = p.K + 5.0 * p.M;
   EXPECT_LT((C5 * f.solve(B) - B).norm() / B.norm(), 1e-12);
+  // Another structure (the diagonal alone) is analysed anew: what a factor analysed before
+  // the assembly (EarlyAnalysis) relies on when its matrix is not the one it expected.
+  SparseMatrix D(p.K.rows(), p.K.cols());
+  D.setIdentity();
+  f.factorize(D);
+  EXPECT_EQ(f.info().stats.analyses, 2);
+  EXPECT_LT((f.solve(B) - B).norm() / B.norm(), 1e-15);
 }
 
 TEST(CholmodFactor, IndefiniteMatrixNamesTheColumn) {

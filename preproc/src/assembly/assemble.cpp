@@ -163,4 +163,10 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   return out;
 }
 
+SparseMatrix assembly_pattern(const FeModel& model, unsigned threads) {
+  SparseMatrix A;
+  detail::build_pattern(model, all_elements(model)).make_matrix(A, threads, 1.0);
+  return A;
+}
+
 }  // namespace ffr::preproc

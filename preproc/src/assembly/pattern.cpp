@@ -104,11 +104,11 @@ Index Pattern::find(Index col_entity, Index row_entity) const {
   return static_cast<Index>(it - adj.begin());
 }
 
-void Pattern::make_matrix(SparseMatrix& A, unsigned threads) const {
+void Pattern::make_matrix(SparseMatrix& A, unsigned threads, double value) const {
   A.resize(num_dofs, num_dofs);
   A.resizeNonZeros(col_ptr.back());
   std::copy(col_ptr.begin(), col_ptr.end(), A.outerIndexPtr());
-  // Each entity writes the row indices and zero values of its own columns, so parts of the
+  // Each entity writes the row indices and values of its own columns, so parts of the
   // entities can be filled by separate threads. Why: this is the first touch of K's and M's
   // 250 MB on the 100k plate, serial 0.15 s (mostly page faults), a third of the assembly at
   // 2 threads. (Every stored entry is in a column of some entity's DOFs.)
@@ -122,7 +122,7 @@ void Pattern::make_matrix(SparseMatrix& A, unsigned threads) const {
       const int nd = ent_ndof[static_cast<std::size_t>(e)];
       if (nd == 0) continue;
       const Index c0 = ent_dof0[static_cast<std::size_t>(e)];
-      std::fill(val + col_ptr[static_cast<std::size_t>(c0)], val + col_ptr[static_cast<std::size_t>(c0 + nd)], 0.0);
+      std::fill(val + col_ptr[static_cast<std::size_t>(c0)], val + col_ptr[static_cast<std::size_t>(c0 + nd)], value);
       for (int a = 0; a < nd; ++a) {
         Index pos = col_ptr[static_cast<std::size_t>(c0 + a)];
         for (Index k = adj_ptr[static_cast<std::size_t>(e)]; k < adj_ptr[static_cast<std::size_t>(e) + 1]; ++k) {

@@ -33,8 +33,9 @@ struct Pattern {
   Index entity_of_dof(const FeModel& m, Index d) const;
   /// A = the zero-valued matrix with the DOF pattern. Filled in place: Eigen 3.4's
   /// SparseMatrix has no move assignment, so `out.K = make()` copied K and M whole (245 MB of
-  /// fresh pages on the 100k plate). Filled by up to `threads` threads.
-  void make_matrix(SparseMatrix& A, unsigned threads = 1) const;
+  /// fresh pages on the 100k plate). Filled by up to `threads` threads, every stored value
+  /// set to `value`.
+  void make_matrix(SparseMatrix& A, unsigned threads = 1, double value = 0.0) const;
   void make_node_matrix(SparseMatrix& A) const;  ///< zero-valued num_nodes x num_nodes matrix
   /// The placement of an element with these global DOFs.
   Placement place(const std::vector<Index>& dofs, const FeModel& m) const;

@@ -2,6 +2,7 @@
 
 #include "ffr/formats/h5.hpp"
 #include "ffr/preproc/solver/eigen_solver.hpp"
+#include "setup.hpp"
 #include "sparse_ops.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -52,18 +53,6 @@ void check_no_zero_modes(const FeModel& model, const Eigen::VectorXd& lambda, co
   if (n > 0)
     mechanism(model, std::to_string(n) + " zero-frequency mode(s) " + held +
                          "; check that every piece is connected and enough of the part is held");
-}
-
-std::vector<InterfaceState> states_for(const FeModel& model, const ReductionSpec& spec) {
-  std::vector<InterfaceState> st(model.interfaces.size(), InterfaceState::Free);
-  if (spec.method == ReductionSpec::Method::Clamped) {
-    st.at(static_cast<std::size_t>(model.find_interface(spec.interface))) = InterfaceState::Held;
-  } else if (spec.method == ReductionSpec::Method::CraigBampton) {
-    for (const auto& name : spec.interfaces)
-      st.at(static_cast<std::size_t>(model.find_interface(name))) =
-          name == spec.frame ? InterfaceState::Held : InterfaceState::Boundary;
-  }
-  return st;
 }
 
 EigenOptions eigen_options(const ReductionSpec& spec, const PartSpec& part, double sigma) {
@@ -131,12 +120,19 @@ std::string factor_line(const FactorStatistics& f) {
   return o.str();
 }
 
+std::string seconds_text(double s) {
+  std::ostringstream o;
+  o.precision(3);
+  o << s << " s";
+  return o.str();
+}
+
 // Frees a matrix's storage (assigning an empty matrix keeps Eigen's allocation).
 void release(SparseMatrix& A) { SparseMatrix().swap(A); }
 
 // fe_owned: the same object as fe, when its K and M may be freed after use.
 ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled* fe_owned, const ReductionSpec& spec,
-                            const ReductionLog& log) {
+                            const ReductionLog& log, EarlyAnalysis* early) {
   const PartSpec& part = *model.part;
   auto say = [&](const std::string& s) { if (log.message) log.message(s); };
 
@@ -150,19 +146,14 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
   }
 
   auto clock = std::chrono::steady_clock::now();
-  const DofTransform t = build_transform(model, states_for(model, spec));
+  const DofTransform t = build_transform(model, detail::states_for(model, spec));
   // The eigen-solves need only the upper triangles (half the memory, and the products with
   // them read half the bytes); Craig-Bampton partitions K into blocks and keeps full storage.
   const bool cb = spec.method == ReductionSpec::Method::CraigBampton;
   const SymmetricStorage storage = cb ? SymmetricStorage::Full : SymmetricStorage::UpperOnly;
-  auto reduced = [&](const SparseMatrix& A) -> SparseMatrix {
-    if (!t.identity) return detail::congruence(t.T, A, !cb);
-    if (cb) return A;
-    return A.triangularView<Eigen::Upper>();
-  };
-  const SparseMatrix K = reduced(fe.K);
+  const SparseMatrix K = detail::constrained(t, fe.K, cb);
   if (fe_owned) release(fe_owned->K);
-  const SparseMatrix M = reduced(fe.M);
+  const SparseMatrix M = detail::constrained(t, fe.M, cb);
   if (fe_owned) release(fe_owned->M);
 
   ReductionResult r;
@@ -174,19 +165,21 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     // Free: a negative shift keeps K - sigma M definite while the rigid-body modes are deflated.
     const double sigma = free ? -lambda_of_hz(1.0, part) : -lambda_of_hz(0.1, part);
     EigenOptions o = eigen_options(spec, part, sigma);
-    if (free) {
-      o.deflation = rigid_body_modes(model, t);
-      o.factor.min_pivot_ratio = 0;  // definite by construction; tiny pivots only in the deflated space
-    }
+    o.factor = detail::shifted_factor_options(spec);
+    if (free) o.deflation = rigid_body_modes(model, t);
     say(std::string(free ? "free-free" : "clamped") + " eigen-solve: " + std::to_string(t.num_ind()) + " DOF, " +
         (spec.max_frequency_hz ? "up to " + std::to_string(*spec.max_frequency_hz) + " Hz" : std::to_string(o.nev) + " modes") +
         ", " + spec.backend);
     // Analyse first and report the factor's size, so a factor that will not fit is refused
     // (by factorize, with the numbers) after the user has seen what it would need.
     const double t_constraints = lap(clock);
-    CholmodFactor factor(o.factor);
     SparseMatrix C = shifted_upper(K, M, sigma);
-    say(factor_line(factor.analyze(C)));
+    std::unique_ptr<CholmodFactor> analysed = early ? early->take() : nullptr;
+    CholmodFactor factor = analysed ? std::move(*analysed) : CholmodFactor(o.factor);
+    // Analysed early, the factor keeps its analysis as long as C has the structure it was
+    // made for (factorize compares them).
+    say(factor_line(analysed ? factor.info().stats : factor.analyze(C)) +
+        (analysed ? ", analysed during the assembly in " + seconds_text(early->seconds()) : std::string()));
     const double t_analyze = lap(clock);
     double t_factorize = 0;
     EigenSolver solver(o);
@@ -292,13 +285,14 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
 
 }  // namespace
 
-ReductionResult reduce(const FeModel& model, const Assembled& fe, const ReductionSpec& spec, const ReductionLog& log) {
-  return reduce_impl(model, fe, nullptr, spec, log);
+ReductionResult reduce(const FeModel& model, const Assembled& fe, const ReductionSpec& spec, const ReductionLog& log,
+                       EarlyAnalysis* early) {
+  return reduce_impl(model, fe, nullptr, spec, log, early);
 }
 
 ReductionResult reduce_consuming_matrices(const FeModel& model, Assembled& fe, const ReductionSpec& spec,
-                                          const ReductionLog& log) {
-  return reduce_impl(model, fe, &fe, spec, log);
+                                          const ReductionLog& log, EarlyAnalysis* early) {
+  return reduce_impl(model, fe, &fe, spec, log, early);
 }
 
 }  // namespace ffr::preproc

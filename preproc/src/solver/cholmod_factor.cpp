@@ -1,6 +1,7 @@
 #include "ffr/preproc/solver/cholmod_factor.hpp"
 
 #include "cholmod_bridge.hpp"
+#include "library_threads.hpp"
 #include "nodal_ordering.hpp"
 #include "supernodal_solve.hpp"
 #include "ffr/preproc/solver/memory.hpp"
@@ -84,6 +85,7 @@ struct CholmodFactor::Impl {
   cholmod_factor* L = nullptr;
   bool numeric = false;  // L holds numeric values (possibly of a failed factorization)
   std::uint64_t pattern = 0;
+  int analyses = 0;  // symbolic analyses done by this factor
   FactorInfo info;
   // The substitutions on L's numeric values (and their workspace, reused across calls so the
   // Lanczos loop does not allocate); set by each successful factorization.
@@ -149,6 +151,7 @@ void CholmodFactor::Impl::analyze(const SparseMatrix& A) {
   if (!L->is_super) fail("symbolic analysis did not produce a supernodal factor");
 
   FactorStatistics& s = info.stats;
+  s.analyses = ++analyses;
   s.analyze_seconds = seconds_since(t0);
   s.n = A.rows();
   s.nnz_A = upper_nnz;
@@ -227,6 +230,9 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
 
   cholmod_common* c = common.get();
   cholmod_sparse view = detail::view_upper(A);
+  // Set where the factor's Common was made, but the ICV belongs to each thread, and the
+  // factor may have been analysed on another one (EarlyAnalysis).
+  detail::keep_openmp_on_this_thread();
   const auto t0 = Clock::now();
   solver.reset();
   const int ok = cholmod_l_factorize(&view, L, c);

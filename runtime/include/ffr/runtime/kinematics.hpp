@@ -23,7 +23,7 @@ void update_markers(const Model& model, Data& data);
 
 /// After a change of the velocities only (q unchanged since update_bodies and update_markers):
 /// the velocity-dependent parts of bodies (frame rates, angular velocity, PPdm y_dot) and of
-/// markers (velocities, acceleration biases). Half the work of the full updates; the velocity
+/// markers (velocities, acceleration biases), without the Jacobians. The velocity
 /// projection's change of q_dot is all the acceleration projection needs redone.
 void update_body_rates(const Model& model, Data& data);
 void update_marker_rates(const Model& model, Data& data);

@@ -63,4 +63,8 @@ struct Assembled {
 /// formats::FormatError naming the mesh file and the element tag and group.
 Assembled assemble(const FeModel& model, const AssemblyOptions& options = {});
 
+/// The structure assemble() gives K and M (both have the same), every stored value 1, without
+/// integrating a single element: all a symbolic factorization needs (EarlyAnalysis).
+SparseMatrix assembly_pattern(const FeModel& model, unsigned threads = 1);
+
 }  // namespace ffr::preproc

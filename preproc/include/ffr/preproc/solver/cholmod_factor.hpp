@@ -62,6 +62,7 @@ struct FactorStatistics {
   std::uint64_t peak_bytes = 0;    ///< estimated peak during factorization (factor + workspace)
   std::string ordering;            ///< ordering actually used (L->ordering): "METIS", "AMD", ...
   std::int64_t ordering_vertices = 0;  ///< vertices of the graph ordered: n, or the nodes (METIS on the node graph)
+  int analyses = 0;                ///< symbolic analyses this factor has done (factorize adds one for a new structure)
   double analyze_seconds = 0;
   double factorize_seconds = 0;
   double rcond = 0;                ///< CHOLMOD's min(L_jj^2)/max(L_jj^2) after factorize

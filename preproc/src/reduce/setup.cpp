@@ -1,0 +1,33 @@
+#include "setup.hpp"
+
+#include "sparse_ops.hpp"
+
+namespace ffr::preproc::detail {
+
+std::vector<InterfaceState> states_for(const FeModel& model, const ReductionSpec& spec) {
+  std::vector<InterfaceState> st(model.interfaces.size(), InterfaceState::Free);
+  if (spec.method == ReductionSpec::Method::Clamped) {
+    st.at(static_cast<std::size_t>(model.find_interface(spec.interface))) = InterfaceState::Held;
+  } else if (spec.method == ReductionSpec::Method::CraigBampton) {
+    for (const auto& name : spec.interfaces)
+      st.at(static_cast<std::size_t>(model.find_interface(name))) =
+          name == spec.frame ? InterfaceState::Held : InterfaceState::Boundary;
+  }
+  return st;
+}
+
+SparseMatrix constrained(const DofTransform& t, const SparseMatrix& A, bool full) {
+  if (!t.identity) return congruence(t.T, A, !full);
+  if (full) return A;
+  return A.triangularView<Eigen::Upper>();
+}
+
+FactorOptions shifted_factor_options(const ReductionSpec& spec) {
+  FactorOptions f;
+  f.memory_limit_bytes = spec.memory_limit_bytes;
+  // Free: definite by construction (negative shift); tiny pivots only in the deflated space.
+  if (spec.method == ReductionSpec::Method::Free) f.min_pivot_ratio = 0;
+  return f;
+}
+
+}  // namespace ffr::preproc::detail

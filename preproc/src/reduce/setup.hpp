@@ -1,0 +1,23 @@
+#pragma once
+// What the reductions and their early symbolic analysis (EarlyAnalysis) must build alike: the
+// interface states of a method, the constrained matrices and the factor options of the free
+// and clamped eigen-solves.
+#include "ffr/preproc/model/constraints.hpp"
+#include "ffr/preproc/part/part.hpp"
+#include "ffr/preproc/solver/cholmod_factor.hpp"
+
+#include <vector>
+
+namespace ffr::preproc::detail {
+
+/// The state of every interface under the reduction (held, boundary or free).
+std::vector<InterfaceState> states_for(const FeModel& model, const ReductionSpec& spec);
+
+/// T^T A T over the independent DOFs: its upper triangle for the eigen-solves, the full
+/// matrix for Craig-Bampton (which partitions it into blocks).
+SparseMatrix constrained(const DofTransform& t, const SparseMatrix& A, bool full);
+
+/// Options of the factorization of K - sigma M for the free and clamped methods.
+FactorOptions shifted_factor_options(const ReductionSpec& spec);
+
+}  // namespace ffr::preproc::detail

@@ -1,0 +1,105 @@
+// The eigen-solve's symbolic analysis started before the assembly (EarlyAnalysis) against the
+// one made afterwards from the assembled K and M: the same factor structure, no second
+// analysis at the factorization, and bit for bit the same modes, for a clamped (rigid spider
+// held) and a free-free reduction. Bad input reaches the reduction as before.
+#include "ffr/formats/h5.hpp"
+#include "ffr/preproc/assembly/assembly.hpp"
+#include "ffr/preproc/model/fe_model.hpp"
+#include "ffr/preproc/reduce/reduction.hpp"
+#include "ffr/preproc/threads.hpp"
+#include "support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+using namespace ffr;
+
+namespace {
+
+// Two threads for the test (EarlyAnalysis starts only with two or more), restored after it.
+struct TwoThreads {
+  unsigned before = preproc::max_threads();
+  TwoThreads() { preproc::set_max_threads(2); }
+  ~TwoThreads() { preproc::set_max_threads(before); }
+};
+
+preproc::ReductionSpec clamped() {
+  preproc::ReductionSpec s;
+  s.method = preproc::ReductionSpec::Method::Clamped;
+  s.interface = "L";
+  s.modes = 6;
+  return s;
+}
+
+preproc::ReductionSpec free_free() {
+  preproc::ReductionSpec s;
+  s.method = preproc::ReductionSpec::Method::Free;
+  s.modes = 6;
+  return s;
+}
+
+}  // namespace
+
+TEST(EarlyAnalysis, GivesTheSameFactorAndModesWithoutAnalysingAgain) {
+  TwoThreads two;
+  test::HexGrid grid(12, 4, 3);
+  const auto model = preproc::build_model(grid.mesh, grid.part);
+  for (const auto& spec : {clamped(), free_free()}) {
+    SCOPED_TRACE(spec.method == preproc::ReductionSpec::Method::Free ? "free" : "clamped");
+    preproc::EarlyAnalysis early = preproc::EarlyAnalysis::start(model, spec);
+    ASSERT_TRUE(early.started());
+    const preproc::Assembled fe = preproc::assemble(model);
+    std::vector<std::string> lines;
+    preproc::ReductionLog log;
+    log.message = [&](const std::string& s) { lines.push_back(s); };
+    const auto with = preproc::reduce(model, fe, spec, log, &early);
+    const auto without = preproc::reduce(model, fe, spec);
+    // One analysis each: the early one was used as it was.
+    EXPECT_EQ(with.factor.analyses, 1);
+    EXPECT_EQ(without.factor.analyses, 1);
+    EXPECT_EQ(with.factor.nnz_A, without.factor.nnz_A);
+    EXPECT_EQ(with.factor.nnz_L, without.factor.nnz_L);
+    EXPECT_EQ(with.factor.factor_entries, without.factor.factor_entries);
+    EXPECT_EQ(with.factor.supernodes, without.factor.supernodes);
+    EXPECT_EQ(with.factor.ordering_vertices, without.factor.ordering_vertices);
+    bool said = false;
+    for (const auto& l : lines) said = said || l.find("analysed during the assembly") != std::string::npos;
+    EXPECT_TRUE(said);
+    ASSERT_EQ(with.lambda.size(), 6);
+    EXPECT_EQ(with.lambda, without.lambda);
+    EXPECT_EQ(with.Phi, without.Phi);
+  }
+}
+
+TEST(EarlyAnalysis, StartsOnlyWhereItHelpsAndLeavesBadInputToTheReduction) {
+  test::HexGrid grid(3, 2, 2);
+  const auto model = preproc::build_model(grid.mesh, grid.part);
+  {
+    preproc::set_max_threads(1);
+    EXPECT_FALSE(preproc::EarlyAnalysis::start(model, clamped()).started());
+  }
+  TwoThreads two;
+  preproc::ReductionSpec cb;
+  cb.method = preproc::ReductionSpec::Method::CraigBampton;
+  cb.interfaces = {"L", "R"};
+  cb.frame = "L";
+  EXPECT_FALSE(preproc::EarlyAnalysis::start(model, cb).started());
+  // Overlapping interface groups (refused by the constraints): no factor from the early
+  // analysis, and the reduction's own error, as without it.
+  test::HexGrid overlap(3, 2, 2);
+  overlap.part.interfaces.push_back({"L2", "left", "rigid", {}});
+  const auto bad = preproc::build_model(overlap.mesh, overlap.part);
+  preproc::EarlyAnalysis early = preproc::EarlyAnalysis::start(bad, free_free());
+  ASSERT_TRUE(early.started());
+  EXPECT_EQ(early.take(), nullptr);
+  preproc::EarlyAnalysis again = preproc::EarlyAnalysis::start(bad, free_free());
+  const preproc::Assembled fe = preproc::assemble(bad);
+  try {
+    preproc::reduce(bad, fe, free_free(), {}, &again);
+    FAIL() << "overlapping interface groups were accepted";
+  } catch (const formats::FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("must not overlap"), std::string::npos) << e.what();
+  }
+}
