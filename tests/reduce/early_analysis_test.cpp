@@ -1,7 +1,8 @@
 // The eigen-solve's symbolic analysis started before the assembly (EarlyAnalysis) against the
 // one made afterwards from the assembled K and M: the same factor structure, no second
 // analysis at the factorization, and bit for bit the same modes, for a clamped (rigid spider
-// held) and a free-free reduction. Bad input reaches the reduction as before.
+// held), a free-free and a Craig-Bampton reduction. It starts with two threads only; bad input
+// reaches the reduction as before.
 #include "ffr/formats/h5.hpp"
 #include "ffr/preproc/assembly/assembly.hpp"
 #include "ffr/preproc/model/fe_model.hpp"
@@ -40,14 +41,32 @@ preproc::ReductionSpec free_free() {
   return s;
 }
 
+preproc::ReductionSpec craig_bampton() {
+  preproc::ReductionSpec s;
+  s.method = preproc::ReductionSpec::Method::CraigBampton;
+  s.interfaces = {"L", "R"};
+  s.frame = "L";
+  s.modes = 6;
+  return s;
+}
+
+const char* name(const preproc::ReductionSpec& s) {
+  switch (s.method) {
+    case preproc::ReductionSpec::Method::Free: return "free";
+    case preproc::ReductionSpec::Method::Clamped: return "clamped";
+    case preproc::ReductionSpec::Method::CraigBampton: return "craig-bampton";
+  }
+  return "?";
+}
+
 }  // namespace
 
 TEST(EarlyAnalysis, GivesTheSameFactorAndModesWithoutAnalysingAgain) {
   TwoThreads two;
   test::HexGrid grid(12, 4, 3);
   const auto model = preproc::build_model(grid.mesh, grid.part);
-  for (const auto& spec : {clamped(), free_free()}) {
-    SCOPED_TRACE(spec.method == preproc::ReductionSpec::Method::Free ? "free" : "clamped");
+  for (const auto& spec : {clamped(), free_free(), craig_bampton()}) {
+    SCOPED_TRACE(name(spec));
     preproc::EarlyAnalysis early = preproc::EarlyAnalysis::start(model, spec);
     ASSERT_TRUE(early.started());
     const preproc::Assembled fe = preproc::assemble(model);
@@ -67,25 +86,22 @@ TEST(EarlyAnalysis, GivesTheSameFactorAndModesWithoutAnalysingAgain) {
     bool said = false;
     for (const auto& l : lines) said = said || l.find("analysed during the assembly") != std::string::npos;
     EXPECT_TRUE(said);
-    ASSERT_EQ(with.lambda.size(), 6);
+    ASSERT_EQ(with.lambda.size(), spec.method == preproc::ReductionSpec::Method::CraigBampton ? 12 : 6);
     EXPECT_EQ(with.lambda, without.lambda);
     EXPECT_EQ(with.Phi, without.Phi);
   }
 }
 
-TEST(EarlyAnalysis, StartsOnlyWhereItHelpsAndLeavesBadInputToTheReduction) {
+TEST(EarlyAnalysis, NeedsTwoThreadsAndLeavesBadInputToTheReduction) {
   test::HexGrid grid(3, 2, 2);
   const auto model = preproc::build_model(grid.mesh, grid.part);
   {
+    const unsigned before = preproc::max_threads();
     preproc::set_max_threads(1);
     EXPECT_FALSE(preproc::EarlyAnalysis::start(model, clamped()).started());
+    preproc::set_max_threads(before);
   }
   TwoThreads two;
-  preproc::ReductionSpec cb;
-  cb.method = preproc::ReductionSpec::Method::CraigBampton;
-  cb.interfaces = {"L", "R"};
-  cb.frame = "L";
-  EXPECT_FALSE(preproc::EarlyAnalysis::start(model, cb).started());
   // Overlapping interface groups (refused by the constraints): no factor from the early
   // analysis, and the reduction's own error, as without it.
   test::HexGrid overlap(3, 2, 2);

@@ -3,6 +3,7 @@
 #include "ffr/preproc/reduce/reduction.hpp"
 #include "ffr/preproc/threads.hpp"
 #include "setup.hpp"
+#include "sparse_ops.hpp"
 
 #include <chrono>
 #ifdef __GLIBC__
@@ -31,21 +32,24 @@ EarlyAnalysis::~EarlyAnalysis() { take(); }
 
 EarlyAnalysis EarlyAnalysis::start(const FeModel& model, const ReductionSpec& spec) {
   EarlyAnalysis e;
-  if (spec.method == ReductionSpec::Method::CraigBampton || max_threads() < 2) return e;
+  if (max_threads() < 2) return e;
   e.state_ = std::make_unique<State>();
   State* s = e.state_.get();
   // The state lives on the heap, so the thread's pointer stays valid when `e` is moved.
   s->thread = std::thread([s, &model, spec] {
     const auto t0 = std::chrono::steady_clock::now();
     try {
-      // The structure of K - sigma M is that of the constrained K (M has K's structure).
+      // The structure of K - sigma M is that of the constrained K (M has K's structure); for
+      // Craig-Bampton, that of the constrained K's interior block.
       const DofTransform t = build_transform(model, detail::states_for(model, spec));
       SparseMatrix C;
       {
-        const SparseMatrix P = assembly_pattern(model);
-        C = detail::constrained(t, P, false);
+        const bool cb = spec.method == ReductionSpec::Method::CraigBampton;
+        const SparseMatrix P = detail::constrained(t, assembly_pattern(model), cb);
+        C = cb ? detail::congruence(detail::selection(P.rows(), detail::interior_of(P.rows(), detail::boundary_dofs(model, t, spec))), P)
+               : P;
       }
-      auto f = std::make_unique<CholmodFactor>(detail::shifted_factor_options(spec));
+      auto f = std::make_unique<CholmodFactor>(detail::eigen_factor_options(spec));
       f->analyze(C);
       s->factor = std::move(f);
       C = SparseMatrix();

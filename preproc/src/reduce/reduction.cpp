@@ -120,11 +120,16 @@ std::string factor_line(const FactorStatistics& f) {
   return o.str();
 }
 
-std::string seconds_text(double s) {
-  std::ostringstream o;
-  o.precision(3);
-  o << s << " s";
-  return o.str();
+// The factor line, and where the analysis was done when it was done early.
+std::string analysed_line(const FactorStatistics& f, const EarlyAnalysis* early) {
+  std::string s = factor_line(f);
+  if (early) {
+    std::ostringstream o;
+    o.precision(3);
+    o << ", analysed during the assembly in " << early->seconds() << " s";
+    s += o.str();
+  }
+  return s;
 }
 
 // Frees a matrix's storage (assigning an empty matrix keeps Eigen's allocation).
@@ -165,7 +170,7 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     // Free: a negative shift keeps K - sigma M definite while the rigid-body modes are deflated.
     const double sigma = free ? -lambda_of_hz(1.0, part) : -lambda_of_hz(0.1, part);
     EigenOptions o = eigen_options(spec, part, sigma);
-    o.factor = detail::shifted_factor_options(spec);
+    o.factor = detail::eigen_factor_options(spec);
     if (free) o.deflation = rigid_body_modes(model, t);
     say(std::string(free ? "free-free" : "clamped") + " eigen-solve: " + std::to_string(t.num_ind()) + " DOF, " +
         (spec.max_frequency_hz ? "up to " + std::to_string(*spec.max_frequency_hz) + " Hz" : std::to_string(o.nev) + " modes") +
@@ -178,8 +183,7 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     CholmodFactor factor = analysed ? std::move(*analysed) : CholmodFactor(o.factor);
     // Analysed early, the factor keeps its analysis as long as C has the structure it was
     // made for (factorize compares them).
-    say(factor_line(analysed ? factor.info().stats : factor.analyze(C)) +
-        (analysed ? ", analysed during the assembly in " + seconds_text(early->seconds()) : std::string()));
+    say(analysed_line(analysed ? factor.info().stats : factor.analyze(C), analysed ? early : nullptr));
     const double t_analyze = lap(clock);
     double t_factorize = 0;
     EigenSolver solver(o);
@@ -204,20 +208,14 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     if (!free) params["interface"] = spec.interface;
   } else {
     // Craig–Bampton: boundary = the six DOFs of every non-frame interface node.
-    std::vector<Index> boundary;
-    for (const auto& name : spec.interfaces) {
-      if (name == spec.frame) continue;
-      const Index d0 = model.interfaces[static_cast<std::size_t>(model.find_interface(name))].dof;
-      for (int a = 0; a < 6; ++a) boundary.push_back(t.ind_of_full[static_cast<std::size_t>(d0 + a)]);
-    }
+    const std::vector<Index> boundary = detail::boundary_dofs(model, t, spec);
     const auto split = detail::split(K, M, boundary);
     say("craig-bampton: " + std::to_string(boundary.size()) + " boundary DOF, " +
         std::to_string(split.interior.size()) + " interior DOF");
     const double t_constraints = lap(clock);
-    FactorOptions fo;
-    fo.memory_limit_bytes = spec.memory_limit_bytes;
-    CholmodFactor factor(fo);
-    say(factor_line(factor.analyze(split.Kii)));
+    std::unique_ptr<CholmodFactor> analysed = early ? early->take() : nullptr;
+    CholmodFactor factor = analysed ? std::move(*analysed) : CholmodFactor(detail::eigen_factor_options(spec));
+    say(analysed_line(analysed ? factor.info().stats : factor.analyze(split.Kii), analysed ? early : nullptr));
     const double t_analyze = lap(clock);
     try {
       factor.factorize(split.Kii);

@@ -22,12 +22,22 @@ SparseMatrix constrained(const DofTransform& t, const SparseMatrix& A, bool full
   return A.triangularView<Eigen::Upper>();
 }
 
-FactorOptions shifted_factor_options(const ReductionSpec& spec) {
+FactorOptions eigen_factor_options(const ReductionSpec& spec) {
   FactorOptions f;
   f.memory_limit_bytes = spec.memory_limit_bytes;
   // Free: definite by construction (negative shift); tiny pivots only in the deflated space.
   if (spec.method == ReductionSpec::Method::Free) f.min_pivot_ratio = 0;
   return f;
+}
+
+std::vector<Index> boundary_dofs(const FeModel& model, const DofTransform& t, const ReductionSpec& spec) {
+  std::vector<Index> boundary;
+  for (const auto& name : spec.interfaces) {
+    if (name == spec.frame) continue;
+    const Index d0 = model.interfaces[static_cast<std::size_t>(model.find_interface(name))].dof;
+    for (int a = 0; a < 6; ++a) boundary.push_back(t.ind_of_full[static_cast<std::size_t>(d0 + a)]);
+  }
+  return boundary;
 }
 
 }  // namespace ffr::preproc::detail

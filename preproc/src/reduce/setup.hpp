@@ -17,7 +17,11 @@ std::vector<InterfaceState> states_for(const FeModel& model, const ReductionSpec
 /// matrix for Craig-Bampton (which partitions it into blocks).
 SparseMatrix constrained(const DofTransform& t, const SparseMatrix& A, bool full);
 
-/// Options of the factorization of K - sigma M for the free and clamped methods.
-FactorOptions shifted_factor_options(const ReductionSpec& spec);
+/// Options of the factorization the eigen-solve uses: K - sigma M for the free and clamped
+/// methods, K_ii (the interior block) for Craig-Bampton.
+FactorOptions eigen_factor_options(const ReductionSpec& spec);
+
+/// Craig-Bampton: the independent DOFs of the boundary, the six of every non-frame interface node.
+std::vector<Index> boundary_dofs(const FeModel& model, const DofTransform& t, const ReductionSpec& spec);
 
 }  // namespace ffr::preproc::detail

@@ -81,12 +81,19 @@ struct Split {
 };
 
 /// Partitions K and M into interior and boundary DOFs.
+/// The DOFs of 0..n-1 that are not in `boundary`, ascending.
+inline std::vector<std::int64_t> interior_of(std::int64_t n, const std::vector<std::int64_t>& boundary) {
+  std::vector<bool> is_b(static_cast<std::size_t>(n), false);
+  for (auto b : boundary) is_b[static_cast<std::size_t>(b)] = true;
+  std::vector<std::int64_t> interior;
+  for (std::int64_t i = 0; i < n; ++i)
+    if (!is_b[static_cast<std::size_t>(i)]) interior.push_back(i);
+  return interior;
+}
+
 inline Split split(const SparseMatrix& K, const SparseMatrix& M, const std::vector<std::int64_t>& boundary) {
   Split s;
-  std::vector<bool> is_b(static_cast<std::size_t>(K.rows()), false);
-  for (auto b : boundary) is_b[static_cast<std::size_t>(b)] = true;
-  for (std::int64_t i = 0; i < K.rows(); ++i)
-    if (!is_b[static_cast<std::size_t>(i)]) s.interior.push_back(i);
+  s.interior = interior_of(K.rows(), boundary);
   const SparseMatrix Si = selection(K.rows(), s.interior), Sb = selection(K.rows(), boundary);
   s.Kii = congruence(Si, K);
   s.Mii = congruence(Si, M);

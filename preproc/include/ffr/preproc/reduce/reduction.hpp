@@ -39,13 +39,14 @@ struct ReductionResult {
   std::string backend;
 };
 
-/// The symbolic analysis of the free or clamped eigen-solve's K - sigma M, run on another
-/// thread while the caller assembles K and M. It needs their structure only (the mesh's
-/// connectivity and the interface constraints), so METIS and CHOLMOD's symbolic factorization,
-/// serial and 0.6-0.7 s of the 100k-DOF plate, overlap the element integration. Started only
-/// with two or more threads (max_threads()) and for those two methods; otherwise empty, and
-/// reduce() analyses as before. The factor is the same either way: the analysis reads the
-/// structure only, and a factorization of a matrix of another structure analyses it anew.
+/// The symbolic analysis of the matrix the eigen-solve factorizes (K - sigma M for the free and
+/// clamped methods, the interior block K_ii for Craig-Bampton), run on another thread while
+/// the caller assembles K and M. It needs their structure only (the mesh's connectivity and the
+/// interface constraints), so METIS and CHOLMOD's symbolic factorization, serial and 0.6-0.7 s
+/// of the 100k-DOF plate, overlap the element integration. Started only with two or more
+/// threads (max_threads()); otherwise empty, and reduce() analyses as before. The factor is the
+/// same either way: the analysis reads the structure only, and a factorization of a matrix of
+/// another structure analyses it anew.
 class EarlyAnalysis {
  public:
   EarlyAnalysis() noexcept;
