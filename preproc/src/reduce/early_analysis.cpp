@@ -1,5 +1,5 @@
-// EarlyAnalysis: the structure of the constrained K - sigma M from the mesh and the interfaces
-// alone, and its symbolic factorization, on a thread of its own (reduction.hpp).
+// EarlyAnalysis: the structure of the matrix the eigen-solve factorizes, from the mesh and the
+// interfaces alone, and its symbolic factorization, on a thread of its own (reduction.hpp).
 #include "ffr/preproc/reduce/reduction.hpp"
 #include "ffr/preproc/threads.hpp"
 #include "setup.hpp"
@@ -42,12 +42,12 @@ EarlyAnalysis EarlyAnalysis::start(const FeModel& model, const ReductionSpec& sp
       // The structure of K - sigma M is that of the constrained K (M has K's structure); for
       // Craig-Bampton, that of the constrained K's interior block.
       const DofTransform t = build_transform(model, detail::states_for(model, spec));
-      SparseMatrix C;
-      {
-        const bool cb = spec.method == ReductionSpec::Method::CraigBampton;
-        const SparseMatrix P = detail::constrained(t, assembly_pattern(model), cb);
-        C = cb ? detail::congruence(detail::selection(P.rows(), detail::interior_of(P.rows(), detail::boundary_dofs(model, t, spec))), P)
-               : P;
+      const bool cb = spec.method == ReductionSpec::Method::CraigBampton;
+      SparseMatrix C = detail::constrained(t, assembly_pattern(model), cb);
+      if (cb) {
+        const auto interior = detail::interior_of(C.rows(), detail::boundary_dofs(model, t, spec));
+        SparseMatrix Kii = detail::congruence(detail::selection(C.rows(), interior), C);
+        C.swap(Kii);  // (Eigen 3.4's SparseMatrix has no move assignment)
       }
       auto f = std::make_unique<CholmodFactor>(detail::eigen_factor_options(spec));
       f->analyze(C);
