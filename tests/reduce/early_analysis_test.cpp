@@ -102,6 +102,12 @@ TEST(EarlyAnalysis, NeedsTwoThreadsAndLeavesBadInputToTheReduction) {
     preproc::set_max_threads(before);
   }
   TwoThreads two;
+  {
+    // Left without take() (an error upstream): the destructor waits for the thread, which
+    // skips the analysis if it has not begun it.
+    preproc::EarlyAnalysis left = preproc::EarlyAnalysis::start(model, clamped());
+    EXPECT_TRUE(left.started());
+  }
   // Overlapping interface groups (refused by the constraints): no factor from the early
   // analysis, and the reduction's own error, as without it.
   test::HexGrid overlap(3, 2, 2);

@@ -5,6 +5,7 @@
 #include "setup.hpp"
 #include "sparse_ops.hpp"
 
+#include <atomic>
 #include <chrono>
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -15,6 +16,7 @@ namespace ffr::preproc {
 
 struct EarlyAnalysis::State {
   std::thread thread;
+  std::atomic<bool> cancel{false};  ///< nobody will take the factor (an error upstream)
   std::unique_ptr<CholmodFactor> factor;  ///< analysed, or null after a failure
   double seconds = 0;
 };
@@ -23,12 +25,20 @@ EarlyAnalysis::EarlyAnalysis() noexcept = default;
 EarlyAnalysis::EarlyAnalysis(EarlyAnalysis&&) noexcept = default;
 EarlyAnalysis& EarlyAnalysis::operator=(EarlyAnalysis&& o) noexcept {
   if (this != &o) {
-    take();
+    abandon();
     state_ = std::move(o.state_);
   }
   return *this;
 }
-EarlyAnalysis::~EarlyAnalysis() { take(); }
+EarlyAnalysis::~EarlyAnalysis() { abandon(); }
+
+void EarlyAnalysis::abandon() noexcept {
+  // Left without take(): the assembly or the reduction failed before the factorization. The
+  // thread skips the analysis if it has not begun it, so the error is not held up by METIS.
+  if (!state_) return;
+  state_->cancel = true;
+  if (state_->thread.joinable()) state_->thread.join();
+}
 
 EarlyAnalysis EarlyAnalysis::start(const FeModel& model, const ReductionSpec& spec) {
   EarlyAnalysis e;
@@ -49,6 +59,7 @@ EarlyAnalysis EarlyAnalysis::start(const FeModel& model, const ReductionSpec& sp
         SparseMatrix Kii = detail::congruence(detail::selection(C.rows(), interior), C);
         C.swap(Kii);  // (Eigen 3.4's SparseMatrix has no move assignment)
       }
+      if (s->cancel) return;
       auto f = std::make_unique<CholmodFactor>(detail::eigen_factor_options(spec));
       f->analyze(C);
       s->factor = std::move(f);

@@ -50,7 +50,8 @@ struct ReductionResult {
 class EarlyAnalysis {
  public:
   EarlyAnalysis() noexcept;
-  /// `model` must outlive the analysis (the destructor or take() waits for it).
+  /// `model` must outlive the analysis (take() and the destructor wait for it; the destructor
+  /// first tells it to skip what it has not begun).
   static EarlyAnalysis start(const FeModel& model, const ReductionSpec& spec);
   EarlyAnalysis(EarlyAnalysis&&) noexcept;
   EarlyAnalysis& operator=(EarlyAnalysis&&) noexcept;
@@ -64,6 +65,7 @@ class EarlyAnalysis {
   double seconds() const;
 
  private:
+  void abandon() noexcept;
   struct State;
   std::unique_ptr<State> state_;
 };
