@@ -81,6 +81,22 @@ struct Split {
 };
 
 /// Partitions K and M into interior and boundary DOFs.
+/// Whether A and B store the same entries (same size, column starts and row indices).
+inline bool same_structure(const SparseMatrix& A, const SparseMatrix& B) {
+  if (A.rows() != B.rows() || A.cols() != B.cols() || A.nonZeros() != B.nonZeros() || !A.isCompressed() ||
+      !B.isCompressed())
+    return false;
+  return std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1, B.outerIndexPtr()) &&
+         std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), B.innerIndexPtr());
+}
+
+/// A += s B entry by entry, for B of A's structure (same_structure).
+inline void add_scaled_values(SparseMatrix& A, const SparseMatrix& B, double s) {
+  double* a = A.valuePtr();
+  const double* b = B.valuePtr();
+  for (std::int64_t k = 0; k < A.nonZeros(); ++k) a[k] += s * b[k];
+}
+
 /// The DOFs of 0..n-1 that are not in `boundary`, ascending.
 inline std::vector<std::int64_t> interior_of(std::int64_t n, const std::vector<std::int64_t>& boundary) {
   std::vector<bool> is_b(static_cast<std::size_t>(n), false);
