@@ -35,3 +35,33 @@ TEST(Reduction, ReducedMatricesAreThoseOfTheAssembledOnes) {
     }
   }
 }
+
+// A K that does not share M's structure (here an explicitly stored zero coupling two interior
+// nodes that no element joins) takes the other path: K - sigma M as a matrix of its own. The
+// modes are those of the same K without the zero, to the rounding of a different factor.
+TEST(Reduction, StiffnessOfAnotherStructureThanTheMassGivesTheSameModes) {
+  test::HexGrid grid(12, 4, 3);
+  const auto model = preproc::build_model(grid.mesh, grid.part);
+  const preproc::Assembled fe = preproc::assemble(model);
+  preproc::Assembled other = preproc::assemble(model);
+  const auto id = [](int i, int j, int k) { return (k * 5 + j) * 13 + i; };  // HexGrid(12, 4, 3)
+  const preproc::Index a = model.dof(id(2, 1, 1), 0), b = model.dof(id(10, 3, 2), 1);
+  preproc::SparseMatrix Z(fe.K.rows(), fe.K.cols());
+  Z.insert(a, b) = 0.0;
+  Z.insert(b, a) = 0.0;
+  other.K = preproc::SparseMatrix(fe.K + Z);
+  ASSERT_EQ(other.K.nonZeros(), fe.K.nonZeros() + 2);
+  for (const auto method : {preproc::ReductionSpec::Method::Free, preproc::ReductionSpec::Method::Clamped}) {
+    preproc::ReductionSpec spec;
+    spec.method = method;
+    spec.interface = "L";
+    spec.modes = 6;
+    SCOPED_TRACE(static_cast<int>(method));
+    const auto same = preproc::reduce(model, fe, spec);
+    const auto r = preproc::reduce(model, other, spec);
+    EXPECT_EQ(r.factor.nnz_A, same.factor.nnz_A + 1);  // the zero reached the factorized matrix
+    EXPECT_LT((r.lambda - same.lambda).norm(), 1e-10 * same.lambda.norm());
+    const Eigen::MatrixXd Ke = r.Phi.transpose() * (fe.K * r.Phi);
+    EXPECT_LT((r.Ke - Ke).norm(), 1e-11 * Ke.norm());
+  }
+}

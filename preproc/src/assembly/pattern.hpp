@@ -31,10 +31,10 @@ struct Pattern {
   std::vector<Index> node_col_ptr;  ///< CSC column starts of the node-level (scalar) matrix
 
   Index entity_of_dof(const FeModel& m, Index d) const;
-  /// A = the zero-valued matrix with the DOF pattern. Filled in place: Eigen 3.4's
-  /// SparseMatrix has no move assignment, so `out.K = make()` copied K and M whole (245 MB of
-  /// fresh pages on the 100k plate). Filled by up to `threads` threads, every stored value
-  /// set to `value`.
+  /// A = the matrix with the DOF pattern, every stored value `value` (0 for K and M before the
+  /// scatter, 1 for a structure alone), filled by up to `threads` threads. Filled in place:
+  /// Eigen 3.4's SparseMatrix has no move assignment, so `out.K = make()` copied K and M whole
+  /// (245 MB of fresh pages on the 100k plate).
   void make_matrix(SparseMatrix& A, unsigned threads = 1, double value = 0.0) const;
   void make_node_matrix(SparseMatrix& A) const;  ///< zero-valued num_nodes x num_nodes matrix
   /// The placement of an element with these global DOFs.

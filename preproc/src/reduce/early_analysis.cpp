@@ -23,16 +23,8 @@ struct EarlyAnalysis::State {
 
 EarlyAnalysis::EarlyAnalysis() noexcept = default;
 EarlyAnalysis::EarlyAnalysis(EarlyAnalysis&&) noexcept = default;
-EarlyAnalysis& EarlyAnalysis::operator=(EarlyAnalysis&& o) noexcept {
-  if (this != &o) {
-    abandon();
-    state_ = std::move(o.state_);
-  }
-  return *this;
-}
-EarlyAnalysis::~EarlyAnalysis() { abandon(); }
 
-void EarlyAnalysis::abandon() noexcept {
+EarlyAnalysis::~EarlyAnalysis() {
   // Left without take(): the assembly or the reduction failed before the factorization. The
   // thread skips the analysis if it has not begun it, so the error is not held up by METIS.
   if (!state_) return;

@@ -54,7 +54,7 @@ class EarlyAnalysis {
   /// first tells it to skip what it has not begun).
   static EarlyAnalysis start(const FeModel& model, const ReductionSpec& spec);
   EarlyAnalysis(EarlyAnalysis&&) noexcept;
-  EarlyAnalysis& operator=(EarlyAnalysis&&) noexcept;
+  EarlyAnalysis& operator=(EarlyAnalysis&&) = delete;
   ~EarlyAnalysis();
 
   bool started() const;
@@ -65,7 +65,6 @@ class EarlyAnalysis {
   double seconds() const;
 
  private:
-  void abandon() noexcept;
   struct State;
   std::unique_ptr<State> state_;
 };
