@@ -2,10 +2,31 @@
 #include "ffr/preproc/visual/visual.hpp"
 
 #include <algorithm>
-#include <map>
+#include <array>
 #include <unordered_map>
 
 namespace ffr::preproc {
+namespace {
+
+// A solid element face, by its sorted corner-node tags (see surface_with_modes).
+struct FaceRecord {
+  std::array<std::size_t, 4> key{};
+  int size = 0;
+  std::size_t block = 0;
+  Index element = 0;
+  int face = 0;
+  bool operator<(const FaceRecord& o) const { return key != o.key ? key < o.key : size < o.size; }
+  bool same_face(const FaceRecord& o) const { return key == o.key && size == o.size; }
+};
+
+// Insertion sort of the first n (3 or 4) tags: std::sort on so short a range inlines its
+// general code, and GCC 12 then warns about paths past the array that cannot run.
+void sort_key(std::array<std::size_t, 4>& key, int n) {
+  for (std::size_t i = 1; i < key.size() && static_cast<int>(i) < n; ++i)
+    for (std::size_t j = i; j > 0 && key[j - 1] > key[j]; --j) std::swap(key[j - 1], key[j]);
+}
+
+}  // namespace
 
 formats::Visual surface_with_modes(const FeModel& model, const Eigen::MatrixXd& Phi) {
   const Mesh& mesh = *model.mesh;
@@ -14,31 +35,51 @@ formats::Visual surface_with_modes(const FeModel& model, const Eigen::MatrixXd& 
   // (faces, then vertices in order of first use) follows the mesh file and not the internal
   // node numbering (a space-filling curve since the sixth session; with the indices, a SID of
   // an unchanged part had its surface renumbered).
-  std::map<std::vector<std::size_t>, std::pair<std::vector<Index>, int>> solid_faces;  // sorted tags -> (ordered face, count)
+  // One record per solid element face, sorted by key; a key seen once is a boundary face.
+  // (An std::map of vector keys took 2 s for the 900k faces of a 1M-DOF TET10 part: an
+  // allocation and a pointer chase per face.) Corner faces have 3 or 4 nodes; a triangle's
+  // key is padded with 0 and ordered before a quadrilateral with its three tags, which is
+  // the vectors' lexicographic order, so the faces come out in the same order as before.
+  std::vector<FaceRecord> solid_faces;
   std::vector<std::vector<Index>> faces;
+  const auto face_nodes = [&](std::size_t block, Index e, const detail::Face& f) {
+    const Index* c = mesh.blocks[block].element(e);
+    std::vector<Index> face;
+    for (int i : f) face.push_back(c[i]);
+    return face;
+  };
   for (const auto& pb : model.blocks) {
     const auto& blk = mesh.blocks[pb.block];
     if (pb.kind == ElementKind::Beam) continue;
     const auto local = detail::element_faces(blk.type);
+    if (pb.kind == ElementKind::Shell) {
+      for (Index e = 0; e < blk.size(); ++e)
+        for (const auto& f : local) faces.push_back(face_nodes(pb.block, e, f));
+      continue;
+    }
+    solid_faces.reserve(solid_faces.size() + static_cast<std::size_t>(blk.size()) * local.size());
     for (Index e = 0; e < blk.size(); ++e) {
       const Index* c = blk.element(e);
-      for (const auto& f : local) {
-        std::vector<Index> face;
-        for (int i : f) face.push_back(c[i]);
-        if (pb.kind == ElementKind::Shell) {
-          faces.push_back(face);
-          continue;
-        }
-        std::vector<std::size_t> key;
-        for (const Index n : face) key.push_back(mesh.node_tag(n));
-        std::sort(key.begin(), key.end());
-        auto [it, fresh] = solid_faces.try_emplace(key, face, 0);
-        ++it->second.second;
+      for (std::size_t k = 0; k < local.size(); ++k) {
+        FaceRecord r{{}, static_cast<int>(local[k].size()), pb.block, e, static_cast<int>(k)};
+        for (std::size_t i = 0; i < r.key.size() && i < local[k].size(); ++i) r.key[i] = mesh.node_tag(c[local[k][i]]);
+        sort_key(r.key, r.size);
+        solid_faces.push_back(r);
       }
     }
   }
-  for (const auto& [key, fc] : solid_faces)
-    if (fc.second == 1) faces.push_back(fc.first);
+  std::sort(solid_faces.begin(), solid_faces.end());
+  for (std::size_t i = 0; i < solid_faces.size();) {
+    std::size_t j = i + 1;
+    while (j < solid_faces.size() && solid_faces[j].same_face(solid_faces[i])) ++j;
+    if (j == i + 1) {
+      const FaceRecord& r = solid_faces[i];
+      faces.push_back(face_nodes(r.block, r.element,
+                                 detail::element_faces(mesh.blocks[r.block].type)[static_cast<std::size_t>(r.face)]));
+    }
+    i = j;
+  }
+  std::vector<FaceRecord>().swap(solid_faces);
 
   formats::Visual v;
   std::unordered_map<Index, Index> vertex;
