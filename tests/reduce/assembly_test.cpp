@@ -101,3 +101,26 @@ TEST(Surface, IsTheSameForAnyNodeNumbering) {
   EXPECT_EQ(s1.triangles, s2.triangles);
   for (std::size_t k = 0; k < 2; ++k) EXPECT_EQ(s1.modes[k], s2.modes[k]) << k;
 }
+
+// The surface of a box of nx x ny x nz hexahedra: 2 (nx ny + ny nz + nz nx) boundary quads, two
+// triangles each, on every node but the (nx - 1)(ny - 1)(nz - 1) inside (counted by hand).
+TEST(Surface, IsTheBoundaryOfABoxOfHexahedra) {
+  test::HexGrid g(3, 2, 2);
+  ASSERT_EQ(g.mesh.x.rows(), 4 * 3 * 3);
+  for (Index n = 0; n < g.mesh.x.rows(); ++n) g.mesh.node_tags.push_back(static_cast<std::size_t>(n + 1));
+  const auto model = preproc::build_model(g.mesh, g.part);
+  const auto s = preproc::surface_with_modes(model, Eigen::MatrixXd::Zero(model.num_dofs, 1));
+  EXPECT_EQ(s.triangles.rows(), 2 * 2 * (3 * 2 + 2 * 2 + 2 * 3));
+  EXPECT_EQ(s.vertices.rows(), 4 * 3 * 3 - 2 * 1 * 1);
+  // Every vertex is a node on the grid's boundary (HexGrid numbers node (i, j, k) as
+  // (k (ny + 1) + j)(nx + 1) + i); the surface copies node positions exactly.
+  std::vector<Eigen::RowVector3d> boundary;
+  for (int k = 0; k <= 2; ++k)
+    for (int j = 0; j <= 2; ++j)
+      for (int i = 0; i <= 3; ++i)
+        if (i == 0 || i == 3 || j == 0 || j == 2 || k == 0 || k == 2) boundary.push_back(g.mesh.x.row((k * 3 + j) * 4 + i));
+  for (Index v = 0; v < s.vertices.rows(); ++v) {
+    const Eigen::RowVector3d p = s.vertices.row(v);
+    EXPECT_TRUE(std::any_of(boundary.begin(), boundary.end(), [&](const Eigen::RowVector3d& b) { return b == p; })) << v;
+  }
+}
