@@ -55,7 +55,7 @@ EarlyAnalysis EarlyAnalysis::start(const FeModel& model, const ReductionSpec& sp
       auto f = std::make_unique<CholmodFactor>(detail::eigen_factor_options(spec));
       f->analyze(C);
       s->factor = std::move(f);
-      C = SparseMatrix();
+      detail::release(C);
 #ifdef __GLIBC__
       // What this thread freed (the structure, METIS's and CHOLMOD's work arrays) stays in its
       // own malloc arena otherwise: ~100 MiB of resident memory on the 100k plate, which

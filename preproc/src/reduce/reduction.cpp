@@ -66,7 +66,7 @@ EigenOptions eigen_options(const ReductionSpec& spec, const PartSpec& part, doub
   o.backend = spec.backend == "arpack" ? EigenBackend::Arpack
               : spec.backend == "block" ? EigenBackend::Block
                                         : EigenBackend::Spectra;
-  o.factor.memory_limit_bytes = spec.memory_limit_bytes;
+  o.factor = detail::eigen_factor_options(spec);
   return o;
 }
 
@@ -123,20 +123,23 @@ std::string factor_line(const FactorStatistics& f) {
   return o.str();
 }
 
-// The factor line, and where the analysis was done when it was done early.
-std::string analysed_line(const FactorStatistics& f, const EarlyAnalysis* early) {
-  std::string s = factor_line(f);
-  if (early) {
+// The eigen-solve's factor of A, analysed: taken over from the early analysis when there was
+// one (it keeps that analysis as long as A has the structure it was made for: factorize
+// compares them), else analysed here. Its statistics go to the log either way.
+CholmodFactor analysed_factor(const SparseMatrix& A, const ReductionSpec& spec, EarlyAnalysis* early,
+                              const ReductionLog& log) {
+  std::unique_ptr<CholmodFactor> taken = early ? early->take() : nullptr;
+  CholmodFactor factor = taken ? std::move(*taken) : CholmodFactor(detail::eigen_factor_options(spec));
+  std::string line = factor_line(taken ? factor.info().stats : factor.analyze(A));
+  if (taken) {
     std::ostringstream o;
     o.precision(3);
     o << ", analysed during the assembly in " << early->seconds() << " s";
-    s += o.str();
+    line += o.str();
   }
-  return s;
+  if (log.message) log.message(line);
+  return factor;
 }
-
-// Frees a matrix's storage (assigning an empty matrix keeps Eigen's allocation).
-void release(SparseMatrix& A) { SparseMatrix().swap(A); }
 
 // fe_owned: the same object as fe, when its K and M may be freed after use.
 ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled* fe_owned, const ReductionSpec& spec,
@@ -160,9 +163,9 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
   const bool cb = spec.method == ReductionSpec::Method::CraigBampton;
   const SymmetricStorage storage = cb ? SymmetricStorage::Full : SymmetricStorage::UpperOnly;
   SparseMatrix K = detail::constrained(t, fe.K, cb);
-  if (fe_owned) release(fe_owned->K);
+  if (fe_owned) detail::release(fe_owned->K);
   const SparseMatrix M = detail::constrained(t, fe.M, cb);
-  if (fe_owned) release(fe_owned->M);
+  if (fe_owned) detail::release(fe_owned->M);
 
   ReductionResult r;
   nlohmann::json params;
@@ -173,7 +176,6 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     // Free: a negative shift keeps K - sigma M definite while the rigid-body modes are deflated.
     const double sigma = free ? -lambda_of_hz(1.0, part) : -lambda_of_hz(0.1, part);
     EigenOptions o = eigen_options(spec, part, sigma);
-    o.factor = detail::eigen_factor_options(spec);
     if (free) o.deflation = rigid_body_modes(model, t);
     say(std::string(free ? "free-free" : "clamped") + " eigen-solve: " + std::to_string(t.num_ind()) + " DOF, " +
         (spec.max_frequency_hz ? "up to " + std::to_string(*spec.max_frequency_hz) + " Hz" : std::to_string(o.nev) + " modes") +
@@ -190,11 +192,7 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     if (in_place) detail::add_scaled_values(K, M, -sigma);
     else shifted = shifted_upper(K, M, sigma);
     const SparseMatrix& C = in_place ? K : shifted;
-    std::unique_ptr<CholmodFactor> analysed = early ? early->take() : nullptr;
-    CholmodFactor factor = analysed ? std::move(*analysed) : CholmodFactor(o.factor);
-    // Analysed early, the factor keeps its analysis as long as C has the structure it was
-    // made for (factorize compares them).
-    say(analysed_line(analysed ? factor.info().stats : factor.analyze(C), analysed ? early : nullptr));
+    CholmodFactor factor = analysed_factor(C, spec, early, log);
     const double t_analyze = lap(clock);
     double t_factorize = 0;
     EigenSolver solver(o);
@@ -203,7 +201,7 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
       factor.factorize_shifted_upper(C, sigma);
       // The factor holds what is needed from here on.
       if (in_place) detail::add_scaled_values(K, M, sigma);
-      else release(shifted);
+      else detail::release(shifted);
 #ifdef __GLIBC__
       // CHOLMOD's factorization workspace, freed now, sits in the middle of the heap, which
       // glibc does not give back by itself: 42 MiB of the 100k plate's peak at 1 thread, reached
@@ -232,9 +230,7 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     say("craig-bampton: " + std::to_string(boundary.size()) + " boundary DOF, " +
         std::to_string(split.interior.size()) + " interior DOF");
     const double t_constraints = lap(clock);
-    std::unique_ptr<CholmodFactor> analysed = early ? early->take() : nullptr;
-    CholmodFactor factor = analysed ? std::move(*analysed) : CholmodFactor(detail::eigen_factor_options(spec));
-    say(analysed_line(analysed ? factor.info().stats : factor.analyze(split.Kii), analysed ? early : nullptr));
+    CholmodFactor factor = analysed_factor(split.Kii, spec, early, log);
     const double t_analyze = lap(clock);
     try {
       factor.factorize(split.Kii);

@@ -10,6 +10,10 @@
 
 namespace ffr::preproc::detail {
 
+/// Frees a matrix's storage. (Assigning an empty matrix keeps Eigen 3.4's allocation: its
+/// SparseMatrix has no move assignment, and the copy assignment only sets the size to 0.)
+inline void release(SparseMatrix& A) { SparseMatrix().swap(A); }
+
 /// The state of every interface under the reduction (held, boundary or free).
 std::vector<InterfaceState> states_for(const FeModel& model, const ReductionSpec& spec);
 

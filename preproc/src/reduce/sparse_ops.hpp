@@ -80,7 +80,6 @@ struct Split {
   SparseMatrix Kii, Mii, Kib;
 };
 
-/// Partitions K and M into interior and boundary DOFs.
 /// Whether A and B store the same entries (same size, column starts and row indices).
 inline bool same_structure(const SparseMatrix& A, const SparseMatrix& B) {
   if (A.rows() != B.rows() || A.cols() != B.cols() || A.nonZeros() != B.nonZeros() || !A.isCompressed() ||
@@ -107,6 +106,7 @@ inline std::vector<std::int64_t> interior_of(std::int64_t n, const std::vector<s
   return interior;
 }
 
+/// Partitions K and M into interior and boundary DOFs.
 inline Split split(const SparseMatrix& K, const SparseMatrix& M, const std::vector<std::int64_t>& boundary) {
   Split s;
   s.interior = interior_of(K.rows(), boundary);
