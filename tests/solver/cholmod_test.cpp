@@ -131,6 +131,74 @@ TEST(CholmodFactor, ThreadedSubstitutionsMatchTheSerialOnes) {
   EXPECT_LT((x - X.col(20)).norm() / X.col(20).norm(), 1e-13);
 }
 
+// With two threads the factorization runs the elimination tree's subtrees on separate threads
+// (tree_cholesky.cpp), on CHOLMOD's analysis; CHOLMOD's own factorization, at one thread, is
+// the reference. The two factors differ by rounding only, so the solutions agree to it.
+TEST(CholmodFactor, SubtreesOnTwoThreadsMatchCholmodsFactorization) {
+  const SparseMatrix A = vector_laplacian();
+  const Eigen::MatrixXd B = random_block(A.rows(), 5, 9);
+  const RestoreThreads restore;
+  set_max_threads(1);
+  CholmodFactor serial;
+  serial.factorize(A);
+  ASSERT_EQ(serial.info().stats.factor_parallel_fraction, 0.0);
+  set_max_threads(2);
+  CholmodFactor tree;
+  tree.factorize(A);
+  ASSERT_GT(tree.info().stats.factor_parallel_fraction, 1.0 / 3) << "factor entries " << tree.info().stats.factor_entries;
+  EXPECT_EQ(tree.info().stats.analyses, 1);
+  const Eigen::MatrixXd X = serial.solve(B), Xt = tree.solve(B);
+  EXPECT_LT((Xt - X).norm() / X.norm(), 1e-13);
+  EXPECT_LT((A * Xt - B).norm() / B.norm(), 1e-12);
+  EXPECT_NEAR(tree.info().stats.rcond, serial.info().stats.rcond, 1e-12 * serial.info().stats.rcond);
+
+  // A second factorization on the same analysis (the shifted matrix of an eigen-solve).
+  const SparseMatrix A2 = A + 0.5 * ffr::test::upper(A).diagonal().asDiagonal().toDenseMatrix().sparseView();
+  tree.factorize(A2);
+  serial.factorize(A2);
+  EXPECT_EQ(tree.info().stats.analyses, 1);
+  EXPECT_LT((tree.solve(B) - serial.solve(B)).norm() / serial.solve(B).norm(), 1e-13);
+
+  // Asked not to, it leaves the factorization to CHOLMOD.
+  FactorOptions o;
+  o.tree_parallel = false;
+  CholmodFactor cholmod(o);
+  cholmod.factorize(A);
+  EXPECT_EQ(cholmod.info().stats.factor_parallel_fraction, 0.0);
+}
+
+// A failing pivot inside the subtrees is reported with the column CHOLMOD reports: the
+// first in the elimination order. Two large negative entries keep every leading minor positive
+// until their DOFs are eliminated; far apart, they fall in different subtrees, and each thread
+// stops at its own.
+TEST(CholmodFactor, IndefiniteMatrixNamesTheColumnOnTwoThreads) {
+  SparseMatrix A = vector_laplacian();
+  const Eigen::Index far = A.rows() - 40;
+  A.coeffRef(37, 37) = -1e6;
+  A.coeffRef(far, far) = -1e6;
+  const RestoreThreads restore;
+  auto failing_column = [&](unsigned threads, double* share) -> std::int64_t {
+    set_max_threads(threads);
+    CholmodFactor f;
+    try {
+      f.factorize(A);
+    } catch (const NotPositiveDefiniteError& e) {
+      EXPECT_FALSE(e.numerically_singular);
+      EXPECT_FALSE(f.factorized());
+      *share = f.info().stats.factor_parallel_fraction;
+      return e.column;
+    }
+    ADD_FAILURE() << "indefinite matrix accepted on " << threads << " thread(s)";
+    return -1;
+  };
+  double share1 = 0, share2 = 0;
+  const std::int64_t cholmod = failing_column(1, &share1), tree = failing_column(2, &share2);
+  EXPECT_TRUE(cholmod == 37 || cholmod == far) << cholmod;
+  EXPECT_EQ(tree, cholmod);
+  EXPECT_EQ(share1, 0.0);
+  EXPECT_GT(share2, 0.0);
+}
+
 // Three DOFs a node, numbered together (a vector Laplacian S (x) B3): METIS orders the node
 // graph, a third of the columns; the factor must be as sparse as CHOLMOD's own nested
 // dissection of the DOF graph makes it, and solve.

@@ -103,6 +103,8 @@ std::string timing_line(double constraints, double analyze, double factorize, co
   std::ostringstream o;
   o.precision(3);
   o << "timing: constraints " << constraints << " s, analyze " << analyze << " s, factorize " << factorize << " s";
+  if (eig && eig->factor.factor_parallel_fraction > 0)
+    o << " (" << std::lround(100 * eig->factor.factor_parallel_fraction) << " % of its flops in parallel subtrees)";
   if (eig) {
     const FactorStatistics& f = eig->factor;
     o << ", lanczos " << eig->lanczos_seconds << " s, solves " << eig->operator_applications << " (on ";

@@ -4,6 +4,7 @@
 #include "library_threads.hpp"
 #include "nodal_ordering.hpp"
 #include "supernodal_solve.hpp"
+#include "tree_cholesky.hpp"
 #include "ffr/preproc/solver/memory.hpp"
 #include "ffr/preproc/threads.hpp"
 
@@ -224,9 +225,13 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
   } else if (opt.check_symmetry) {
     validate_symmetric(A, "matrix to factorize");
   }
-  // A numeric factor already owns its values: only the workspace is new then.
+  // A numeric factor already owns its values: only the workspace is new then. Subtrees on
+  // threads (tree_cholesky.hpp) take an update matrix and a row map each.
+  const unsigned threads = max_threads();
+  const double share = opt.tree_parallel ? detail::tree_cholesky_share(*L, threads) : 0.0;
   const FactorStatistics& s = info.stats;
-  check_memory(numeric ? s.peak_bytes - s.factor_bytes : s.peak_bytes);
+  const std::uint64_t per_thread = share > 0 ? (threads - 1u) * 8u * (L->maxcsize + static_cast<std::uint64_t>(s.n)) : 0u;
+  check_memory((numeric ? s.peak_bytes - s.factor_bytes : s.peak_bytes) + per_thread);
 
   cholmod_common* c = common.get();
   cholmod_sparse view = detail::view_upper(A);
@@ -235,7 +240,8 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
   detail::keep_openmp_on_this_thread();
   const auto t0 = Clock::now();
   solver.reset();
-  const int ok = cholmod_l_factorize(&view, L, c);
+  info.stats.factor_parallel_fraction = share;
+  const int ok = share > 0 ? detail::tree_cholesky(view, *L, threads, c) : cholmod_l_factorize(&view, L, c);
   numeric = true;
   info.stats.factorize_seconds = seconds_since(t0);
   info.stats.cholmod_peak_bytes = c->memory_usage;

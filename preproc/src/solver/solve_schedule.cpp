@@ -26,7 +26,8 @@ double deal(const std::vector<Index>& cand, const std::vector<double>& subtree, 
 
 }  // namespace
 
-SolveSchedule make_solve_schedule(const cholmod_factor& L, unsigned threads, std::int64_t min_entries) {
+SolveSchedule make_solve_schedule(const cholmod_factor& L, unsigned threads, std::int64_t min_entries,
+                                  TreeWork measure) {
   SolveSchedule plan;
   if (threads < 2 || !L.is_super || static_cast<std::int64_t>(L.xsize) < min_entries) return plan;
   const auto* super = static_cast<const SuiteSparse_long*>(L.super);
@@ -40,7 +41,8 @@ SolveSchedule make_solve_schedule(const cholmod_factor& L, unsigned threads, std
   std::vector<Index> first(static_cast<std::size_t>(ns)), count(static_cast<std::size_t>(ns), 1);
   for (Index s = 0; s < ns; ++s) {
     const Index nscol = super[s + 1] - super[s], nsrow = pi[s + 1] - pi[s];
-    work[s] = static_cast<double>(nscol) * static_cast<double>(nsrow);
+    work[s] = static_cast<double>(nscol) * static_cast<double>(nsrow) *
+              (measure == TreeWork::Flops ? static_cast<double>(nsrow) : 1.0);
     if (nsrow > nscol) {
       const Index r = rows[pi[s] + nscol];
       parent[s] = static_cast<Index>(std::upper_bound(super, super + ns + 1, r) - super) - 1;

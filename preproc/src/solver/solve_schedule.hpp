@@ -33,9 +33,15 @@ struct SolveSchedule {
   double parallel_fraction = 0;      ///< entries in the parts / all entries (0: serial)
 };
 
+/// What the cut balances: the factor entries each supernode holds (a substitution reads each
+/// once) or, for the factorization (tree_cholesky.hpp), its flops, about nscol * nsrow^2 (its
+/// own Cholesky and the updates it sends to its ancestors).
+enum class TreeWork { Entries, Flops };
+
 /// The schedule for `threads` threads (empty parts: run serially). Gives none when threads < 2,
 /// when the factor has fewer than min_entries stored values, or when the best cut leaves
-/// less than a third of the entries to the parts (the serial top would dominate).
-SolveSchedule make_solve_schedule(const cholmod_factor& L, unsigned threads, std::int64_t min_entries);
+/// less than a third of the work to the parts (the serial top would dominate).
+SolveSchedule make_solve_schedule(const cholmod_factor& L, unsigned threads, std::int64_t min_entries,
+                                  TreeWork measure = TreeWork::Entries);
 
 }  // namespace ffr::preproc::detail

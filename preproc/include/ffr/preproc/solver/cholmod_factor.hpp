@@ -49,6 +49,11 @@ struct FactorOptions {
   /// Validate every input (square, finite, accepted storage, symmetry probe; O(nnz)). Off
   /// only when the caller has validated the matrices already.
   bool check_symmetry = true;
+  /// With two threads or more (ffr::preproc::max_threads()), factorize the independent
+  /// subtrees of the elimination tree on separate threads (own supernodal code on CHOLMOD's
+  /// analysis and layout) instead of CHOLMOD's supernode-by-supernode factorization, whose
+  /// only parallelism is in the BLAS. The factor differs from CHOLMOD's by rounding only.
+  bool tree_parallel = true;
 };
 
 struct FactorStatistics {
@@ -71,6 +76,7 @@ struct FactorStatistics {
   std::uint64_t cholmod_peak_bytes = 0;  ///< measured peak of CHOLMOD's allocations
   int solve_threads = 0;           ///< threads of the substitutions after factorize (max_threads() at most)
   double solve_parallel_fraction = 0;  ///< share of the factor's entries they sweep in parallel
+  double factor_parallel_fraction = 0;  ///< share of the flops factorized in parallel subtrees (0: CHOLMOD's own)
 };
 
 enum class FactorStatus { Empty, Analyzed, Factorized, Failed };
