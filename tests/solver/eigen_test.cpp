@@ -33,6 +33,12 @@ TEST(EigenSolver, FixedFixedRodMatchesClosedForm) {
   EXPECT_EQ(s.info().status, EigenStatus::Success);
   EXPECT_EQ(s.info().backend_used, EigenBackend::Spectra);
   EXPECT_EQ(s.info().factor.ordering, "METIS");
+  // The reduced matrices handed back are X^T K X and X^T M X of the returned vectors: the
+  // eigenvalues on the diagonal and the identity, as the products computed here.
+  const Eigen::MatrixXd Kr = r.X.transpose() * (p.K * r.X), Mr = r.X.transpose() * (p.M * r.X);
+  EXPECT_LT((r.XtKX - Kr).norm(), 1e-12 * Kr.norm());
+  EXPECT_LT((r.XtMX - Mr).norm(), 1e-12);
+  EXPECT_LT((Eigen::MatrixXd(r.lambda.asDiagonal()) - r.XtKX).norm(), 1e-10 * r.lambda.norm());
   // Mode k is sin(j k pi / n) up to scale (Toeplitz eigenvectors, pencils.hpp).
   for (int k = 1; k <= 3; ++k) {
     Eigen::VectorXd phi(n - 1);

@@ -74,8 +74,11 @@ void finish_eigenpairs(const SparseMatrix& K, SymmetricStorage sK, const SparseM
     out.backward_error[j] = bden > 0 ? r / bden : r;
   }
   out.max_relative_residual = m > 0 ? out.relative_residual.maxCoeff() : 0.0;
-  out.orthonormality_error =
-      m > 0 ? (X.transpose() * MX - Eigen::MatrixXd::Identity(m, m)).cwiseAbs().maxCoeff() : 0.0;
+  // The reduced matrices come with the checks' products: a caller needs them and would
+  // otherwise multiply K and M by X once more.
+  out.XtKX = X.transpose() * KX;
+  out.XtMX = X.transpose() * MX;
+  out.orthonormality_error = m > 0 ? (out.XtMX - Eigen::MatrixXd::Identity(m, m)).cwiseAbs().maxCoeff() : 0.0;
   out.deflation_error =
       (m > 0 && !deflation.empty()) ? (deflation.MR.transpose() * X).cwiseAbs().maxCoeff() : 0.0;
   out.X = std::move(X);

@@ -102,6 +102,8 @@ struct EigenResult {
   double orthonormality_error = 0;      ///< max |X^T M X - I|
   double deflation_error = 0;           ///< max |R^T M X| (R M-orthonormal); 0 without deflation
   double max_relative_residual = 0;
+  Eigen::MatrixXd XtKX;                 ///< X^T K X, from the checks' product K X (modal stiffness)
+  Eigen::MatrixXd XtMX;                 ///< X^T M X, from the checks' product M X (modal mass)
 };
 
 enum class EigenStatus { NotRun, Success, FactorizationFailed, NotConverged, CheckFailed, BadInput };
