@@ -41,6 +41,14 @@ struct RestoreThreads {
   ~RestoreThreads() { set_max_threads(0); }
 };
 
+// A factorization of A made with `threads` threads (left as the thread count).
+CholmodFactor factorized_on(unsigned threads, const SparseMatrix& A) {
+  set_max_threads(threads);
+  CholmodFactor f;
+  f.factorize(A);
+  return f;
+}
+
 }  // namespace
 
 TEST(CholmodFactor, AnalyzeReportsStatisticsAndMetis) {
@@ -115,13 +123,9 @@ TEST(CholmodFactor, ThreadedSubstitutionsMatchTheSerialOnes) {
   const SparseMatrix A = vector_laplacian();
   const Eigen::MatrixXd B = random_block(A.rows(), 21, 5);  // widths 16, 4 and 1
   const RestoreThreads restore;
-  set_max_threads(1);
-  CholmodFactor serial;
-  serial.factorize(A);
+  const CholmodFactor serial = factorized_on(1, A);
   ASSERT_EQ(serial.info().stats.solve_threads, 1);
-  set_max_threads(2);
-  CholmodFactor threaded;
-  threaded.factorize(A);
+  const CholmodFactor threaded = factorized_on(2, A);
   ASSERT_EQ(threaded.info().stats.solve_threads, 2) << "factor entries " << threaded.info().stats.factor_entries;
   const Eigen::MatrixXd X = serial.solve(B), Xt = threaded.solve(B);
   EXPECT_LT((Xt - X).norm() / X.norm(), 1e-13);
@@ -138,13 +142,9 @@ TEST(CholmodFactor, SubtreesOnTwoThreadsMatchCholmodsFactorization) {
   const SparseMatrix A = vector_laplacian();
   const Eigen::MatrixXd B = random_block(A.rows(), 5, 9);
   const RestoreThreads restore;
-  set_max_threads(1);
-  CholmodFactor serial;
-  serial.factorize(A);
+  CholmodFactor serial = factorized_on(1, A);
   ASSERT_EQ(serial.info().stats.factor_parallel_fraction, 0.0);
-  set_max_threads(2);
-  CholmodFactor tree;
-  tree.factorize(A);
+  CholmodFactor tree = factorized_on(2, A);
   ASSERT_GT(tree.info().stats.factor_parallel_fraction, 1.0 / 3) << "factor entries " << tree.info().stats.factor_entries;
   EXPECT_EQ(tree.info().stats.analyses, 1);
   const Eigen::MatrixXd X = serial.solve(B), Xt = tree.solve(B);
@@ -153,15 +153,20 @@ TEST(CholmodFactor, SubtreesOnTwoThreadsMatchCholmodsFactorization) {
   EXPECT_NEAR(tree.info().stats.rcond, serial.info().stats.rcond, 1e-12 * serial.info().stats.rcond);
 
   // A second factorization on the same analysis (the shifted matrix of an eigen-solve).
-  const SparseMatrix A2 = A + 0.5 * ffr::test::upper(A).diagonal().asDiagonal().toDenseMatrix().sparseView();
-  tree.factorize(A2);
+  SparseMatrix A2 = A;
+  for (Eigen::Index i = 0; i < A2.rows(); ++i) A2.coeffRef(i, i) *= 1.5;
+  tree.factorize(A2);  // still on two threads
+  set_max_threads(1);
   serial.factorize(A2);
+  EXPECT_EQ(serial.info().stats.factor_parallel_fraction, 0.0);
+  EXPECT_GT(tree.info().stats.factor_parallel_fraction, 0.0);
   EXPECT_EQ(tree.info().stats.analyses, 1);
   EXPECT_LT((tree.solve(B) - serial.solve(B)).norm() / serial.solve(B).norm(), 1e-13);
 
-  // Asked not to, it leaves the factorization to CHOLMOD.
+  // Asked not to, it leaves the factorization to CHOLMOD, also on two threads.
   FactorOptions o;
   o.tree_parallel = false;
+  set_max_threads(2);
   CholmodFactor cholmod(o);
   cholmod.factorize(A);
   EXPECT_EQ(cholmod.info().stats.factor_parallel_fraction, 0.0);
