@@ -2,7 +2,8 @@
 // one made afterwards from the assembled K and M: the same factor structure, no second
 // analysis at the factorization, and bit for bit the same modes, for a clamped (rigid spider
 // held), a free-free and a Craig-Bampton reduction. It starts with two threads only; bad input
-// reaches the reduction as before.
+// reaches the reduction as before. Also on two threads: the factorization by subtrees gives
+// the one-thread modes for the three reductions.
 #include "ffr/formats/h5.hpp"
 #include "ffr/preproc/assembly/assembly.hpp"
 #include "ffr/preproc/model/fe_model.hpp"
@@ -123,5 +124,29 @@ TEST(EarlyAnalysis, NeedsTwoThreadsAndLeavesBadInputToTheReduction) {
     FAIL() << "overlapping interface groups were accepted";
   } catch (const formats::FormatError& e) {
     EXPECT_NE(std::string(e.what()).find("must not overlap"), std::string::npos) << e.what();
+  }
+}
+
+// With two threads a factor large enough is computed subtree by subtree on both threads
+// (tree_cholesky.cpp) instead of by CHOLMOD: the three reductions must give the one-thread
+// modes to rounding (the modes' sign convention included).
+TEST(TwoThreadFactorization, GivesTheOneThreadModesForEveryReduction) {
+  test::HexGrid grid(16, 8, 8);  // 4 131 DOF: a factor just above the threaded path's threshold
+  const auto model = preproc::build_model(grid.mesh, grid.part);
+  const unsigned before = preproc::max_threads();
+  for (const auto& spec : {clamped(), free_free(), craig_bampton()}) {
+    SCOPED_TRACE(name(spec));
+    preproc::set_max_threads(1);
+    const auto one = preproc::reduce(model, preproc::assemble(model), spec);
+    preproc::set_max_threads(2);
+    const auto two = preproc::reduce(model, preproc::assemble(model), spec);
+    preproc::set_max_threads(before);
+    EXPECT_EQ(one.factor.factor_parallel_fraction, 0.0);
+    EXPECT_GT(two.factor.factor_parallel_fraction, 0.0) << "factor entries " << two.factor.factor_entries;
+    ASSERT_EQ(one.lambda.size(), two.lambda.size());
+    for (Eigen::Index j = 0; j < one.lambda.size(); ++j) {
+      EXPECT_NEAR(two.lambda[j], one.lambda[j], 1e-10 * std::abs(one.lambda[j])) << "mode " << j;
+      EXPECT_LT((two.Phi.col(j) - one.Phi.col(j)).norm(), 1e-8 * one.Phi.col(j).norm()) << "mode " << j;
+    }
   }
 }
