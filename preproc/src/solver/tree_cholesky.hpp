@@ -17,8 +17,8 @@ double tree_cholesky_share(const cholmod_factor& L, unsigned threads);
 /// cholmod_l_factorize would: A upper-stored (stype > 0), L analysed by CHOLMOD for it
 /// (supernodal, symbolic or numeric). Sets L->minor to the first permuted column whose pivot is
 /// not positive (L->n when A is positive definite; the columns from there on are then not
-/// valid). Returns false, with nothing computed, when it cannot run (the routines not found,
-/// L not supernodal, A not upper-stored: tree_cholesky_share is 0 for those) or when CHOLMOD's
+/// valid). Returns false, with nothing computed, when it cannot run (the routines not found or
+/// L not supernodal, where tree_cholesky_share is 0; A not upper-stored) or when CHOLMOD's
 /// allocation of L or of the permuted copy of A fails (c->status tells why). BLAS runs
 /// single-threaded inside the subtrees and on `threads` threads for the top, and is left at
 /// `threads` threads.
