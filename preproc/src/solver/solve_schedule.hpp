@@ -1,5 +1,6 @@
 #pragma once
-// How the supernodal substitutions (supernodal_solve.hpp) split over threads.
+// How the supernodal substitutions (supernodal_solve.hpp) and the factorization by subtrees
+// (tree_cholesky.hpp) split over threads.
 //
 // The supernodes of CHOLMOD's factor are post-ordered: every subtree of the supernodal
 // elimination tree is a contiguous range of supernodes ending at its root. Disjoint subtrees
