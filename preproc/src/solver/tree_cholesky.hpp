@@ -19,7 +19,7 @@ double tree_cholesky_share(const cholmod_factor& L, unsigned threads);
 /// not positive (L->n when A is positive definite; the columns from there on are then not
 /// valid). Returns false, with nothing computed, when it cannot run (the routines not found or
 /// L not supernodal, where tree_cholesky_share is 0; A not upper-stored) or when CHOLMOD's
-/// allocation of L or of the permuted copy of A fails (c->status tells why). BLAS runs
+/// allocation of L's values fails (c->status tells why). BLAS runs
 /// single-threaded inside the subtrees and on `threads` threads for the top, and is left at
 /// `threads` threads.
 bool tree_cholesky(const cholmod_sparse& A, cholmod_factor& L, unsigned threads, cholmod_common* c);
