@@ -114,8 +114,8 @@ class TreeCholesky {
   /// Writes the entries of P A P' (A upper-stored, the columns c0..c1-1 of it) into L's layout,
   /// L's other entries left as they are. Each entry has its own place, so parts of the columns
   /// can go to separate threads. Why not CHOLMOD's way, a permuted copy of A scattered
-  /// supernode by supernode: the copy is made by one thread before any other can start (0.1 s
-  /// on the 100k plate) and takes the memory of A once more at the factorization's peak.
+  /// supernode by supernode: the copy is made by one thread before any other can start, and
+  /// it takes the memory of A once more during the factorization.
   void scatter(const cholmod_sparse& A, const std::vector<Index>& position, Index c0, Index c1) {
     const auto* Ap = static_cast<const Long*>(A.p);
     const auto* Ai = static_cast<const Long*>(A.i);
@@ -138,8 +138,9 @@ class TreeCholesky {
   void zero(Index begin, Index end) { std::fill(x_ + begin, x_ + end, 0.0); }
   Index stored() const { return xsize_; }
 
-  /// Supernode s (its entries of P A P' already in place, the rest zero) with the lists `list` links into and reads: the thread's own (subtrees), or
-  /// all of them (the top, list 0 for new links). Returns the first failing column, or n.
+  /// Supernode s (its entries of P A P' already in place, the rest zero), with the lists it
+  /// links into and reads: the thread's own `list` (subtrees), or all of them (the top, list 0
+  /// for new links). Returns the first failing column, or n.
   Index node(Index s, unsigned list, bool all_lists, Workspace& w) {
     const Index k1 = super_[s], k2 = super_[s + 1], nscol = k2 - k1;
     const Index psi = pi_[s], nsrow = pi_[s + 1] - psi;
