@@ -172,7 +172,6 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
   ReductionResult r;
   nlohmann::json params;
   Eigen::MatrixXd basis;  // over the independent DOFs
-  Eigen::MatrixXd Ke, Me;  // basis^T K basis and basis^T M basis, when the eigen-solve gave them
 
   if (spec.method != ReductionSpec::Method::CraigBampton) {
     const bool free = spec.method == ReductionSpec::Method::Free;
@@ -222,8 +221,8 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     check_no_zero_modes(model, solver.result().lambda, part, free ? "beyond the six rigid-body modes" : "with the interface held");
     basis = solver.result().X;
     // Ke and Me of exactly these vectors, from the eigen-solver's checks.
-    Ke = solver.result().XtKX;
-    Me = solver.result().XtMX;
+    r.Ke = solver.result().XtKX;
+    r.Me = solver.result().XtMX;
     r.lambda = solver.result().lambda;
     r.types.assign(static_cast<std::size_t>(basis.cols()), formats::ModeType::Normal);
     r.reference = free ? "free" : "clamped:" + spec.interface;
@@ -291,17 +290,13 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
       r.lambda = ges.eigenvalues();
       r.types.assign(static_cast<std::size_t>(basis.cols()), formats::ModeType::Normal);
     }
+    r.Ke = basis.transpose() * sym_multiply(K, storage, basis);
+    r.Me = basis.transpose() * sym_multiply(M, storage, basis);
   }
   params["modes"] = spec.modes;
   if (spec.max_frequency_hz) params["max_frequency_hz"] = *spec.max_frequency_hz;
   r.parameters_json = params.dump();
 
-  if (Ke.size() == 0) {
-    Ke = basis.transpose() * sym_multiply(K, storage, basis);
-    Me = basis.transpose() * sym_multiply(M, storage, basis);
-  }
-  r.Ke = std::move(Ke);
-  r.Me = std::move(Me);
   r.Phi = t.identity ? basis : Eigen::MatrixXd(t.T * basis);
   return r;
 }

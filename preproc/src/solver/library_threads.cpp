@@ -1,19 +1,6 @@
 #include "library_threads.hpp"
 
-#include <dlfcn.h>
-
 namespace ffr::preproc::detail {
-namespace {
-
-// Looked up in the running process rather than linked: the OpenMP runtime and OpenBLAS are
-// CHOLMOD's dependencies, not ours, and another BLAS or a CHOLMOD built without OpenMP simply
-// lacks the symbol.
-template <class F>
-F* find_symbol(const char* name) {
-  return reinterpret_cast<F*>(dlsym(RTLD_DEFAULT, name));
-}
-
-}  // namespace
 
 void keep_openmp_on_this_thread() {
   // max-active-levels 0: no parallel region becomes active, so each runs on one thread.

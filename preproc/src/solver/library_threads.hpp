@@ -1,7 +1,18 @@
 #pragma once
-// Thread counts of the libraries under the eigen-solver, which do not follow ours.
+// Thread counts of the libraries under the eigen-solver, which do not follow ours, and the
+// lookup of those libraries' functions in the running process.
+
+#include <dlfcn.h>
 
 namespace ffr::preproc::detail {
+
+/// A function of the libraries CHOLMOD brings along (its OpenMP runtime, BLAS, LAPACK), looked
+/// up in the running process rather than linked: they are CHOLMOD's dependencies, not ours, and
+/// another BLAS or a CHOLMOD built without OpenMP simply lacks the symbol (null then).
+template <class F>
+F* find_symbol(const char* name) {
+  return reinterpret_cast<F*>(dlsym(RTLD_DEFAULT, name));
+}
 
 /// Runs CHOLMOD's own OpenMP loops on the calling thread. Debian's CHOLMOD asks for a
 /// compiled-in CHOLMOD_OMP_NUM_THREADS (4) in the supernodal factorization, whatever

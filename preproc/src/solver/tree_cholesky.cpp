@@ -27,8 +27,6 @@
 #include "solve_schedule.hpp"
 #include "../run_parts.hpp"
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <memory>
 #include <vector>
@@ -39,8 +37,8 @@ namespace {
 using Index = std::int64_t;
 using Long = SuiteSparse_long;
 
-// The Fortran BLAS/LAPACK routines CHOLMOD itself calls, looked up in the running process as
-// the thread-count controls are (library_threads.cpp): they come with CHOLMOD, not with us.
+// The Fortran BLAS/LAPACK routines CHOLMOD itself calls, found as the thread-count controls
+// are (library_threads.hpp).
 using syrk_t = void(const char*, const char*, const int*, const int*, const double*, const double*, const int*,
                     const double*, double*, const int*);
 using gemm_t = void(const char*, const char*, const int*, const int*, const int*, const double*, const double*,
@@ -57,10 +55,8 @@ struct Lapack {
 };
 
 const Lapack* lapack() {
-  static const Lapack f{reinterpret_cast<syrk_t*>(dlsym(RTLD_DEFAULT, "dsyrk_")),
-                        reinterpret_cast<gemm_t*>(dlsym(RTLD_DEFAULT, "dgemm_")),
-                        reinterpret_cast<trsm_t*>(dlsym(RTLD_DEFAULT, "dtrsm_")),
-                        reinterpret_cast<potrf_t*>(dlsym(RTLD_DEFAULT, "dpotrf_"))};
+  static const Lapack f{find_symbol<syrk_t>("dsyrk_"), find_symbol<gemm_t>("dgemm_"), find_symbol<trsm_t>("dtrsm_"),
+                        find_symbol<potrf_t>("dpotrf_")};
   return f.syrk && f.gemm && f.trsm && f.potrf ? &f : nullptr;
 }
 
@@ -98,16 +94,16 @@ class TreeCholesky {
         next_(static_cast<std::size_t>(nsuper_), -1),
         lpos_(static_cast<std::size_t>(nsuper_), 0),
         head_(lists, std::vector<Index>(static_cast<std::size_t>(nsuper_), -1)) {
-    for (Index s = 0; s < nsuper_; ++s)
+    for (Index s = 0; s < nsuper_; ++s) {
       for (Index k = super_[s]; k < super_[s + 1]; ++k) owner_[static_cast<std::size_t>(k)] = s;
+      widest_ = std::max<Index>(widest_, pi_[s + 1] - pi_[s]);
+    }
   }
 
   Workspace workspace() const {
     Workspace w;
     w.map.assign(static_cast<std::size_t>(n_), -1);
-    Index widest = 0;
-    for (Index s = 0; s < nsuper_; ++s) widest = std::max<Index>(widest, pi_[s + 1] - pi_[s]);
-    w.relative.resize(static_cast<std::size_t>(widest));
+    w.relative.resize(static_cast<std::size_t>(widest_));
     return w;
   }
 
@@ -210,6 +206,7 @@ class TreeCholesky {
   const Long *super_, *pi_, *px_, *rows_;
   double* x_;
   Index xsize_, n_, nsuper_;
+  Index widest_ = 0;  // most rows of a supernode
   std::vector<Index> owner_;  // column -> supernode
   std::vector<Index> next_, lpos_;
   std::vector<std::vector<Index>> head_;  // per list: supernode -> first descendant
@@ -228,7 +225,9 @@ bool tree_cholesky(const cholmod_sparse& A, cholmod_factor& L, unsigned threads,
   if (L.xtype == CHOLMOD_PATTERN && !cholmod_l_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, &L, c)) return false;
   L.is_ll = 1;
 
-  const SolveSchedule plan = make_solve_schedule(L, threads, 0, TreeWork::Flops);
+  SolveSchedule plan = make_solve_schedule(L, threads, 0, TreeWork::Flops);
+  // No cut (a caller on one thread): every supernode is the top's.
+  if (plan.parts.empty()) plan.top = {{0, static_cast<Index>(L.nsuper) - 1}};
   const unsigned parts = static_cast<unsigned>(std::max<std::size_t>(1, plan.parts.size()));
   TreeCholesky chol(L, *f, parts);
   {
@@ -243,11 +242,7 @@ bool tree_cholesky(const cholmod_sparse& A, cholmod_factor& L, unsigned threads,
               [&](unsigned, Index b, Index e) { chol.scatter(A, position, b, e); });
   }
   Index minor = static_cast<Index>(L.n);
-  if (plan.parts.empty()) {
-    Workspace w = chol.workspace();
-    for (Index s = 0; s < static_cast<Index>(L.nsuper) && minor == static_cast<Index>(L.n); ++s)
-      minor = chol.node(s, 0, true, w);
-  } else {
+  if (!plan.parts.empty()) {
     // The subtrees: one list of them per thread, each with a one-thread BLAS. A thread stops
     // at its first failing supernode; the lowest failing column over the threads is the one
     // CHOLMOD, which goes in order, would report.
@@ -265,12 +260,12 @@ bool tree_cholesky(const cholmod_sparse& A, cholmod_factor& L, unsigned threads,
     }
     set_blas_threads(threads);
     minor = *std::min_element(failed.begin(), failed.end());
-    if (minor == static_cast<Index>(L.n)) {
-      Workspace w = chol.workspace();
-      for (const SupernodeRange& range : plan.top)
-        for (Index s = range.first; s <= range.last && minor == static_cast<Index>(L.n); ++s)
-          minor = chol.node(s, 0, true, w);
-    }
+  }
+  if (minor == static_cast<Index>(L.n)) {
+    Workspace w = chol.workspace();
+    for (const SupernodeRange& range : plan.top)
+      for (Index s = range.first; s <= range.last && minor == static_cast<Index>(L.n); ++s)
+        minor = chol.node(s, 0, true, w);
   }
   L.minor = static_cast<size_t>(minor);
   c->status = minor < static_cast<Index>(L.n) ? CHOLMOD_NOT_POSDEF : CHOLMOD_OK;

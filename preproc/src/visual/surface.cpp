@@ -48,10 +48,11 @@ formats::Visual surface_with_modes(const FeModel& model, const Eigen::MatrixXd& 
     for (int i : f) face.push_back(c[i]);
     return face;
   };
+  std::vector<std::vector<detail::Face>> block_faces(mesh.blocks.size());  // each block's local faces
   for (const auto& pb : model.blocks) {
     const auto& blk = mesh.blocks[pb.block];
     if (pb.kind == ElementKind::Beam) continue;
-    const auto local = detail::element_faces(blk.type);
+    const auto& local = block_faces[pb.block] = detail::element_faces(blk.type);
     if (pb.kind == ElementKind::Shell) {
       for (Index e = 0; e < blk.size(); ++e)
         for (const auto& f : local) faces.push_back(face_nodes(pb.block, e, f));
@@ -74,8 +75,7 @@ formats::Visual surface_with_modes(const FeModel& model, const Eigen::MatrixXd& 
     while (j < solid_faces.size() && solid_faces[j].same_face(solid_faces[i])) ++j;
     if (j == i + 1) {
       const FaceRecord& r = solid_faces[i];
-      faces.push_back(face_nodes(r.block, r.element,
-                                 detail::element_faces(mesh.blocks[r.block].type)[static_cast<std::size_t>(r.face)]));
+      faces.push_back(face_nodes(r.block, r.element, block_faces[r.block][static_cast<std::size_t>(r.face)]));
     }
     i = j;
   }
