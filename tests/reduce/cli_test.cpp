@@ -133,7 +133,7 @@ TEST(ReduceCli, InvertedElementInAMeshFileIsRefusedWithItsId) {
     if (v.size() == 9 && v[1] == 4) {
       std::swap(v[5], v[6]);
       std::string repl;
-      for (std::size_t i = 0; i < v.size(); ++i) repl += (i ? " " : "") + std::to_string(v[i]);
+      for (std::size_t i = 0; i < v.size(); ++i) repl += std::string(i ? " " : "") + std::to_string(v[i]);
       msh.replace(line, end - line, repl);
       tag = std::to_string(v[0]);
       break;
@@ -160,6 +160,36 @@ TEST(ReduceCli, FactorAboveTheMemoryLimitIsRefusedBeforeFactorizing) {
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("factor"), std::string::npos) << r.output;  // "needs N bytes, M available"
   EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
+}
+
+// The factorization's log line names OpenBLAS's kernels. ffr-reduce replaces kernels older than
+// the CPU suits (preproc/startup), but a user's OPENBLAS_CORETYPE stands, and the line then says
+// which kernels the CPU would run and how to ask for them.
+TEST(ReduceCli, LogNamesTheBlasKernelsAndAUsersChoiceStands) {
+  test::TempDir dir("kernels");
+  const std::string json = R"({"geometry": "bar.geo", "mesh": {"size": 0.01},
+    "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],
+    "reduction": {"method": "free", "modes": 2}})";
+  test::write_text(dir / "bar.geo", kGeoBar);
+  test::write_text(dir / "part.json", json);
+  const std::string args = ' ' + (dir / "part.json").string() + " -o " + (dir / "out.sid.h5").string();
+  // This test program's own start-up hook has set the variable; ffr-reduce must not inherit it.
+  const auto own = test::run("env -u OPENBLAS_CORETYPE " + test::bin("ffr-reduce").string() + args);
+  ASSERT_EQ(own.status, 0) << own.output;
+  const auto at = own.output.find("OpenBLAS ");
+  if (at == std::string::npos) GTEST_SKIP() << "the BLAS is not OpenBLAS";
+  std::string kernels;
+  std::istringstream(own.output.substr(at + 9)) >> kernels;
+  EXPECT_EQ(own.output.find("OPENBLAS_CORETYPE"), std::string::npos) << "no advice when ffr-reduce chose: " << own.output;
+
+  const auto forced = test::run("OPENBLAS_CORETYPE=Prescott " + test::bin("ffr-reduce").string() + args);
+  ASSERT_EQ(forced.status, 0) << forced.output;
+  EXPECT_NE(forced.output.find("OpenBLAS Prescott kernels"), std::string::npos) << forced.output;
+  // Where the CPU suits newer kernels, they are the ones ffr-reduce ran on its own.
+  if (forced.output.find("this CPU runs") != std::string::npos) {
+    EXPECT_NE(forced.output.find("the faster " + kernels + " ones: set OPENBLAS_CORETYPE=" + kernels), std::string::npos)
+        << forced.output;
+  }
 }
 
 TEST(ReduceCli, FrequencyLimitReturnsEveryModeBelowIt) {

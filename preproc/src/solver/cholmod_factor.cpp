@@ -1,5 +1,6 @@
 #include "ffr/preproc/solver/cholmod_factor.hpp"
 
+#include "blas_kernels.hpp"
 #include "cholmod_bridge.hpp"
 #include "library_threads.hpp"
 #include "nodal_ordering.hpp"
@@ -162,6 +163,11 @@ void CholmodFactor::Impl::analyze(const SparseMatrix& A) {
   s.supernodes = static_cast<std::int64_t>(L->nsuper);
   s.ordering = nodal.perm.empty() ? ordering_name(L->ordering) : "METIS";
   s.ordering_vertices = nodal.perm.empty() ? s.n : nodal.groups;
+  if (const char* kernels = detail::blas_kernel_name()) {
+    s.blas_kernels = kernels;
+    const char* suited = detail::openblas_core_for_this_cpu();
+    if (detail::openblas_core_falls_short(kernels, suited)) s.blas_kernels_suited = suited;
+  }
   // Estimates in bytes (8-byte doubles and SuiteSparse_long):
   //  factor   = values (xsize) + supernode row indices (ssize) + super/pi/px arrays +
   //             Perm, ColCount, IPerm and per-column bookkeeping (~4n);

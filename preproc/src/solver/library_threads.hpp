@@ -23,6 +23,10 @@ F* find_symbol(const char* name) {
 /// on the thread that factorizes. No effect when no OpenMP runtime is loaded.
 void keep_openmp_on_this_thread();
 
+/// The name of OpenBLAS's kernels in use (openblas_get_corename: "SkylakeX", "Haswell", ...),
+/// or null when the BLAS is not OpenBLAS.
+const char* blas_kernel_name();
+
 /// Sets OpenBLAS's thread count (openblas_set_num_threads), when OpenBLAS is the BLAS.
 void set_blas_threads(unsigned n);
 

@@ -77,6 +77,8 @@ struct FactorStatistics {
   int solve_threads = 0;           ///< threads of the substitutions after factorize (max_threads() at most)
   double solve_parallel_fraction = 0;  ///< share of the factor's entries they sweep in parallel
   double factor_parallel_fraction = 0;  ///< share of the flops factorized in parallel subtrees (0: CHOLMOD's own)
+  std::string blas_kernels;        ///< OpenBLAS's kernels in use (openblas_get_corename), empty for another BLAS
+  std::string blas_kernels_suited; ///< kernels this CPU would run, when those in use are older; else empty
 };
 
 enum class FactorStatus { Empty, Analyzed, Factorized, Failed };
