@@ -10,47 +10,38 @@
 // libraries' initialisers, before any BLAS call, and asks OpenBLAS which kernels it chose.
 // Where they fall short it repeats OpenBLAS's choice with the variable set, through the two
 // functions its DYNAMIC_ARCH builds export for that (gotoblas_dynamic_quit, gotoblas_dynamic_init:
-// the same selection and kernel set-up as at load). Should they be missing or the choice not
-// take, it starts the program again with the variable set (one exec: about 0.15 s measured).
+// the same selection and kernel set-up as at load). A build without them (not DYNAMIC_ARCH) has
+// no other kernels to choose: the variable is taken back, and the factorization's log line names
+// the kernels in use.
 //
 // An object linked into executables and not part of the library: a library should not change
-// its host's BLAS or restart it.
+// its host's BLAS.
 
-#include <dlfcn.h>
 #include <strings.h>
-#include <unistd.h>
 
 #include <cstdlib>
 
 #include "solver/blas_kernels.hpp"
+#include "solver/library_threads.hpp"
 
 namespace {
 
-template <class F>
-F* symbol(const char* name) {
-  return reinterpret_cast<F*>(dlsym(RTLD_DEFAULT, name));
-}
+using ffr::preproc::detail::find_symbol;
 
-__attribute__((constructor)) void use_suited_openblas_kernels(int, char** argv, char**) {
+__attribute__((constructor)) void use_suited_openblas_kernels() {
   const char* set = std::getenv("OPENBLAS_CORETYPE");
-  if (set && *set) return;  // the user's choice, or this hook's in a restarted process
-  auto* corename = symbol<char*()>("openblas_get_corename");
+  if (set && *set) return;  // the user's choice stands
+  auto* corename = find_symbol<char*()>("openblas_get_corename");
   if (!corename) return;  // no OpenBLAS in this process
   const char* suited = ffr::preproc::detail::openblas_core_for_this_cpu();
   if (!ffr::preproc::detail::openblas_core_falls_short(corename(), suited)) return;
-  if (setenv("OPENBLAS_CORETYPE", suited, 1) != 0) return;
-
-  auto* quit = symbol<void()>("gotoblas_dynamic_quit");
-  auto* init = symbol<void()>("gotoblas_dynamic_init");
-  if (quit && init) {
-    quit();
-    init();
-    if (strcasecmp(corename(), suited) == 0) return;
-  }
-  if (argv) execv("/proc/self/exe", argv);
-  // Only when everything failed: carry on with what OpenBLAS has; the factorization's log line
-  // names the kernels and the variable to set.
-  unsetenv("OPENBLAS_CORETYPE");
+  auto* quit = find_symbol<void()>("gotoblas_dynamic_quit");
+  auto* init = find_symbol<void()>("gotoblas_dynamic_init");
+  if (!quit || !init || setenv("OPENBLAS_CORETYPE", suited, 1) != 0) return;
+  quit();
+  init();
+  // Kept set when it took, so that child processes (and OpenBLAS, should it read it again) agree.
+  if (strcasecmp(corename(), suited) != 0) unsetenv("OPENBLAS_CORETYPE");
 }
 
 }  // namespace
