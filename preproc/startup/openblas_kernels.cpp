@@ -8,11 +8,11 @@
 // runs first, but glibc's initialiser then resets the environment to the one the kernel passed;
 // measured: a setenv made there is gone by main). So this runs as a constructor, after the
 // libraries' initialisers, before any BLAS call, and asks OpenBLAS which kernels it chose.
-// Where they fall short it repeats OpenBLAS's choice with the variable set, through the two
-// functions its DYNAMIC_ARCH builds export for that (gotoblas_dynamic_quit, gotoblas_dynamic_init:
-// the same selection and kernel set-up as at load). A build without them (not DYNAMIC_ARCH) has
-// no other kernels to choose: the variable is taken back, and the factorization's log line names
-// the kernels in use.
+// Where they fall short it repeats OpenBLAS's choice with the variable set, through two
+// functions its DYNAMIC_ARCH builds export (gotoblas_dynamic_quit, gotoblas_dynamic_init), which
+// make the same selection and kernel set-up as at load. A build without them (not DYNAMIC_ARCH)
+// has no other kernels to choose and is left alone; if the new choice does not take, the
+// variable is taken back. Either way the factorization's log line names the kernels in use.
 //
 // An object linked into executables and not part of the library: a library should not change
 // its host's BLAS.
