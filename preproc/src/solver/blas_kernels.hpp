@@ -34,14 +34,14 @@ inline const char* openblas_core_for_this_cpu() {
   return nullptr;
 }
 
-/// True when `in_use` (openblas_get_corename()) is one of OpenBLAS's x86 kernels older than
-/// AVX2, while this CPU would run `suited` (from openblas_core_for_this_cpu).
+/// True when `in_use` (openblas_get_corename()) is one of OpenBLAS's Intel kernels older than
+/// AVX2, while this CPU would run `suited` (from openblas_core_for_this_cpu, which names kernels
+/// for Intel CPUs only).
 inline bool openblas_core_falls_short(const char* in_use, const char* suited) {
   if (!in_use || !suited) return false;
-  static const char* const pre_avx2[] = {"Prescott", "Core2",  "Penryn",      "Dunnington", "Nehalem",
-                                         "Atom",     "Katmai", "Coppermine",  "Northwood",  "Banias",
-                                         "Sandybridge", "Bulldozer", "Piledriver", "Opteron", "Barcelona",
-                                         "Bobcat", "Opteron(SSE3)", "Athlon", "Nano", "Steamroller"};
+  static const char* const pre_avx2[] = {"Katmai", "Coppermine", "Northwood", "Prescott",   "Banias",
+                                         "Atom",   "Core2",      "Penryn",    "Dunnington", "Nehalem",
+                                         "Sandybridge"};
   for (const char* old : pre_avx2)
     if (strcasecmp(in_use, old) == 0) return true;
   return false;

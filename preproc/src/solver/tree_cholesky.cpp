@@ -247,18 +247,19 @@ bool tree_cholesky(const cholmod_sparse& A, cholmod_factor& L, unsigned threads,
     // at its first failing supernode; the lowest failing column over the threads is the one
     // CHOLMOD, which goes in order, would report.
     std::vector<Index> failed(parts, minor);
-    set_blas_threads(1);
-    try {
+    {
+      // Back to `threads` at the end of the scope, also when a thread throws.
+      struct OneThreadBlas {
+        unsigned after;
+        OneThreadBlas(unsigned n) : after(n) { set_blas_threads(1); }
+        ~OneThreadBlas() { set_blas_threads(after); }
+      } blas(threads);
       run_parts(parts, [](unsigned p) { return p; }, [&](unsigned t, unsigned, unsigned) {
         Workspace w = chol.workspace();
         for (const SupernodeRange& range : plan.parts[t])
           for (Index s = range.first; s <= range.last && failed[t] == minor; ++s) failed[t] = chol.node(s, t, false, w);
       });
-    } catch (...) {
-      set_blas_threads(threads);
-      throw;
     }
-    set_blas_threads(threads);
     minor = *std::min_element(failed.begin(), failed.end());
   }
   if (minor == static_cast<Index>(L.n)) {
