@@ -26,22 +26,23 @@
 
 namespace {
 
+using ffr::preproc::detail::blas_kernel_name;
 using ffr::preproc::detail::find_symbol;
 
 __attribute__((constructor)) void use_suited_openblas_kernels() {
   const char* set = std::getenv("OPENBLAS_CORETYPE");
   if (set && *set) return;  // the user's choice stands
-  auto* corename = find_symbol<char*()>("openblas_get_corename");
-  if (!corename) return;  // no OpenBLAS in this process
+  const char* in_use = blas_kernel_name();
+  if (!in_use) return;  // no OpenBLAS in this process
   const char* suited = ffr::preproc::detail::openblas_core_for_this_cpu();
-  if (!ffr::preproc::detail::openblas_core_falls_short(corename(), suited)) return;
+  if (!ffr::preproc::detail::openblas_core_falls_short(in_use, suited)) return;
   auto* quit = find_symbol<void()>("gotoblas_dynamic_quit");
   auto* init = find_symbol<void()>("gotoblas_dynamic_init");
   if (!quit || !init || setenv("OPENBLAS_CORETYPE", suited, 1) != 0) return;
   quit();
   init();
   // Kept set when it took, so that child processes (and OpenBLAS, should it read it again) agree.
-  if (strcasecmp(corename(), suited) != 0) unsetenv("OPENBLAS_CORETYPE");
+  if (strcasecmp(blas_kernel_name(), suited) != 0) unsetenv("OPENBLAS_CORETYPE");
 }
 
 }  // namespace

@@ -76,13 +76,14 @@ MatrixXd project_out(const Eigen::Ref<const MatrixXd>& Q, const MatrixXd& MW, Ma
   return c;
 }
 
-// The Ritz vectors Q(:, 0:k) S, written over the basis a band of rows at a time (a band's rows
-// of the result need only the same rows of Q), which then shrinks to them. Why: the basis is the
+// Q(:, 0:m) <- Q(:, 0:k) S for the k x m coefficients S (m <= k): the Ritz vectors (at
+// convergence) or the vectors a thick restart keeps, written over the basis a band of rows at a
+// time (a band's rows of the result need only the same rows of Q). Why: the basis is the
 // eigen-solve's largest buffer after the factor (70 MB on the 100k-DOF plate), and a separate
-// n x nev result, with the temporary of the product, raised the process's peak by two more
-// n x nev matrices (32 MB measured with heaptrack at 20 modes, at the end of the Lanczos stage,
+// n x m result, with the temporary of the product, raised the process's peak by two more
+// n x m matrices (32 MB measured with heaptrack at 20 modes, at the end of the Lanczos stage,
 // which set the peak of the whole run at 1 thread).
-MatrixXd ritz_vectors_in_place(MatrixXd&& Q, Index k, const Eigen::Ref<const MatrixXd>& S) {
+void rotate_basis_in_place(MatrixXd& Q, Index k, const Eigen::Ref<const MatrixXd>& S) {
   const Index n = Q.rows(), m = S.cols();
   constexpr Index kBand = 256;
   MatrixXd band(kBand, m);
@@ -91,8 +92,6 @@ MatrixXd ritz_vectors_in_place(MatrixXd&& Q, Index k, const Eigen::Ref<const Mat
     band.topRows(rows).noalias() = Q.block(r0, 0, rows, k) * S;
     Q.block(r0, 0, rows, m) = band.topRows(rows);
   }
-  Q.conservativeResize(Eigen::NoChange, m);  // column-major: keeps the leading columns, frees the rest
-  return std::move(Q);
 }
 
 }  // namespace
@@ -169,7 +168,9 @@ BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseMatrix& M, Symme
       if (theta[i] > 0 && coupling.col(i).norm() <= req.tol * theta[i]) ++converged;
     out.converged = converged;
     if (converged == nev) {
-      out.X = ritz_vectors_in_place(std::move(Q), k, S.leftCols(nev));
+      rotate_basis_in_place(Q, k, S.leftCols(nev));
+      Q.conservativeResize(Eigen::NoChange, nev);  // column-major: keeps the leading columns, frees the rest
+      out.X = std::move(Q);
       out.lambda.resize(nev);
       for (int i = 0; i < nev; ++i) out.lambda[i] = req.sigma + 1.0 / theta[i];
       out.success = true;
@@ -188,8 +189,7 @@ BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseMatrix& M, Symme
       return fail("not converged after " + std::to_string(req.max_restarts) + " restarts (" +
                   std::to_string(converged) + " of " + std::to_string(nev) + " pairs)");
     const Index keep = std::min<Index>(k - p, nev + p);
-    const MatrixXd Y = basis * S.leftCols(keep);
-    Q.leftCols(keep) = Y;
+    rotate_basis_in_place(Q, k, S.leftCols(keep));
     Q.middleCols(keep, p) = W;
     T.setZero();
     for (Index i = 0; i < keep; ++i) T(i, i) = theta[i];

@@ -8,11 +8,6 @@ void keep_openmp_on_this_thread() {
   if (set_levels) set_levels(0);
 }
 
-const char* blas_kernel_name() {
-  static auto* const corename = find_symbol<char*()>("openblas_get_corename");
-  return corename ? corename() : nullptr;
-}
-
 void set_blas_threads(unsigned n) {
   static auto* const set_threads = find_symbol<void(int)>("openblas_set_num_threads");
   if (set_threads && n > 0) set_threads(static_cast<int>(n));

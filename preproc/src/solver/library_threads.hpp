@@ -24,8 +24,12 @@ F* find_symbol(const char* name) {
 void keep_openmp_on_this_thread();
 
 /// The name of OpenBLAS's kernels in use (openblas_get_corename: "SkylakeX", "Haswell", ...),
-/// or null when the BLAS is not OpenBLAS.
-const char* blas_kernel_name();
+/// or null when the BLAS is not OpenBLAS. Inline: the executables' start-up hook
+/// (preproc/startup) calls it in programs without the library.
+inline const char* blas_kernel_name() {
+  static auto* const corename = find_symbol<char*()>("openblas_get_corename");
+  return corename ? corename() : nullptr;
+}
 
 /// Sets OpenBLAS's thread count (openblas_set_num_threads), when OpenBLAS is the BLAS.
 void set_blas_threads(unsigned n);

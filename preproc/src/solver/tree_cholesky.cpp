@@ -119,10 +119,11 @@ class TreeCholesky {
     const auto* Ax = static_cast<const double*>(A.x);
     for (Index c = c0; c < c1; ++c) {
       const Index p1 = Anz ? Ap[c] + Anz[c] : Ap[c + 1];
+      const Index pc = position[static_cast<std::size_t>(c)];
       for (Index p = Ap[c]; p < p1; ++p) {
         if (Ai[p] > c) continue;  // the upper triangle only
-        Index i = position[static_cast<std::size_t>(Ai[p])], j = position[static_cast<std::size_t>(c)];
-        if (i < j) std::swap(i, j);  // row i >= column j of the lower triangle
+        const Index pr = position[static_cast<std::size_t>(Ai[p])];
+        const Index i = std::max(pr, pc), j = std::min(pr, pc);  // row i >= column j of the lower triangle
         const Index s = owner_[static_cast<std::size_t>(j)];
         const Long* r0 = rows_ + pi_[s];
         const Long* r = std::lower_bound(r0, rows_ + pi_[s + 1], i);
