@@ -135,22 +135,35 @@ TEST(CholmodFactor, ThreadedSubstitutionsMatchTheSerialOnes) {
   EXPECT_LT((x - X.col(20)).norm() / X.col(20).norm(), 1e-13);
 }
 
-// With two threads the factorization runs the elimination tree's subtrees on separate threads
-// (tree_cholesky.cpp), on CHOLMOD's analysis; CHOLMOD's own factorization, at one thread, is
-// the reference. The two factors differ by rounding only, so the solutions agree to it.
-TEST(CholmodFactor, SubtreesOnTwoThreadsMatchCholmodsFactorization) {
+// The own factorization (tree_cholesky.cpp) on CHOLMOD's analysis: on two threads the
+// elimination tree's subtrees run on separate threads, on one thread it goes in order.
+// CHOLMOD's own factorization (own_factorization off) is the reference: the factors differ by
+// rounding only, so the solutions agree to it.
+TEST(CholmodFactor, OwnFactorizationMatchesCholmodsOnOneAndTwoThreads) {
   const SparseMatrix A = vector_laplacian();
   const Eigen::MatrixXd B = random_block(A.rows(), 5, 9);
   const RestoreThreads restore;
+  FactorOptions reference_options;
+  reference_options.own_factorization = false;
+  CholmodFactor reference(reference_options);
+  set_max_threads(1);
+  reference.factorize(A);
+  ASSERT_FALSE(reference.info().stats.own_factorization);
+  ASSERT_EQ(reference.info().stats.factor_parallel_fraction, 0.0);
   CholmodFactor serial = factorized_on(1, A);
+  ASSERT_TRUE(serial.info().stats.own_factorization);
   ASSERT_EQ(serial.info().stats.factor_parallel_fraction, 0.0);
   CholmodFactor tree = factorized_on(2, A);
+  ASSERT_TRUE(tree.info().stats.own_factorization);
   ASSERT_GT(tree.info().stats.factor_parallel_fraction, 1.0 / 3) << "factor entries " << tree.info().stats.factor_entries;
   EXPECT_EQ(tree.info().stats.analyses, 1);
-  const Eigen::MatrixXd X = serial.solve(B), Xt = tree.solve(B);
-  EXPECT_LT((Xt - X).norm() / X.norm(), 1e-13);
-  EXPECT_LT((A * Xt - B).norm() / B.norm(), 1e-12);
-  EXPECT_NEAR(tree.info().stats.rcond, serial.info().stats.rcond, 1e-12 * serial.info().stats.rcond);
+  const Eigen::MatrixXd X = reference.solve(B);
+  for (const CholmodFactor* f : {&serial, &tree}) {
+    const Eigen::MatrixXd Xo = f->solve(B);
+    EXPECT_LT((Xo - X).norm() / X.norm(), 1e-13);
+    EXPECT_LT((A * Xo - B).norm() / B.norm(), 1e-12);
+    EXPECT_NEAR(f->info().stats.rcond, reference.info().stats.rcond, 1e-12 * reference.info().stats.rcond);
+  }
 
   // A second factorization on the same analysis (the shifted matrix of an eigen-solve).
   SparseMatrix A2 = A;
@@ -158,17 +171,20 @@ TEST(CholmodFactor, SubtreesOnTwoThreadsMatchCholmodsFactorization) {
   tree.factorize(A2);  // still on two threads
   set_max_threads(1);
   serial.factorize(A2);
+  reference.factorize(A2);
   EXPECT_EQ(serial.info().stats.factor_parallel_fraction, 0.0);
   EXPECT_GT(tree.info().stats.factor_parallel_fraction, 0.0);
   EXPECT_EQ(tree.info().stats.analyses, 1);
-  EXPECT_LT((tree.solve(B) - serial.solve(B)).norm() / serial.solve(B).norm(), 1e-13);
+  const Eigen::MatrixXd X2 = reference.solve(B);
+  EXPECT_LT((tree.solve(B) - X2).norm() / X2.norm(), 1e-13);
+  EXPECT_LT((serial.solve(B) - X2).norm() / X2.norm(), 1e-13);
+  EXPECT_GT((X2 - X).norm() / X.norm(), 1e-3);  // the second matrix is another one
 
   // Asked not to, it leaves the factorization to CHOLMOD, also on two threads.
-  FactorOptions o;
-  o.tree_parallel = false;
   set_max_threads(2);
-  CholmodFactor cholmod(o);
+  CholmodFactor cholmod(reference_options);
   cholmod.factorize(A);
+  EXPECT_FALSE(cholmod.info().stats.own_factorization);
   EXPECT_EQ(cholmod.info().stats.factor_parallel_fraction, 0.0);
 }
 

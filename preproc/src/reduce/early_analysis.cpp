@@ -1,15 +1,13 @@
 // EarlyAnalysis: the structure of the matrix the eigen-solve factorizes, from the mesh and the
 // interfaces alone, and its symbolic factorization, on a thread of its own (reduction.hpp).
 #include "ffr/preproc/reduce/reduction.hpp"
+#include "ffr/preproc/solver/memory.hpp"
 #include "ffr/preproc/threads.hpp"
 #include "setup.hpp"
 #include "sparse_ops.hpp"
 
 #include <atomic>
 #include <chrono>
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
 #include <thread>
 
 namespace ffr::preproc {
@@ -56,12 +54,10 @@ EarlyAnalysis EarlyAnalysis::start(const FeModel& model, const ReductionSpec& sp
       f->analyze(C);
       s->factor = std::move(f);
       detail::release(C);
-#ifdef __GLIBC__
       // What this thread freed (the structure, METIS's and CHOLMOD's work arrays) stays in its
       // own malloc arena otherwise: ~100 MiB of resident memory on the 100k plate, which
       // raised the run's peak (at the factorization) by 70 MiB.
-      malloc_trim(0);
-#endif
+      release_free_heap();
     } catch (...) {
       // Bad input (an unknown interface, overlapping groups, ...): the reduction meets it
       // again, in its usual order and with its usual message.

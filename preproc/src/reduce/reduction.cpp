@@ -2,6 +2,7 @@
 
 #include "ffr/formats/h5.hpp"
 #include "ffr/preproc/solver/eigen_solver.hpp"
+#include "ffr/preproc/solver/memory.hpp"
 #include "setup.hpp"
 #include "sparse_ops.hpp"
 
@@ -9,9 +10,6 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
 #include <cmath>
 #include <algorithm>
 #include <sstream>
@@ -170,8 +168,20 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
   const SymmetricStorage storage = cb ? SymmetricStorage::Full : SymmetricStorage::UpperOnly;
   SparseMatrix K = detail::constrained(t, fe.K, cb);
   if (fe_owned) detail::release(fe_owned->K);
-  const SparseMatrix M = detail::constrained(t, fe.M, cb);
+  SparseMatrix M = detail::constrained(t, fe.M, cb);
   if (fe_owned) detail::release(fe_owned->M);
+  // The eigen-solves read M on K's index arrays when the two have one structure (they come
+  // from one pattern and one transform): M's own indices, half of it, are freed, 31 MB of the
+  // 100k plate of tools/bench/reduce at both of its memory peaks (factorization, Lanczos).
+  const bool shared = !cb && detail::same_structure(K, M);
+  std::vector<double> m_values;
+  if (shared) {
+    m_values.assign(M.valuePtr(), M.valuePtr() + M.nonZeros());
+    detail::release(M);
+  }
+  const Eigen::Map<const SparseMatrix> M_on_K(K.rows(), K.cols(), K.nonZeros(), K.outerIndexPtr(), K.innerIndexPtr(),
+                                              m_values.data());
+  const SparseRef Mr = shared ? SparseRef(M_on_K) : SparseRef(M);
 
   ReductionResult r;
   nlohmann::json params;
@@ -189,33 +199,35 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     // Analyse first and report the factor's size, so a factor that will not fit is refused
     // (by factorize, with the numbers) after the user has seen what it would need.
     const double t_constraints = lap(clock);
-    // K - sigma M is built in K's own storage when the two have one structure (they come from
-    // one pattern and one transform), so it takes no memory of its own at the factorization,
-    // the run's memory peak (60 MiB on the 100k plate); K is restored right after, to the
-    // rounding of one subtraction and one addition per entry.
-    const bool in_place = detail::same_structure(K, M);
+    // K - sigma M is built in K's own storage when the two have one structure, so it takes no
+    // memory of its own at the factorization, a memory peak of the run (60 MiB on the 100k
+    // plate); K is restored right after, to the rounding of one subtraction and one addition
+    // per entry.
+    const bool in_place = shared;
     SparseMatrix shifted;
-    if (in_place) detail::add_scaled_values(K, M, -sigma);
-    else shifted = shifted_upper(K, M, sigma);
+    if (in_place) detail::add_scaled_values(K, Mr, -sigma);
+    else shifted = shifted_upper(K, Mr, sigma);
     const SparseMatrix& C = in_place ? K : shifted;
     CholmodFactor factor = analysed_factor(C, spec, early, log);
     const double t_analyze = lap(clock);
     double t_factorize = 0;
     EigenSolver solver(o);
     attach_progress(solver, log);
+    // What the assembly, the constraints and the analysis freed (METIS's and CHOLMOD's work
+    // arrays at one thread, where the analysis runs here) would otherwise stay resident under
+    // the factorization: 58 MB on the 100k plate.
+    release_free_heap();
     try {
       factor.factorize_shifted_upper(C, sigma);
       // The factor holds what is needed from here on.
-      if (in_place) detail::add_scaled_values(K, M, sigma);
+      if (in_place) detail::add_scaled_values(K, Mr, sigma);
       else detail::release(shifted);
-#ifdef __GLIBC__
-      // CHOLMOD's factorization workspace, freed now, sits in the middle of the heap, which
-      // glibc does not give back by itself: 42 MiB of the 100k plate's peak at 1 thread, reached
-      // at the end of Lanczos on top of it.
-      malloc_trim(0);
-#endif
+      // The factorization's workspace, freed now, sits in the middle of the heap: 42 MiB of
+      // the 100k plate's peak at 1 thread (with CHOLMOD's factorization), reached at the end
+      // of Lanczos on top of it.
+      release_free_heap();
       t_factorize = lap(clock);
-      solver.compute(K, M, factor);
+      solver.compute(K, Mr, factor);
     } catch (const NotPositiveDefiniteError& e) {
       mechanism(model, "the stiffness is singular at " + node_text(model, t, e.column));
     }

@@ -1,6 +1,7 @@
 #pragma once
 // Small sparse helpers of the reductions.
 #include "ffr/preproc/model/sparse.hpp"
+#include "ffr/preproc/solver/sparse_types.hpp"
 
 #include <algorithm>
 #include <vector>
@@ -90,7 +91,7 @@ inline bool same_structure(const SparseMatrix& A, const SparseMatrix& B) {
 }
 
 /// A += s B entry by entry, for B of A's structure (same_structure).
-inline void add_scaled_values(SparseMatrix& A, const SparseMatrix& B, double s) {
+inline void add_scaled_values(SparseMatrix& A, const SparseRef& B, double s) {
   double* a = A.valuePtr();
   const double* b = B.valuePtr();
   for (std::int64_t k = 0; k < A.nonZeros(); ++k) a[k] += s * b[k];

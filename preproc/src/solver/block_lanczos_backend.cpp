@@ -96,7 +96,7 @@ void rotate_basis_in_place(MatrixXd& Q, Index k, const Eigen::Ref<const MatrixXd
 
 }  // namespace
 
-BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseMatrix& M, SymmetricStorage sM,
+BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseRef& M, SymmetricStorage sM,
                                  const Deflation& deflation, const BlockRequest& req) {
   BackendOutcome out;
   const Index n = op.rows();

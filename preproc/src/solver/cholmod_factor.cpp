@@ -2,6 +2,7 @@
 
 #include "blas_kernels.hpp"
 #include "cholmod_bridge.hpp"
+#include "factor_packing.hpp"
 #include "library_threads.hpp"
 #include "nodal_ordering.hpp"
 #include "supernodal_solve.hpp"
@@ -86,6 +87,10 @@ struct CholmodFactor::Impl {
   detail::CholmodCommon common;  // declared before L: L is freed in ~Impl while common lives
   cholmod_factor* L = nullptr;
   bool numeric = false;  // L holds numeric values (possibly of a failed factorization)
+  // L's values packed for the substitutions (factor_packing.hpp), CHOLMOD's layout having
+  // full_xsize of them: only `solver` may read them then.
+  bool packed = false;
+  std::size_t full_xsize = 0;
   std::uint64_t pattern = 0;
   int analyses = 0;  // symbolic analyses done by this factor
   FactorInfo info;
@@ -131,6 +136,7 @@ void CholmodFactor::Impl::analyze(const SparseMatrix& A) {
   solver.reset();
   if (L) cholmod_l_free_factor(&L, c);
   numeric = false;
+  packed = false;
   info = FactorInfo{};
 
   std::int64_t upper_nnz = 0;
@@ -234,10 +240,12 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
   // A numeric factor already owns its values: only the workspace is new then. Subtrees on
   // threads (tree_cholesky.hpp) take an update matrix and a row map each.
   const unsigned threads = max_threads();
-  const double share = opt.tree_parallel ? detail::tree_cholesky_share(*L, threads) : 0.0;
+  const bool own = opt.own_factorization && detail::tree_cholesky_available(*L);
+  const double share = own ? detail::tree_cholesky_share(*L, threads) : 0.0;
   const FactorStatistics& s = info.stats;
   const std::uint64_t per_thread = share > 0 ? (threads - 1u) * 8u * (L->maxcsize + static_cast<std::uint64_t>(s.n)) : 0u;
-  check_memory((numeric ? s.peak_bytes - s.factor_bytes : s.peak_bytes) + per_thread);
+  const std::uint64_t regrow = packed ? 8u * static_cast<std::uint64_t>(full_xsize - L->xsize) : 0u;
+  check_memory((numeric ? s.peak_bytes - s.factor_bytes + regrow : s.peak_bytes) + per_thread);
 
   cholmod_common* c = common.get();
   cholmod_sparse view = detail::view_upper(A);
@@ -246,8 +254,14 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
   detail::keep_openmp_on_this_thread();
   const auto t0 = Clock::now();
   solver.reset();
+  if (packed) {
+    if (!detail::unpack_storage(*L, full_xsize, c)) fail(cholmod_error("reallocation of the factor's values"));
+    packed = false;
+  }
   info.stats.factor_parallel_fraction = share;
-  const int ok = share > 0 ? detail::tree_cholesky(view, *L, threads, c) : cholmod_l_factorize(&view, L, c);
+  info.stats.own_factorization = own;
+  // A factor too small for subtrees on threads is factorized by the own code in order.
+  const int ok = own ? detail::tree_cholesky(view, *L, share > 0 ? threads : 1u, c) : cholmod_l_factorize(&view, L, c);
   numeric = true;
   info.stats.factorize_seconds = seconds_since(t0);
   info.stats.cholmod_peak_bytes = c->memory_usage;
@@ -265,7 +279,14 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
   if (opt.min_pivot_ratio > 0 && !(rmin >= opt.min_pivot_ratio)) throw_not_posdef(jmin, true, rmin);
   // At most 8 threads, as the other threaded vector work (run_parts.hpp): every sweep starts
   // and joins them.
-  solver = std::make_unique<detail::SupernodalSolver>(*L, std::min(max_threads(), 8u));
+  // Only the substitutions read L from here on: its values packed, 13 % of the 100k plate's
+  // factor given back for the eigen-solve (factor_packing.hpp).
+  std::vector<SuiteSparse_long> offsets = detail::packed_offsets(*L);
+  full_xsize = L->xsize;
+  detail::pack_values(*L, offsets, c);
+  packed = true;
+  info.stats.packed_entries = static_cast<std::int64_t>(offsets.back());
+  solver = std::make_unique<detail::SupernodalSolver>(*L, std::move(offsets), std::min(max_threads(), 8u));
   info.stats.solve_threads = static_cast<int>(solver->threads());
   info.stats.solve_parallel_fraction = solver->parallel_fraction();
   info.status = FactorStatus::Factorized;
@@ -284,7 +305,7 @@ const FactorStatistics& CholmodFactor::analyze(const SparseMatrix& A) {
 
 void CholmodFactor::factorize(const SparseMatrix& A) { impl_->factorize(A, 0.0); }
 
-void CholmodFactor::factorize_shifted(const SparseMatrix& A, const SparseMatrix& B,
+void CholmodFactor::factorize_shifted(const SparseRef& A, const SparseRef& B,
                                       double sigma) {
   if (impl_->opt.check_symmetry) {
     validate_symmetric(A, "A of A - sigma*B");

@@ -11,13 +11,13 @@
 namespace ffr::preproc::detail {
 
 namespace {
-Eigen::MatrixXd to_dense(const SparseMatrix& A, SymmetricStorage s) {
+Eigen::MatrixXd to_dense(const SparseRef& A, SymmetricStorage s) {
   if (s == SymmetricStorage::UpperOnly) return Eigen::MatrixXd(SparseMatrix(A.selfadjointView<Eigen::Upper>()));
   return Eigen::MatrixXd(A);
 }
 }  // namespace
 
-BackendOutcome run_dense(const SparseMatrix& K, SymmetricStorage sK, const SparseMatrix& M,
+BackendOutcome run_dense(const SparseRef& K, SymmetricStorage sK, const SparseRef& M,
                          SymmetricStorage sM, const Deflation& deflation, double sigma) {
   BackendOutcome out;
   Eigen::MatrixXd Kd = to_dense(K, sK), Md = to_dense(M, sM);

@@ -39,7 +39,7 @@ struct BlockRequest {
 
 /// Block shift-invert Lanczos (block_lanczos_backend.cpp). On failure (breakdown, no
 /// convergence, a problem too small for the basis) returns success = false with a message.
-BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseMatrix& M, SymmetricStorage sM,
+BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseRef& M, SymmetricStorage sM,
                                  const Deflation& deflation, const BlockRequest& req);
 
 /// Spectra 1.0 SymGEigsShiftSolver<ShiftInvertOp, MassOp, GEigsMode::ShiftInvert>.
@@ -50,13 +50,13 @@ BackendOutcome run_arpack(ShiftInvertOp& op, MassOp& bop, const LanczosRequest& 
 
 /// All eigenpairs with lambda > sigma of the pencil restricted to the M-orthogonal
 /// complement of the deflation basis, by Eigen's dense solver. n <= a few thousand.
-BackendOutcome run_dense(const SparseMatrix& K, SymmetricStorage sK, const SparseMatrix& M,
+BackendOutcome run_dense(const SparseRef& K, SymmetricStorage sK, const SparseRef& M,
                          SymmetricStorage sM, const Deflation& deflation, double sigma);
 
 /// Rayleigh-Ritz on span(P X), selection (first `keep` pairs, or all with lambda <=
 /// lambda_max), sign convention, and the residual / orthonormality / deflation checks.
 /// Fills everything in `out`; does not throw on failed checks (the caller decides).
-void finish_eigenpairs(const SparseMatrix& K, SymmetricStorage sK, const SparseMatrix& M,
+void finish_eigenpairs(const SparseRef& K, SymmetricStorage sK, const SparseRef& M,
                        SymmetricStorage sM, const Deflation& deflation, Eigen::MatrixXd X,
                        int keep, double lambda_max, EigenResult& out);
 

@@ -32,7 +32,7 @@ void normalize_signs(Eigen::MatrixXd& X) {
   }
 }
 
-void finish_eigenpairs(const SparseMatrix& K, SymmetricStorage sK, const SparseMatrix& M,
+void finish_eigenpairs(const SparseRef& K, SymmetricStorage sK, const SparseRef& M,
                        SymmetricStorage sM, const Deflation& deflation, Eigen::MatrixXd X,
                        int keep, double lambda_max, EigenResult& out) {
   for (Eigen::Index j = 0; j < X.cols(); ++j) deflation.project(X.col(j).data());

@@ -79,18 +79,18 @@ int grow_nev(int nev, double top, double lambda_max, double sigma) {
 
 EigenSolver::EigenSolver(EigenOptions options) : options_(std::move(options)) {}
 
-const EigenResult& EigenSolver::compute(const SparseMatrix& K, const SparseMatrix& M) {
+const EigenResult& EigenSolver::compute(const SparseRef& K, const SparseRef& M) {
   return run_recorded(K, M, nullptr);
 }
 
-const EigenResult& EigenSolver::compute(const SparseMatrix& K, const SparseMatrix& M,
+const EigenResult& EigenSolver::compute(const SparseRef& K, const SparseRef& M,
                                         const CholmodFactor& factor) {
   return run_recorded(K, M, &factor);
 }
 
 // Whatever escapes run() (including exceptions of Spectra or of a CHOLMOD solve in the
 // middle of the Lanczos loop) leaves a status and message in info().
-const EigenResult& EigenSolver::run_recorded(const SparseMatrix& K, const SparseMatrix& M,
+const EigenResult& EigenSolver::run_recorded(const SparseRef& K, const SparseRef& M,
                                              const CholmodFactor* given) {
   try {
     return run(K, M, given);
@@ -103,7 +103,7 @@ const EigenResult& EigenSolver::run_recorded(const SparseMatrix& K, const Sparse
   }
 }
 
-const EigenResult& EigenSolver::run(const SparseMatrix& K, const SparseMatrix& M,
+const EigenResult& EigenSolver::run(const SparseRef& K, const SparseRef& M,
                                     const CholmodFactor* given) {
   const EigenOptions& o = options_;
   info_ = EigenInfo{};

@@ -27,7 +27,7 @@ void Deflation::project_dual(double* f) const {
   v.noalias() -= MR * c;
 }
 
-Deflation make_deflation(const SparseMatrix& M, SymmetricStorage storage,
+Deflation make_deflation(const SparseRef& M, SymmetricStorage storage,
                          const Eigen::Ref<const Eigen::MatrixXd>& R_in, double rank_tol) {
   Deflation d;
   if (R_in.cols() == 0) return d;

@@ -17,7 +17,7 @@ using SI = SparseMatrix::StorageIndex;
 struct ColumnRange {
   SI begin, end;
 };
-ColumnRange upper_range(const SparseMatrix& A, Eigen::Index j) {
+ColumnRange upper_range(const SparseRef& A, Eigen::Index j) {
   const SI b = A.outerIndexPtr()[j];
   const SI e = A.isCompressed() ? A.outerIndexPtr()[j + 1] : b + A.innerNonZeroPtr()[j];
   SI k = b;
@@ -28,7 +28,7 @@ ColumnRange upper_range(const SparseMatrix& A, Eigen::Index j) {
 
 // Merges column j of A and B; calls emit(row, value) in increasing row order.
 template <typename Emit>
-void merge_column(const SparseMatrix& A, const SparseMatrix& B, double sigma, Eigen::Index j,
+void merge_column(const SparseRef& A, const SparseRef& B, double sigma, Eigen::Index j,
                   Emit&& emit) {
   const ColumnRange a = upper_range(A, j), b = upper_range(B, j);
   const SI *ra = A.innerIndexPtr(), *rb = B.innerIndexPtr();
@@ -50,7 +50,7 @@ void merge_column(const SparseMatrix& A, const SparseMatrix& B, double sigma, Ei
 }
 }  // namespace
 
-SparseMatrix shifted_upper(const SparseMatrix& A, const SparseMatrix& B, double sigma) {
+SparseMatrix shifted_upper(const SparseRef& A, const SparseRef& B, double sigma) {
   if (A.rows() != A.cols() || B.rows() != B.cols() || A.rows() != B.rows()) {
     std::ostringstream os;
     os << "A - sigma*B: A is " << A.rows() << " x " << A.cols() << ", B is " << B.rows() << " x "

@@ -13,10 +13,10 @@
 
 namespace ffr::preproc {
 
-SymmetricStorage detect_storage(const SparseMatrix& A) {
+SymmetricStorage detect_storage(const SparseRef& A) {
   bool upper = false, lower = false;
   for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
-    for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+    for (SparseRef::InnerIterator it(A, j); it; ++it) {
       if (it.row() < it.col()) upper = true;
       else if (it.row() > it.col()) lower = true;
     }
@@ -37,7 +37,7 @@ using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eig
 // W fixes the row width at compile time where the eigen-solvers need it (a multiple of 4: rows
 // of simd::v4; 0 for any width, not vectorized).
 template <int W>
-void upper_times_rows(const SparseMatrix& A, const RowMajorMatrix& X, Eigen::Index j0, Eigen::Index j1, double* y) {
+void upper_times_rows(const SparseRef& A, const RowMajorMatrix& X, Eigen::Index j0, Eigen::Index j1, double* y) {
   const auto* outer = A.outerIndexPtr();
   const auto* nnz = A.innerNonZeroPtr();
   const auto* rows = A.innerIndexPtr();
@@ -88,7 +88,7 @@ void upper_times_rows(const SparseMatrix& A, const RowMajorMatrix& X, Eigen::Ind
 
 // The widths the eigen-solvers use, each compiled for AVX-512 and AVX2 as well.
 FFR_KERNEL_CLONES
-void upper_times_rows_any(const SparseMatrix& A, const RowMajorMatrix& X, Eigen::Index j0, Eigen::Index j1, double* y) {
+void upper_times_rows_any(const SparseRef& A, const RowMajorMatrix& X, Eigen::Index j0, Eigen::Index j1, double* y) {
   switch (X.cols()) {
     case 4: upper_times_rows<4>(A, X, j0, j1, y); break;
     case 8: upper_times_rows<8>(A, X, j0, j1, y); break;
@@ -100,7 +100,7 @@ void upper_times_rows_any(const SparseMatrix& A, const RowMajorMatrix& X, Eigen:
 // Y = A X over the columns of A split into parts of about equal stored entries. A part writes
 // the rows of its own columns and, through the mirrored entries, rows of earlier columns; so
 // each part after the first accumulates into its own zeroed buffer, added to Y at the end.
-void upper_times_rows(const SparseMatrix& A, const RowMajorMatrix& X, RowMajorMatrix& Y) {
+void upper_times_rows(const SparseRef& A, const RowMajorMatrix& X, RowMajorMatrix& Y) {
   const Eigen::Index n = A.outerSize();
   const unsigned parts = detail::parts_for(A.nonZeros(), Eigen::Index{1} << 18);
   std::vector<RowMajorMatrix> extra(parts > 1 ? parts - 1 : 0);
@@ -133,7 +133,7 @@ Eigen::Index chunk_width(Eigen::Index left) {
 }
 
 // The product for the columns [c0, c1) of X into the same columns of Y.
-void product_columns(const SparseMatrix& A, SymmetricStorage storage, const Eigen::Ref<const Eigen::MatrixXd>& X,
+void product_columns(const SparseRef& A, SymmetricStorage storage, const Eigen::Ref<const Eigen::MatrixXd>& X,
                      Eigen::Index c0, Eigen::Index c1, Eigen::MatrixXd& Y) {
   const RowMajorMatrix Xr = X.middleCols(c0, c1 - c0);
   RowMajorMatrix Yr = RowMajorMatrix::Zero(A.rows(), c1 - c0);
@@ -144,7 +144,7 @@ void product_columns(const SparseMatrix& A, SymmetricStorage storage, const Eige
 
 }  // namespace
 
-Eigen::MatrixXd sym_multiply(const SparseMatrix& A, SymmetricStorage storage,
+Eigen::MatrixXd sym_multiply(const SparseRef& A, SymmetricStorage storage,
                              const Eigen::Ref<const Eigen::MatrixXd>& X) {
   Eigen::MatrixXd Y(A.rows(), X.cols());
   if (X.cols() == 1) {
@@ -169,10 +169,10 @@ Eigen::MatrixXd sym_multiply(const SparseMatrix& A, SymmetricStorage storage,
   return Y;
 }
 
-double sym_norm1(const SparseMatrix& A, SymmetricStorage storage) {
+double sym_norm1(const SparseRef& A, SymmetricStorage storage) {
   Eigen::VectorXd colsum = Eigen::VectorXd::Zero(A.cols());
   for (Eigen::Index j = 0; j < A.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+    for (SparseRef::InnerIterator it(A, j); it; ++it) {
       colsum[it.col()] += std::abs(it.value());
       // An upper-only matrix implies the mirrored entry in column it.row().
       if (storage == SymmetricStorage::UpperOnly && it.row() != it.col())
@@ -181,7 +181,7 @@ double sym_norm1(const SparseMatrix& A, SymmetricStorage storage) {
   return A.cols() > 0 ? colsum.maxCoeff() : 0.0;
 }
 
-SymmetricStorage validate_symmetric(const SparseMatrix& A, const char* what,
+SymmetricStorage validate_symmetric(const SparseRef& A, const char* what,
                                     double symmetry_tol) {
   const std::string name(what);
   if (A.rows() != A.cols()) {
@@ -191,7 +191,7 @@ SymmetricStorage validate_symmetric(const SparseMatrix& A, const char* what,
   }
   if (A.rows() == 0) throw std::invalid_argument(name + ": matrix is empty (0 x 0)");
   for (Eigen::Index j = 0; j < A.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+    for (SparseRef::InnerIterator it(A, j); it; ++it)
       if (!std::isfinite(it.value())) {
         std::ostringstream os;
         os << name << ": non-finite entry " << it.value() << " at (row " << it.row()

@@ -1,9 +1,10 @@
 // Supernodal forward and back substitution (see supernodal_solve.hpp for why).
 //
-// CHOLMOD's supernodal layout: supernode s holds columns k1 = super[s] .. k2 = super[s+1] - 1
-// of L as one dense column-major block of nsrow = pi[s+1] - pi[s] rows (leading dimension
-// nsrow) at values + px[s]; its row indices rows[pi[s] ..] start with k1 .. k2 - 1 (the dense
-// lower triangle L11 on top), followed by the nsrow - nscol rows of the rectangular L21 below.
+// CHOLMOD's supernodal structure: supernode s holds columns k1 = super[s] .. k2 = super[s+1] - 1
+// of L on nsrow = pi[s+1] - pi[s] rows; its row indices rows[pi[s] ..] start with k1 .. k2 - 1
+// (the lower triangle L11 on top), followed by the nsrow - nscol rows of the rectangular L21
+// below. The values are packed (factor_packing.hpp): from values + px[s], in stripes of kStripe
+// columns, stripe t from row kStripe t down (panel_columns below finds a panel's).
 //
 // Forward (L y = P b), supernodes in order:  y1 <- L11^-1 y1,   y[rows of L21] -= L21 y1.
 // Back (L^T z = y), in reverse order:        y1 <- L11^-T (y1 - L21^T y[rows of L21]).
@@ -13,6 +14,7 @@
 #include "supernodal_solve.hpp"
 
 #include "../run_parts.hpp"
+#include "factor_packing.hpp"
 #include "kernel_clones.hpp"
 #include "supernodal_panels.hpp"
 
@@ -34,34 +36,48 @@ using panels::dot_p;
 using panels::kPanel;
 using panels::update_p;
 
+// The packed values of a panel of supernode s starting at column j0 (a multiple of the panel
+// width, which divides kStripe): L(i, j0 + q) = at(i, q) for the rows i >= r0 its stripe holds.
+struct PanelColumns {
+  const double* L;  // L(r0, j0)
+  Index ld, r0;
+  const double* row(Index i) const { return L + (i - r0); }
+  double at(Index i, Index q) const { return L[(i - r0) + q * ld]; }
+};
+
+inline PanelColumns panel_columns(const View& v, Index s, Index nsrow, Index j0) {
+  const Index t = j0 / kStripe, r0 = kStripe * t, ld = nsrow - r0;
+  return {v.values + v.px[s] + stripe_offset(nsrow, t) + (j0 - r0) * ld, ld, r0};
+}
+
 // Forward step of supernode s. Updates to rows with a slot (the top of a threaded sweep, see
 // solve_schedule.hpp) go to the accumulator acc instead of y.
 template <int W>
 void forward_node(const View& v, Index s, double* y, double* t, const std::int32_t* slot, double* acc) {
   const Index k1 = v.super[s], nscol = v.super[s + 1] - k1;
   const Index nsrow = v.pi[s + 1] - v.pi[s], m = nsrow - nscol;
-  const double* L = v.values + v.px[s];
   const SuiteSparse_long* below = v.rows + v.pi[s] + nscol;
   double* yd = y + k1 * W;
   std::fill(t, t + m * W, 0.0);
   constexpr int kP = kPanel<W>;
+  static_assert(kStripe % kP == 0, "a panel must lie in one stripe");
   for (Index j0 = 0; j0 < nscol; j0 += kP) {
     const int p = static_cast<int>(std::min<Index>(kP, nscol - j0));
+    const PanelColumns L = panel_columns(v, s, nsrow, j0);
     // The panel's own triangle.
     for (int q = 0; q < p; ++q) {
       const Index j = j0 + q;
       double* yj = yd + j * W;
-      const double d = L[j + j * nsrow];
+      const double d = L.at(j, q);
       for (int c = 0; c < W; ++c) yj[c] /= d;
       for (int r = q + 1; r < p; ++r) {
-        const double l = L[j0 + r + j * nsrow];
+        const double l = L.at(j0 + r, q);
         for (int c = 0; c < W; ++c) yd[(j0 + r) * W + c] -= l * yj[c];
       }
     }
     // The rest of L11 below the panel, then L21 into the update rows.
-    const double* Lp = L + j0 * nsrow;
-    update_p<W>(p, Lp + j0 + p, nsrow, nscol - j0 - p, yd + j0 * W, yd + (j0 + p) * W);
-    update_p<W>(p, Lp + nscol, nsrow, m, yd + j0 * W, t);
+    update_p<W>(p, L.row(j0 + p), L.ld, nscol - j0 - p, yd + j0 * W, yd + (j0 + p) * W);
+    update_p<W>(p, L.row(nscol), L.ld, m, yd + j0 * W, t);
   }
   for (Index i = 0; i < m; ++i) {
     const Index r = below[i];
@@ -75,7 +91,6 @@ template <int W>
 void backward_node(const View& v, Index s, double* y, double* t) {
   const Index k1 = v.super[s], nscol = v.super[s + 1] - k1;
   const Index nsrow = v.pi[s + 1] - v.pi[s], m = nsrow - nscol;
-  const double* L = v.values + v.px[s];
   const SuiteSparse_long* below = v.rows + v.pi[s] + nscol;
   double* yd = y + k1 * W;
   for (Index i = 0; i < m; ++i) {
@@ -87,17 +102,17 @@ void backward_node(const View& v, Index s, double* y, double* t) {
   const Index last = ((nscol - 1) / kP) * kP;
   for (Index j0 = last; j0 >= 0; j0 -= kP) {
     const int p = static_cast<int>(std::min<Index>(kP, nscol - j0));
-    const double* Lp = L + j0 * nsrow;
-    dot_p<W>(p, Lp + nscol, nsrow, m, t, yd + j0 * W);
-    dot_p<W>(p, Lp + j0 + p, nsrow, nscol - j0 - p, yd + (j0 + p) * W, yd + j0 * W);
+    const PanelColumns L = panel_columns(v, s, nsrow, j0);
+    dot_p<W>(p, L.row(nscol), L.ld, m, t, yd + j0 * W);
+    dot_p<W>(p, L.row(j0 + p), L.ld, nscol - j0 - p, yd + (j0 + p) * W, yd + j0 * W);
     for (int q = p - 1; q >= 0; --q) {
       const Index j = j0 + q;
       double* yj = yd + j * W;
       for (int r = q + 1; r < p; ++r) {
-        const double l = L[j0 + r + j * nsrow];
+        const double l = L.at(j0 + r, q);
         for (int c = 0; c < W; ++c) yj[c] -= l * yd[(j0 + r) * W + c];
       }
-      const double d = L[j + j * nsrow];
+      const double d = L.at(j, q);
       for (int c = 0; c < W; ++c) yj[c] /= d;
     }
   }
@@ -135,14 +150,17 @@ FFR_KERNEL_CLONES void sweep(const View& v, int width, const Sweep& w, double* y
 
 }  // namespace
 
-SupernodalSolver::SupernodalSolver(const cholmod_factor& L, unsigned threads)
+SupernodalSolver::SupernodalSolver(const cholmod_factor& L, std::vector<SuiteSparse_long> packed_offsets,
+                                   unsigned threads)
     : n_(static_cast<std::int64_t>(L.n)),
       perm_(static_cast<const SuiteSparse_long*>(L.Perm)),
+      px_(std::move(packed_offsets)),
       view_{static_cast<std::int64_t>(L.nsuper), static_cast<const SuiteSparse_long*>(L.super),
-            static_cast<const SuiteSparse_long*>(L.pi), static_cast<const SuiteSparse_long*>(L.px),
+            static_cast<const SuiteSparse_long*>(L.pi), px_.data(),
             static_cast<const SuiteSparse_long*>(L.s), static_cast<const double*>(L.x)},
       schedule_(make_solve_schedule(L, threads, kMinParallelEntries)) {
   assert(L.is_super && L.is_ll && L.xtype == CHOLMOD_REAL);
+  assert(px_.size() == L.nsuper + 1 && static_cast<size_t>(px_.back()) <= L.xsize);
   for (Index s = 0; s < view_.nsuper; ++s) {
     const Index nsrow = view_.pi[s + 1] - view_.pi[s], nscol = view_.super[s + 1] - view_.super[s];
     max_update_rows_ = std::max(max_update_rows_, nsrow - nscol);

@@ -20,23 +20,24 @@
 
 namespace ffr::preproc::detail {
 
-/// The arrays of a numeric supernodal factor the sweeps read (CHOLMOD's layout, see
-/// supernodal_solve.cpp).
+/// The arrays of a numeric supernodal factor the sweeps read: CHOLMOD's structure, the values
+/// packed (factor_packing.hpp; see supernodal_solve.cpp).
 struct SupernodalView {
   std::int64_t nsuper = 0;
   const SuiteSparse_long* super = nullptr;
   const SuiteSparse_long* pi = nullptr;
-  const SuiteSparse_long* px = nullptr;
+  const SuiteSparse_long* px = nullptr;  ///< packed offsets (factor_packing.hpp)
   const SuiteSparse_long* rows = nullptr;
   const double* values = nullptr;
 };
 
 class SupernodalSolver {
  public:
-  /// Keeps pointers into L (not a copy): L must stay numeric and alive while solve() is used.
+  /// Keeps pointers into L (not a copy): L must stay numeric, packed with pack_values by these
+  /// offsets (packed_offsets, factor_packing.hpp), and alive while solve() is used.
   /// With threads > 1 and a factor of at least kMinParallelEntries values, the sweeps run on
   /// up to that many threads (solve_schedule.hpp).
-  explicit SupernodalSolver(const cholmod_factor& L, unsigned threads = 1);
+  SupernodalSolver(const cholmod_factor& L, std::vector<SuiteSparse_long> packed_offsets, unsigned threads = 1);
 
   /// Smaller factors are solved on one thread: a sweep over a 2^20-entry (8 MB) factor
   /// takes about a millisecond, where starting and joining threads starts to show.
@@ -55,6 +56,7 @@ class SupernodalSolver {
  private:
   std::int64_t n_ = 0;
   const SuiteSparse_long* perm_ = nullptr;  ///< null: identity
+  std::vector<SuiteSparse_long> px_;        ///< packed offsets, view_.px
   SupernodalView view_;
   std::int64_t max_update_rows_ = 0;  ///< largest nsrow - nscol over the supernodes
   SolveSchedule schedule_;

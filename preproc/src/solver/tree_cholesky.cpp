@@ -215,8 +215,10 @@ class TreeCholesky {
 
 }  // namespace
 
+bool tree_cholesky_available(const cholmod_factor& L) { return L.is_super && lapack(); }
+
 double tree_cholesky_share(const cholmod_factor& L, unsigned threads) {
-  if (threads < 2 || !L.is_super || !lapack()) return 0.0;
+  if (threads < 2 || !tree_cholesky_available(L)) return 0.0;
   return make_solve_schedule(L, threads, kMinEntries, TreeWork::Flops).parallel_fraction;
 }
 

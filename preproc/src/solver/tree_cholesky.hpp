@@ -8,6 +8,9 @@
 
 namespace ffr::preproc::detail {
 
+/// Whether tree_cholesky can factorize L: supernodal, and the BLAS and LAPACK routines found.
+bool tree_cholesky_available(const cholmod_factor& L);
+
 /// The share of the factorization's flops that tree_cholesky would run in the subtrees, on
 /// `threads` threads; 0 when it would not pay (one thread, a small factor, a tree whose top
 /// dominates) or cannot run (the BLAS and LAPACK routines not found in the process).
@@ -17,8 +20,8 @@ double tree_cholesky_share(const cholmod_factor& L, unsigned threads);
 /// cholmod_l_factorize would: A upper-stored (stype > 0), L analysed by CHOLMOD for it
 /// (supernodal, symbolic or numeric). Sets L->minor to the first permuted column whose pivot is
 /// not positive (L->n when A is positive definite; the columns from there on are then not
-/// valid). Returns false, with nothing computed, when it cannot run (the routines not found or
-/// L not supernodal, where tree_cholesky_share is 0; A not upper-stored) or when CHOLMOD's
+/// valid). Returns false, with nothing computed, when it cannot run (not
+/// tree_cholesky_available; A not upper-stored) or when CHOLMOD's
 /// allocation of L's values fails (c->status tells why). BLAS runs
 /// single-threaded inside the subtrees and on `threads` threads for the top, and is left at
 /// `threads` threads.

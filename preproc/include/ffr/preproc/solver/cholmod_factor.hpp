@@ -49,11 +49,14 @@ struct FactorOptions {
   /// Validate every input (square, finite, accepted storage, symmetry probe; O(nnz)). Off
   /// only when the caller has validated the matrices already.
   bool check_symmetry = true;
-  /// With two threads or more (ffr::preproc::max_threads()), factorize the independent
-  /// subtrees of the elimination tree on separate threads (own supernodal code on CHOLMOD's
-  /// analysis and layout) instead of CHOLMOD's supernode-by-supernode factorization, whose
-  /// only parallelism is in the BLAS. The factor differs from CHOLMOD's by rounding only.
-  bool tree_parallel = true;
+  /// Compute the numeric factor with the own supernodal code (tree_cholesky.hpp) on
+  /// CHOLMOD's analysis and layout instead of cholmod_l_factorize. With two threads or more
+  /// (ffr::preproc::max_threads()) and a factor large enough it runs the independent subtrees
+  /// of the elimination tree on separate threads, where CHOLMOD's only parallelism is in the
+  /// BLAS; on one thread it still avoids CHOLMOD's permuted copy of A and its transpose (the
+  /// 100k-DOF plate of tools/bench/reduce: 60-77 MB less at the factorization).
+  /// The factor differs from CHOLMOD's by rounding only.
+  bool own_factorization = true;
 };
 
 struct FactorStatistics {
@@ -61,6 +64,8 @@ struct FactorStatistics {
   std::int64_t nnz_A = 0;          ///< entries of the upper triangle given to CHOLMOD
   double nnz_L = 0;                ///< nnz(L) of the "pure" factor (Common->lnz)
   std::int64_t factor_entries = 0; ///< stored values incl. supernodal amalgamation zeros (L->xsize)
+  std::int64_t packed_entries = 0; ///< values kept after factorize, for the substitutions (most of
+                                   ///< the diagonal blocks' upper triangles dropped)
   double flops = 0;                ///< flop count of the LL^T factorization (Common->fl)
   std::int64_t supernodes = 0;
   std::uint64_t factor_bytes = 0;  ///< estimated size of the numeric factor
@@ -76,7 +81,8 @@ struct FactorStatistics {
   std::uint64_t cholmod_peak_bytes = 0;  ///< measured peak of CHOLMOD's allocations
   int solve_threads = 0;           ///< threads of the substitutions after factorize (max_threads() at most)
   double solve_parallel_fraction = 0;  ///< share of the factor's entries they sweep in parallel
-  double factor_parallel_fraction = 0;  ///< share of the flops factorized in parallel subtrees (0: CHOLMOD's own)
+  double factor_parallel_fraction = 0;  ///< share of the flops factorized in parallel subtrees
+  bool own_factorization = false;  ///< computed by the own supernodal code, not cholmod_l_factorize
   std::string blas_kernels;        ///< OpenBLAS's kernels in use (openblas_get_corename), empty for another BLAS
   std::string blas_kernels_suited; ///< kernels this CPU would run, when those in use are older; else empty
 };
@@ -111,7 +117,7 @@ class CholmodFactor {
 
   /// Factorizes C = A - sigma*B. C is formed once, upper triangle only, by merging the two
   /// column patterns (no intermediate full-size sum).
-  void factorize_shifted(const SparseMatrix& A, const SparseMatrix& B, double sigma);
+  void factorize_shifted(const SparseRef& A, const SparseRef& B, double sigma);
 
   /// The same for C = shifted_upper(A, B, sigma) the caller already holds (e.g. built for
   /// analyze): C is not formed a second time, so only one copy lives during the numeric
@@ -137,6 +143,6 @@ class CholmodFactor {
 
 /// C = A - sigma*B, upper triangle only (row <= col), both inputs full or upper-only.
 /// Exposed for tests and for callers that need the shifted matrix itself.
-SparseMatrix shifted_upper(const SparseMatrix& A, const SparseMatrix& B, double sigma);
+SparseMatrix shifted_upper(const SparseRef& A, const SparseRef& B, double sigma);
 
 }  // namespace ffr::preproc

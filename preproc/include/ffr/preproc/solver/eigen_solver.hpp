@@ -132,11 +132,11 @@ class EigenSolver {
 
   /// Factorizes K - sigma M and solves. Throws std::invalid_argument (bad input),
   /// NotPositiveDefiniteError / InsufficientMemoryError (factorization), EigenSolverError.
-  const EigenResult& compute(const SparseMatrix& K, const SparseMatrix& M);
+  const EigenResult& compute(const SparseRef& K, const SparseRef& M);
 
   /// Same with a factor of K - sigma M the caller already holds (e.g. Craig-Bampton reuses
   /// the factor of K_ii from its static solves; sigma must match factor.info().shift).
-  const EigenResult& compute(const SparseMatrix& K, const SparseMatrix& M,
+  const EigenResult& compute(const SparseRef& K, const SparseRef& M,
                              const CholmodFactor& factor);
 
   const EigenResult& result() const { return result_; }
@@ -144,9 +144,9 @@ class EigenSolver {
   const EigenOptions& options() const { return options_; }
 
  private:
-  const EigenResult& run_recorded(const SparseMatrix& K, const SparseMatrix& M,
+  const EigenResult& run_recorded(const SparseRef& K, const SparseRef& M,
                                   const CholmodFactor* given);
-  const EigenResult& run(const SparseMatrix& K, const SparseMatrix& M,
+  const EigenResult& run(const SparseRef& K, const SparseRef& M,
                          const CholmodFactor* given);
   EigenOptions options_;
   EigenProgressCallback progress_;

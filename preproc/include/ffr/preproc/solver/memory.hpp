@@ -23,6 +23,13 @@ std::uint64_t current_rss_bytes();
 /// benchmark can measure the peak of one stage. Returns false if the kernel refused.
 bool reset_peak_rss();
 
+/// Gives the pages of freed heap memory back to the system (glibc's malloc_trim; nothing
+/// elsewhere). Why: glibc returns only the top of its heaps by itself, and after the first
+/// large free it serves allocations up to 32 MiB from them, so the work arrays of one stage
+/// (CHOLMOD's and METIS's, the assembly's) stay resident under the next stage's peak. Costs a
+/// walk over the free chunks: call it between stages, not in loops.
+void release_free_heap();
+
 /// "1.23 GiB", "456.0 MiB", "789 B": for messages and benchmark tables.
 std::string format_bytes(std::uint64_t bytes);
 

@@ -39,7 +39,7 @@ struct Deflation {
 /// Cholesky clean-up). Throws std::invalid_argument naming the problem when R has the wrong
 /// number of rows, non-finite entries, or (nearly) linearly dependent columns in the M norm
 /// (smallest/largest eigenvalue of R^T M R below rank_tol).
-Deflation make_deflation(const SparseMatrix& M, SymmetricStorage storage,
+Deflation make_deflation(const SparseRef& M, SymmetricStorage storage,
                          const Eigen::Ref<const Eigen::MatrixXd>& R, double rank_tol = 1e-10);
 
 class ShiftInvertOp {
@@ -73,7 +73,10 @@ class ShiftInvertOp {
 class MassOp {
  public:
   using Scalar = double;
-  MassOp(const SparseMatrix& M, SymmetricStorage storage) : M_(M), storage_(storage) {}
+  /// Keeps a reference to M: a SparseRef that outlives the operator (not a temporary one made
+  /// from a SparseMatrix at the call, hence the deleted overload).
+  MassOp(const SparseRef& M, SymmetricStorage storage) : M_(M), storage_(storage) {}
+  MassOp(SparseRef&&, SymmetricStorage) = delete;
   Eigen::Index rows() const { return M_.rows(); }
   Eigen::Index cols() const { return M_.cols(); }
   /// y_out = M x_in.
@@ -83,7 +86,7 @@ class MassOp {
   std::int64_t cache_hits() const { return hits_; }
 
  private:
-  const SparseMatrix& M_;
+  const SparseRef& M_;
   SymmetricStorage storage_;
   // Spectra's Lanczos asks for M f twice in a row for the same f (the M-norm of the residual,
   // then V^T M f for its reorthogonalization). Remembering the last input and product (and

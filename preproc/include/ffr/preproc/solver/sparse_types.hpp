@@ -22,6 +22,12 @@ namespace ffr::preproc {
 
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, std::int64_t>;
 
+/// What the products and the eigen-solvers read: a compressed SparseMatrix, or a Map of
+/// arrays held elsewhere (the reductions' mass matrix on the stiffness matrix's index arrays,
+/// reduction.cpp), without a copy. An uncompressed SparseMatrix is copied into a compressed
+/// one for the call.
+using SparseRef = Eigen::Ref<const SparseMatrix, Eigen::StandardCompressedFormat>;
+
 enum class SymmetricStorage {
   Full,       ///< both triangles stored
   UpperOnly,  ///< only row <= col stored (the lower triangle is implied)
@@ -30,21 +36,21 @@ enum class SymmetricStorage {
 };
 
 /// Classifies how a square matrix stores its symmetric entries. O(nnz), no allocation.
-SymmetricStorage detect_storage(const SparseMatrix& A);
+SymmetricStorage detect_storage(const SparseRef& A);
 
 /// y = A x for a symmetric A given in full or upper-only storage (see above).
-Eigen::MatrixXd sym_multiply(const SparseMatrix& A, SymmetricStorage storage,
+Eigen::MatrixXd sym_multiply(const SparseRef& A, SymmetricStorage storage,
                              const Eigen::Ref<const Eigen::MatrixXd>& X);
 
 /// Largest absolute column sum of the symmetric matrix, taking implied lower entries into
 /// account (the 1-norm, equal to the infinity-norm for symmetric A). O(nnz).
-double sym_norm1(const SparseMatrix& A, SymmetricStorage storage);
+double sym_norm1(const SparseRef& A, SymmetricStorage storage);
 
 /// Always-on input validation shared by the factorization and the eigen-solver: square,
 /// finite values, accepted storage, and (for full storage) numerical symmetry checked with
 /// a random probe |x^T A y - y^T A x| <= tol * ||A||_1 ||x|| ||y|| (O(nnz), no transpose
 /// copy). Throws std::invalid_argument whose message starts with `what` (e.g. "K").
-SymmetricStorage validate_symmetric(const SparseMatrix& A, const char* what,
+SymmetricStorage validate_symmetric(const SparseRef& A, const char* what,
                                     double symmetry_tol = 1e-10);
 
 }  // namespace ffr::preproc
