@@ -153,8 +153,9 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   if (out.Ms.nonZeros() > 0) {
     const Eigen::VectorXd ones = Eigen::VectorXd::Ones(out.Ms.rows());
     const Eigen::MatrixX3d X = model.mesh->x;
-    const Eigen::MatrixX3d MX = out.Ms * X;
-    out.mass += ones.dot(out.Ms * ones);
+    const auto Ms = out.Ms.selfadjointView<Eigen::Upper>();
+    const Eigen::MatrixX3d MX = Ms * X;
+    out.mass += ones.dot(Ms * ones);
     out.rdm += MX.transpose() * ones;
     out.rrdm += X.transpose() * MX;
   }

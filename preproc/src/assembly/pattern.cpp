@@ -81,12 +81,13 @@ Pattern build_pattern(const FeModel& model, const std::vector<ElementRef>& refs)
   }
   for (std::size_t c = 0; c < static_cast<std::size_t>(p.num_dofs); ++c) p.col_ptr[c + 1] += p.col_ptr[c];
 
-  // Node-level columns (mesh nodes only; interface entities sort after all mesh nodes).
+  // Node-level columns, upper triangle (mesh nodes up to the column's own; interface entities
+  // sort after all mesh nodes).
   p.node_col_ptr.assign(static_cast<std::size_t>(N) + 1, 0);
   for (Index n = 0; n < N; ++n) {
     Index cnt = 0;
     for (Index k = p.adj_ptr[static_cast<std::size_t>(n)]; k < p.adj_ptr[static_cast<std::size_t>(n) + 1]; ++k)
-      if (p.adj[static_cast<std::size_t>(k)] < N) ++cnt;
+      if (p.adj[static_cast<std::size_t>(k)] <= n) ++cnt;
     p.node_col_ptr[static_cast<std::size_t>(n) + 1] = p.node_col_ptr[static_cast<std::size_t>(n)] + cnt;
   }
   return p;
@@ -141,7 +142,7 @@ void Pattern::make_node_matrix(SparseMatrix& A) const {
   for (Index n = 0; n < num_nodes; ++n) {
     Index pos = node_col_ptr[static_cast<std::size_t>(n)];
     for (Index k = adj_ptr[static_cast<std::size_t>(n)]; k < adj_ptr[static_cast<std::size_t>(n) + 1]; ++k)
-      if (adj[static_cast<std::size_t>(k)] < num_nodes) A.innerIndexPtr()[pos++] = adj[static_cast<std::size_t>(k)];
+      if (adj[static_cast<std::size_t>(k)] <= n) A.innerIndexPtr()[pos++] = adj[static_cast<std::size_t>(k)];
   }
   std::fill(A.valuePtr(), A.valuePtr() + node_col_ptr.back(), 0.0);
 }
@@ -186,11 +187,11 @@ void Pattern::add_node_scalar(SparseMatrix& Ms, const Placement& p, const Eigen:
   const auto ne = p.ents.size();
   for (std::size_t b = 0; b < ne; ++b) {
     const auto cn = static_cast<std::size_t>(p.ents[b]);
-    // Mesh nodes precede interface entities in adj, so the slot less the column's first
-    // slot is the position among the node neighbours.
+    // adj is sorted: the nodes up to the column's own come first, so for those the slot less
+    // the column's first slot is the position in the upper-triangle column.
     const Index c0 = node_col_ptr[cn] - adj_ptr[cn];
     for (std::size_t a = 0; a < ne; ++a)
-      val[c0 + p.slot[b * ne + a]] += Me(3 * static_cast<Index>(a), 3 * static_cast<Index>(b));
+      if (p.ents[a] <= p.ents[b]) val[c0 + p.slot[b * ne + a]] += Me(3 * static_cast<Index>(a), 3 * static_cast<Index>(b));
   }
 }
 

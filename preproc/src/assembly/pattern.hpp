@@ -28,7 +28,7 @@ struct Pattern {
   std::vector<Index> adj;
   std::vector<Index> adj_prefix;  ///< DOFs in the column before each adjacent entity
   std::vector<Index> col_ptr;     ///< CSC column starts of the DOF-level matrix
-  std::vector<Index> node_col_ptr;  ///< CSC column starts of the node-level (scalar) matrix
+  std::vector<Index> node_col_ptr;  ///< CSC column starts of the node-level (scalar) matrix's upper triangle
 
   Index entity_of_dof(const FeModel& m, Index d) const;
   /// A = the matrix with the DOF pattern, every stored value `value` (0 for K and M before the
@@ -36,13 +36,13 @@ struct Pattern {
   /// Eigen 3.4's SparseMatrix has no move assignment, so `out.K = make()` copied K and M whole
   /// (245 MB of fresh pages on the 100k plate).
   void make_matrix(SparseMatrix& A, unsigned threads = 1, double value = 0.0) const;
-  void make_node_matrix(SparseMatrix& A) const;  ///< zero-valued num_nodes x num_nodes matrix
+  void make_node_matrix(SparseMatrix& A) const;  ///< zero-valued num_nodes x num_nodes upper triangle
   /// The placement of an element with these global DOFs.
   Placement place(const std::vector<Index>& dofs, const FeModel& m) const;
   /// A += Ae over the element's DOFs.
   void add(SparseMatrix& A, const Placement& p, const Eigen::MatrixXd& Ae) const;
   /// Ms += the scalar part Me(3a, 3b) of a solid element's mass (three DOFs per node, its
-  /// entities are its mesh nodes).
+  /// entities are its mesh nodes), upper triangle (node a <= node b).
   void add_node_scalar(SparseMatrix& Ms, const Placement& p, const Eigen::MatrixXd& Me) const;
 
  private:

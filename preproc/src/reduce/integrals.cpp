@@ -44,7 +44,7 @@ void solid_part(const FeModel& model, const Assembled& fe, const Eigen::MatrixXd
     Phi_a[a] = Eigen::MatrixXd::Zero(N, nq);
     for (Index n = 0; n < N; ++n)
       if (model.node_ndof[static_cast<std::size_t>(n)] > 0) Phi_a[a].row(n) = Phi.row(model.dof(n, a));
-    Z[a] = fe.Ms * Phi_a[a];
+    Z[a] = fe.Ms.selfadjointView<Eigen::Upper>() * Phi_a[a];
   }
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(N);
   for (int b = 0; b < 3; ++b) {

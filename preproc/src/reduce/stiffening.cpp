@@ -36,7 +36,7 @@ Eigen::MatrixXd inertial_loads(const FeModel& model, const Assembled& fe, const 
     if (fe.Ms.nonZeros() == 0) break;
     Eigen::MatrixX3d V(N, 3);
     for (Index n = 0; n < N; ++n) V.row(n) = (fields[L].a + fields[L].A * model.mesh->x.row(n).transpose()).transpose();
-    const Eigen::MatrixX3d MV = fe.Ms * V;
+    const Eigen::MatrixX3d MV = fe.Ms.selfadjointView<Eigen::Upper>() * V;
     for (Index n = 0; n < N; ++n)
       if (model.node_ndof[static_cast<std::size_t>(n)] > 0)
         for (int c = 0; c < 3; ++c) F(model.dof(n, c), static_cast<Index>(L)) -= MV(n, c);

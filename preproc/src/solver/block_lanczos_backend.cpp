@@ -76,24 +76,6 @@ MatrixXd project_out(const Eigen::Ref<const MatrixXd>& Q, const MatrixXd& MW, Ma
   return c;
 }
 
-// Q(:, 0:m) <- Q(:, 0:k) S for the k x m coefficients S (m <= k): the Ritz vectors (at
-// convergence) or the vectors a thick restart keeps, written over the basis a band of rows at a
-// time (a band's rows of the result need only the same rows of Q). Why: the basis is the
-// eigen-solve's largest buffer after the factor (70 MB on the 100k-DOF plate), and a separate
-// n x m result, with the temporary of the product, raised the process's peak by two more
-// n x m matrices (32 MB measured with heaptrack at 20 modes, at the end of the Lanczos stage,
-// which set the peak of the whole run at 1 thread).
-void rotate_basis_in_place(MatrixXd& Q, Index k, const Eigen::Ref<const MatrixXd>& S) {
-  const Index n = Q.rows(), m = S.cols();
-  constexpr Index kBand = 256;
-  MatrixXd band(kBand, m);
-  for (Index r0 = 0; r0 < n; r0 += kBand) {
-    const Index rows = std::min(kBand, n - r0);
-    band.topRows(rows).noalias() = Q.block(r0, 0, rows, k) * S;
-    Q.block(r0, 0, rows, m) = band.topRows(rows);
-  }
-}
-
 }  // namespace
 
 BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseRef& M, SymmetricStorage sM,
@@ -168,7 +150,7 @@ BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseRef& M, Symmetri
       if (theta[i] > 0 && coupling.col(i).norm() <= req.tol * theta[i]) ++converged;
     out.converged = converged;
     if (converged == nev) {
-      rotate_basis_in_place(Q, k, S.leftCols(nev));
+      rotate_columns_in_place(Q, k, S.leftCols(nev));
       Q.conservativeResize(Eigen::NoChange, nev);  // column-major: keeps the leading columns, frees the rest
       out.X = std::move(Q);
       out.lambda.resize(nev);
@@ -189,7 +171,7 @@ BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseRef& M, Symmetri
       return fail("not converged after " + std::to_string(req.max_restarts) + " restarts (" +
                   std::to_string(converged) + " of " + std::to_string(nev) + " pairs)");
     const Index keep = std::min<Index>(k - p, nev + p);
-    rotate_basis_in_place(Q, k, S.leftCols(keep));
+    rotate_columns_in_place(Q, k, S.leftCols(keep));
     Q.middleCols(keep, p) = W;
     T.setZero();
     for (Index i = 0; i < keep; ++i) T(i, i) = theta[i];

@@ -157,6 +157,10 @@ void CholmodFactor::Impl::analyze(const SparseMatrix& A) {
   }
   if (!L || c->status < CHOLMOD_OK) fail(cholmod_error("symbolic analysis (cholmod_l_analyze)"));
   if (!L->is_super) fail("symbolic analysis did not produce a supernodal factor");
+  // The analysis's work arrays in Common (about 7 n values) would otherwise stay allocated
+  // through the factorization and the eigen-solve, the run's memory peaks; CHOLMOD allocates
+  // them again where it needs them.
+  cholmod_l_free_work(c);
 
   FactorStatistics& s = info.stats;
   s.analyses = ++analyses;

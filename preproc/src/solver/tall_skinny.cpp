@@ -106,4 +106,15 @@ void subtract_product(const double* Q, Index ldq, Index k, const double* C, Inde
   });
 }
 
+void rotate_columns_in_place(Eigen::MatrixXd& Q, Eigen::Index k, const Eigen::Ref<const Eigen::MatrixXd>& S) {
+  const Eigen::Index n = Q.rows(), m = S.cols();
+  constexpr Eigen::Index kBand = 256;
+  Eigen::MatrixXd band(kBand, m);
+  for (Eigen::Index r0 = 0; r0 < n; r0 += kBand) {
+    const Eigen::Index rows = std::min(kBand, n - r0);
+    band.topRows(rows).noalias() = Q.block(r0, 0, rows, k) * S;
+    Q.block(r0, 0, rows, m) = band.topRows(rows);
+  }
+}
+
 }  // namespace ffr::preproc::detail

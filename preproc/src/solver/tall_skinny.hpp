@@ -8,6 +8,8 @@
 // plate's basis (88 columns, 72 MB) Q^T V took 10.9 ms and V -= Q C 20.8 ms that way, against
 // the 3.5 ms that one read of Q at memory speed takes.
 
+#include <Eigen/Core>
+
 #include <cstdint>
 
 namespace ffr::preproc::detail {
@@ -20,5 +22,14 @@ void add_transposed_product(const double* Q, std::int64_t ldq, std::int64_t k, c
 /// V(r0:r1, :) -= Q(r0:r1, :) C, with the shapes of add_transposed_product.
 void subtract_product(const double* Q, std::int64_t ldq, std::int64_t k, const double* C, std::int64_t p,
                       std::int64_t r0, std::int64_t r1, double* V, std::int64_t ldv);
+
+/// Q(:, 0:m) <- Q(:, 0:k) S for the k x m coefficients S (m <= k), written over Q a band of
+/// rows at a time (a band's rows of the result need only the same rows of Q): the block
+/// Lanczos's Ritz vectors and thick restarts, the Rayleigh-Ritz step of every backend's
+/// vectors. Why: the basis is the eigen-solve's largest buffer after the factor (70 MB on the
+/// 100k-DOF plate), and a separate n x m result, with the temporary of the product, raised the
+/// process's peak by two more n x m matrices (32 MB measured with heaptrack at 20 modes, at the
+/// end of the Lanczos stage, which set the peak of the whole run at 1 thread).
+void rotate_columns_in_place(Eigen::MatrixXd& Q, Eigen::Index k, const Eigen::Ref<const Eigen::MatrixXd>& S);
 
 }  // namespace ffr::preproc::detail

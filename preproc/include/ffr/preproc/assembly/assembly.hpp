@@ -48,8 +48,10 @@ struct Assembled {
   Eigen::Vector3d rdm = Eigen::Vector3d::Zero();
   Eigen::Matrix3d rrdm = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d rotary_I = Eigen::Matrix3d::Zero();  ///< sum of M_rotary under rigid rotation
-  /// Scalar mass matrix of the solid elements on mesh nodes (num_nodes x num_nodes): a solid's
-  /// consistent mass is Ms_e (x) I3, so its inertia integrals follow from Ms exactly.
+  /// Scalar mass matrix of the solid elements on mesh nodes (num_nodes x num_nodes), its upper
+  /// triangle (multiply through selfadjointView<Eigen::Upper>()): a solid's consistent mass is
+  /// Ms_e (x) I3, so its inertia integrals follow from Ms exactly. Upper-only: it is kept
+  /// through the eigen-solve, whose memory peaks it adds to (7 MB less on the 100k plate).
   SparseMatrix Ms;
   bool has_structural = false;       ///< any shell, beam or attached mass (needs the sample pass)
   Index elements = 0;
