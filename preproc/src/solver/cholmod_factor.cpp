@@ -348,6 +348,18 @@ Eigen::MatrixXd CholmodFactor::solve(const Eigen::Ref<const Eigen::MatrixXd>& B)
   return X;
 }
 
+void CholmodFactor::solve(const Eigen::Ref<const Eigen::MatrixXd>& B, Eigen::Ref<Eigen::MatrixXd> X) const {
+  Impl& m = *impl_;
+  if (!factorized()) throw std::logic_error("CholmodFactor::solve: no valid factorization");
+  if (B.rows() != m.info.stats.n || X.rows() != B.rows() || X.cols() != B.cols()) {
+    std::ostringstream os;
+    os << "CholmodFactor::solve: right-hand sides " << B.rows() << " x " << B.cols() << " and solutions " << X.rows()
+       << " x " << X.cols() << " for a matrix of " << m.info.stats.n << " rows";
+    throw std::invalid_argument(os.str());
+  }
+  m.solver->solve(B.data(), B.outerStride(), B.cols(), X.data(), X.outerStride());
+}
+
 void CholmodFactor::solve(const double* b, double* x) const {
   Impl& m = *impl_;
   if (!factorized()) throw std::logic_error("CholmodFactor::solve: no valid factorization");

@@ -91,17 +91,19 @@ void ShiftInvertOp::perform_op(const double* x_in, double* y_out) const {
 
 Eigen::MatrixXd ShiftInvertOp::apply_block(const Eigen::MatrixXd& X) const {
   Eigen::MatrixXd Y;
-  if (deflation_) {
-    Eigen::MatrixXd F = X;
-    for (Eigen::Index j = 0; j < F.cols(); ++j) deflation_->project_dual(F.col(j).data());
-    Y = factor_.solve(F);
+  apply_block(X, Y);
+  return Y;
+}
+
+void ShiftInvertOp::apply_block(const Eigen::MatrixXd& X, Eigen::MatrixXd& Y) const {
+  if (&Y != &X) Y = X;
+  if (deflation_)
+    for (Eigen::Index j = 0; j < Y.cols(); ++j) deflation_->project_dual(Y.col(j).data());
+  factor_.solve(Y, Y);  // the substitutions read each chunk of right-hand sides before writing it
+  if (deflation_)
     for (Eigen::Index j = 0; j < Y.cols(); ++j) deflation_->project(Y.col(j).data());
-  } else {
-    Y = factor_.solve(X);
-  }
   applications_ += X.cols();
   if (observer_) observer_(applications_);
-  return Y;
 }
 
 void MassOp::perform_op(const double* x_in, double* y_out) const {

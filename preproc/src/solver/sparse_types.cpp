@@ -147,12 +147,19 @@ void product_columns(const SparseRef& A, SymmetricStorage storage, const Eigen::
 Eigen::MatrixXd sym_multiply(const SparseRef& A, SymmetricStorage storage,
                              const Eigen::Ref<const Eigen::MatrixXd>& X) {
   Eigen::MatrixXd Y(A.rows(), X.cols());
+  sym_multiply(A, storage, X, Y);
+  return Y;
+}
+
+void sym_multiply(const SparseRef& A, SymmetricStorage storage, const Eigen::Ref<const Eigen::MatrixXd>& X,
+                  Eigen::MatrixXd& Y) {
+  Y.resize(A.rows(), X.cols());  // no reallocation at the same size
   if (X.cols() == 1) {
     if (storage == SymmetricStorage::UpperOnly)
       Y.noalias() = A.selfadjointView<Eigen::Upper>() * X;
     else
       Y.noalias() = A * X;
-    return Y;
+    return;
   }
   // Several columns: one pass over A with contiguous rows of X and Y (Eigen's products of a
   // column-major sparse matrix with a column-major X, and its selfadjointView products with
@@ -166,7 +173,6 @@ Eigen::MatrixXd sym_multiply(const SparseRef& A, SymmetricStorage storage,
       c0 += w;
     }
   }
-  return Y;
 }
 
 double sym_norm1(const SparseRef& A, SymmetricStorage storage) {

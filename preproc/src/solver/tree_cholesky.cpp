@@ -63,6 +63,14 @@ const Lapack* lapack() {
 // Below this many stored entries a factor is left to CHOLMOD: threads cost more than they give.
 constexpr Index kMinEntries = Index{1} << 20;
 
+// A descendant's update is computed in blocks of its columns (at least kMinUpdateColumns wide,
+// for the BLAS) when it has more than kMaxUpdate values. Why: the buffer of the largest update,
+// met at the top of the tree, is the factorization's last allocation on top of the factor: on
+// the 100k-DOF plate of tools/bench/reduce 1.95 million values (15.6 MB) at the end, where the
+// run's peak at one thread lies.
+constexpr Index kMaxUpdate = Index{1} << 18;
+constexpr Index kMinUpdateColumns = 64;
+
 // Per-thread work arrays.
 struct Workspace {
   std::vector<Index> map;       // row -> its position in the supernode being computed
@@ -184,20 +192,28 @@ class TreeCholesky {
     Index ndrow1 = 0;
     while (ndrow1 < ndrow2 && r[ndrow1] < k2) ++ndrow1;
     const Index ndrow3 = ndrow2 - ndrow1;
-    double* C = w.update(ndrow2 * ndrow1);
     const double* Ld = x_ + px_[d] + pos;
-    const int n1 = static_cast<int>(ndrow1), n2 = static_cast<int>(ndrow2), n3 = static_cast<int>(ndrow3);
     const int kc = static_cast<int>(ndcol), ld = static_cast<int>(ndrow);
     const double one = 1.0, zero = 0.0;
-    f_.syrk("L", "N", &n1, &kc, &one, Ld, &ld, &zero, C, &n2);
-    if (ndrow3 > 0) f_.gemm("N", "T", &n3, &n1, &kc, &one, Ld + ndrow1, &ld, Ld, &ld, &zero, C + ndrow1, &n2);
     Index* rel = w.relative.data();
     for (Index i = 0; i < ndrow2; ++i) rel[i] = w.map[static_cast<std::size_t>(r[i])];
-    // Rows of d in s's columns sit at positions 0..nscol-1 of R_s, so rel[j] is a column.
-    for (Index j = 0; j < ndrow1; ++j) {
-      double* dst = Ls + rel[j] * nsrow;
-      const double* src = C + j * ndrow2;
-      for (Index i = j; i < ndrow2; ++i) dst[rel[i]] -= src[i];
+    // C = L_d(R2, :) L_d(R1, :)^T, its lower part, by blocks of `width` of its columns: block
+    // [j0, j0 + b) takes the rows from j0 on, the b x b top by syrk, the rest by gemm. One
+    // block unless the whole C would exceed kMaxUpdate values.
+    const Index width = ndrow2 * ndrow1 > kMaxUpdate ? std::max(kMinUpdateColumns, kMaxUpdate / ndrow2) : ndrow1;
+    double* C = w.update(ndrow2 * std::min(width, ndrow1));
+    for (Index j0 = 0; j0 < ndrow1; j0 += width) {
+      const Index b = std::min(width, ndrow1 - j0), m = ndrow2 - j0;
+      const int nb = static_cast<int>(b), nm = static_cast<int>(m), nbelow = static_cast<int>(m - b);
+      f_.syrk("L", "N", &nb, &kc, &one, Ld + j0, &ld, &zero, C, &nm);
+      if (nbelow > 0) f_.gemm("N", "T", &nbelow, &nb, &kc, &one, Ld + j0 + b, &ld, Ld + j0, &ld, &zero, C + b, &nm);
+      // Rows of d in s's columns sit at positions 0..nscol-1 of R_s, so rel[j] is a column.
+      for (Index jj = 0; jj < b; ++jj) {
+        const Index j = j0 + jj;
+        double* dst = Ls + rel[j] * nsrow;
+        const double* src = C + jj * m;  // src[i - j0] is row i of C's column j
+        for (Index i = j; i < ndrow2; ++i) dst[rel[i]] -= src[i - j0];
+      }
     }
     lpos_[static_cast<std::size_t>(d)] = pos + ndrow1;
     if (ndrow3 > 0) link(d, r[ndrow1], list);

@@ -130,6 +130,8 @@ class CholmodFactor {
 
   /// x = A^{-1} b for one vector (the eigen-solver's operator); b and x may alias.
   void solve(const double* b, double* x) const;
+  /// X = A^{-1} B into X (B's size; B and X may be the same matrix), without a new result.
+  void solve(const Eigen::Ref<const Eigen::MatrixXd>& B, Eigen::Ref<Eigen::MatrixXd> X) const;
 
   std::int64_t rows() const;
   bool factorized() const;

@@ -57,6 +57,9 @@ class ShiftInvertOp {
   void perform_op(const double* x_in, double* y_out) const;
   /// The same for every column of X at once (one pass of the factor for the whole block).
   Eigen::MatrixXd apply_block(const Eigen::MatrixXd& X) const;
+  /// The same into Y (resized to X's size; Y may be X itself): the block Lanczos's loop keeps
+  /// its blocks instead of taking a new n x p result every step.
+  void apply_block(const Eigen::MatrixXd& X, Eigen::MatrixXd& Y) const;
 
   std::int64_t applications() const { return applications_; }
   /// Called after every application with the running count (progress reporting).

@@ -42,6 +42,11 @@ SymmetricStorage detect_storage(const SparseRef& A);
 Eigen::MatrixXd sym_multiply(const SparseRef& A, SymmetricStorage storage,
                              const Eigen::Ref<const Eigen::MatrixXd>& X);
 
+/// The same into Y (resized when it is not A.rows() x X.cols(); Y must not be X): no new
+/// n x m result where the caller keeps one (the block Lanczos's loop).
+void sym_multiply(const SparseRef& A, SymmetricStorage storage, const Eigen::Ref<const Eigen::MatrixXd>& X,
+                  Eigen::MatrixXd& Y);
+
 /// Largest absolute column sum of the symmetric matrix, taking implied lower entries into
 /// account (the 1-norm, equal to the infinity-norm for symmetric A). O(nnz).
 double sym_norm1(const SparseRef& A, SymmetricStorage storage);
