@@ -156,6 +156,9 @@ TEST(CholmodFactor, OwnFactorizationMatchesCholmodsOnOneAndTwoThreads) {
   CholmodFactor serial = factorized_on(1, A);
   ASSERT_TRUE(serial.info().stats.own_factorization);
   ASSERT_EQ(serial.info().stats.factor_parallel_fraction, 0.0);
+  // Its workspace estimate has no permuted copy of A: below CHOLMOD's, above the factor alone.
+  EXPECT_GT(serial.info().stats.peak_bytes, serial.info().stats.factor_bytes);
+  EXPECT_LT(serial.info().stats.peak_bytes, reference.info().stats.peak_bytes);
   CholmodFactor tree = factorized_on(2, A);
   ASSERT_TRUE(tree.info().stats.own_factorization);
   ASSERT_GT(tree.info().stats.factor_parallel_fraction, 1.0 / 3) << "factor entries " << tree.info().stats.factor_entries;

@@ -203,11 +203,10 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     // memory of its own at the factorization, a memory peak of the run (60 MiB on the 100k
     // plate); K is restored right after, to the rounding of one subtraction and one addition
     // per entry.
-    const bool in_place = shared;
     SparseMatrix shifted;
-    if (in_place) detail::add_scaled_values(K, Mr, -sigma);
+    if (shared) detail::add_scaled_values(K, Mr, -sigma);
     else shifted = shifted_upper(K, Mr, sigma);
-    const SparseMatrix& C = in_place ? K : shifted;
+    const SparseMatrix& C = shared ? K : shifted;
     CholmodFactor factor = analysed_factor(C, spec, early, log);
     const double t_analyze = lap(clock);
     double t_factorize = 0;
@@ -220,7 +219,7 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     try {
       factor.factorize_shifted_upper(C, sigma);
       // The factor holds what is needed from here on.
-      if (in_place) detail::add_scaled_values(K, Mr, sigma);
+      if (shared) detail::add_scaled_values(K, Mr, sigma);
       else detail::release(shifted);
       // The factorization's workspace, freed now, sits in the middle of the heap: 42 MiB of
       // the 100k plate's peak at 1 thread (with CHOLMOD's factorization), reached at the end

@@ -181,13 +181,16 @@ void CholmodFactor::Impl::analyze(const SparseMatrix& A) {
   // Estimates in bytes (8-byte doubles and SuiteSparse_long):
   //  factor   = values (xsize) + supernode row indices (ssize) + super/pi/px arrays +
   //             Perm, ColCount, IPerm and per-column bookkeeping (~4n);
-  //  workspace of cholmod_l_factorize = the update matrix C (maxcsize) + the permuted copy
-  //             of A's upper triangle (values + indices + column pointers) + Common's Iwork,
-  //             Xwork and the supernodal Map/RelativeMap (~8n).
+  //  workspace of the own factorization on one thread (tree_cholesky_workspace_bytes; more
+  //             threads add theirs in factorize), or of cholmod_l_factorize = the update matrix
+  //             C (maxcsize) + the permuted copy of A's upper triangle (values + indices + column
+  //             pointers) + Common's Iwork, Xwork and the supernodal Map/RelativeMap (~8n).
   const std::uint64_t n = static_cast<std::uint64_t>(s.n);
   s.factor_bytes = 8u * (L->xsize + L->ssize + 3u * (L->nsuper + 1u) + 4u * n);
   const std::uint64_t workspace =
-      8u * L->maxcsize + 16u * static_cast<std::uint64_t>(upper_nnz) + 8u * (n + 1u) + 64u * n;
+      opt.own_factorization && detail::tree_cholesky_available(*L)
+          ? detail::tree_cholesky_workspace_bytes(*L, 1)
+          : 8u * L->maxcsize + 16u * static_cast<std::uint64_t>(upper_nnz) + 8u * (n + 1u) + 64u * n;
   s.peak_bytes = s.factor_bytes + workspace;
   info.status = FactorStatus::Analyzed;
 }
@@ -247,7 +250,8 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
   const bool own = opt.own_factorization && detail::tree_cholesky_available(*L);
   const double share = own ? detail::tree_cholesky_share(*L, threads) : 0.0;
   const FactorStatistics& s = info.stats;
-  const std::uint64_t per_thread = share > 0 ? (threads - 1u) * 8u * (L->maxcsize + static_cast<std::uint64_t>(s.n)) : 0u;
+  const std::uint64_t per_thread =
+      share > 0 ? detail::tree_cholesky_workspace_bytes(*L, threads) - detail::tree_cholesky_workspace_bytes(*L, 1) : 0u;
   const std::uint64_t regrow = packed ? 8u * static_cast<std::uint64_t>(full_xsize - L->xsize) : 0u;
   check_memory((numeric ? s.peak_bytes - s.factor_bytes + regrow : s.peak_bytes) + per_thread);
 
@@ -335,16 +339,8 @@ void CholmodFactor::factorize_shifted_upper(const SparseMatrix& C, double sigma)
 }
 
 Eigen::MatrixXd CholmodFactor::solve(const Eigen::Ref<const Eigen::MatrixXd>& B) const {
-  Impl& m = *impl_;
-  if (!factorized()) throw std::logic_error("CholmodFactor::solve: no valid factorization");
-  if (B.rows() != m.info.stats.n) {
-    std::ostringstream os;
-    os << "CholmodFactor::solve: right-hand side has " << B.rows() << " rows, matrix has "
-       << m.info.stats.n;
-    throw std::invalid_argument(os.str());
-  }
   Eigen::MatrixXd X(B.rows(), B.cols());
-  m.solver->solve(B.data(), B.outerStride(), B.cols(), X.data(), X.rows());
+  solve(B, X);
   return X;
 }
 

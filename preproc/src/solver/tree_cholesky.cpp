@@ -236,6 +236,19 @@ class TreeCholesky {
 
 bool tree_cholesky_available(const cholmod_factor& L) { return L.is_super && lapack(); }
 
+std::uint64_t tree_cholesky_workspace_bytes(const cholmod_factor& L, unsigned threads) {
+  const auto* pi = static_cast<const Long*>(L.pi);
+  const Index n = static_cast<Index>(L.n), nsuper = static_cast<Index>(L.nsuper);
+  Index widest = 0;
+  for (Index s = 0; s < nsuper; ++s) widest = std::max<Index>(widest, pi[s + 1] - pi[s]);
+  // update_from's buffer: C whole when it has at most kMaxUpdate values, else column blocks of
+  // max(kMinUpdateColumns, kMaxUpdate / rows) on at most `widest` rows; never more than C whole.
+  const Index update = std::min<Index>(static_cast<Index>(L.maxcsize), std::max(kMaxUpdate, kMinUpdateColumns * widest));
+  const Index per_thread = update + n + widest;                 // C, map, relative
+  const Index shared = 2 * n + (2 + static_cast<Index>(threads)) * nsuper;  // owner, position; next, lpos, lists
+  return 8u * static_cast<std::uint64_t>(static_cast<Index>(threads) * per_thread + shared);
+}
+
 double tree_cholesky_share(const cholmod_factor& L, unsigned threads) {
   if (threads < 2 || !tree_cholesky_available(L)) return 0.0;
   return make_solve_schedule(L, threads, kMinEntries, TreeWork::Flops).parallel_fraction;

@@ -11,6 +11,11 @@ namespace ffr::preproc::detail {
 /// Whether tree_cholesky can factorize L: supernodal, and the BLAS and LAPACK routines found.
 bool tree_cholesky_available(const cholmod_factor& L);
 
+/// Bytes of work arrays tree_cholesky takes beside L on `threads` threads, an upper bound: per
+/// thread the update buffer (capped, see tree_cholesky.cpp) and the row maps, once the
+/// supernode lists and the column maps.
+std::uint64_t tree_cholesky_workspace_bytes(const cholmod_factor& L, unsigned threads);
+
 /// The share of the factorization's flops that tree_cholesky would run in the subtrees, on
 /// `threads` threads; 0 when it would not pay (one thread, a small factor, a tree whose top
 /// dominates) or cannot run (the BLAS and LAPACK routines not found in the process).
