@@ -70,6 +70,21 @@ TEST(SmallLU, ZeroDiagonalNeedsPivotingFromBelowTheZeros) {
   EXPECT_LT(solve_difference(A, rng), 1e-14);
 }
 
+TEST(SmallLU, TiedPivotCandidatesMatchFullPivoting) {
+  // Entries of equal magnitude (+-1) tie in every pivot search, in each of the search's four
+  // running maxima; sizes with every remainder of the four-column panels.
+  std::mt19937 rng(5);
+  std::bernoulli_distribution coin(0.5);
+  for (int n : {5, 6, 7, 13, 46}) {
+    MatrixXd A(n, n);
+    do {  // small sign matrices are often singular: draw until this one is not
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) A(i, j) = coin(rng) ? 1.0 : -1.0;
+    } while (Eigen::FullPivLU<MatrixXd>(A).rank() < n);
+    EXPECT_LT(solve_difference(A, rng), 1e-9) << "n = " << n;
+  }
+}
+
 TEST(SmallLU, SingularMatrixIsReportedNotSolved) {
   MatrixXd A = MatrixXd::Identity(4, 4);
   A(2, 2) = 0.0;  // column 2 zero on and below the diagonal after elimination

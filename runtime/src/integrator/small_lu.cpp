@@ -21,45 +21,120 @@ void SmallLU::resize(Index n) {
   ok_ = false;
 }
 
+namespace {
+
+// Panel width of the blocked elimination: the trailing columns are updated once per four
+// pivots (a rank-4 update: five loads, one store and four multiply-adds an entry) instead of
+// once per pivot (two loads, one store and one multiply-add, four times over).
+constexpr Index kPanel = 4;
+
+// Rows k+1 .. last of column k scaled by 1 / pivot, then the panel's own columns k+1 .. p1-1
+// updated by them (rank-1: the panel is at most four wide).
+inline void eliminate_in_panel(double* a, Index n, Index k, Index last, Index p1) {
+  double* ck = a + k * n;
+  const Index len = last - k;
+  const double inv = 1.0 / ck[k];
+  double* __restrict l = ck + k + 1;
+  for (Index i = 0; i < len; ++i) l[i] *= inv;
+  for (Index j = k + 1; j < p1; ++j) {
+    double* __restrict u = a + j * n + k + 1;
+    const double f = a[k + j * n];
+    if (f == 0.0) continue;
+    for (Index i = 0; i < len; ++i) u[i] -= f * l[i];
+  }
+}
+
+// Largest |c[i]| for k <= i <= last, its row in p: the first such row, as a plain scan would
+// find. Four independent running maxima: with one compare-and-select chain down the column, the
+// search took about 45 % of the samples of a factorisation of the benchmark's tangent (perf
+// annotate): its latency, not its work. A NaN in c[k] is returned as
+// the maximum (nothing compares greater), so the caller's singularity check sees it.
+inline double pivot_search(const double* c, Index k, Index last, Index& p) {
+  double big[4] = {std::abs(c[k]), -1.0, -1.0, -1.0};
+  Index at[4] = {k, k, k, k};
+  Index i = k + 1;
+  for (; i + 3 <= last; i += 4)
+    for (int q = 0; q < 4; ++q) {
+      const double v = std::abs(c[i + q]);
+      if (v > big[q]) {
+        big[q] = v;
+        at[q] = i + q;
+      }
+    }
+  for (; i <= last; ++i) {
+    const double v = std::abs(c[i]);
+    if (v > big[0]) {
+      big[0] = v;
+      at[0] = i;
+    }
+  }
+  double best = big[0];
+  p = at[0];
+  for (int q = 1; q < 4; ++q)
+    if (big[q] > best || (big[q] == best && at[q] < p)) {
+      best = big[q];
+      p = at[q];
+    }
+  return best;
+}
+
+// Trailing column j after the panel k0 .. k0+B-1: its rows in the panel become U12 (the unit
+// lower triangle L11 solved), then its rows k0+B .. last lose L21 U12. Columns whose panel
+// rows are all zero are left as they are.
+template <int B>
+inline void update_trailing_column(double* a, Index n, Index k0, Index last, Index j) {
+  double* __restrict c = a + j * n;
+  double u[B];
+  bool any = false;
+  for (int q = 0; q < B; ++q) {
+    double x = c[k0 + q];
+    for (int r = 0; r < q; ++r) x -= a[(k0 + q) + (k0 + r) * n] * u[r];
+    u[q] = x;
+    c[k0 + q] = x;
+    any = any || x != 0.0;
+  }
+  if (!any) return;
+  const double* __restrict l = a + k0 * n;
+  for (Index i = k0 + B; i <= last; ++i) {
+    double x = c[i];
+    for (int q = 0; q < B; ++q) x -= l[i + q * n] * u[q];
+    c[i] = x;
+  }
+}
+
+}  // namespace
+
 // The kernels are plain loops over raw columns, compiled at -O3 and for AVX2 and AVX-512 as well
-// (kernel_clones.hpp): Eigen's dynamic segments cost a call and an alignment prologue per AXPY,
-// and a factorisation of the benchmark's tangent makes about a thousand AXPYs of 10 to 40
-// entries.
+// (kernel_clones.hpp): Eigen's dynamic segments cost a call and an alignment prologue per AXPY.
+// The elimination is blocked (LAPACK's right-looking getrf with a panel of kPanel columns):
+// partial pivoting inside the panel, each swap applied to the whole row at once, then the
+// trailing columns updated once for the whole panel. Unblocked, a factorisation of the
+// benchmark's tangent made about a thousand AXPYs of 10 to 40 entries.
 FFR_RT_CLONES
 bool SmallLU::factorize() {
   const Index n = lu_.rows();
   double* a = lu_.data();
   ok_ = false;
-  for (Index k = 0; k < n; ++k) {
-    double* ck = a + k * n;
-    // Rows below the column's last nonzero take no part in this step.
-    Index last = n - 1;
-    while (last > k && ck[last] == 0.0) --last;
-    Index p = k;
-    double big = std::abs(ck[k]);
-    for (Index i = k + 1; i <= last; ++i) {
-      const double v = std::abs(ck[i]);
-      if (v > big) {
-        big = v;
-        p = i;
-      }
+  for (Index k0 = 0; k0 < n; k0 += kPanel) {
+    const Index p1 = std::min(n, k0 + kPanel);
+    // Last nonzero row of the panel's columns of L: the trailing update runs down to it.
+    Index last_panel = k0;
+    for (Index k = k0; k < p1; ++k) {
+      double* ck = a + k * n;
+      // Rows below the column's last nonzero take no part in this step.
+      Index last = n - 1;
+      while (last > k && ck[last] == 0.0) --last;
+      Index p = 0;
+      const double big = pivot_search(ck, k, last, p);
+      if (!(big > 0.0)) return false;  // exactly zero column (or NaN)
+      perm_(k) = static_cast<int>(p);
+      if (p != k)
+        for (Index j = 0; j < n; ++j) std::swap(a[k + j * n], a[p + j * n]);
+      last_panel = std::max(last_panel, last);
+      if (last > k) eliminate_in_panel(a, n, k, last, p1);
     }
-    if (!(big > 0.0)) return false;  // exactly zero column (or NaN)
-    perm_(k) = static_cast<int>(p);
-    if (p != k)
-      for (Index j = 0; j < n; ++j) std::swap(a[k + j * n], a[p + j * n]);
-    const Index len = last - k;
-    if (len == 0) continue;
-    const double inv = 1.0 / ck[k];
-    double* __restrict l = ck + k + 1;
-    for (Index i = 0; i < len; ++i) l[i] *= inv;
-    for (Index j = k + 1; j < n; ++j) {
-      double* __restrict cj = a + j * n;
-      const double f = cj[k];
-      if (f == 0.0) continue;
-      double* __restrict u = cj + k + 1;
-      for (Index i = 0; i < len; ++i) u[i] -= f * l[i];
-    }
+    // (Only the last panel can be narrower, and no columns follow it.)
+    for (Index j = p1; j < n; ++j) update_trailing_column<kPanel>(a, n, k0, last_panel, j);
   }
   // Nonzero spans of each column of L and U for the solves.
   for (Index k = 0; k < n; ++k) {

@@ -78,9 +78,19 @@ int main(int argc, char** argv) {
   }
   bool quick = false, no_reuse = false, step_only = false;
   for (int i = 1; i < argc; ++i) {
-    quick = quick || std::strcmp(argv[i], "--quick") == 0;
-    step_only = step_only || std::strcmp(argv[i], "--step-only") == 0;
-    no_reuse = no_reuse || std::strcmp(argv[i], "--no-reuse") == 0;
+    if (std::strcmp(argv[i], "--quick") == 0) {
+      quick = true;
+    } else if (std::strcmp(argv[i], "--step-only") == 0) {
+      step_only = true;
+    } else if (std::strcmp(argv[i], "--no-reuse") == 0) {
+      no_reuse = true;
+    } else {
+      // An unknown option (--help included) must not start the full sweep, which takes minutes.
+      std::fprintf(stderr,
+                   "usage: ffr-bench-runtime-step [--quick] [--step-only] [--no-reuse]\n"
+                   "       ffr-bench-runtime-step --sids MODEL.json PLACEHOLDER DOF1=SID1 ...\n");
+      return std::strcmp(argv[i], "--help") == 0 ? 0 : 2;
+    }
   }
   g_no_reuse = no_reuse;
   const auto dir = bench::temp_dir("step");
