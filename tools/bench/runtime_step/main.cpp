@@ -85,11 +85,14 @@ int main(int argc, char** argv) {
     } else if (std::strcmp(argv[i], "--no-reuse") == 0) {
       no_reuse = true;
     } else {
-      // An unknown option (--help included) must not start the full sweep, which takes minutes.
-      std::fprintf(stderr,
+      // An unknown option must not start the full sweep, which takes minutes: usage, on stdout
+      // for --help, on stderr with exit status 2 for anything else.
+      const bool help = std::strcmp(argv[i], "--help") == 0;
+      if (!help) std::fprintf(stderr, "ffr-bench-runtime-step: unknown option %s\n", argv[i]);
+      std::fprintf(help ? stdout : stderr,
                    "usage: ffr-bench-runtime-step [--quick] [--step-only] [--no-reuse]\n"
                    "       ffr-bench-runtime-step --sids MODEL.json PLACEHOLDER DOF1=SID1 ...\n");
-      return std::strcmp(argv[i], "--help") == 0 ? 0 : 2;
+      return help ? 0 : 2;
     }
   }
   g_no_reuse = no_reuse;

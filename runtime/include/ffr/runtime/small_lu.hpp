@@ -13,7 +13,8 @@
 // with one AXPY a column through Eigen segments). Blocked in panels of four columns, with a
 // pivot search of four independent maxima: 60.6 thousand instructions a factorisation of a
 // tangent saved from that benchmark instead of 77 thousand (callgrind), best times 4.9-5.1 us
-// against 5.8-6.0 us on a slower day of the shared machine.
+// against 5.8-6.0 us (the Xeon VM of tools/bench/runtime_step/RESULTS.md, slower than the
+// machine of the figures above).
 
 #include <Eigen/Core>
 
