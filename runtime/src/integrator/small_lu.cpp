@@ -47,8 +47,8 @@ inline void eliminate_in_panel(double* a, Index n, Index k, Index last, Index p1
 // Largest |c[i]| for k <= i <= last, its row in p: the first such row, as a plain scan would
 // find. Four independent running maxima: with one compare-and-select chain down the column, the
 // search took about 45 % of the samples of a factorisation of the benchmark's tangent (perf
-// annotate): its latency, not its work. A NaN in c[k] is returned as
-// the maximum (nothing compares greater), so the caller's singularity check sees it.
+// annotate), for its latency, not its work. A NaN in c[k] is returned as the maximum (nothing
+// compares greater), so the caller's singularity check sees it.
 inline double pivot_search(const double* c, Index k, Index last, Index& p) {
   double big[4] = {std::abs(c[k]), -1.0, -1.0, -1.0};
   Index at[4] = {k, k, k, k};
