@@ -23,6 +23,7 @@
 #include "ffr/preproc/threads.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -48,7 +49,8 @@ struct Args {
 [[noreturn]] void usage(const std::string& msg) {
   std::fprintf(stderr,
                "eigen_bench: %s\nusage: eigen_bench [--sizes N1,N2,..] [--dpn 1|3] [--nev K] "
-               "[--backend spectra|arpack] [--ordering metis|nesdis|amd|auto] [--rhs R] [--threads T]\n",
+               "[--backend spectra|arpack] [--ordering metis|nesdis|amd|auto] [--rhs R] [--threads T] "
+               "[--analyze-only 0|1]\n",
                msg.c_str());
   std::exit(2);
 }
@@ -62,8 +64,18 @@ long parse_int(const char* s, const char* what) {
 
 Args parse(int argc, char** argv) {
   Args a;
+  static const char* const kOptions[] = {"--sizes", "--dpn",     "--nev",     "--analyze-only",
+                                         "--rhs",   "--threads", "--backend", "--ordering"};
   for (int i = 1; i < argc; ++i) {
     const std::string k = argv[i];
+    if (k == "--help") {
+      std::printf("usage: eigen_bench [--sizes N1,N2,..] [--dpn 1|3] [--nev K] [--backend spectra|arpack] "
+                  "[--ordering metis|nesdis|amd|auto] [--rhs R] [--threads T] [--analyze-only 0|1]\n");
+      std::exit(0);
+    }
+    // An unknown option is named as such, not as one whose value is missing.
+    if (std::none_of(std::begin(kOptions), std::end(kOptions), [&](const char* o) { return k == o; }))
+      usage("unknown option " + k);
     if (i + 1 >= argc) usage("missing value after " + k);
     const char* v = argv[++i];
     if (k == "--sizes") {

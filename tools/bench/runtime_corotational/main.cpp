@@ -61,7 +61,18 @@ Timing run(const Model& model, int repeats) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--quick") == 0) {
+      quick = true;
+      continue;
+    }
+    // An unknown option must not start the full comparison, which takes minutes.
+    const bool help = std::strcmp(argv[i], "--help") == 0;
+    if (!help) std::fprintf(stderr, "ffr-bench-runtime-corotational: unknown option %s\n", argv[i]);
+    std::fprintf(help ? stdout : stderr, "usage: ffr-bench-runtime-corotational [--quick]\n");
+    return help ? 0 : 2;
+  }
   const auto dir = bench::temp_dir("corot");
   const int repeats = quick ? 2 : 5;
   const double end = quick ? 0.05 : 0.2;
