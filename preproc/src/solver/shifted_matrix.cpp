@@ -19,7 +19,7 @@ struct ColumnRange {
 };
 ColumnRange upper_range(const SparseRef& A, Eigen::Index j) {
   const SI b = A.outerIndexPtr()[j];
-  const SI e = A.isCompressed() ? A.outerIndexPtr()[j + 1] : b + A.innerNonZeroPtr()[j];
+  const SI e = A.outerIndexPtr()[j + 1];  // compressed: SparseRef guarantees it
   SI k = b;
   const SI* rows = A.innerIndexPtr();
   while (k < e && rows[k] <= j) ++k;  // inner indices sorted: the upper part is a prefix

@@ -39,7 +39,6 @@ using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eig
 template <int W>
 void upper_times_rows(const SparseRef& A, const RowMajorMatrix& X, Eigen::Index j0, Eigen::Index j1, double* y) {
   const auto* outer = A.outerIndexPtr();
-  const auto* nnz = A.innerNonZeroPtr();
   const auto* rows = A.innerIndexPtr();
   const double* vals = A.valuePtr();
   const double* x = X.data();
@@ -51,7 +50,7 @@ void upper_times_rows(const SparseRef& A, const RowMajorMatrix& X, Eigen::Index 
     for (Eigen::Index j = j0; j < j1; ++j) {
       v4 xj[NV], acc[NV] = {};
       for (int k = 0; k < NV; ++k) xj[k] = load(x + j * W + 4 * k);
-      const auto end = nnz ? outer[j] + nnz[j] : outer[j + 1];
+      const auto end = outer[j + 1];  // compressed: SparseRef guarantees it
       for (auto e = outer[j]; e < end; ++e) {
         const Eigen::Index i = rows[e];
         const double a = vals[e];
@@ -69,7 +68,7 @@ void upper_times_rows(const SparseRef& A, const RowMajorMatrix& X, Eigen::Index 
   } else {
     const Eigen::Index m = X.cols();
     for (Eigen::Index j = j0; j < j1; ++j) {
-      const auto end = nnz ? outer[j] + nnz[j] : outer[j + 1];
+      const auto end = outer[j + 1];  // compressed: SparseRef guarantees it
       for (auto e = outer[j]; e < end; ++e) {
         const Eigen::Index i = rows[e];
         const double a = vals[e];

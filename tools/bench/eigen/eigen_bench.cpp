@@ -23,7 +23,6 @@
 #include "ffr/preproc/threads.hpp"
 
 #include <algorithm>
-#include <iterator>
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -46,12 +45,12 @@ struct Args {
   Ordering ordering = Ordering::Metis;
 };
 
+constexpr const char* kUsage =
+    "usage: eigen_bench [--sizes N1,N2,..] [--dpn 1|3] [--nev K] [--backend spectra|arpack] "
+    "[--ordering metis|nesdis|amd|auto] [--rhs R] [--threads T] [--analyze-only 0|1]\n";
+
 [[noreturn]] void usage(const std::string& msg) {
-  std::fprintf(stderr,
-               "eigen_bench: %s\nusage: eigen_bench [--sizes N1,N2,..] [--dpn 1|3] [--nev K] "
-               "[--backend spectra|arpack] [--ordering metis|nesdis|amd|auto] [--rhs R] [--threads T] "
-               "[--analyze-only 0|1]\n",
-               msg.c_str());
+  std::fprintf(stderr, "eigen_bench: %s\n%s", msg.c_str(), kUsage);
   std::exit(2);
 }
 
@@ -64,43 +63,43 @@ long parse_int(const char* s, const char* what) {
 
 Args parse(int argc, char** argv) {
   Args a;
-  static const char* const kOptions[] = {"--sizes", "--dpn",     "--nev",     "--analyze-only",
-                                         "--rhs",   "--threads", "--backend", "--ordering"};
   for (int i = 1; i < argc; ++i) {
     const std::string k = argv[i];
     if (k == "--help") {
-      std::printf("usage: eigen_bench [--sizes N1,N2,..] [--dpn 1|3] [--nev K] [--backend spectra|arpack] "
-                  "[--ordering metis|nesdis|amd|auto] [--rhs R] [--threads T] [--analyze-only 0|1]\n");
+      std::fputs(kUsage, stdout);
       std::exit(0);
     }
-    // An unknown option is named as such, not as one whose value is missing.
-    if (std::none_of(std::begin(kOptions), std::end(kOptions), [&](const char* o) { return k == o; }))
-      usage("unknown option " + k);
-    if (i + 1 >= argc) usage("missing value after " + k);
-    const char* v = argv[++i];
+    // The option's value, taken by the branch that knows the option (an unknown one is named
+    // as such below, not as one missing its value).
+    const auto value = [&]() -> const char* {
+      if (i + 1 >= argc) usage("missing value after " + k);
+      return argv[++i];
+    };
     if (k == "--sizes") {
       a.sizes.clear();
-      std::stringstream ss(v);
+      std::stringstream ss(value());
       std::string item;
       while (std::getline(ss, item, ',')) a.sizes.push_back(parse_int(item.c_str(), "--sizes"));
     } else if (k == "--dpn") {
-      a.dpn = static_cast<int>(parse_int(v, "--dpn"));
+      a.dpn = static_cast<int>(parse_int(value(), "--dpn"));
       if (a.dpn != 1 && a.dpn != 3) usage("--dpn must be 1 or 3");
     } else if (k == "--nev") {
-      a.nev = static_cast<int>(parse_int(v, "--nev"));
+      a.nev = static_cast<int>(parse_int(value(), "--nev"));
     } else if (k == "--analyze-only") {
-      a.analyze_only = parse_int(v, "--analyze-only") != 0;
+      const std::string f = value();
+      if (f != "0" && f != "1") usage("--analyze-only must be 0 or 1");
+      a.analyze_only = f == "1";
     } else if (k == "--rhs") {
-      a.rhs = static_cast<int>(parse_int(v, "--rhs"));
+      a.rhs = static_cast<int>(parse_int(value(), "--rhs"));
     } else if (k == "--threads") {
-      a.threads = static_cast<unsigned>(parse_int(v, "--threads"));
+      a.threads = static_cast<unsigned>(parse_int(value(), "--threads"));
     } else if (k == "--backend") {
-      const std::string b = v;
+      const std::string b = value();
       if (b == "spectra") a.backend = EigenBackend::Spectra;
       else if (b == "arpack") a.backend = EigenBackend::Arpack;
       else usage("unknown backend " + b);
     } else if (k == "--ordering") {
-      const std::string o = v;
+      const std::string o = value();
       if (o == "metis") a.ordering = Ordering::Metis;
       else if (o == "nesdis") a.ordering = Ordering::Nesdis;
       else if (o == "amd") a.ordering = Ordering::Amd;

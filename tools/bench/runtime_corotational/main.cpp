@@ -8,6 +8,7 @@
 // lumped-mass chain of N points (3N DOF) with 6 modes, both ways, same integrator and settings.
 // Reported: per-step time of the whole step and of the inertia evaluation alone (mass matrix +
 // inertia forces), and the speed-up; the two runs' final states agree (same mass model).
+#include "bench_options.hpp"
 #include "models.hpp"
 
 #include "ffr/formats/sid_io.hpp"
@@ -67,11 +68,7 @@ int main(int argc, char** argv) {
       quick = true;
       continue;
     }
-    // An unknown option must not start the full comparison, which takes minutes.
-    const bool help = std::strcmp(argv[i], "--help") == 0;
-    if (!help) std::fprintf(stderr, "ffr-bench-runtime-corotational: unknown option %s\n", argv[i]);
-    std::fprintf(help ? stdout : stderr, "usage: ffr-bench-runtime-corotational [--quick]\n");
-    return help ? 0 : 2;
+    return bench::refuse_option("ffr-bench-runtime-corotational", argv[i], "usage: ffr-bench-runtime-corotational [--quick]\n");
   }
   const auto dir = bench::temp_dir("corot");
   const int repeats = quick ? 2 : 5;

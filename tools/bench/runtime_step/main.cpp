@@ -13,6 +13,7 @@
 //     (reduced by ffr-reduce from meshes of DOF1, DOF2, ... DOF) in place of the string
 //     "PLACEHOLDER"; mesh_independence.sh makes the SIDs and calls it.
 #include "sid_sizes.hpp"
+#include "bench_options.hpp"
 #include "models.hpp"
 
 #include "ffr/formats/sid_io.hpp"
@@ -85,14 +86,9 @@ int main(int argc, char** argv) {
     } else if (std::strcmp(argv[i], "--no-reuse") == 0) {
       no_reuse = true;
     } else {
-      // An unknown option must not start the full sweep, which takes minutes: usage, on stdout
-      // for --help, on stderr with exit status 2 for anything else.
-      const bool help = std::strcmp(argv[i], "--help") == 0;
-      if (!help) std::fprintf(stderr, "ffr-bench-runtime-step: unknown option %s\n", argv[i]);
-      std::fprintf(help ? stdout : stderr,
-                   "usage: ffr-bench-runtime-step [--quick] [--step-only] [--no-reuse]\n"
-                   "       ffr-bench-runtime-step --sids MODEL.json PLACEHOLDER DOF1=SID1 ...\n");
-      return help ? 0 : 2;
+      return bench::refuse_option("ffr-bench-runtime-step", argv[i],
+                                  "usage: ffr-bench-runtime-step [--quick] [--step-only] [--no-reuse]\n"
+                                  "       ffr-bench-runtime-step --sids MODEL.json PLACEHOLDER DOF1=SID1 ...\n");
     }
   }
   g_no_reuse = no_reuse;
