@@ -8,7 +8,8 @@
 //     time must not depend on the mesh (largest / smallest <= 1.05). With SIDs that ffr-reduce
 //     made from real meshes of 1k ... 1M DOF: mesh_independence.sh.
 //
-//  --quick: shorter runs, fewer sizes.  --step-only: part 1 only.
+//  --quick: shorter runs, fewer sizes.  --step-only: part 1 only.  --omega W: the crank's
+//     speed in rad/s (default 150, the IVP Test Set's; the target is stated at that speed).
 //  --sids MODEL.json PLACEHOLDER DOF1=SID1 DOF2=SID2 ...: instead, MODEL.json run with each SID
 //     (reduced by ffr-reduce from meshes of DOF1, DOF2, ... DOF) in place of the string
 //     "PLACEHOLDER"; mesh_independence.sh makes the SIDs and calls it.
@@ -30,6 +31,8 @@ using namespace ffr::runtime;
 namespace {
 
 bool g_no_reuse = false;
+bool g_reuse = false;    // the tangent kept over steps (SolverSettings::reuse_jacobian)
+double g_omega = 150.0;  // crank speed [rad/s]
 
 using Timing = bench::StepTiming;
 
@@ -50,8 +53,9 @@ Model slider_crank(const std::filesystem::path& dir, int points, int modes, doub
   bench::add_section_inertia(chain.sid, 0.008, 0.008);
   const std::string name = "rod_" + std::to_string(points) + ".sid.h5";
   ffr::formats::write_sid(chain.sid, dir / name);
-  Model m = parse_model(bench::slider_crank_json(name, h, end, 150.0), dir, "slider_crank.json");
+  Model m = parse_model(bench::slider_crank_json(name, h, end, g_omega), dir, "slider_crank.json");
   if (g_no_reuse) m.settings.reuse_jacobian = false;
+  if (g_reuse) m.settings.reuse_jacobian = true;
   if (const char* pen = std::getenv("FFR_PENALTY")) m.settings.penalty = std::atof(pen);
   return m;
 }
@@ -85,9 +89,19 @@ int main(int argc, char** argv) {
       step_only = true;
     } else if (std::strcmp(argv[i], "--no-reuse") == 0) {
       no_reuse = true;
+    } else if (std::strcmp(argv[i], "--reuse") == 0) {
+      g_reuse = true;
+    } else if (std::strcmp(argv[i], "--omega") == 0) {
+      const char* value = i + 1 < argc ? argv[++i] : "";
+      char* end = nullptr;
+      g_omega = std::strtod(value, &end);
+      if (end == value || *end != '\0' || !std::isfinite(g_omega) || g_omega < 0) {
+        std::fprintf(stderr, "ffr-bench-runtime-step: --omega needs a crank speed >= 0 in rad/s, got '%s'\n", value);
+        return 2;
+      }
     } else {
       return bench::refuse_option("ffr-bench-runtime-step", argv[i],
-                                  "usage: ffr-bench-runtime-step [--quick] [--step-only] [--no-reuse]\n"
+                                  "usage: ffr-bench-runtime-step [--quick] [--step-only] [--no-reuse | --reuse] [--omega RAD_PER_S]\n"
                                   "       ffr-bench-runtime-step --sids MODEL.json PLACEHOLDER DOF1=SID1 ...\n");
     }
   }
@@ -96,7 +110,8 @@ int main(int argc, char** argv) {
   const int repeats = quick ? 2 : 7;
   const double end = quick ? 0.2 : 1.0;
 
-  std::printf("# 1. flexible slider-crank, 10 modes, h = 1 ms (best of %d runs of %g s)\n", repeats, end);
+  std::printf("# 1. flexible slider-crank, 10 modes, h = 1 ms, crank at %g rad/s (best of %d runs of %g s)\n", g_omega,
+              repeats, end);
   const Model sc = slider_crank(dir, 11, 10, 1e-3, end);
   const Timing t = time_model(sc, repeats);
   std::printf("coordinates %d, constraint rows %d\n", sc.ncoord, sc.nconstraints);
