@@ -3,8 +3,40 @@
 #include "ffr/formats/text_file.hpp"
 
 #include <cmath>
+#include <climits>
+#include <set>
+#include <vector>
 
 namespace ffr::formats {
+namespace {
+
+// Deeper input is no part or model file, and the recursion of nlohmann's dump (the short text
+// of a value in messages) overflowed the stack on 70 000 nested brackets.
+constexpr std::size_t kMaxDepth = 64;
+
+// No input in SI units comes near it, and larger values overflowed in products downstream (an
+// attached mass 1e308 m away gave a NaN in K, reported without the field).
+constexpr double kMaxMagnitude = 1e30;
+
+// Where the parser is (for messages): one frame per open object or array, with the member or
+// element being read, and an object's keys so far.
+struct Frame {
+  bool array = false;
+  long index = -1;
+  std::string key;
+  std::set<std::string> keys;
+};
+
+std::string frames_path(const std::vector<Frame>& frames) {
+  std::string p;
+  for (const Frame& f : frames) {
+    if (f.array && f.index >= 0) p += "[" + std::to_string(f.index) + "]";
+    if (!f.array && !f.key.empty()) p += (p.empty() ? "" : ".") + f.key;
+  }
+  return p;
+}
+
+}  // namespace
 
 std::string JsonNode::describe() const {
   std::string s = j_->dump();
@@ -69,6 +101,7 @@ double JsonNode::number() const {
   if (!j_->is_number()) fail("expected a number, found " + describe());
   const double v = j_->get<double>();
   if (!std::isfinite(v)) fail("expected a finite number");
+  if (std::abs(v) > kMaxMagnitude) fail("magnitude beyond 1e30, found " + describe() + " (no value in SI units is that large)");
   return v;
 }
 
@@ -85,9 +118,17 @@ double JsonNode::non_negative() const {
 }
 
 long long JsonNode::integer() const {
-  if (!j_->is_number_integer() && !(j_->is_number_float() && std::floor(j_->get<double>()) == j_->get<double>()))
-    fail("expected an integer, found " + describe());
-  return j_->get<long long>();
+  if (j_->is_number_unsigned()) {
+    if (j_->get<unsigned long long>() > static_cast<unsigned long long>(LLONG_MAX)) fail("integer out of range, found " + describe());
+    return j_->get<long long>();
+  }
+  if (j_->is_number_integer()) return j_->get<long long>();
+  const double v = j_->is_number_float() ? j_->get<double>() : 0.5;
+  if (std::floor(v) != v) fail("expected an integer, found " + describe());
+  // A double beyond 2^53 is no exact integer, and one beyond the range of long long would make
+  // the conversion undefined (1e19 landed on 0).
+  if (std::abs(v) > 9007199254740992.0) fail("integer out of range, found " + describe());
+  return static_cast<long long>(v);
 }
 
 int JsonNode::small_integer() const {
@@ -168,8 +209,39 @@ std::string JsonNode::string_or(const std::string& key, const std::string& dflt)
 JsonDocument JsonDocument::parse(const std::string& text, const std::string& display_name) {
   JsonDocument d;
   d.file_ = std::make_shared<const std::string>(display_name);
+  std::vector<Frame> frames;
+  // Refuses, while parsing, nesting beyond kMaxDepth and a key given twice in one object (the
+  // library would keep the last silently).
+  auto watch = [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    auto next_element = [&] {
+      if (!frames.empty() && frames.back().array) ++frames.back().index;
+    };
+    switch (event) {
+      case Event::object_start:
+      case Event::array_start:
+        next_element();
+        if (frames.size() >= kMaxDepth)
+          throw FormatError(display_name, frames_path(frames), "nested deeper than " + std::to_string(kMaxDepth) + " levels");
+        frames.push_back(Frame{event == Event::array_start, -1, {}, {}});
+        break;
+      case Event::key:
+        frames.back().key = parsed.get<std::string>();
+        if (!frames.back().keys.insert(frames.back().key).second)
+          throw FormatError(display_name, frames_path(frames), "given twice in the same object");
+        break;
+      case Event::value:
+        next_element();
+        break;
+      case Event::object_end:
+      case Event::array_end:
+        frames.pop_back();
+        break;
+    }
+    return true;
+  };
   try {
-    d.json_ = nlohmann::json::parse(text);
+    d.json_ = nlohmann::json::parse(text, watch);
   } catch (const nlohmann::json::parse_error& e) {
     // e.byte is the 1-based offset of the error; turn it into line and column.
     std::size_t line = 1, col = 1;

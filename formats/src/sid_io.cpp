@@ -2,6 +2,7 @@
 
 #include "ffr/version.hpp"
 
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -392,9 +393,13 @@ Sid read_sid(const std::filesystem::path& path) {
     const auto psi = r.read_array("/nodes/psi", S({N, 3, nq}));
     const auto ap0 = r.read_array("/nodes/AP0", S({N, 3, 3}));
     s.nodes.resize(N);
+    std::set<std::string> seen;
     for (u64 p = 0; p < N; ++p) {
       auto& n = s.nodes[p];
       n.name = names[p];
+      // Model files refer to nodes by name: an empty or repeated one would bind silently.
+      if (n.name.empty()) r.fail("/nodes/name", "node " + std::to_string(p) + " has an empty name");
+      if (!seen.insert(n.name).second) r.fail("/nodes/name", "node name '" + n.name + "' appears twice");
       n.origin = Eigen::Vector3d(origin[3 * p], origin[3 * p + 1], origin[3 * p + 2]);
       n.phi.resize(3, q);
       n.psi.resize(3, q);
@@ -415,6 +420,8 @@ Sid read_sid(const std::filesystem::path& path) {
       if (node[i] < 0 || static_cast<u64>(node[i]) >= N)
         r.fail("/interfaces/node", "interface '" + names[i] + "' refers to node " + std::to_string(node[i]) +
                                        " but there are " + std::to_string(N) + " nodes");
+      if (coupling[i] != "rigid" && coupling[i] != "averaged")
+        r.fail("/interfaces/coupling", "interface '" + names[i] + "' has coupling '" + coupling[i] + "' (rigid or averaged)");
       s.interfaces.push_back({names[i], node[i], coupling[i], group[i]});
     }
   }

@@ -4,6 +4,9 @@
 #include "ffr/runtime/runtime.hpp"
 
 #include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <utility>
 #include <string>
 
 namespace {
@@ -37,6 +40,28 @@ int run(ffr::cli::Args& args) {
   if (pos.size() > 1) throw ffr::cli::UsageError("more than one model file given");
   if (!out) throw ffr::cli::UsageError("no results file given (-o OUT.h5)");
 
+  // Refused before the run, which may take long: an output whose directory does not exist, and
+  // a CSV named like the results file (it would replace them).
+  namespace fs = std::filesystem;
+  auto same_file = [](const fs::path& a, const fs::path& b) {
+    std::error_code ec1, ec2;
+    const fs::path ca = fs::weakly_canonical(fs::absolute(a), ec1), cb = fs::weakly_canonical(fs::absolute(b), ec2);
+    return !ec1 && !ec2 && ca == cb;
+  };
+  for (const auto& [option, file] : {std::pair{"-o", out}, std::pair{"--csv", csv}}) {
+    if (!file) continue;
+    const fs::path dir = fs::path(*file).parent_path().empty() ? fs::path(".") : fs::path(*file).parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) {
+      std::fprintf(stderr, "ffr-sim: error: %s %s: no directory %s to write it in\n", option, file->c_str(), dir.c_str());
+      return 2;
+    }
+  }
+  if (csv && same_file(*out, *csv)) {
+    std::fprintf(stderr, "ffr-sim: error: --csv %s names the results file (-o %s)\n", csv->c_str(), out->c_str());
+    return 2;
+  }
+
   Model model;
   try {
     model = load_model(pos[0]);
@@ -64,8 +89,7 @@ int run(ffr::cli::Args& args) {
     }
     const RunInfo info = simulate(model, data, rec, opt);
     if (reported) std::fputc('\n', stderr);
-    write_results_h5(*out, model, rec, info);
-    if (csv) write_results_csv(*csv, model, rec);
+    write_results(*out, csv ? std::optional<std::filesystem::path>(*csv) : std::nullopt, model, rec, info);
     if (!quiet)
       std::fprintf(stderr, "ffr-sim: %lld steps, %lld Newton iterations, %.3f s integration (%.2f us per step)\n",
                    static_cast<long long>(info.steps), static_cast<long long>(info.newton_iterations),

@@ -288,6 +288,22 @@ TEST(BadFiles, InterfacePointsToNonexistentNode) {
   expect_refused(f, "/interfaces/node", "refers to node 5");
 }
 
+TEST(BadFiles, RepeatedOrEmptyNodeNames) {
+  // Model files name nodes: a repeated name bound silently to the first node of that name.
+  auto f = clean_copy("samenames.sid.h5");
+  edit(f, [](hid_t h) { replace_strings(h, "/nodes/name", {"A", "A"}); });
+  expect_refused(f, "/nodes/name", "node name 'A' appears twice");
+  f = clean_copy("emptyname.sid.h5");
+  edit(f, [](hid_t h) { replace_strings(h, "/nodes/name", {"A", ""}); });
+  expect_refused(f, "/nodes/name", "node 1 has an empty name");
+}
+
+TEST(BadFiles, UnknownInterfaceCoupling) {
+  const auto f = clean_copy("coupling.sid.h5");
+  edit(f, [](hid_t h) { replace_strings(h, "/interfaces/coupling", {"rigid", "weird"}); });
+  expect_refused(f, "/interfaces/coupling", "coupling 'weird' (rigid or averaged)");
+}
+
 TEST(BadFiles, UnknownModeType) {
   const auto f = clean_copy("modetype.sid.h5");
   edit(f, [](hid_t h) { replace_strings(h, "/refmod/mode_type", {"normal", "bending", "normal", "normal"}); });

@@ -72,3 +72,35 @@ TEST(JsonInput, TheMessageWithoutFileAndFieldIsKept) {
     EXPECT_EQ(e.detail(), "expected a positive number, found -7");
   }
 }
+
+TEST(JsonInput, DeepNestingAndRepeatedKeysAreRefusedWithTheirPath) {
+  // 100 000 brackets overflowed the stack when a message quoted the value (nlohmann's dump).
+  const std::string deep = "{\"mesh\": " + std::string(100000, '[') + std::string(100000, ']') + "}";
+  std::string msg = refusal([&] { JsonDocument::parse(deep, "p.json"); });
+  EXPECT_NE(msg.find("p.json: mesh[0][0]"), std::string::npos) << msg.substr(0, 200);
+  EXPECT_NE(msg.find("nested deeper than 64 levels"), std::string::npos) << msg.substr(0, 200);
+  // 63 levels inside the top object are still read.
+  EXPECT_NO_THROW(JsonDocument::parse("{\"a\": " + std::string(63, '[') + std::string(63, ']') + "}", "p.json"));
+  msg = refusal([] { JsonDocument::parse(R"({"solver": {"step": 1e-3, "end": 1}, "joints": [{"name": "a"}, {"name": "b", "name": "c"}]})", "m.json"); });
+  EXPECT_NE(msg.find("m.json: joints[1].name: given twice in the same object"), std::string::npos) << msg;
+  msg = refusal([] { JsonDocument::parse(R"({"solver": {"step": 1e-3}, "solver": {}})", "m.json"); });
+  EXPECT_NE(msg.find("m.json: solver: given twice"), std::string::npos) << msg;
+  // The same key in different objects is no repetition.
+  EXPECT_NO_THROW(JsonDocument::parse(R"([{"name": "a"}, {"name": "b", "sub": {"name": "c"}}])", "m.json"));
+}
+
+TEST(JsonInput, HugeValuesAndIntegersBeyondLongLongAreRefused) {
+  const auto doc = JsonDocument::parse(
+      R"({"x": [0, 1e200, 0], "ok": -1e30, "dim": 1e19, "u": 18446744073709551615, "exact": 4e15, "neg": -7})", "f.json");
+  const auto root = doc.root();
+  std::string msg = refusal([&] { root.at("x").vec3(); });
+  EXPECT_NE(msg.find("f.json: x[1]: magnitude beyond 1e30"), std::string::npos) << msg;
+  EXPECT_EQ(root.at("ok").number(), -1e30);
+  // 1e19 is integral but beyond long long: converting it was undefined (it gave 0).
+  msg = refusal([&] { root.at("dim").integer(); });
+  EXPECT_NE(msg.find("f.json: dim: integer out of range"), std::string::npos) << msg;
+  msg = refusal([&] { root.at("u").integer(); });
+  EXPECT_NE(msg.find("f.json: u: integer out of range"), std::string::npos) << msg;
+  EXPECT_EQ(root.at("exact").integer(), 4000000000000000LL);
+  EXPECT_EQ(root.at("neg").integer(), -7);
+}

@@ -48,6 +48,13 @@ TEST(ReduceCli, BadInputsExitTwoWithoutOutput) {
       // Held at one point: the body can still rotate about it.
       {"mechanism", R"({"geometry": "bar.geo", )" + mat + R"(, "groups": [{"name": "corner", "dim": 0, "box": [-1e-6, -1e-6, -1e-6, 1e-6, 1e-6, 1e-6]}],
           "interfaces": [{"name": "pin", "group": "corner"}], "reduction": {"method": "clamped", "interface": "pin", "modes": 4}})", "mechanism"},
+      // Found by fuzzing: these reached the eigen-solver or the SID's validation (exit 1, no field).
+      {"no mass anywhere", R"({"geometry": "bar.geo", "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 0}], "reduction": {"method": "free", "modes": 4}})",
+       "materials: the part has no mass"},
+      {"empty node name", R"({"geometry": "bar.geo", )" + mat + R"(, "output_nodes": [{"name": "", "at": [0.2, 0, 0]}], "reduction": {"method": "free", "modes": 4}})",
+       "output_nodes[0].name: must not be empty"},
+      {"dimension beyond long long", R"({"geometry": "bar.geo", )" + mat + R"(, "groups": [{"name": "g", "dim": 1e19, "box": [0, 0, 0, 1, 1, 1]}], "reduction": {"method": "free", "modes": 4}})",
+       "groups[0].dim: integer out of range"},
   };
   for (const auto& c : cases) {
     test::TempDir dir("cli");

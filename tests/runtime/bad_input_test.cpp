@@ -96,6 +96,24 @@ TEST(BadInput, StepNotDividingTheRun) {
   expect_error(json, "solver.step", "whole number of steps");
 }
 
+TEST(BadInput, StepLongerThanTheRun) {
+  // (end - start) / step rounded to 0 steps passed as a whole number: the run did nothing, exit 0.
+  const std::string json = R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"end": 0.05, "step": 1000}})";
+  expect_error(json, "solver.step", "longer than the run");
+}
+
+TEST(BadInput, HugeAxisIsRefusedAndTinyOneIsADirection) {
+  // [0, 1e200, 0] squared to infinity and normalised to a zero axis.
+  const std::string joint = R"("joints": [{"name": "j", "type": "revolute", "body1": "ground", "body2": "bar", "at": [0,0,0], "axis": %s}])";
+  char buf[512];
+  std::snprintf(buf, sizeof buf, joint.c_str(), "[0, 1e200, 0]");
+  expect_error(model(kRigid, buf), "joints[0].axis[1]", "magnitude beyond 1e30");
+  std::snprintf(buf, sizeof buf, joint.c_str(), "[0, 1e-200, 0]");
+  const Model m = test::model_from(model(kRigid, buf));
+  const Marker& ground = m.markers[static_cast<std::size_t>(m.joints[0].m1)];
+  EXPECT_NEAR((ground.E.col(0) - Vector3d(0, 1, 0)).norm(), 0.0, 1e-15);
+}
+
 TEST(BadInput, UnknownOutputType) {
   expect_error(model(kRigid, R"("outputs": [{"name": "x", "type": "stress"}])"), "outputs[0].type", "unknown output type");
 }
@@ -114,6 +132,28 @@ TEST(BadInput, SidThatIsNotHdf5) {
   const std::string msg = error_of(model(R"({"name": "rod", "type": "flexible", "sid": "junk.sid.h5"})"), dir.path);
   EXPECT_NE(msg.find("junk.sid.h5"), std::string::npos) << msg;
   EXPECT_NE(msg.find("not an HDF5 file"), std::string::npos) << msg;
+}
+
+TEST(BadInput, SidFailingDefinitenessIsRefusedOtherIdentitiesAreNoted) {
+  test::TempDir dir("bad");
+  // A negative-definite Ke read without complaint and gave motion (found by fuzzing ffr-sim).
+  ffr::formats::Sid sid = test::lumpy_body();
+  sid.Ke = -sid.Ke;
+  test::write_sid_file(sid, dir / "neg.sid.h5");
+  const std::string body = R"({"name": "b", "type": "flexible", "sid": "%s"})";
+  char buf[256];
+  std::snprintf(buf, sizeof buf, body.c_str(), "neg.sid.h5");
+  const std::string msg = error_of(model(buf), dir.path);
+  EXPECT_NE(msg.find("neg.sid.h5: /sid/Ke/M0: fails the SID validation: Ke positive semi-definite"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("bodies[0].sid"), std::string::npos) << msg;
+  // The lumpy test body's modes are called free but not orthogonal to the rigid motion: the
+  // formulation takes the members as given, so that is a note, not a refusal.
+  test::write_sid_file(test::lumpy_body(), dir / "lumpy.sid.h5");
+  std::snprintf(buf, sizeof buf, body.c_str(), "lumpy.sid.h5");
+  const Model m = test::model_from(model(buf), dir.path);
+  bool noted = false;
+  for (const auto& n : m.notes) noted = noted || n.find("SID validation check(s) fail, first free: Ct.M0 = 0") != std::string::npos;
+  EXPECT_TRUE(noted);
 }
 
 TEST(BadInput, UnknownNodeOfFlexibleBody) {

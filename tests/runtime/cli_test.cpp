@@ -102,3 +102,24 @@ TEST(Cli, NewtonFailureIsExitOneWithTimeAndResidual) {
   EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
   EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
 }
+
+TEST(Cli, OutputsThatCannotBeWrittenAreRefusedBeforeTheRun) {
+  ffr::runtime::test::TempDir dir("cli");
+  ffr::runtime::test::write_text(dir / "m.json", pendulum());
+  const std::string model = (dir / "m.json").string(), h5 = (dir / "out.h5").string();
+  // A CSV in a directory that does not exist: before, the results file was already in place
+  // when the CSV failed (exit 1).
+  Result r = run(model + " -o " + h5 + " --csv " + (dir / "nowhere" / "out.csv").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--csv"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("no directory"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
+  // The CSV named like the results file replaced them (exit 0, an HDF5 file that was text).
+  r = run(model + " -o " + h5 + " --csv " + (dir / "." / "out.h5").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("names the results file"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
+  r = run(model + " -o " + (dir / "no" / "out.h5").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("-o"), std::string::npos) << r.output;
+}

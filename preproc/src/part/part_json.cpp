@@ -12,6 +12,14 @@ namespace {
 using formats::FormatError;
 using formats::JsonNode;
 
+// A group, interface, node or mass name: the SID names nodes by it and the model file refers
+// to it, so an empty one is refused here, with its field, not later by the SID's validation.
+std::string name_of(const JsonNode& n) {
+  const std::string name = n.at("name").string();
+  if (name.empty()) n.at("name").fail("must not be empty");
+  return name;
+}
+
 Material read_material(const JsonNode& n) {
   Material m;
   m.E = n.at("E").positive();
@@ -39,7 +47,7 @@ MeshSpec read_mesh(const JsonNode& n) {
   MeshSpec m;
   if (auto s = n.find("size")) m.size = s->positive();
   if (auto o = n.find("order")) {
-    m.order = static_cast<int>(o->integer());
+    m.order = o->small_integer();
     if (m.order != 1 && m.order != 2) o->fail("mesh order must be 1 or 2");
   }
   m.optimize = n.boolean_or("optimize", true);
@@ -49,11 +57,11 @@ MeshSpec read_mesh(const JsonNode& n) {
 GroupDef read_group(const JsonNode& n) {
   n.allow_only({"name", "dim", "entities", "box"});
   GroupDef g;
-  g.name = n.at("name").string();
-  g.dim = static_cast<int>(n.at("dim").integer());
+  g.name = name_of(n);
+  g.dim = n.at("dim").small_integer();
   if (g.dim < 0 || g.dim > 3) n.at("dim").fail("dimension must be 0, 1, 2 or 3");
   if (auto e = n.find("entities"))
-    for (const auto& t : e->items()) g.entities.push_back(static_cast<int>(t.integer()));
+    for (const auto& t : e->items()) g.entities.push_back(t.small_integer());
   if (auto b = n.find("box")) {
     const auto v = b->numbers();
     if (v.size() != 6) b->fail("expected [xmin, ymin, zmin, xmax, ymax, zmax]");
@@ -79,7 +87,11 @@ BeamProps read_beam(const JsonNode& n) {
   if (auto k = s.find("kz")) b.kz = k->positive();
   if (auto y = n.find("y_axis")) {
     b.y_axis = y->vec3();
-    if (b.y_axis.norm() == 0) y->fail("y_axis must not be zero");
+    // Only its direction counts: scaled to a largest component of 1, so that no later norm
+    // underflows or overflows.
+    const double largest = b.y_axis.cwiseAbs().maxCoeff();
+    if (!(largest > 0)) y->fail("y_axis must not be zero");
+    b.y_axis /= largest;
   }
   return b;
 }
@@ -87,7 +99,7 @@ BeamProps read_beam(const JsonNode& n) {
 PointMassSpec read_point_mass(const JsonNode& n) {
   n.allow_only({"name", "at", "mass", "com_offset", "inertia", "interface"});
   PointMassSpec p;
-  p.name = n.at("name").string();
+  p.name = name_of(n);
   p.mass = n.at("mass").positive();
   if (auto i = n.find("interface")) p.interface = i->string();
   if (auto a = n.find("at")) p.at = a->vec3();
@@ -108,7 +120,7 @@ PointMassSpec read_point_mass(const JsonNode& n) {
 InterfaceSpec read_interface(const JsonNode& n) {
   n.allow_only({"name", "group", "coupling", "at"});
   InterfaceSpec i;
-  i.name = n.at("name").string();
+  i.name = name_of(n);
   i.group = n.at("group").string();
   i.coupling = n.string_or("coupling", "rigid");
   if (i.coupling != "rigid" && i.coupling != "averaged") n.at("coupling").fail("coupling must be \"rigid\" or \"averaged\"");
@@ -234,7 +246,7 @@ PartSpec load_part(const std::filesystem::path& path) {
   if (auto os = root.find("output_nodes"))
     for (const auto& n : os->items()) {
       n.allow_only({"name", "at"});
-      p.output_nodes.push_back({n.at("name").string(), n.at("at").vec3()});
+      p.output_nodes.push_back({name_of(n), n.at("at").vec3()});
     }
 
   // Cross-references that need no mesh.

@@ -21,8 +21,10 @@ int body_ref(const Field& f, const Model& m) {
 
 Vector3d unit_axis(const Field& f) {
   const Vector3d a = f.vec3();
-  if (!(a.norm() > 0)) f.fail("must not be the zero vector");
-  return a.normalized();
+  // Scaled first, so that the squared norm neither underflows nor overflows.
+  const double largest = a.cwiseAbs().maxCoeff();
+  if (!(largest > 0)) f.fail("must not be the zero vector");
+  return (a / largest).normalized();
 }
 
 Matrix3d triad(const Vector3d& axis) {
@@ -59,6 +61,8 @@ void parse_solver(const Field& root, ParseContext& ctx) {
   if (!(st.end > st.start)) s.at("end").fail("must be after the start time");
   const double n = (st.end - st.start) / st.step;
   if (n > 1e9) s.at("step").fail("gives more than 1e9 steps");
+  // A step longer than the run rounded to no step at all below (n ~ 0 is "whole").
+  if (n < 0.5) s.at("step").fail("is longer than the run (end - start)");
   if (std::abs(n - std::round(n)) > 1e-6 * std::max(1.0, n))
     s.at("step").fail("the run (end - start) is not a whole number of steps");
   if (auto f = s.find("output_every")) {

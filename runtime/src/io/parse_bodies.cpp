@@ -1,10 +1,12 @@
 // "bodies": rigid bodies and flexible bodies from SID files, with their initial state.
 #include "ffr/formats/sid_io.hpp"
+#include "ffr/formats/validate.hpp"
 #include "ffr/runtime/load.hpp"
 #include "parse.hpp"
 
 #include <Eigen/SVD>
 
+#include <cstdio>
 #include <set>
 
 namespace ffr::runtime::detail {
@@ -21,14 +23,42 @@ Matrix3d orientation(const std::optional<Field>& f) {
   return svd.matrixU() * svd.matrixV().transpose();
 }
 
-formats::Sid read_sid_for(const Field& f, const std::filesystem::path& base) {
+// Definiteness and symmetry of the members the equations of motion use: failing one, the body
+// has no physical meaning (a negative-definite Ke gives motion without a warning).
+bool breaks_the_body(const formats::Check& c) {
+  const auto& n = c.name;
+  return n.find("positive") != std::string::npos || (n.size() > 10 && n.compare(n.size() - 10, 10, " symmetric") == 0);
+}
+
+formats::Sid read_sid_for(const Field& f, const std::filesystem::path& base, std::vector<std::string>& notes) {
   const std::filesystem::path p = base / f.string();
+  const std::string referred = " (" + f.file() + ": " + f.path() + ")";
+  formats::Sid sid;
   try {
-    return formats::read_sid(p);
+    sid = formats::read_sid(p);
   } catch (const formats::FormatError& e) {
     // Keep the SID's own file and dataset, say where the model refers to it.
-    throw ModelError(e.file(), e.object(), e.detail() + " (" + f.file() + ": " + f.path() + ")");
+    throw ModelError(e.file(), e.object(), e.detail() + referred);
   }
+  // A readable SID can still be wrong. A failed definiteness or symmetry is refused; another
+  // failed identity (members that disagree with the integrals, free modes not orthogonal to
+  // the rigid motion: bodies made by hand or by other tools) is reported, since the
+  // formulation takes the members as given. ffr-info lists every check.
+  const formats::ValidationReport report = formats::validate(sid);
+  const formats::Check* first = nullptr;
+  for (const formats::Check& c : report.checks) {
+    if (!c.applicable || c.pass) continue;
+    char rel[64];
+    std::snprintf(rel, sizeof rel, "relative violation %.3g > %.3g", c.rel, c.tol);
+    const std::string what = c.name + " (" + rel + (c.note.empty() ? "" : "; " + c.note) + ")";
+    if (breaks_the_body(c)) throw ModelError(p.string(), c.where, "fails the SID validation: " + what + referred);
+    if (!first) {
+      first = &c;
+      notes.push_back(p.string() + ": " + std::to_string(report.failures()) + " SID validation check(s) fail, first " + what +
+                      "; ffr-info lists them" + referred);
+    }
+  }
+  return sid;
 }
 
 void initial_motion(const Field& b, Body& body) {
@@ -63,7 +93,7 @@ void parse_bodies(const Field& root, ParseContext& ctx) {
       b.allow_only({"name", "type", "sid", "position", "orientation", "damping", "stiffening", "velocity",
                        "angular_velocity", "modal_coordinates", "modal_velocities"});
       const Field sidf = b.at("sid");
-      const formats::Sid sid = read_sid_for(sidf, ctx.base);
+      const formats::Sid sid = read_sid_for(sidf, ctx.base, ctx.model.notes);
       if (sid.units_length != "m" || sid.units_mass != "kg" || sid.units_time != "s")
         throw ModelError(ctx.base.empty() ? sidf.string() : (ctx.base / sidf.string()).string(), "/@units_length",
                          "only SI SID files are supported (found " + sid.units_length + ", " + sid.units_mass + ", " +

@@ -1,20 +1,24 @@
 // Results file writers: HDF5 through the project's strict layer, CSV as plain text; both are
-// written to a temporary name and renamed when complete, so nothing half-written is left.
+// written to temporary names and renamed only when both are complete, so a failure leaves
+// neither file (nor half of one).
 #include "ffr/formats/h5.hpp"
 #include "ffr/runtime/outputs.hpp"
 #include "ffr/version.hpp"
 
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 
 namespace ffr::runtime {
 
-void write_results_h5(const std::filesystem::path& path, const Model& model, const Recorder& rec, const RunInfo& info) {
+namespace {
+
+void write_h5(const std::filesystem::path& temp, const std::filesystem::path& path, const Model& model, const Recorder& rec,
+              const RunInfo& info) {
   namespace h5 = ffr::formats::h5;
-  h5::AtomicFile out(path);
   {
-    h5::Writer w(out.temp_path(), path.string());
+    h5::Writer w(temp, path.string());
     const auto nt = static_cast<std::uint64_t>(rec.rows());
     w.attr("/", "format", std::string("ffr-results"));
     w.attr("/", "format_version", std::int64_t{1});
@@ -36,13 +40,11 @@ void write_results_h5(const std::filesystem::path& path, const Model& model, con
     }
     w.close();
   }
-  out.commit();
 }
 
-void write_results_csv(const std::filesystem::path& path, const Model& model, const Recorder& rec) {
-  ffr::formats::h5::AtomicFile out(path);
+void write_csv(const std::filesystem::path& temp, const std::filesystem::path& path, const Model& model, const Recorder& rec) {
   {
-    std::ofstream f(out.temp_path());
+    std::ofstream f(temp);
     if (!f) throw std::runtime_error(path.string() + ": cannot create the CSV file");
     f << "time";
     for (const Output& o : model.outputs)
@@ -62,7 +64,21 @@ void write_results_csv(const std::filesystem::path& path, const Model& model, co
     f.flush();
     if (!f) throw std::runtime_error(path.string() + ": writing the CSV file failed");
   }
-  out.commit();
+}
+
+}  // namespace
+
+void write_results(const std::filesystem::path& h5_path, const std::optional<std::filesystem::path>& csv_path,
+                   const Model& model, const Recorder& rec, const RunInfo& info) {
+  ffr::formats::h5::AtomicFile h5_out(h5_path);
+  write_h5(h5_out.temp_path(), h5_path, model, rec, info);
+  std::optional<ffr::formats::h5::AtomicFile> csv_out;
+  if (csv_path) {
+    csv_out.emplace(*csv_path);
+    write_csv(csv_out->temp_path(), *csv_path, model, rec);
+  }
+  h5_out.commit();
+  if (csv_out) csv_out->commit();
 }
 
 }  // namespace ffr::runtime

@@ -47,7 +47,7 @@ class JsonNode {
   /// "thikness").
   void allow_only(std::initializer_list<const char*> keys) const;
 
-  double number() const;           ///< finite number
+  double number() const;           ///< finite number of magnitude at most 1e30
   double positive() const;         ///< finite and > 0
   double non_negative() const;     ///< finite and >= 0
   long long integer() const;       ///< integral number
@@ -75,7 +75,8 @@ class JsonNode {
 };
 
 /// A parsed JSON document. Malformed JSON (including NaN/Infinity literals) is a FormatError
-/// naming the file, line and column; so is a number too large for a double (1e999).
+/// naming the file, line and column; so is a number too large for a double (1e999). Nesting
+/// deeper than 64 levels and a key given twice in one object are refused with their path.
 class JsonDocument {
  public:
   static JsonDocument load(const std::filesystem::path& path);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,8 +53,9 @@ std::int64_t step_count(const Model& model);
 /// Runs from data's (initialised) state to settings.end, recording every output_every steps.
 RunInfo simulate(const Model& model, Data& data, Recorder& rec, const RunOptions& opt = {});
 
-/// Writes the results file atomically (temporary name, renamed when complete).
-void write_results_h5(const std::filesystem::path& path, const Model& model, const Recorder& rec, const RunInfo& info);
-void write_results_csv(const std::filesystem::path& path, const Model& model, const Recorder& rec);
+/// Writes the results file (HDF5) and, if asked, the same outputs as CSV. Both go to temporary
+/// names first and are renamed into place only when both are complete: a failure leaves neither.
+void write_results(const std::filesystem::path& h5_path, const std::optional<std::filesystem::path>& csv_path,
+                   const Model& model, const Recorder& rec, const RunInfo& info);
 
 }  // namespace ffr::runtime
