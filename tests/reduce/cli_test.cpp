@@ -53,6 +53,9 @@ TEST(ReduceCli, BadInputsExitTwoWithoutOutput) {
        "materials: the part has no mass"},
       {"empty node name", R"({"geometry": "bar.geo", )" + mat + R"(, "output_nodes": [{"name": "", "at": [0.2, 0, 0]}], "reduction": {"method": "free", "modes": 4}})",
        "output_nodes[0].name: must not be empty"},
+      // gmsh took memory at 200 MB/s until killed (5e-11 on a 1 m beam); refused before meshing.
+      {"mesh size far too small", R"({"geometry": "bar.geo", "mesh": {"size": 1e-7}, )" + mat + R"(, "reduction": {"method": "free", "modes": 4}})",
+       "mesh.size: 1e-07 gives about 4.1e+17 elements"},  // 6 sqrt(2) * 0.2 * 0.02 * 0.012 / 1e-21
       {"dimension beyond long long", R"({"geometry": "bar.geo", )" + mat + R"(, "groups": [{"name": "g", "dim": 1e19, "box": [0, 0, 0, 1, 1, 1]}], "reduction": {"method": "free", "modes": 4}})",
        "groups[0].dim: integer out of range"},
   };

@@ -5,7 +5,11 @@
 #include "node_order.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
 #include <set>
 #include <unordered_map>
 
@@ -148,6 +152,36 @@ Mesh extract(const std::string& file) {
   return mesh;
 }
 
+// Elements a mesh of this size would have, from the bounding boxes of the geometry's
+// highest-dimensional entities: per entity c_D * prod_{i <= D} max(e_i, size) / size^D over
+// its D largest extents e_i (c_3 = 6 sqrt 2 for regular tetrahedra, c_2 = 2.3 for triangles).
+// An upper estimate of the volume, so of the count, for solids, good enough to refuse a size
+// that is orders of magnitude too small before gmsh spends all memory on it.
+double estimated_elements(double size) {
+  for (int dim = 3; dim >= 1; --dim) {
+    gmsh::vectorpair ents;
+    gmsh::model::getEntities(ents, dim);
+    if (ents.empty()) continue;
+    const double c = dim == 3 ? 6 * std::sqrt(2.0) : dim == 2 ? 2.3 : 1.0;
+    double n = 0;
+    for (const auto& [d, t] : ents) {
+      double b[6];
+      gmsh::model::getBoundingBox(d, t, b[0], b[1], b[2], b[3], b[4], b[5]);
+      std::array<double, 3> e{b[3] - b[0], b[4] - b[1], b[5] - b[2]};
+      std::sort(e.begin(), e.end(), std::greater<>());
+      double cells = c;
+      for (int i = 0; i < dim; ++i) cells *= std::max(e[static_cast<std::size_t>(i)], size) / size;
+      n += cells;
+    }
+    return n;
+  }
+  return 0;
+}
+
+// More than any machine this runs on can factorize (a 1M-DOF TET10 mesh has about 250 000
+// elements and needed 14 GB).
+constexpr double kMaxElements = 2e7;
+
 }  // namespace
 
 Mesh load_mesh(const PartSpec& part, MeshReport* report, const MeshLog& log) {
@@ -166,8 +200,22 @@ Mesh load_mesh(const PartSpec& part, MeshReport* report, const MeshLog& log) {
       add_default_group();
     });
   } else {
-    if (log) log("meshing " + part.geometry.filename().string() + " (size " + std::to_string(part.mesh.size) +
-                 ", order " + std::to_string(part.mesh.order) + ")");
+    double n = 0;
+    if (part.mesh.size > 0) {
+      gmsh_call(file, "cannot read", [&] { n = estimated_elements(part.mesh.size); });
+      if (n > kMaxElements) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "%g gives about %.2g elements on this geometry (at most %.0e are meshed): a larger size",
+                      part.mesh.size, n, kMaxElements);
+        throw FormatError(part.file.string(), "mesh.size", buf);
+      }
+    }
+    if (log) {
+      char estimate[64] = "";
+      if (n > 0) std::snprintf(estimate, sizeof estimate, ", at most about %.2g elements", n);
+      log("meshing " + part.geometry.filename().string() + " (size " + std::to_string(part.mesh.size) + ", order " +
+          std::to_string(part.mesh.order) + estimate + ")");
+    }
     gmsh_call(file, "meshing failed", [&] {
       add_part_groups(part);
       add_default_group();
