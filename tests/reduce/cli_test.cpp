@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -158,6 +159,42 @@ TEST(ReduceCli, InvertedElementInAMeshFileIsRefusedWithItsId) {
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("element " + tag), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("inverted"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
+}
+
+TEST(ReduceCli, MeshFileThatCrashesGmshIsRefused) {
+  // gmsh 4.8 itself dies (SIGSEGV, also as `gmsh bad.msh -0`) on an element node tag of 2^31
+  // (found by fuzzing): read in a child process, that is an error naming the file.
+  test::TempDir dir("crash");
+  test::write_text(dir / "box.geo", "SetFactory(\"OpenCASCADE\");\nBox(1) = {0,0,0,0.1,0.02,0.02};\nPhysical Volume(\"body\") = {1};\n");
+  ASSERT_EQ(test::run("gmsh -3 -clmax 0.02 " + (dir / "box.geo").string() + " -o " + (dir / "box.msh").string()).status, 0);
+  std::ifstream in(dir / "box.msh");
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  // MSH 4.1 $Elements: a count line, then blocks "dim tag type n" of n lines "id node...".
+  std::size_t j = static_cast<std::size_t>(std::find(lines.begin(), lines.end(), "$Elements") - lines.begin()) + 2;
+  for (;;) {
+    ASSERT_LT(j + 1, lines.size());
+    std::istringstream h(lines[j]);
+    long dim, tag, type, n;
+    h >> dim >> tag >> type >> n;
+    if (type == 4) break;  // a block of tetrahedra
+    j += 1 + static_cast<std::size_t>(n);
+  }
+  std::istringstream e(lines[j + 1]);
+  std::string id, first, rest;
+  e >> id >> first;
+  std::getline(e, rest);
+  lines[j + 1] = id + " 2147483648" + rest;
+  std::string msh;
+  for (const auto& l : lines) msh += l + "\n";
+  test::write_text(dir / "box.msh", msh);
+  test::write_text(dir / "part.json", R"({"geometry": "box.msh",
+    "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}], "reduction": {"method": "free", "modes": 4}})");
+  const auto r = test::run(test::bin("ffr-reduce").string() + " " + (dir / "part.json").string() + " -o " +
+                           (dir / "out.sid.h5").string() + " --quiet");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("box.msh: gmsh crashed on this file"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
 }
 

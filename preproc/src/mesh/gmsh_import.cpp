@@ -2,6 +2,7 @@
 
 #include "ffr/formats/h5.hpp"
 #include "gmsh_session.hpp"
+#include "mesh_child.hpp"
 #include "node_order.hpp"
 
 #include <algorithm>
@@ -182,9 +183,7 @@ double estimated_elements(double size) {
 // elements and needed 14 GB).
 constexpr double kMaxElements = 2e7;
 
-}  // namespace
-
-Mesh load_mesh(const PartSpec& part, MeshReport* report, const MeshLog& log) {
+Mesh load_mesh_here(const PartSpec& part, MeshReport* report, const MeshLog& log) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::string file = part.geometry.string();
   std::error_code ec;
@@ -244,6 +243,12 @@ Mesh load_mesh(const PartSpec& part, MeshReport* report, const MeshLog& log) {
     report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   return mesh;
+}
+
+}  // namespace
+
+Mesh load_mesh(const PartSpec& part, MeshReport* report, const MeshLog& log) {
+  return detail::load_in_child(part.geometry.string(), [&](MeshReport* r) { return load_mesh_here(part, r, log); }, report);
 }
 
 GeometryMass occ_mass_properties(const std::filesystem::path& geometry) {
