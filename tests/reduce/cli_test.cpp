@@ -52,6 +52,9 @@ TEST(ReduceCli, BadInputsExitTwoWithoutOutput) {
       // Found by fuzzing: these reached the eigen-solver or the SID's validation (exit 1, no field).
       {"no mass anywhere", R"({"geometry": "bar.geo", "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 0}], "reduction": {"method": "free", "modes": 4}})",
        "materials: the part has no mass"},
+      {"massless structure with a point mass", R"({"geometry": "bar.geo", "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 0}],
+          "point_masses": [{"name": "m", "at": [0.2, 0.02, 0.012], "mass": 1}], "reduction": {"method": "free", "modes": 4}})",
+       "degrees of freedom carry no mass"},
       {"empty node name", R"({"geometry": "bar.geo", )" + mat + R"(, "output_nodes": [{"name": "", "at": [0.2, 0, 0]}], "reduction": {"method": "free", "modes": 4}})",
        "output_nodes[0].name: must not be empty"},
       // gmsh took memory at 200 MB/s until killed (5e-11 on a 1 m beam); refused before meshing.

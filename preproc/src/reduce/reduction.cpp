@@ -183,6 +183,23 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
                                               m_values.data());
   const SparseRef Mr = shared ? SparseRef(M_on_K) : SparseRef(M);
 
+  // Where densities are 0 (point masses on a massless structure), M is singular, and the
+  // eigen-solvers fail on it (the block Lanczos, Spectra and ARPACK alike: garbage or zero
+  // eigenvalues and a failed residual check, exit 1, naming no input).
+  {
+    Index massless = 0;
+    const auto* outer = Mr.outerIndexPtr();
+    const auto* inner = Mr.innerIndexPtr();
+    for (Index j = 0; j < Mr.outerSize(); ++j) {
+      const auto* d = std::lower_bound(inner + outer[j], inner + outer[j + 1], j);  // rows are sorted
+      massless += d != inner + outer[j + 1] && *d == j && Mr.valuePtr()[d - inner] != 0.0 ? 0 : 1;
+    }
+    if (massless > 0)
+      throw FormatError(part.file.string(), "materials",
+                        std::to_string(massless) + " of " + std::to_string(Mr.cols()) +
+                            " degrees of freedom carry no mass (a density of 0): the eigen-solve needs mass at every "
+                            "one; give each material a density (a small one for a nearly massless part)");
+  }
   ReductionResult r;
   nlohmann::json params;
   Eigen::MatrixXd basis;  // over the independent DOFs
