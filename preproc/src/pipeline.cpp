@@ -1,6 +1,5 @@
 #include "ffr/preproc/pipeline.hpp"
 
-#include "ffr/formats/h5.hpp"  // FormatError
 #include "ffr/formats/sha256.hpp"
 #include "ffr/preproc/assembly/assembly.hpp"
 #include "ffr/preproc/mesh/gmsh_import.hpp"
@@ -94,11 +93,6 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   Assembled fe = assemble(model, aopt);
   stage("assembly: " + std::to_string(fe.elements) + " elements, nnz(K) = " + std::to_string(fe.K.nonZeros()) +
         ", mass " + fmt(fe.mass, 6) + " " + part.units.mass + " [" + fmt(sw.lap()) + " s]");
-  // Zero density everywhere is allowed per material (a massless stiffener) but not for the whole
-  // part: the eigen-solve would stop on a zero start vector, naming no input.
-  if (!(fe.mass > 0))
-    throw formats::FormatError(part.file.string(), "materials",
-                               "the part has no mass (every density is 0 and there is no point mass)");
   if (!fe.worst_element.empty())
     stage("  quality: worst scaled Jacobian " + fmt(fe.worst_scaled_jacobian) + " (" + fe.worst_element + ")");
 

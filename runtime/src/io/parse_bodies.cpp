@@ -45,15 +45,15 @@ formats::Sid read_sid_for(const Field& f, const std::filesystem::path& base, std
   // the rigid motion: bodies made by hand or by other tools) is reported, since the
   // formulation takes the members as given. ffr-info lists every check.
   const formats::ValidationReport report = formats::validate(sid);
-  const formats::Check* first = nullptr;
+  bool noted = false;
   for (const formats::Check& c : report.checks) {
     if (!c.applicable || c.pass) continue;
     char rel[64];
     std::snprintf(rel, sizeof rel, "relative violation %.3g > %.3g", c.rel, c.tol);
     const std::string what = c.name + " (" + rel + (c.note.empty() ? "" : "; " + c.note) + ")";
     if (breaks_the_body(c)) throw ModelError(p.string(), c.where, "fails the SID validation: " + what + referred);
-    if (!first) {
-      first = &c;
+    if (!noted) {
+      noted = true;
       notes.push_back(p.string() + ": " + std::to_string(report.failures()) + " SID validation check(s) fail, first " + what +
                       "; ffr-info lists them" + referred);
     }
