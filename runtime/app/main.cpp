@@ -3,7 +3,9 @@
 #include "ffr/cli/cli.hpp"
 #include "ffr/runtime/runtime.hpp"
 
+#include <cstdint>
 #include <cstdio>
+#include <new>
 #include <filesystem>
 #include <optional>
 #include <utility>
@@ -75,7 +77,17 @@ int run(ffr::cli::Args& args) {
     for (auto& n : initialize(model, data)) notes.push_back(std::move(n));
     if (!quiet)
       for (const auto& n : notes) std::fprintf(stderr, "ffr-sim: note: %s\n", n.c_str());
-    Recorder rec(model, step_count(model) / std::max(1, model.settings.output_every) + 2);
+    // The recorder holds every recorded step from the start (the time loop allocates nothing).
+    const std::int64_t rows = step_count(model) / std::max(1, model.settings.output_every) + 2;
+    std::optional<Recorder> recorder;
+    try {
+      recorder.emplace(model, rows);
+    } catch (const std::bad_alloc&) {
+      std::fprintf(stderr, "ffr-sim: error: %s: solver.output_every: the outputs of %lld recorded steps do not fit in memory; record fewer\n",
+                   pos[0].c_str(), static_cast<long long>(rows));
+      return 2;
+    }
+    Recorder& rec = *recorder;
     RunOptions opt;
     bool reported = false;
     if (!quiet) {

@@ -156,6 +156,17 @@ TEST(BadInput, SidFailingDefinitenessIsRefusedOtherIdentitiesAreNoted) {
   EXPECT_TRUE(noted);
 }
 
+TEST(BadInput, SidWithoutModalMassIsNamedNotTheModel) {
+  // The refusal named the model file with the SID's dataset (found by fuzzing).
+  test::TempDir dir("bad");
+  ffr::formats::Sid sid = test::lumpy_body();
+  for (int a = 0; a < 3; ++a) sid.integrals.PPdm[a][a] = -sid.integrals.PPdm[a][a];
+  test::write_sid_file(sid, dir / "pp.sid.h5");
+  const std::string msg = error_of(model(R"({"name": "b", "type": "flexible", "sid": "pp.sid.h5"})"), dir.path);
+  EXPECT_NE(msg.find("pp.sid.h5: /integrals/PPdm: the modal mass matrix is not positive definite"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("test-model.json: bodies[0].sid"), std::string::npos) << msg;
+}
+
 TEST(BadInput, UnknownNodeOfFlexibleBody) {
   test::TempDir dir("bad");
   test::write_sid_file(test::lumpy_body(), dir / "b.sid.h5");

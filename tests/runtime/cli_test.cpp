@@ -123,3 +123,22 @@ TEST(Cli, OutputsThatCannotBeWrittenAreRefusedBeforeTheRun) {
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("-o"), std::string::npos) << r.output;
 }
+
+TEST(Cli, RecordingMoreThanMemoryHoldsIsRefusedNotAnAllocationFailure) {
+  // 1e8 steps recorded from the start need more than the 2 GB of address space given here:
+  // it was "std::bad_alloc", exit 1 (found by fuzzing).
+  ffr::runtime::test::TempDir dir("cli");
+  std::string m = pendulum();
+  const std::string end = "\"end\": 0.1";
+  m.replace(m.find(end), end.size(), "\"end\": 1e5");
+  ffr::runtime::test::write_text(dir / "m.json", m);
+  const std::string cmd = "ulimit -v 2000000; " + kSim + " " + (dir / "m.json").string() + " -o " + (dir / "out.h5").string() + " -q 2>&1";
+  FILE* p = popen(("sh -c '" + cmd + "'").c_str(), "r");
+  std::string out;
+  std::array<char, 512> buf{};
+  while (fgets(buf.data(), buf.size(), p)) out += buf.data();
+  const int st = pclose(p);
+  EXPECT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 2) << out;
+  EXPECT_NE(out.find("m.json: solver.output_every: the outputs of 100000002 recorded steps do not fit in memory"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
+}

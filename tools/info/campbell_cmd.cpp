@@ -23,7 +23,13 @@ int run_campbell(const std::filesystem::path& file, const std::string& axis_name
   }
   const auto speeds = cli::Args::parse_list(speeds_text, "--speeds");
   const formats::Sid sid = formats::read_sid(file);
-  const formats::Campbell c = formats::campbell(sid, axis, speeds);
+  formats::Campbell c;
+  try {
+    c = formats::campbell(sid, axis, speeds);
+  } catch (const std::invalid_argument& e) {
+    // A SID whose members give no Campbell diagram ("Me is not positive definite"): named.
+    throw formats::FormatError(file.string(), "", e.what());
+  }
   if (!png.empty()) write_png(plot_campbell(c, axis_name), png);
 
   if (json) {

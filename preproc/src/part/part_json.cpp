@@ -87,11 +87,11 @@ BeamProps read_beam(const JsonNode& n) {
   if (auto k = s.find("kz")) b.kz = k->positive();
   if (auto y = n.find("y_axis")) {
     b.y_axis = y->vec3();
-    // Only its direction counts: scaled to a largest component of 1, so that no later norm
-    // underflows or overflows.
+    // Only its direction counts: where a later norm would underflow, scaled to a largest
+    // component of 1 (only there, so that ordinary inputs give the same bits as before).
     const double largest = b.y_axis.cwiseAbs().maxCoeff();
     if (!(largest > 0)) y->fail("y_axis must not be zero");
-    b.y_axis /= largest;
+    if (largest < 1e-150) b.y_axis /= largest;
   }
   return b;
 }

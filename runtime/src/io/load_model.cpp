@@ -21,10 +21,11 @@ int body_ref(const Field& f, const Model& m) {
 
 Vector3d unit_axis(const Field& f) {
   const Vector3d a = f.vec3();
-  // Scaled first, so that the squared norm neither underflows nor overflows.
+  // Scaled first where the squared norm would underflow or overflow (only there: scaling moves
+  // the last bit of the direction, and with it the results of sensitive models).
   const double largest = a.cwiseAbs().maxCoeff();
   if (!(largest > 0)) f.fail("must not be the zero vector");
-  return (a / largest).normalized();
+  return largest > 1e-150 && largest < 1e150 ? a.normalized() : Vector3d((a / largest).normalized());
 }
 
 Matrix3d triad(const Vector3d& axis) {

@@ -106,7 +106,8 @@ void parse_bodies(const Field& root, ParseContext& ctx) {
       }
       const bool stiff = b.has("stiffening") ? b.at("stiffening").boolean() : true;
       Body body = make_flexible_body(name, sid, b.has("position") ? b.at("position").vec3() : Vector3d::Zero(),
-                                     orientation(b.find("orientation")), ratio, stiff, ctx.file, b.path(), &ctx.model.notes);
+                                     orientation(b.find("orientation")), ratio, stiff, (ctx.base / sidf.string()).string(),
+                                     ctx.file + ": " + sidf.path(), &ctx.model.notes);
       body.source = sidf.string();
       initial_motion(b, body);
       if (auto f = b.find("modal_coordinates")) body.y0 = f->vector(body.nq);

@@ -26,6 +26,7 @@ Body make_rigid_body(const std::string& name, double mass, const Vector3d& com, 
 
 /// A flexible body from a SID: the primitive integrals, the rotary parts, Ke, De (plus modal
 /// damping of the given ratio), the stiffening terms when present and wanted, and the nodes.
+/// Errors name `file` (the SID file) and say where the model refers to it (`field`).
 Body make_flexible_body(const std::string& name, const formats::Sid& sid, const Vector3d& position,
                         const Matrix3d& orientation, std::optional<double> damping_ratio, bool stiffening,
                         const std::string& file, const std::string& field, std::vector<std::string>* notes = nullptr);
