@@ -26,6 +26,20 @@ test::RunResult reduce(const test::TempDir& dir, const std::string& part_json, c
   return test::run(test::bin("ffr-reduce").string() + " " + (dir / "part.json").string() + " -o " +
                    (dir / "out.sid.h5").string() + " --quiet " + extra);
 }
+// A tetrahedral mesh file of a small box written by gmsh (format option as for gmsh -format).
+void write_box_mesh(const test::TempDir& dir, const std::string& format) {
+  test::write_text(dir / "box.geo", "SetFactory(\"OpenCASCADE\");\nBox(1) = {0,0,0,0.1,0.02,0.02};\nPhysical Volume(\"body\") = {1};\n");
+  ASSERT_EQ(test::run("gmsh -3 -clmax 0.02 " + format + " " + (dir / "box.geo").string() + " -o " + (dir / "box.msh").string()).status, 0);
+}
+
+// ffr-reduce on a (damaged) box.msh, free-free, steel.
+test::RunResult reduce_box_mesh(const test::TempDir& dir, const std::string& msh) {
+  test::write_text(dir / "box.msh", msh);
+  test::write_text(dir / "part.json", R"({"geometry": "box.msh",
+    "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}], "reduction": {"method": "free", "modes": 4}})");
+  return test::run(test::bin("ffr-reduce").string() + " " + (dir / "part.json").string() + " -o " +
+                   (dir / "out.sid.h5").string() + " --quiet");
+}
 }  // namespace
 
 TEST(ReduceCli, HelpAndVersion) {
@@ -128,8 +142,8 @@ TEST(ReduceCli, ExamplesReduce) {
 
 TEST(ReduceCli, InvertedElementInAMeshFileIsRefusedWithItsId) {
   test::TempDir dir("inverted");
-  test::write_text(dir / "box.geo", "SetFactory(\"OpenCASCADE\");\nBox(1) = {0,0,0,0.1,0.02,0.02};\nPhysical Volume(\"body\") = {1};\n");
-  ASSERT_EQ(test::run("gmsh -3 -clmax 0.02 -format msh22 " + (dir / "box.geo").string() + " -o " + (dir / "box.msh").string()).status, 0);
+  write_box_mesh(dir, "-format msh22");
+  if (HasFatalFailure()) return;
   // Swap two nodes of the first tetrahedron (MSH 2.2: id type ntags tags... nodes...): it turns inside out.
   std::ifstream in(dir / "box.msh");
   std::stringstream text;
@@ -154,11 +168,7 @@ TEST(ReduceCli, InvertedElementInAMeshFileIsRefusedWithItsId) {
     }
     line = end + 1;
   }
-  test::write_text(dir / "box.msh", msh);
-  test::write_text(dir / "part.json", R"({"geometry": "box.msh",
-    "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}], "reduction": {"method": "free", "modes": 4}})");
-  const auto r = test::run(test::bin("ffr-reduce").string() + " " + (dir / "part.json").string() + " -o " +
-                           (dir / "out.sid.h5").string() + " --quiet");
+  const auto r = reduce_box_mesh(dir, msh);
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("element " + tag), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("inverted"), std::string::npos) << r.output;
@@ -169,8 +179,8 @@ TEST(ReduceCli, MeshFileThatCrashesGmshIsRefused) {
   // gmsh 4.8 itself dies (SIGSEGV, also as `gmsh bad.msh -0`) on an element node tag of 2^31
   // (found by fuzzing): read in a child process, that is an error naming the file.
   test::TempDir dir("crash");
-  test::write_text(dir / "box.geo", "SetFactory(\"OpenCASCADE\");\nBox(1) = {0,0,0,0.1,0.02,0.02};\nPhysical Volume(\"body\") = {1};\n");
-  ASSERT_EQ(test::run("gmsh -3 -clmax 0.02 " + (dir / "box.geo").string() + " -o " + (dir / "box.msh").string()).status, 0);
+  write_box_mesh(dir, "");
+  if (HasFatalFailure()) return;
   std::ifstream in(dir / "box.msh");
   std::vector<std::string> lines;
   for (std::string l; std::getline(in, l);) lines.push_back(l);
@@ -191,11 +201,7 @@ TEST(ReduceCli, MeshFileThatCrashesGmshIsRefused) {
   lines[j + 1] = id + " 2147483648" + rest;
   std::string msh;
   for (const auto& l : lines) msh += l + "\n";
-  test::write_text(dir / "box.msh", msh);
-  test::write_text(dir / "part.json", R"({"geometry": "box.msh",
-    "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}], "reduction": {"method": "free", "modes": 4}})");
-  const auto r = test::run(test::bin("ffr-reduce").string() + " " + (dir / "part.json").string() + " -o " +
-                           (dir / "out.sid.h5").string() + " --quiet");
+  const auto r = reduce_box_mesh(dir, msh);
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("box.msh: gmsh crashed on this file"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
