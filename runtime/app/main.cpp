@@ -5,11 +5,11 @@
 
 #include <cstdint>
 #include <cstdio>
-#include <new>
 #include <filesystem>
+#include <new>
 #include <optional>
-#include <utility>
 #include <string>
+#include <utility>
 
 namespace {
 
