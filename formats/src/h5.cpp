@@ -392,9 +392,10 @@ void Reader::read(const std::string& path, const Shape& expected, double* out, b
   }
   if (!allow_nonfinite)
     for (std::uint64_t i = 0; i < n; ++i)
-      if (!std::isfinite(out[i])) {
+      if (!(std::abs(out[i]) <= max_magnitude_)) {
         std::ostringstream o;
-        o << "non-finite value " << out[i] << " at flat index " << i;
+        o << (std::isfinite(out[i]) ? "value beyond the magnitude this file may hold: " : "non-finite value ") << out[i]
+          << " at flat index " << i;
         fail(path, o.str());
       }
 }
@@ -429,6 +430,7 @@ double Reader::read_scalar(const std::string& path) const {
   if (H5Dread(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v) < 0)
     fail(path, "read failed (" + last_error_text() + ")");
   if (!std::isfinite(v)) fail(path, "non-finite value");
+  if (!(std::abs(v) <= max_magnitude_)) fail(path, "value beyond the magnitude this file may hold");
   return v;
 }
 

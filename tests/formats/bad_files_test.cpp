@@ -204,6 +204,13 @@ TEST(BadFiles, NaN) {
   expect_refused(f, "/sid/Oe/M0", "non-finite");
 }
 
+TEST(BadFiles, HugeValue) {
+  // Finite but absurd (found by fuzzing): ffr-sim integrated it into a Newton failure, exit 1.
+  const auto f = clean_copy("huge.sid.h5");
+  edit(f, [](hid_t h) { poke(h, "/integrals/Pdm", 1e308); });
+  expect_refused(f, "/integrals/Pdm", "value beyond the magnitude this file may hold: 1e+308");
+}
+
 TEST(BadFiles, Inf) {
   const auto f = clean_copy("inf.sid.h5");
   edit(f, [](hid_t h) { poke(h, "/integrals/PPdm", -INFINITY); });

@@ -14,6 +14,7 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -105,6 +106,11 @@ class Reader {
   /// Shape of a dataset (throws if missing). A scalar dataset has an empty shape.
   Shape shape(const std::string& path) const;
 
+  /// From now on, float values of larger magnitude are refused like non-finite ones (the SID
+  /// reader sets 1e30: no member in any supported unit system comes near it, and larger ones
+  /// overflowed in the runtime's products).
+  void set_max_magnitude(double m) { max_magnitude_ = m; }
+
   /// Reads a float64 dataset into `out`, which must hold product(expected) values; the
   /// dataset's shape must equal `expected` exactly. Values must be finite unless allow_nonfinite.
   void read(const std::string& path, const Shape& expected, double* out, bool allow_nonfinite = false) const;
@@ -131,6 +137,7 @@ class Reader {
   Handle file_;
   std::string name_;
   std::uint64_t file_bytes_ = 0;
+  double max_magnitude_ = HUGE_VAL;
 };
 
 /// Temporary file next to `target`, renamed over it by commit(); removed if never committed.
