@@ -182,6 +182,16 @@ TEST(Validate, EveryApplicableCheckHasAViolationTest) {
     for (const auto& c : validate(body(b)).checks) EXPECT_TRUE(tested.count(c.name)) << "untested check: " << c.name;
 }
 
+TEST(Validate, PropertiesOfOneMemberAreToldFromIdentities) {
+  // ffr-sim refuses a body failing a property and only notes a failed identity.
+  const ValidationReport r = validate(body(kFree));
+  for (const char* name : {"mass positive", "Me symmetric", "Ke symmetric", "Me positive definite", "Ke positive semi-definite",
+                           "J.M0 positive semi-definite"})
+    EXPECT_EQ(r.find(name)->kind, Check::Kind::Property) << name;
+  for (const char* name : {"Me = sum_a PPdm[a][a] + rotary.PsiIPsi", "free: Ct.M0 = 0", "J.M1 symmetric"})
+    EXPECT_EQ(r.find(name)->kind, Check::Kind::Identity) << name;
+}
+
 TEST(Validate, ChecksThatDoNotApplyAreSkippedNotFailed) {
   const ValidationReport r = validate(body(kRotary));  // craig-bampton, all modes normal
   EXPECT_FALSE(r.find("free: Ct.M0 = 0")->applicable);

@@ -74,8 +74,10 @@ class Context {
   const Sid& sid;
   const ValidateOptions& opt;
 
-  void record(const std::string& name, const std::string& where, const Worst& w, double scale, double tol) {
+  void record(const std::string& name, const std::string& where, const Worst& w, double scale, double tol,
+              Check::Kind kind = Check::Kind::Identity) {
     Check c;
+    c.kind = kind;
     c.name = name;
     c.where = where;
     c.abs = w.abs;
@@ -87,8 +89,9 @@ class Context {
     report_.checks.push_back(c);
   }
   void record_value(const std::string& name, const std::string& where, double abs, double scale, bool pass,
-                    const std::string& note = {}) {
+                    const std::string& note = {}, Check::Kind kind = Check::Kind::Identity) {
     Check c;
+    c.kind = kind;
     c.name = name;
     c.where = where;
     c.abs = abs;

@@ -19,7 +19,7 @@ Eigen::VectorXd eigenvalues(const Eigen::MatrixXd& A) {
 void symmetric(Context& cx, const std::string& name, const std::string& where, const Eigen::MatrixXd& A, double scale) {
   Worst w;
   w.add_matrix(A - A.transpose(), "[");
-  cx.record(name + " symmetric", where, w, scale, cx.opt.identity_rtol);
+  cx.record(name + " symmetric", where, w, scale, cx.opt.identity_rtol, Check::Kind::Property);
 }
 
 // definite = true: every eigenvalue > 0; else >= -tol * scale.
@@ -30,7 +30,7 @@ void definite(Context& cx, const std::string& name, const std::string& where, co
   const double lmin = e.minCoeff();
   const double abs = std::isnan(lmin) ? INFINITY : std::max(0.0, -lmin);
   const bool pass = strict ? lmin > 0 : abs <= cx.opt.identity_rtol * scale;
-  cx.record_value(name, where, abs, scale, pass, "smallest eigenvalue " + std::to_string(lmin));
+  cx.record_value(name, where, abs, scale, pass, "smallest eigenvalue " + std::to_string(lmin), Check::Kind::Property);
 }
 
 // Principal moments of a physical inertia tensor: I3 <= I1 + I2.
@@ -46,7 +46,8 @@ void check_properties(Context& cx) {
   const Sid& s = cx.sid;
   const auto& sc = cx.sc;
   const double m = s.refmod.mass;
-  cx.record_value("mass positive", "/refmod/mass", m > 0 ? 0.0 : std::abs(m) + 1, 1.0, m > 0 && std::isfinite(m));
+  cx.record_value("mass positive", "/refmod/mass", m > 0 ? 0.0 : std::abs(m) + 1, 1.0, m > 0 && std::isfinite(m), {},
+                  Check::Kind::Property);
 
   const double sJ = sc.m * sc.L * sc.L;
   symmetric(cx, "Me", "/sid/Me/M0", s.Me, sc.q2());

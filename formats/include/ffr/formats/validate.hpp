@@ -24,6 +24,11 @@ struct ValidateOptions {
 /// One identity. `abs` is the largest violation (an entry of the difference, or a negative
 /// eigenvalue, ...), `scale` the natural scale it is measured against, rel = abs / scale.
 struct Check {
+  /// An identity between members (or with the integrals), or a property of one member that the
+  /// equations of motion rely on (the mass positive, a matrix symmetric or (semi-)definite):
+  /// a body failing a property has no physical meaning, one failing an identity may still be
+  /// integrated with its members as given.
+  enum class Kind { Identity, Property };
   std::string name;         ///< stable identifier, e.g. "Gr + Gr^T = 2 J.M1"
   std::string where;        ///< the members involved, e.g. "/sid/Gr/M0 /sid/J/M1"
   bool applicable = true;   ///< false: does not apply to this body (see note); not a failure
@@ -33,6 +38,7 @@ struct Check {
   double rel = 0.0;
   double tol = 0.0;
   bool pass = true;
+  Kind kind = Kind::Identity;
 };
 
 struct ValidationReport {
