@@ -14,10 +14,6 @@ namespace {
 // of a value in messages) overflowed the stack on 70 000 nested brackets.
 constexpr std::size_t kMaxDepth = 64;
 
-// No input in SI units comes near it, and larger values overflowed in products downstream (an
-// attached mass 1e308 m away gave a NaN in K, reported without the field).
-constexpr double kMaxMagnitude = 1e30;
-
 // Where the parser is (for messages): one frame per open object or array, with the member or
 // element being read, and an object's keys so far.
 struct Frame {
@@ -97,11 +93,13 @@ void JsonNode::allow_only(std::initializer_list<const char*> keys) const {
   }
 }
 
+static_assert(kMaxInputMagnitude == 1e30, "number() says 1e30 in its message");
+
 double JsonNode::number() const {
   if (!j_->is_number()) fail("expected a number, found " + describe());
   const double v = j_->get<double>();
   if (!std::isfinite(v)) fail("expected a finite number");
-  if (std::abs(v) > kMaxMagnitude) fail("magnitude beyond 1e30, found " + describe() + " (no value in SI units is that large)");
+  if (std::abs(v) > kMaxInputMagnitude) fail("magnitude beyond 1e30, found " + describe() + " (no value in SI units is that large)");
   return v;
 }
 
@@ -123,8 +121,8 @@ long long JsonNode::integer() const {
     return j_->get<long long>();
   }
   if (j_->is_number_integer()) return j_->get<long long>();
-  const double v = j_->is_number_float() ? j_->get<double>() : 0.5;
-  if (std::floor(v) != v) fail("expected an integer, found " + describe());
+  if (!j_->is_number_float() || std::floor(j_->get<double>()) != j_->get<double>()) fail("expected an integer, found " + describe());
+  const double v = j_->get<double>();
   // A double beyond 2^53 is no exact integer, and one beyond the range of long long would make
   // the conversion undefined (1e19 landed on 0).
   if (std::abs(v) > 9007199254740992.0) fail("integer out of range, found " + describe());

@@ -286,7 +286,7 @@ void write_sid(const Sid& sid, const std::filesystem::path& path) {
 
 Sid read_sid(const std::filesystem::path& path) {
   h5::Reader r(path);
-  r.set_max_magnitude(1e30);
+  r.set_max_magnitude(kMaxInputMagnitude);
   Sid s;
 
   // Identity and version first: nothing else is read from a file we do not understand.

@@ -23,6 +23,11 @@
 namespace ffr::formats {
 
 /// Any problem with a file: names the file and, where there is one, the dataset or attribute.
+/// The largest magnitude a number may have in the files users give (part and model files, SID
+/// files): no quantity in any supported unit system comes near it, and larger ones overflowed in
+/// products downstream (NaN in K, a non-finite state) where no file or field could be named.
+inline constexpr double kMaxInputMagnitude = 1e30;
+
 class FormatError : public std::runtime_error {
  public:
   FormatError(std::string file, std::string object, const std::string& what);
@@ -107,8 +112,7 @@ class Reader {
   Shape shape(const std::string& path) const;
 
   /// From now on, float values of larger magnitude are refused like non-finite ones (the SID
-  /// reader sets 1e30: no member in any supported unit system comes near it, and larger ones
-  /// overflowed in the runtime's products).
+  /// reader sets kMaxInputMagnitude).
   void set_max_magnitude(double m) { max_magnitude_ = m; }
 
   /// Reads a float64 dataset into `out`, which must hold product(expected) values; the
