@@ -8,9 +8,9 @@
 // lumped-mass chain of N points (3N DOF) with 6 modes, both ways, same integrator and settings.
 // Reported: per-step time of the whole step and of the inertia evaluation alone (mass matrix +
 // inertia forces), and the speed-up; the two runs' final states agree (same mass model).
-#include "bench_options.hpp"
 #include "models.hpp"
 
+#include "ffr/cli/cli.hpp"
 #include "ffr/formats/sid_io.hpp"
 
 #include <algorithm>
@@ -29,7 +29,7 @@ struct Timing {
   VectorXd q;
 };
 
-Timing run(const Model& model, int repeats) {
+Timing time_runs(const Model& model, int repeats) {
   Timing t{1e300, 1e300, 0, {}};
   for (int r = 0; r < repeats; ++r) {
     Data data(model);
@@ -61,15 +61,13 @@ Timing run(const Model& model, int repeats) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  bool quick = false;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--quick") == 0) {
-      quick = true;
-      continue;
-    }
-    return bench::refuse_option("ffr-bench-runtime-corotational", argv[i], "usage: ffr-bench-runtime-corotational [--quick]\n");
-  }
+const ffr::cli::Command kCommand{"ffr-bench-runtime-corotational",
+                                  "\nSeed 000's comparison (see the top of its main.cpp).\n\n  --quick   two sizes, short runs\n",
+                                  "ffr-bench-runtime-corotational [--quick]"};
+
+int run(ffr::cli::Args& args) {
+  const bool quick = args.flag("--quick");
+  if (const auto pos = args.positionals(); !pos.empty()) throw ffr::cli::UsageError("unexpected argument " + pos[0]);
   const auto dir = bench::temp_dir("corot");
   const int repeats = quick ? 2 : 5;
   const double end = quick ? 0.05 : 0.2;
@@ -89,7 +87,7 @@ int main(int argc, char** argv) {
     F->Phi = chain.model.Phi.leftCols(6);
     F->M = chain.model.M.sparseView();
     cor.bodies[1].full_mass = F;
-    const Timing a = run(cor, repeats), b = run(inv, repeats);
+    const Timing a = time_runs(cor, repeats), b = time_runs(inv, repeats);
     std::printf("%8d %6d | %10.2fus %10.2fus %7.2fx | %10.2fus %10.2fus %7.2fx | %10.2e\n", points, 3 * points, a.step_us,
                 b.step_us, a.step_us / b.step_us, a.inertia_us, b.inertia_us, a.inertia_us / b.inertia_us,
                 (a.q - b.q).cwiseAbs().maxCoeff());
@@ -97,3 +95,5 @@ int main(int argc, char** argv) {
   std::filesystem::remove_all(dir);
   return 0;
 }
+
+int main(int argc, char** argv) { return ffr::cli::run_main(argc, argv, kCommand, run); }

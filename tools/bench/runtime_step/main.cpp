@@ -8,15 +8,13 @@
 //     time must not depend on the mesh (largest / smallest <= 1.05). With SIDs that ffr-reduce
 //     made from real meshes of 1k ... 1M DOF: mesh_independence.sh.
 //
-//  --quick: shorter runs, fewer sizes.  --step-only: part 1 only.  --omega W: the crank's
-//     speed in rad/s (default 150, the IVP Test Set's; the target is stated at that speed).
-//  --sids MODEL.json PLACEHOLDER DOF1=SID1 DOF2=SID2 ...: instead, MODEL.json run with each SID
-//     (reduced by ffr-reduce from meshes of DOF1, DOF2, ... DOF) in place of the string
-//     "PLACEHOLDER"; mesh_independence.sh makes the SIDs and calls it.
+//  Options: --help. With --sids MODEL.json PLACEHOLDER DOF1=SID1 DOF2=SID2 ..., MODEL.json is run
+//  with each SID (reduced by ffr-reduce from meshes of DOF1, DOF2, ... DOF) in place of the string
+//  "PLACEHOLDER"; mesh_independence.sh makes the SIDs and calls it.
 #include "sid_sizes.hpp"
-#include "bench_options.hpp"
 #include "models.hpp"
 
+#include "ffr/cli/cli.hpp"
 #include "ffr/formats/sid_io.hpp"
 
 #include <algorithm>
@@ -30,7 +28,6 @@ using namespace ffr::runtime;
 
 namespace {
 
-bool g_no_reuse = false;
 bool g_reuse = false;    // the tangent kept over steps (SolverSettings::reuse_jacobian)
 double g_omega = 150.0;  // crank speed [rad/s]
 
@@ -54,7 +51,6 @@ Model slider_crank(const std::filesystem::path& dir, int points, int modes, doub
   const std::string name = "rod_" + std::to_string(points) + ".sid.h5";
   ffr::formats::write_sid(chain.sid, dir / name);
   Model m = parse_model(bench::slider_crank_json(name, h, end, g_omega), dir, "slider_crank.json");
-  if (g_no_reuse) m.settings.reuse_jacobian = false;
   if (g_reuse) m.settings.reuse_jacobian = true;
   if (const char* pen = std::getenv("FFR_PENALTY")) m.settings.penalty = std::atof(pen);
   return m;
@@ -62,50 +58,45 @@ Model slider_crank(const std::filesystem::path& dir, int points, int modes, doub
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  if (argc >= 4 && std::strcmp(argv[1], "--sids") == 0) {
+const ffr::cli::Command kCommand{
+    "ffr-bench-runtime-step",
+    R"(
+The runtime's cost per time step (see the top of tools/bench/runtime_step/main.cpp).
+
+  --quick             shorter runs, fewer sizes
+  --step-only         part 1 only (the flexible slider-crank)
+  --reuse             keep the tangent over steps (SolverSettings::reuse_jacobian)
+  --omega RAD_PER_S   the crank's speed (default 150, the IVP Test Set's; the target's case)
+  --sids MODEL.json PLACEHOLDER DOF1=SID1 ...
+                      instead, MODEL.json run with each SID in place of PLACEHOLDER
+)",
+    "ffr-bench-runtime-step [--quick] [--step-only] [--reuse] [--omega RAD_PER_S]\n"
+    "       ffr-bench-runtime-step --sids MODEL.json PLACEHOLDER DOF1=SID1 ..."};
+
+int run(ffr::cli::Args& args) {
+  if (args.flag("--sids")) {
+    const auto pos = args.positionals();
+    if (pos.size() < 3) throw ffr::cli::UsageError("--sids needs MODEL.json, PLACEHOLDER and at least one DOF=SID");
     std::vector<bench::SidCase> sids;
-    for (int i = 4; i < argc; ++i) {
-      const char* eq = std::strchr(argv[i], '=');
-      if (!eq) {
-        std::fprintf(stderr, "ffr-bench-runtime-step: expected DOF=SID, got %s\n", argv[i]);
-        return 2;
-      }
-      sids.push_back({std::string(eq + 1), std::atol(argv[i])});
+    for (std::size_t i = 2; i < pos.size(); ++i) {
+      const auto eq = pos[i].find('=');
+      if (eq == std::string::npos) throw ffr::cli::UsageError("expected DOF=SID, got " + pos[i]);
+      sids.push_back({pos[i].substr(eq + 1), std::atol(pos[i].c_str())});
     }
     try {
       // A round is ~0.2 s: 15 of them give each SID a quiet moment on a shared machine.
-      return bench::run_sid_sizes(argv[2], argv[3], sids, 15);
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "ffr-bench-runtime-step: %s\n", e.what());
-      return 2;
+      return bench::run_sid_sizes(pos[0], pos[1], sids, 15);
+    } catch (const ModelError& e) {
+      throw std::invalid_argument(e.what());  // bad input: exit 2
     }
   }
-  bool quick = false, no_reuse = false, step_only = false;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--quick") == 0) {
-      quick = true;
-    } else if (std::strcmp(argv[i], "--step-only") == 0) {
-      step_only = true;
-    } else if (std::strcmp(argv[i], "--no-reuse") == 0) {
-      no_reuse = true;
-    } else if (std::strcmp(argv[i], "--reuse") == 0) {
-      g_reuse = true;
-    } else if (std::strcmp(argv[i], "--omega") == 0) {
-      const char* value = i + 1 < argc ? argv[++i] : "";
-      char* end = nullptr;
-      g_omega = std::strtod(value, &end);
-      if (end == value || *end != '\0' || !std::isfinite(g_omega) || g_omega < 0) {
-        std::fprintf(stderr, "ffr-bench-runtime-step: --omega needs a crank speed >= 0 in rad/s, got '%s'\n", value);
-        return 2;
-      }
-    } else {
-      return bench::refuse_option("ffr-bench-runtime-step", argv[i],
-                                  "usage: ffr-bench-runtime-step [--quick] [--step-only] [--no-reuse | --reuse] [--omega RAD_PER_S]\n"
-                                  "       ffr-bench-runtime-step --sids MODEL.json PLACEHOLDER DOF1=SID1 ...\n");
-    }
+  const bool quick = args.flag("--quick"), step_only = args.flag("--step-only");
+  g_reuse = args.flag("--reuse");
+  if (const auto w = args.number("--omega")) {
+    if (*w < 0) throw ffr::cli::UsageError("--omega: the crank speed must be >= 0 rad/s");
+    g_omega = *w;
   }
-  g_no_reuse = no_reuse;
+  if (const auto pos = args.positionals(); !pos.empty()) throw ffr::cli::UsageError("unexpected argument " + pos[0]);
   const auto dir = bench::temp_dir("step");
   const int repeats = quick ? 2 : 7;
   const double end = quick ? 0.2 : 1.0;
@@ -167,3 +158,5 @@ int main(int argc, char** argv) {
   std::filesystem::remove_all(dir);
   return 0;
 }
+
+int main(int argc, char** argv) { return ffr::cli::run_main(argc, argv, kCommand, run); }
