@@ -20,6 +20,11 @@ void size_marker(MarkerData& md, int nb) {
 
 Data::Data(const Model& model) {
   const int n = model.ncoord, m = model.nconstraints;
+  nf = n;
+  na = m;
+  nblocks = static_cast<int>(model.blocks.size());
+  integrated.assign(model.bodies.size(), 1);
+  drive_ref.assign(model.bodies.size(), DriveReference{});
   q = qd = qdd = VectorXd::Zero(n);
   lambda = lambda_eff = lambda0 = VectorXd::Zero(m);
   Q = f = dq = r = tmp = vstar = qdd_prev = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);

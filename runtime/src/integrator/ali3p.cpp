@@ -77,6 +77,28 @@ double newton_direction(const Model& model, Data& data, double h) {
   return left;
 }
 
+// The rows among driven bodies and the ground hold by construction unless two of them
+// prescribe the same body differently (two motions, or a second joint, at odds); no unknown can
+// mend that, so it is reported as what it is. They depend on the driven bodies alone: once a
+// step is enough.
+void check_drives(const Model& model, const Data& data, double t) {
+  int block = -1;
+  const double v = driven_violation(model, data, block);
+  if (!(v < 1e3 * model.settings.tolerance)) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(block)];
+    const auto name = [&](int body) { return body == kGround ? std::string("ground") : model.bodies[static_cast<std::size_t>(body)].name; };
+    std::string what = b.kind == BlockKind::Joint    ? "joint '" + model.joints[static_cast<std::size_t>(b.index)].name + "'"
+                       : b.kind == BlockKind::Motion ? "the motion of joint '" + model.joints[static_cast<std::size_t>(model.motions[static_cast<std::size_t>(b.index)].joint)].name + "'"
+                                                     : "the frame of '" + name(b.body1) + "'";
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    throw SolverError(t, v,
+                      what + " between '" + name(b.body1) + "' and '" + name(b.body2) + "' is violated by " + buf +
+                          " of the model length at t = " + std::to_string(t) +
+                          " s: the joints and motions that drive these bodies from the ground disagree");
+  }
+}
+
 }  // namespace
 
 void step(const Model& model, Data& data) {
@@ -122,9 +144,11 @@ void step(const Model& model, Data& data) {
   for (it = 1; it <= s.max_iterations; ++it) {
     data.qd = (2.0 / h) * data.q + data.qd_hat;
     data.qdd = (4.0 / h2) * data.q + data.qdd_hat;
+    drive_bodies(model, data, t1);
     evaluate(model, data, t1);
     viol = data.Phi.cwiseAbs().maxCoeff() / model.length;
     if (!std::isfinite(viol)) throw SolverError(t1, viol, newton_failure(t1, it, inc, viol) + ": the state is not finite");
+    if (it == 1) check_drives(model, data, t1);
     // Augmented-Lagrangian update with the new iterate (from the second pass on: the first uses
     // the previous step's multipliers), then the penalised force lambda + alpha Phi.
     if (it > 1) data.lambda += data.alpha.cwiseProduct(data.Phi);
@@ -210,6 +234,7 @@ void step(const Model& model, Data& data) {
   // Final state and projections.
   data.qd = (2.0 / h) * data.q + data.qd_hat;
   data.qdd = (4.0 / h2) * data.q + data.qdd_hat;
+  drive_bodies(model, data, t1);
   update_bodies(model, data);
   update_markers(model, data);
   evaluate_constraints(model, data, t1);

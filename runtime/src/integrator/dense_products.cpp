@@ -7,9 +7,10 @@
 namespace ffr::runtime::detail {
 
 FFR_RT_CLONES
-void times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y, bool accumulate) {
-  const Eigen::Index m = A.rows(), n = A.cols();
-  eigen_assert(x.size() == n && y.size() == m);
+void times(const Eigen::MatrixXd& A, Eigen::Index m, Eigen::Index n, const Eigen::VectorXd& x, Eigen::VectorXd& y,
+           bool accumulate) {
+  const Eigen::Index ld = A.rows();
+  eigen_assert(m <= ld && n <= A.cols() && x.size() >= n && y.size() >= m);
   const double* __restrict a = A.data();
   const double* __restrict xv = x.data();
   double* __restrict yv = y.data();
@@ -21,44 +22,45 @@ void times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& 
   for (; j + 4 <= n; j += 4) {
     const double x0 = xv[j], x1 = xv[j + 1], x2 = xv[j + 2], x3 = xv[j + 3];
     if (x0 == 0.0 && x1 == 0.0 && x2 == 0.0 && x3 == 0.0) continue;
-    const double* __restrict c = a + j * m;
-    for (Eigen::Index i = 0; i < m; ++i) yv[i] += c[i] * x0 + c[m + i] * x1 + c[2 * m + i] * x2 + c[3 * m + i] * x3;
+    const double* __restrict c = a + j * ld;
+    for (Eigen::Index i = 0; i < m; ++i) yv[i] += c[i] * x0 + c[ld + i] * x1 + c[2 * ld + i] * x2 + c[3 * ld + i] * x3;
   }
   for (; j < n; ++j) {
     const double xj = xv[j];
     if (xj == 0.0) continue;
-    const double* __restrict c = a + j * m;
+    const double* __restrict c = a + j * ld;
     for (Eigen::Index i = 0; i < m; ++i) yv[i] += c[i] * xj;
   }
 }
 
 FFR_RT_CLONES
-void add_transpose_times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-  const Eigen::Index m = A.rows(), n = A.cols(), m4 = m - m % 4;
-  eigen_assert(x.size() == m && y.size() == n);
+void add_transpose_times(const Eigen::MatrixXd& A, Eigen::Index m, Eigen::Index n, const Eigen::VectorXd& x,
+                         Eigen::VectorXd& y) {
+  const Eigen::Index ld = A.rows(), m4 = m - m % 4;
+  eigen_assert(m <= ld && n <= A.cols() && x.size() >= m && y.size() >= n);
   const double* __restrict a = A.data();
   const double* __restrict xv = x.data();
   double* __restrict yv = y.data();
   // Four columns at a time, each with a vector of partial sums.
   Eigen::Index j = 0;
   for (; j + 4 <= n; j += 4) {
-    const double* c = a + j * m;
+    const double* c = a + j * ld;
     simd::v4 s0 = {}, s1 = {}, s2 = {}, s3 = {};
     for (Eigen::Index i = 0; i < m4; i += 4) {
       const simd::v4 xi = simd::load(xv + i);
       s0 += simd::load(c + i) * xi;
-      s1 += simd::load(c + m + i) * xi;
-      s2 += simd::load(c + 2 * m + i) * xi;
-      s3 += simd::load(c + 3 * m + i) * xi;
+      s1 += simd::load(c + ld + i) * xi;
+      s2 += simd::load(c + 2 * ld + i) * xi;
+      s3 += simd::load(c + 3 * ld + i) * xi;
     }
     double t[4] = {(s0[0] + s0[1]) + (s0[2] + s0[3]), (s1[0] + s1[1]) + (s1[2] + s1[3]),
                    (s2[0] + s2[1]) + (s2[2] + s2[3]), (s3[0] + s3[1]) + (s3[2] + s3[3])};
     for (Eigen::Index i = m4; i < m; ++i)
-      for (int k = 0; k < 4; ++k) t[k] += c[k * m + i] * xv[i];
+      for (int k = 0; k < 4; ++k) t[k] += c[k * ld + i] * xv[i];
     for (int k = 0; k < 4; ++k) yv[j + k] += t[k];
   }
   for (; j < n; ++j) {
-    const double* c = a + j * m;
+    const double* c = a + j * ld;
     double s = 0.0;
     for (Eigen::Index i = 0; i < m; ++i) s += c[i] * xv[i];
     yv[j] += s;

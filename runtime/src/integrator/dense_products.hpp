@@ -10,12 +10,22 @@
 
 namespace ffr::runtime::detail {
 
-/// y = A x (accumulate = false) or y += A x, for A (m x n, column-major, leading dimension m).
-/// x and y must not overlap. Columns whose coefficients are zero are skipped, so a non-finite
-/// entry there does not reach y (the callers test the state, not these products, for NaN).
-void times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y, bool accumulate);
+/// y = A x (accumulate = false) or y += A x, for the leading rows x cols block of A (column-major,
+/// leading dimension A.rows()): x and y are read and written in their first cols and rows
+/// entries (the unknowns of a step with driven bodies eliminated). x and y must not overlap.
+/// Columns whose coefficients are zero are skipped, so a non-finite entry there does not reach
+/// y (the callers test the state, not these products, for NaN).
+void times(const Eigen::MatrixXd& A, Eigen::Index rows, Eigen::Index cols, const Eigen::VectorXd& x, Eigen::VectorXd& y,
+           bool accumulate);
+inline void times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y, bool accumulate) {
+  times(A, A.rows(), A.cols(), x, y, accumulate);
+}
 
-/// y += A^T x (x and y must not overlap).
-void add_transpose_times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y);
+/// y += B^T x for the leading rows x cols block B of A (x and y must not overlap).
+void add_transpose_times(const Eigen::MatrixXd& A, Eigen::Index rows, Eigen::Index cols, const Eigen::VectorXd& x,
+                         Eigen::VectorXd& y);
+inline void add_transpose_times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+  add_transpose_times(A, A.rows(), A.cols(), x, y);
+}
 
 }  // namespace ffr::runtime::detail

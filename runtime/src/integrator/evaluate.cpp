@@ -17,14 +17,17 @@ void evaluate(const Model& model, Data& data, double t) {
   evaluate_constraints(model, data, t);
 }
 
+// W, T and the factorisation cover the unknowns only: the leading nf x nf blocks.
 void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& lam) {
   const double h = model.settings.step;
+  const int nf = data.nf;
   force_tangents(model, data, t);
-  data.W.noalias() = (0.5 * h) * data.C;
-  data.W.noalias() += (0.25 * h * h) * data.K;
+  auto W = data.W.topLeftCorner(nf, nf);
+  W.noalias() = (0.5 * h) * data.C.topLeftCorner(nf, nf);
+  W.noalias() += (0.25 * h * h) * data.K.topLeftCorner(nf, nf);
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
-    data.W.block(b.offset, b.offset, b.ncoord(), b.ncoord()) += data.bodies[i].M;
+    if (data.integrated[i]) W.block(b.offset, b.offset, b.ncoord(), b.ncoord()) += data.bodies[i].M;
   }
   refresh_constraint_tangent(model, data, lam);
 }
@@ -32,7 +35,7 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
 void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& lam) {
   const double h = model.settings.step;
   // The rows' penalties data.alpha were set by step() at its start.
-  data.T = data.W;
+  data.T.topLeftCorner(data.nf, data.nf) = data.W.topLeftCorner(data.nf, data.nf);
   add_penalty_tangent(model, data, data.alpha, 0.25 * h * h, data.T);
   // The constraint forces' own derivative, with the multipliers of the current iterate.
   add_constraint_hessian(model, data, lam, 0.25 * h * h, data.T);
@@ -42,23 +45,28 @@ void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& 
 }
 
 void factorize_tangent(Data& data) {
-  for (Eigen::Index i = 0; i < data.T.rows(); ++i) {
+  const int nf = data.nf;
+  for (Eigen::Index i = 0; i < nf; ++i) {
     const double d = std::abs(data.T(i, i));
     data.scale(i) = d > 0 ? 1.0 / std::sqrt(d) : 1.0;
   }
-  data.lu.compute(data.scale.asDiagonal() * data.T * data.scale.asDiagonal());
+  const auto S = data.scale.head(nf).asDiagonal();
+  data.lu.compute(S * data.T.topLeftCorner(nf, nf) * S);
 }
 
 void solve_tangent(Data& data, const VectorXd& rhs, VectorXd& out) {
   ++data.stats.solves;
+  const int nf = data.nf;
+  // The coordinates of driven bodies are not unknowns: no change there.
+  out.tail(out.size() - nf).setZero();
   // A singular tangent gives a non-finite direction, which the callers report.
   if (!data.lu.ok()) {
-    out.setConstant(std::numeric_limits<double>::quiet_NaN());
+    out.head(nf).setConstant(std::numeric_limits<double>::quiet_NaN());
     return;
   }
-  out = data.scale.cwiseProduct(rhs);
+  out.head(nf) = data.scale.head(nf).cwiseProduct(rhs.head(nf));
   data.lu.solve_in_place(out);
-  out.array() *= data.scale.array();
+  out.head(nf).array() *= data.scale.head(nf).array();
 }
 
 double scaled_norm(const Model& model, const VectorXd& dq) {

@@ -141,6 +141,8 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
   data.qdd.setZero();
   data.have_previous = false;
   data.stats = Stats{};
+  // Every body is moved into place, the driven ones too; they follow their drives afterwards.
+  set_unknowns(model, data, false);
   // Angles of driven joints are unwrapped around their targets from the start.
   for (std::size_t m = 0; m < model.motions.size(); ++m)
     if (model.motions[m].coordinate == JointCoordinate::Angle)
@@ -194,6 +196,7 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
     }
   }
   data.tangent_valid = false;
+  set_unknowns(model, data, true);
   return notes;
 }
 

@@ -17,27 +17,30 @@ namespace {
 constexpr int kMaxProjection = 40;
 
 // One projection with the current factorisation; x is left projected (or as far as it got).
+// Only the rows of the unknowns (the first data.na) take part: the others, among driven bodies,
+// hold by construction, and data.c stays zero there.
 double project_once(const Model& model, Data& data, VectorXd& x, const VectorXd& bias, double unit) {
   const double h = model.settings.step;
   const double h4 = 0.25 * h * h;
   const double target = 1e-2 * model.settings.tolerance;
+  const int na = data.na;
   data.sigma.setZero();
   constraint_times(model, data, x, data.c);
-  data.c += bias;
-  double res = data.c.cwiseAbs().maxCoeff() * unit;
+  data.c.head(na) += bias.head(na);
+  double res = data.c.head(na).cwiseAbs().maxCoeff() * unit;
   const double res0 = res;
   for (int k = 0; k < kMaxProjection && res > target; ++k) {
     data.tmp = x - data.vstar;
-    detail::times(data.W, data.tmp, data.r, false);
+    detail::times(data.W, data.nf, data.nf, data.tmp, data.r, false);
     data.c = h4 * (data.sigma + data.alpha.cwiseProduct(data.c));
     add_constraint_forces(model, data, data.c, data.r);
     solve_tangent(data, data.r, data.dq);
     x -= data.dq;
     constraint_times(model, data, x, data.c);
-    data.c += bias;
+    data.c.head(na) += bias.head(na);
     data.sigma += data.alpha.cwiseProduct(data.c);
     const double prev = res;
-    res = data.c.cwiseAbs().maxCoeff() * unit;
+    res = data.c.head(na).cwiseAbs().maxCoeff() * unit;
     if (!(res < 1e3 * std::max(res0, target))) return res;  // diverging: stale factorisation
     if (k > 3 && res > 0.5 * prev) break;                    // stagnating at round-off
   }

@@ -13,7 +13,9 @@ namespace ffr::runtime {
 using Eigen::Index;
 
 void SmallLU::resize(Index n) {
-  lu_.setZero(n, n);
+  buffer_.setZero(n * n);
+  capacity_ = n;
+  n_ = n;
   perm_.setZero(n);
   lower_.setZero(n);
   upper_.setZero(n);
@@ -112,8 +114,8 @@ inline void update_trailing_column(double* a, Index n, Index k0, Index last, Ind
 // benchmark's tangent made about a thousand AXPYs of 10 to 40 entries.
 FFR_RT_CLONES
 bool SmallLU::factorize() {
-  const Index n = lu_.rows();
-  double* a = lu_.data();
+  const Index n = n_;
+  double* a = buffer_.data();
   ok_ = false;
   for (Index k0 = 0; k0 < n; k0 += kPanel) {
     const Index p1 = std::min(n, k0 + kPanel);
@@ -158,8 +160,9 @@ bool SmallLU::factorize() {
 // benchmark's 46 x 46 tangent, 13 solves a step).
 FFR_RT_CLONES
 void SmallLU::solve_in_place(Eigen::Ref<Eigen::VectorXd> xv) const {
-  const Index n = lu_.rows();
-  const double* a = lu_.data();
+  const Index n = n_;
+  eigen_assert(xv.size() >= n);
+  const double* a = buffer_.data();
   const double* rd = inv_diag_.data();
   double* __restrict x = xv.data();
   const auto A = [&](Index i, Index j) { return a[i + j * n]; };

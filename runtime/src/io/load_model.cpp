@@ -54,7 +54,8 @@ Table parse_table(const Field& f, int ncomp) {
 
 void parse_solver(const Field& root, ParseContext& ctx) {
   const Field s = root.at("solver");
-  s.allow_only({"start", "end", "step", "output_every", "tolerance", "max_iterations", "penalty", "reuse_jacobian"});
+  s.allow_only({"start", "end", "step", "output_every", "tolerance", "max_iterations", "penalty", "reuse_jacobian",
+                "eliminate_driven_bodies"});
   SolverSettings& st = ctx.model.settings;
   if (auto f = s.find("start")) st.start = f->number();
   st.end = s.at("end").number();
@@ -77,6 +78,7 @@ void parse_solver(const Field& root, ParseContext& ctx) {
   }
   if (auto f = s.find("penalty")) st.penalty = f->positive();
   if (auto f = s.find("reuse_jacobian")) st.reuse_jacobian = f->boolean();
+  if (auto f = s.find("eliminate_driven_bodies")) st.eliminate_driven = f->boolean();
 }
 
 }  // namespace detail

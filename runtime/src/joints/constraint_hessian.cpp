@@ -49,7 +49,7 @@ Quantity quantity(const Model& model, const Data& data, int marker, int k, int s
   q.side = side;
   q.sign = sign;
   q.v = k < 0 ? &md.p : &md.e[k];
-  if (mk.body == kGround) return q;
+  if (!integrated(data, mk.body)) return q;  // the ground or a driven body: no unknowns
   q.J = k < 0 ? &md.Jp : &md.Je[k];
   if (detail::on_node(model, mk)) q.S = &detail::slice(mk, k);
   return q;
@@ -181,8 +181,8 @@ void motion_hessian(const Model& model, Data& data, const Motion& mo, double lam
 }  // namespace
 
 void add_constraint_hessian(const Model& model, Data& data, const VectorXd& lam, double factor, MatrixXd& M) {
-  for (std::size_t bi = 0; bi < model.blocks.size(); ++bi) {
-    const ConstraintBlock& b = model.blocks[bi];
+  for (int bi = 0; bi < data.nblocks; ++bi) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
     const auto l = lam.segment(b.row0, b.rows);
     if (b.kind == BlockKind::RigidBody) {
       const int o = model.bodies[b.body1].offset + 3;
@@ -198,10 +198,11 @@ void add_constraint_hessian(const Model& model, Data& data, const VectorXd& lam,
     }
     Target T{&M};
     T.buf = data.Jw.data();  // rows_max (>= 6) x (a body's coordinates) doubles
-    T.off[1] = b.body1 == kGround ? 0 : model.bodies[b.body1].offset;
-    T.off[2] = b.body2 == kGround ? 0 : model.bodies[b.body2].offset;
-    T.nb[1] = b.body1 == kGround ? 0 : model.bodies[b.body1].ncoord();
-    T.nb[2] = b.body2 == kGround ? 0 : model.bodies[b.body2].ncoord();
+    const bool h1 = integrated(data, b.body1), h2 = integrated(data, b.body2);
+    T.off[1] = h1 ? model.bodies[b.body1].offset : 0;
+    T.off[2] = h2 ? model.bodies[b.body2].offset : 0;
+    T.nb[1] = h1 ? model.bodies[b.body1].ncoord() : 0;
+    T.nb[2] = h2 ? model.bodies[b.body2].ncoord() : 0;
     if (b.kind == BlockKind::Joint) {
       data.cl.head(b.rows) = factor * l;
       joint_hessian(model, data, model.joints[b.index], data.cl.head(b.rows), T);

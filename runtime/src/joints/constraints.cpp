@@ -37,6 +37,12 @@ void rigid_body_rows(const Model& model, const Data& data, int body, Rows& r) {
     const double s = diag ? 0.5 * L : L;
     r.Phi(i) = s * (bd.A.col(a).dot(bd.A.col(b)) - (diag ? 1.0 : 0.0));
     r.gamma(i) = 2 * s * bd.Ad.col(a).dot(bd.Ad.col(b));
+    if (!integrated(data, body)) {
+      // A driven body's frame: no unknowns, so its rate is all Phi_t and its acceleration all gamma.
+      r.Phit(i) = s * (bd.Ad.col(a).dot(bd.A.col(b)) + bd.A.col(a).dot(bd.Ad.col(b)));
+      r.gamma(i) += s * (bd.Add.col(a).dot(bd.A.col(b)) + bd.A.col(a).dot(bd.Add.col(b)));
+      continue;
+    }
     if (!r.jacobian) continue;
     r.J1.block<1, 3>(i, 3 + 3 * a) += s * bd.A.col(b).transpose();
     r.J1.block<1, 3>(i, 3 + 3 * b) += s * bd.A.col(a).transpose();
@@ -49,14 +55,17 @@ struct JointSides {
   bool g1, g2;
 };
 
+// A side is fixed when its body has no unknowns: the ground, or a driven body (whose markers'
+// rates then enter Phi_t and whose accelerations are in their biases, kinematics.hpp).
 JointSides sides(const Model& model, const Data& data, const Joint& j) {
-  return {&data.markers[j.m1], &data.markers[j.m2], model.markers[j.m1].body == kGround,
-          model.markers[j.m2].body == kGround};
+  return {&data.markers[j.m1], &data.markers[j.m2], !integrated(data, model.markers[j.m1].body),
+          !integrated(data, model.markers[j.m2].body)};
 }
 
 void dot_row(const VecExpr& a, const VecExpr& b, double scale, Rows& r, int row) {
   const auto v = dot(a, b);
   r.Phi(row) = scale * v.value;
+  r.Phit(row) = scale * v.given;
   r.gamma(row) = scale * v.bias;
   if (r.jacobian) dot_jacobian(a, b, scale, r.J1, r.J2, row);
 }
@@ -64,6 +73,8 @@ void dot_row(const VecExpr& a, const VecExpr& b, double scale, Rows& r, int row)
 void coincident_points(const JointSides& s, Rows& r, int row) {
   r.Phi.segment<3>(row) = s.m2->p - s.m1->p;
   r.gamma.segment<3>(row) = s.m2->pb - s.m1->pb;
+  if (s.g2) r.Phit.segment<3>(row) += s.m2->pd;
+  if (s.g1) r.Phit.segment<3>(row) -= s.m1->pd;
   if (!r.jacobian) return;
   if (!s.g1) r.J1.middleRows(row, 3) -= s.m1->Jp;
   if (!s.g2) r.J2.middleRows(row, 3) += s.m2->Jp;
@@ -132,7 +143,7 @@ detail::DotValue coordinate(const Model& model, const Data& data, int joint, Joi
   const double th = unwrap(std::atan2(y.value, x.value), data.angle_ref[joint]);
   const double thd = (x.value * y.rate - y.value * x.rate) / rho2;
   const double bias = (x.value * y.bias - y.value * x.bias) / rho2 - 2 * thd * (x.value * x.rate + y.value * y.rate) / rho2;
-  return {th, thd, bias};
+  return {th, thd, bias, (x.value * y.given - y.value * x.given) / rho2};
 }
 
 void motion_row(const Model& model, const Data& data, int m, double t, Rows& r) {
@@ -141,13 +152,13 @@ void motion_row(const Model& model, const Data& data, int m, double t, Rows& r) 
   const auto v = coordinate(model, data, mo.joint, mo.coordinate, r.jacobian ? &r : nullptr, 0, scale);
   const Vector3d target = motion_target(model, data, m, t);
   r.Phi(0) = scale * (v.value - target(0));
-  r.Phit(0) = -scale * target(1);
+  r.Phit(0) = scale * (v.given - target(1));
   r.gamma(0) = scale * (v.bias - target(2));
 }
 
-// The body's columns of a block's rows in data.Phiq (none for the ground).
+// The body's columns of a block's rows in data.Phiq (none for the ground or a driven body).
 detail::JacobianBlock block_columns(const Model& model, Data& data, const ConstraintBlock& b, int body) {
-  if (body == kGround) return data.Phiq.block(b.row0, 0, b.rows, 0);
+  if (!integrated(data, body)) return data.Phiq.block(b.row0, 0, b.rows, 0);
   const Body& B = model.bodies[body];
   return data.Phiq.block(b.row0, B.offset, b.rows, B.ncoord());
 }
@@ -167,11 +178,15 @@ void evaluate_rows(const Model& model, Data& data, double t, bool jacobian) {
   // The Jacobian is assembled dense (the products use it several times per Newton iteration),
   // the blocks adding into it. It is zeroed whole, in one pass over contiguous memory: zeroing
   // each block's columns took a memset call per column of a few rows (3-5 % of a step).
+  // Every block's values: those among driven bodies hold by construction, and their values
+  // check that (step()); only the blocks of the unknowns have Jacobian columns.
   if (jacobian) data.Phiq.setZero();
   data.Phit.setZero();
-  for (const ConstraintBlock& b : model.blocks) {
+  for (std::size_t bi = 0; bi < model.blocks.size(); ++bi) {
+    const ConstraintBlock& b = model.blocks[bi];
+    const bool active = static_cast<int>(bi) < data.nblocks;
     Rows r{data.Phi.segment(b.row0, b.rows), data.Phit.segment(b.row0, b.rows), data.gamma.segment(b.row0, b.rows),
-           block_columns(model, data, b, b.body1), block_columns(model, data, b, b.body2), jacobian};
+           block_columns(model, data, b, b.body1), block_columns(model, data, b, b.body2), jacobian && active};
     switch (b.kind) {
       case BlockKind::RigidBody: rigid_body_rows(model, data, b.index, r); break;
       case BlockKind::Joint: joint_rows(model, data, model.joints[b.index], r); break;
@@ -200,18 +215,20 @@ void update_angle_references(const Model& model, Data& data) {
 
 void add_constraint_forces(const Model& model, const Data& data, const VectorXd& lam, VectorXd& out) {
   (void)model;
-  detail::add_transpose_times(data.Phiq, lam, out);
+  detail::add_transpose_times(data.Phiq, data.na, data.nf, lam, out);
 }
 
 void constraint_times(const Model& model, const Data& data, const VectorXd& v, VectorXd& out) {
   (void)model;
-  detail::times(data.Phiq, v, out, false);
+  detail::times(data.Phiq, data.na, data.nf, v, out, false);
+  out.tail(out.size() - data.na).setZero();  // the rows among driven bodies have no unknowns
 }
 
 void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, double f, MatrixXd& T) {
   const Eigen::Index ld = data.Phiq.rows();
   double* buf = data.Jw.data();  // rows_max x (a body's coordinates) doubles of work space
-  for (const ConstraintBlock& b : model.blocks) {
+  for (int bi = 0; bi < data.nblocks; ++bi) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
     const auto J1 = block_columns(model, data, b, b.body1);
     const auto J2 = block_columns(model, data, b, b.body2);
     double* w = data.penalty_rows.data();
@@ -232,7 +249,7 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
       continue;
     }
     // A joint within one body has its rows once in Phiq: its term is that block's alone.
-    const bool h1 = b.body1 != kGround, h2 = b.body2 != kGround && b.body2 != b.body1;
+    const bool h1 = integrated(data, b.body1), h2 = integrated(data, b.body2) && b.body2 != b.body1;
     const int o1 = h1 ? model.bodies[b.body1].offset : 0, n1 = static_cast<int>(J1.cols());
     const int o2 = h2 ? model.bodies[b.body2].offset : 0, n2 = static_cast<int>(J2.cols());
     if (h1) {

@@ -76,6 +76,14 @@ void marker_rates(const Model& model, const Marker& mk, const Data& data, Marker
       md.eb[k].setZero();
     }
   }
+  // A driven body's accelerations are given (drive_bodies), not unknowns: its markers' biases
+  // are then their whole accelerations, J z_ddot + J_dot z_dot, which the constraints' gamma
+  // takes as it takes the ground's zeros.
+  if (!integrated(data, mk.body)) {
+    const auto zdd = data.qdd.segment(o, b.ncoord());
+    md.pb.noalias() += md.Jp * zdd;
+    for (int k = 0; k < 3; ++k) md.eb[k].noalias() += md.Je[k] * zdd;
+  }
 }
 
 void update_markers(const Model& model, Data& data) {

@@ -76,15 +76,75 @@ Marker slot_marker(const Body& b, int node) {
   return m;
 }
 
+// The drive of each rigid body held, or moved by a motion, through a joint to the ground alone
+// (Drive). The first such joint of a body drives it; any other joint or motion between it and
+// the ground is then a condition among driven bodies, checked while the model runs.
+void find_drives(Model& m) {
+  for (auto& b : m.bodies) b.drive = Drive{};
+  if (!m.settings.eliminate_driven) return;
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    const Joint& jt = m.joints[j];
+    const int b1 = m.markers[jt.m1].body, b2 = m.markers[jt.m2].body;
+    if ((b1 == kGround) == (b2 == kGround)) continue;  // not between a body and the ground
+    const int side = b1 == kGround ? 2 : 1;
+    Body& b = m.bodies[side == 1 ? b1 : b2];
+    if (b.nq > 0 || b.driven()) continue;
+    Drive d;
+    d.joint = static_cast<int>(j);
+    d.side = side;
+    if (jt.type == JointType::Fixed) {
+      d.kind = DriveKind::Fixed;
+    } else if (jt.type == JointType::Revolute || jt.type == JointType::Prismatic) {
+      for (std::size_t i = 0; i < m.motions.size(); ++i)
+        if (m.motions[i].joint == static_cast<int>(j)) d.motion = static_cast<int>(i);
+      if (d.motion < 0) continue;
+      d.kind = jt.type == JointType::Revolute ? DriveKind::Revolute : DriveKind::Prismatic;
+    } else {
+      continue;
+    }
+    b.drive = d;
+  }
+}
+
+// Active blocks (touching an integrated body) first, in their order, then the others; rows
+// numbered in that order, and the joints' and motions' block indices with them.
+void order_blocks(Model& m) {
+  const auto integrated = [&](int body) { return body != kGround && !m.bodies[body].driven(); };
+  std::stable_partition(m.blocks.begin(), m.blocks.end(),
+                        [&](const ConstraintBlock& b) { return integrated(b.body1) || integrated(b.body2); });
+  int row = 0;
+  m.active_blocks = 0;
+  m.nactive = 0;
+  for (std::size_t i = 0; i < m.blocks.size(); ++i) {
+    ConstraintBlock& b = m.blocks[i];
+    b.row0 = row;
+    row += b.rows;
+    if (b.kind == BlockKind::Joint) m.joints[b.index].block = static_cast<int>(i);
+    if (b.kind == BlockKind::Motion) m.motions[b.index].block = static_cast<int>(i);
+    if (integrated(b.body1) || integrated(b.body2)) {
+      m.active_blocks = static_cast<int>(i) + 1;
+      m.nactive = row;
+    }
+  }
+  m.nconstraints = row;
+}
+
 }  // namespace
 
 void finalize(Model& m) {
-  // Coordinates.
+  // Coordinates: the integrated bodies first, the driven ones after them.
+  find_drives(m);
   int off = 0;
   double gyration = 0, mass_sum = 0;
+  m.nfree = 0;
+  for (int pass = 0; pass < 2; ++pass)
+    for (auto& b : m.bodies)
+      if (b.driven() == (pass == 1)) {
+        b.offset = off;
+        off += b.ncoord();
+        if (pass == 0) m.nfree = off;
+      }
   for (auto& b : m.bodies) {
-    b.offset = off;
-    off += b.ncoord();
     const Matrix3d Jg = b.J0 - b.rdm * b.rdm.transpose() / b.mass;
     gyration = std::max(gyration, std::sqrt(std::max(0.0, Jg.trace() / b.mass)));
     mass_sum += b.mass;
@@ -131,7 +191,7 @@ void finalize(Model& m) {
     m.blocks.push_back({BlockKind::Motion, static_cast<int>(i), row, 1, m.markers[jt.m1].body, m.markers[jt.m2].body});
     row += 1;
   }
-  m.nconstraints = row;
+  order_blocks(m);
 
   // Load slots for external inputs: the frame origin and every node of every body.
   m.load_slots.assign(m.bodies.size(), {});

@@ -57,11 +57,30 @@ struct Stats {
   double last_acceleration_violation = 0;
 };
 
+/// Where a driven body was when the drives took over (after the initial assembly), and its
+/// joint's fixed axis and point and the drive's coordinate then: the body's motion at t is this
+/// pose turned about (slid along) the axis by the change of the prescribed coordinate.
+struct DriveReference {
+  Vector3d r0 = Vector3d::Zero();
+  Matrix3d A = Matrix3d::Identity();
+  Vector3d point = Vector3d::Zero();  ///< on the axis, global
+  Vector3d axis = Vector3d::UnitZ();   ///< unit, global; the direction the coordinate grows (body side)
+  double value = 0;                    ///< the prescribed coordinate at the reference
+};
+
 struct Data {
   explicit Data(const Model& model);
 
   double t = 0;
   VectorXd q, qd, qdd, lambda;  ///< state: coordinates, rates, accelerations, multipliers
+
+  // The unknowns of the step: the first nf coordinates, the first na constraint rows (in
+  // blocks model.blocks[0 .. nblocks)). All of them while the initial conditions are made
+  // (every body moves); afterwards, with driven bodies eliminated, model.nfree and
+  // model.nactive, the driven bodies following their drives (drive_bodies).
+  int nf = 0, na = 0, nblocks = 0;
+  std::vector<char> integrated;           ///< per body: its coordinates are unknowns now
+  std::vector<DriveReference> drive_ref;  ///< per body (driven bodies only)
 
   // Per-element work.
   std::vector<BodyData> bodies;
@@ -118,6 +137,10 @@ struct Data {
   MatrixXd Jw;                  ///< work: a penalty-weighted Jacobian block (add_penalty_tangent)
   VectorXd penalty_rows;        ///< work: the penalty weights of one block's rows
 };
+
+/// True when `body` is not the ground and its coordinates are unknowns of the step now. Markers
+/// of other bodies act like the ground's: points and axes that move as given, without columns.
+inline bool integrated(const Data& data, int body) { return body != kGround && data.integrated[static_cast<std::size_t>(body)]; }
 
 /// Applies force and torque (global axes) at a body's load slot (0 = frame origin, 1 + p = its
 /// node p) from the next evaluation on, until clear_external_loads. Allocation-free.

@@ -25,6 +25,20 @@ std::vector<std::string> initialize(const Model& model, Data& data);
 /// Allocation-free.
 void step(const Model& model, Data& data);
 
+/// Which coordinates are the step's unknowns: every body's (eliminate = false: what the
+/// initial conditions need, every body being moved into place) or, with the model's driven
+/// bodies eliminated, the integrated bodies' only; then each driven body's present pose becomes
+/// its drive's reference (DriveReference) and it follows its drive from here on.
+void set_unknowns(const Model& model, Data& data, bool eliminate);
+
+/// Positions, rates and accelerations of the driven bodies at time t, from their drives (while
+/// they are eliminated; nothing otherwise). Allocation-free.
+void drive_bodies(const Model& model, Data& data, double t);
+
+/// The largest violation of the constraints among driven bodies and the ground (the rows after
+/// data.na), relative to the model length, and the block that has it (-1 when none).
+double driven_violation(const Model& model, const Data& data, int& block);
+
 /// Replaces the frame vectors of the predictor data.q by each body's frame at the step start
 /// (data.q0) turned by the rotation its angular velocity and acceleration predict.
 /// Allocation-free.

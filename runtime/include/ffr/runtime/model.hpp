@@ -60,6 +60,18 @@ struct FullMass {
   Eigen::SparseMatrix<double> M;         ///< [3N, 3N] FE mass matrix
 };
 
+/// How a rigid body's motion is fixed by a joint to the ground alone: held by a fixed joint, or
+/// turned (slid) by a revolute (prismatic) joint whose coordinate a motion prescribes. Such a
+/// body is driven: its coordinates are known functions of time, not unknowns of the step
+/// (FORMULATION.md section 9, driven bodies).
+enum class DriveKind { None, Fixed, Revolute, Prismatic };
+struct Drive {
+  DriveKind kind = DriveKind::None;
+  int joint = -1;
+  int motion = -1;     ///< -1 for a fixed joint
+  int side = 0;        ///< 1 or 2: which marker of the joint is on the body
+};
+
 /// One body. A rigid body is the special case nq = 0 (its integrals are m, m c_G and the
 /// pseudo-inertia), which makes its mass matrix constant.
 struct Body {
@@ -69,6 +81,8 @@ struct Body {
   int nq = 0;
   int offset = 0;      ///< index of r0 in the global coordinate vector
   int ncoord() const { return 12 + nq; }
+  Drive drive;         ///< set by finalize() (rigid bodies driven relative to the ground)
+  bool driven() const { return drive.kind != DriveKind::None; }
 
   // Inertia (body frame, about the frame origin O).
   double mass = 0;
@@ -191,6 +205,10 @@ struct SolverSettings {
   /// penalty dominates the tangent, so a tangent older than a step is only good when no body
   /// turns by more than ~1/penalty radians per step.
   bool reuse_jacobian = false;
+  /// Take the coordinates of driven bodies (see Drive) out of the unknowns of the step: they
+  /// follow their joint and motion exactly, and the constraints among the ground and driven
+  /// bodies alone drop out. Off: every body is integrated (the reference the tests compare with).
+  bool eliminate_driven = true;
 };
 
 struct Model {
@@ -206,8 +224,14 @@ struct Model {
   std::vector<Output> outputs;
   SolverSettings settings;
 
-  // Filled by finalize().
+  // Filled by finalize(). Coordinates: the bodies that are integrated first (nfree numbers),
+  // the driven ones after them. Constraint blocks: those that involve an integrated body first
+  // (nactive rows in active_blocks blocks), then those among the ground and driven bodies only,
+  // which hold by construction once the driven bodies follow their drives.
   std::vector<ConstraintBlock> blocks;
+  int nfree = 0;
+  int nactive = 0;
+  int active_blocks = 0;
   /// Per body, where external loads (C API) can act: slot 0 the frame origin, 1 + p node p.
   std::vector<std::vector<Marker>> load_slots;
   int ncoord = 0;

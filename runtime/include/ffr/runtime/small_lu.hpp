@@ -24,25 +24,33 @@ class SmallLU {
  public:
   SmallLU() = default;
   explicit SmallLU(Eigen::Index n) { resize(n); }
+  /// Buffers for matrices of up to n x n.
   void resize(Eigen::Index n);
 
-  /// Factorises A (any n x n expression, evaluated into the own buffer: a scaled matrix is
-  /// scaled there, not copied first). Returns false, and ok() stays false until the next
-  /// success, when a pivot column is exactly zero or NaN (the matrix is singular).
+  /// Factorises A (any k x k expression with k <= the size given to resize, evaluated into the
+  /// own buffer: a scaled matrix is scaled there, not copied first). Returns false, and ok()
+  /// stays false until the next success, when a pivot column is exactly zero or NaN (the
+  /// matrix is singular).
   template <class Derived>
   bool compute(const Eigen::MatrixBase<Derived>& A) {
-    lu_ = A;  // same size: no allocation
+    eigen_assert(A.rows() == A.cols() && A.rows() <= capacity_);
+    n_ = A.rows();
+    Eigen::Map<Eigen::MatrixXd>(buffer_.data(), n_, n_) = A;  // in the buffer: no allocation
     return factorize();
   }
-  /// x <- A^-1 x with the last factorisation; x may hold the right-hand side.
+  /// x <- A^-1 x with the last factorisation (its first k entries; x may be longer).
   void solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const;
 
   bool ok() const { return ok_; }
+  Eigen::Index size() const { return n_; }
 
  private:
-  bool factorize();  // in place on lu_
+  bool factorize();  // in place on the buffer
 
-  Eigen::MatrixXd lu_;  ///< packed factors: unit lower L below the diagonal, U on and above
+  /// Packed factors of the last matrix (k x k, column-major, leading dimension k): unit lower L
+  /// below the diagonal, U on and above.
+  Eigen::VectorXd buffer_;
+  Eigen::Index capacity_ = 0, n_ = 0;
   Eigen::VectorXi perm_;    ///< row k was swapped with row perm_(k) at step k
   Eigen::VectorXi lower_;   ///< last nonzero row of L's column k (k when none)
   Eigen::VectorXi upper_;   ///< first nonzero row of U's column k above the diagonal (k when none)
