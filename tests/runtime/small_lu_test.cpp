@@ -96,3 +96,20 @@ TEST(SmallLU, SingularMatrixIsReportedNotSolved) {
 }
 
 }  // namespace
+
+// Buffers for 46 x 46 factorise smaller matrices too (the step's tangent once driven bodies are
+// eliminated, after the initial conditions' whole one), and only the first entries of x change.
+TEST(SmallLU, SmallerMatricesInTheSameBuffers) {
+  std::mt19937 rng(21);
+  ffr::runtime::SmallLU lu(46);
+  for (const int n : {46, 34, 5, 46}) {
+    const MatrixXd A = random_matrix(n, rng) + n * MatrixXd::Identity(n, n);
+    ASSERT_TRUE(lu.compute(A));
+    EXPECT_EQ(lu.size(), n);
+    VectorXd x = VectorXd::Constant(46, 3.0);
+    const VectorXd b = x.head(n);
+    lu.solve_in_place(x);
+    EXPECT_LT((A * x.head(n) - b).norm(), 1e-12 * b.norm()) << n;
+    EXPECT_TRUE((x.tail(46 - n).array() == 3.0).all()) << n;
+  }
+}

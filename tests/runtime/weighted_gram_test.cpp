@@ -60,3 +60,27 @@ TEST(DenseProducts, MatchEigenForEveryShape) {
       EXPECT_LT((z - (z0 + A.transpose() * lam)).cwiseAbs().maxCoeff(), 1e-13) << m << " x " << n;
     }
 }
+
+// The leading block's products (the unknowns of a step with driven bodies eliminated): only the
+// first rows and columns are read, only the first entries of the result are written.
+TEST(DenseProducts, LeadingBlockOnly) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int m = 39, n = 46, rows = 27, cols = 34;
+  Eigen::MatrixXd A(m, n);
+  for (Eigen::Index j = 0; j < n; ++j)
+    for (Eigen::Index i = 0; i < m; ++i) A(i, j) = u(rng);
+  Eigen::VectorXd x(n), lam(m);
+  for (auto& v : x) v = u(rng);
+  for (auto& v : lam) v = u(rng);
+  Eigen::VectorXd y = Eigen::VectorXd::Constant(m, 7.0), z = Eigen::VectorXd::Constant(n, 5.0);
+  ffr::runtime::detail::times(A, rows, cols, x, y, false);
+  EXPECT_LT((y.head(rows) - A.topLeftCorner(rows, cols) * x.head(cols)).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_TRUE((y.tail(m - rows).array() == 7.0).all());
+  ffr::runtime::detail::add_transpose_times(A, rows, cols, lam, z);
+  EXPECT_LT((z.head(cols) - (Eigen::VectorXd::Constant(cols, 5.0) + A.topLeftCorner(rows, cols).transpose() * lam.head(rows)))
+                .cwiseAbs()
+                .maxCoeff(),
+            1e-13);
+  EXPECT_TRUE((z.tail(n - cols).array() == 5.0).all());
+}
