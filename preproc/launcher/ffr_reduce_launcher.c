@@ -60,11 +60,13 @@ static int thp_available(void) {
   return ok;
 }
 
-/* "on", "off" or a reason for the automatic choice. */
+/* "on" or "off", with the measurement behind an automatic choice in `why`; null for a value of
+ * FFR_HUGE_PAGES that is none of the accepted ones. */
 static const char* choose(char* why, size_t n) {
   const char* want = getenv("FFR_HUGE_PAGES");
   if (want && (!strcmp(want, "on") || !strcmp(want, "1"))) return "on";
   if (want && (!strcmp(want, "off") || !strcmp(want, "0"))) return "off";
+  if (want && *want && strcmp(want, "auto") != 0) return NULL;
   if (!thp_available()) return "off";
   const size_t bytes = (size_t)8 << 20;
   double huge = 1e30, small = 1e30;
@@ -99,6 +101,11 @@ int main(int argc, char** argv) {
   if (!tunables || !strstr(tunables, "glibc.malloc.hugetlb")) {
     char why[160] = "";
     const char* choice = choose(why, sizeof why);
+    if (!choice) {
+      fprintf(stderr, "ffr-reduce: error: environment variable FFR_HUGE_PAGES: expected on, off or auto, got '%s'\n",
+              getenv("FFR_HUGE_PAGES"));
+      return 2;
+    }
     setenv("FFR_HUGE_PAGES_CHOSEN", why[0] ? why : choice, 1);
     if (!strcmp(choice, "on")) {
       char value[1024];

@@ -125,3 +125,10 @@ TEST(Launcher, MissingReductionProgramIsNamed) {
   EXPECT_NE(r.output.find("cannot start the reduction program"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("libexec/ffr/ffr-reduce-main"), std::string::npos) << r.output;
 }
+
+TEST(Launcher, UnknownPageSettingIsBadInput) {
+  const auto r = test::run("FFR_HUGE_PAGES=yes " + test::bin("ffr-reduce").string() + " --version");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("FFR_HUGE_PAGES"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'yes'"), std::string::npos) << r.output;
+}
