@@ -36,6 +36,7 @@ void mass_matrices(const Model& model, Data& data) {
 
 void mass_times(const Model& model, const Data& data, const VectorXd& x, VectorXd& y) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    if (!data.integrated[i]) continue;  // a driven body's rows are not unknowns
     const Body& b = model.bodies[i];
     y.segment(b.offset, b.ncoord()).noalias() = data.bodies[i].M * x.segment(b.offset, b.ncoord());
   }

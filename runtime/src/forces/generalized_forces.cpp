@@ -1,4 +1,6 @@
-// Q, K and C of the whole system: bodies, then force elements.
+// Q, K and C of the whole system: bodies, then force elements. A driven body's own terms are
+// not computed while it is eliminated (nothing reads them: its motion is given); the force
+// elements still act on the integrated bodies they join it to.
 #include "ffr/runtime/dynamics.hpp"
 #include "forces.hpp"
 
@@ -7,6 +9,7 @@ namespace ffr::runtime {
 void generalized_forces(const Model& model, Data& data, double t) {
   data.Q.setZero();
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    if (!data.integrated[i]) continue;
     const Body& b = model.bodies[i];
     const int o = b.offset, nb = b.ncoord();
     auto Qb = data.Q.segment(o, nb);
@@ -26,6 +29,7 @@ void force_tangents(const Model& model, Data& data, double t) {
   data.K.setZero();
   data.C.setZero();
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    if (!data.integrated[i]) continue;
     const Body& b = model.bodies[i];
     const int o = b.offset, nb = b.ncoord();
     auto Kb = data.K.block(o, o, nb, nb);

@@ -15,11 +15,13 @@ void body_mass_matrix(const Body& b, BodyData& bd);
 /// Every body's mass matrix into data.bodies[i].M. Needs update_bodies.
 void mass_matrices(const Model& model, Data& data);
 
-/// y = M x (block diagonal over bodies).
+/// y = M x (block diagonal over bodies), over the bodies whose coordinates are unknowns now
+/// (integrated()); a driven body's entries of y are left as they are.
 void mass_times(const Model& model, const Data& data, const VectorXd& x, VectorXd& y);
 
 /// data.Q at time t. Needs update_bodies, update_markers and the mass matrices (for nothing
-/// else than the stiffening accelerations, which come from data.qdd).
+/// else than the stiffening accelerations, which come from data.qdd). A driven body's own terms
+/// (while it is eliminated) are left out: nothing reads them.
 void generalized_forces(const Model& model, Data& data, double t);
 
 /// data.K and data.C at time t (same prerequisites). The stiffening terms enter K only through
