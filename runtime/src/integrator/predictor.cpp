@@ -25,6 +25,7 @@ Eigen::Map<const Matrix3d> frame(const VectorXd& z, int offset) { return Eigen::
 void predict_frames(const Model& model, Data& data) {
   const double h = model.settings.step;
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    if (!data.integrated[i]) continue;  // a driven body is placed by drive_bodies
     const int o = model.bodies[i].offset;
     BodyData& bd = data.bodies[i];
     const Matrix3d A = frame(data.q0, o);

@@ -178,11 +178,14 @@ void evaluate_rows(const Model& model, Data& data, double t, bool jacobian) {
   // The Jacobian is assembled dense (the products use it several times per Newton iteration),
   // the blocks adding into it. It is zeroed whole, in one pass over contiguous memory: zeroing
   // each block's columns took a memset call per column of a few rows (3-5 % of a step).
-  // Every block's values: those among driven bodies hold by construction, and their values
-  // check that (step()); only the blocks of the unknowns have Jacobian columns.
+  // With the Jacobian, every block's values: those among driven bodies hold by construction,
+  // and their values check that (step()); only the blocks of the unknowns have Jacobian columns.
+  // Without it (the projections' biases), the blocks of the unknowns alone: nothing reads the
+  // others' rates.
   if (jacobian) data.Phiq.setZero();
   data.Phit.setZero();
-  for (std::size_t bi = 0; bi < model.blocks.size(); ++bi) {
+  const std::size_t nb = jacobian ? model.blocks.size() : static_cast<std::size_t>(data.nblocks);
+  for (std::size_t bi = 0; bi < nb; ++bi) {
     const ConstraintBlock& b = model.blocks[bi];
     const bool active = static_cast<int>(bi) < data.nblocks;
     Rows r{data.Phi.segment(b.row0, b.rows), data.Phit.segment(b.row0, b.rows), data.gamma.segment(b.row0, b.rows),

@@ -161,25 +161,21 @@ void finalize(Model& m) {
   // Markers on a node need their axes' mode slices.
   for (auto& mk : m.markers) set_axis_slices(mk);
 
-  // Constraint blocks: rigid-body conditions, joints, motions.
+  // Constraint blocks: rigid-body conditions, joints, motions (their rows and the joints' and
+  // motions' block indices are numbered by order_blocks).
   m.blocks.clear();
-  int row = 0;
-  for (std::size_t i = 0; i < m.bodies.size(); ++i) {
-    m.blocks.push_back({BlockKind::RigidBody, static_cast<int>(i), row, 6, static_cast<int>(i), kGround});
-    row += 6;
-  }
+  for (std::size_t i = 0; i < m.bodies.size(); ++i)
+    m.blocks.push_back({BlockKind::RigidBody, static_cast<int>(i), 0, 6, static_cast<int>(i), kGround});
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
     Joint& jt = m.joints[j];
-    jt.block = static_cast<int>(m.blocks.size());
-    const int r = joint_rows(jt.type);
-    m.blocks.push_back({BlockKind::Joint, static_cast<int>(j), row, r, m.markers[jt.m1].body, m.markers[jt.m2].body});
-    row += r;
+    m.blocks.push_back({BlockKind::Joint, static_cast<int>(j), 0, joint_rows(jt.type), m.markers[jt.m1].body,
+                        m.markers[jt.m2].body});
     // Zero of the displacement coordinate: the initial offset along the axis.
     jt.d0 = (initial_marker_position(m, m.markers[jt.m2]) - initial_marker_position(m, m.markers[jt.m1]))
                 .dot(initial_marker_axis(m, m.markers[jt.m1], 0));
   }
   for (std::size_t i = 0; i < m.motions.size(); ++i) {
-    Motion& mo = m.motions[i];
+    const Motion& mo = m.motions[i];
     const Joint& jt = m.joints[mo.joint];
     const bool angle_ok = jt.type == JointType::Revolute || jt.type == JointType::Cylindrical;
     const bool disp_ok = jt.type == JointType::Prismatic || jt.type == JointType::Cylindrical;
@@ -187,9 +183,7 @@ void finalize(Model& m) {
       throw ModelError(m.source, "motions[" + std::to_string(i) + "]",
                        std::string("a ") + to_string(jt.type) + " joint has no " +
                            (mo.coordinate == JointCoordinate::Angle ? "angle" : "displacement") + " to prescribe");
-    mo.block = static_cast<int>(m.blocks.size());
-    m.blocks.push_back({BlockKind::Motion, static_cast<int>(i), row, 1, m.markers[jt.m1].body, m.markers[jt.m2].body});
-    row += 1;
+    m.blocks.push_back({BlockKind::Motion, static_cast<int>(i), 0, 1, m.markers[jt.m1].body, m.markers[jt.m2].body});
   }
   order_blocks(m);
 

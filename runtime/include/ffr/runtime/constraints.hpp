@@ -16,7 +16,8 @@ namespace ffr::runtime {
 void evaluate_constraints(const Model& model, Data& data, double t);
 
 /// Phi, Phit and gamma only, the Jacobian left as it is: for a change of the velocities at the
-/// same q (needs update_body_rates and update_marker_rates).
+/// same q (needs update_body_rates and update_marker_rates). Only the rows of the unknowns
+/// (the first data.na) are redone; the rows among driven bodies keep their last values.
 void evaluate_constraint_biases(const Model& model, Data& data, double t);
 
 /// out += Phi_q^T lam.
