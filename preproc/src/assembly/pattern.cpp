@@ -42,32 +42,49 @@ Pattern build_pattern(const FeModel& model, const std::vector<ElementRef>& refs)
   }
 
   // Adjacency: every entity with DOFs is adjacent to itself; elements connect their entities.
-  std::vector<std::vector<Index>> adj(static_cast<std::size_t>(E));
-  for (Index e = 0; e < E; ++e)
-    if (p.ent_ndof[static_cast<std::size_t>(e)] > 0) adj[static_cast<std::size_t>(e)].push_back(e);
-  for (const auto& ref : refs) {
-    const auto ents = element_entities(model, ref);
-    for (Index a : ents)
-      for (Index b : ents)
-        if (a != b) adj[static_cast<std::size_t>(a)].push_back(b);
+  // Built entity by entity from the elements incident to it (CSR, counted first), each list
+  // gathered with a marker and sorted, straight into the flat arrays. Why: a growing vector
+  // per entity took 0.15-0.25 s on the 100k-DOF plate (1.9 million insertions into 34 000
+  // vectors, then a sort of each with its repeats), and the pattern is built twice when the
+  // analysis runs beside the assembly (early_analysis.cpp).
+  std::vector<std::vector<Index>> element_ents(refs.size());
+  std::vector<Index> inc_ptr(static_cast<std::size_t>(E) + 1, 0);
+  for (std::size_t k = 0; k < refs.size(); ++k) {
+    element_ents[k] = element_entities(model, refs[k]);
+    for (Index a : element_ents[k]) ++inc_ptr[static_cast<std::size_t>(a) + 1];
+  }
+  for (std::size_t e = 0; e < static_cast<std::size_t>(E); ++e) inc_ptr[e + 1] += inc_ptr[e];
+  std::vector<Index> incident(static_cast<std::size_t>(inc_ptr.back()));
+  {
+    std::vector<Index> next(inc_ptr.begin(), inc_ptr.end() - 1);
+    for (std::size_t k = 0; k < refs.size(); ++k)
+      for (Index a : element_ents[k]) incident[static_cast<std::size_t>(next[static_cast<std::size_t>(a)]++)] = static_cast<Index>(k);
   }
   p.adj_ptr.assign(static_cast<std::size_t>(E) + 1, 0);
+  p.adj.reserve(static_cast<std::size_t>(E) * 16);
+  std::vector<Index> mark(static_cast<std::size_t>(E), -1);
   for (Index e = 0; e < E; ++e) {
-    auto& v = adj[static_cast<std::size_t>(e)];
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-    p.adj_ptr[static_cast<std::size_t>(e) + 1] = p.adj_ptr[static_cast<std::size_t>(e)] + static_cast<Index>(v.size());
+    const std::size_t begin = p.adj.size();
+    const auto add = [&](Index b) {
+      if (mark[static_cast<std::size_t>(b)] == e) return;
+      mark[static_cast<std::size_t>(b)] = e;
+      p.adj.push_back(b);
+    };
+    if (p.ent_ndof[static_cast<std::size_t>(e)] > 0) add(e);
+    for (Index k = inc_ptr[static_cast<std::size_t>(e)]; k < inc_ptr[static_cast<std::size_t>(e) + 1]; ++k)
+      for (Index b : element_ents[static_cast<std::size_t>(incident[static_cast<std::size_t>(k)])])
+        if (b != e) add(b);  // itself only with DOFs, as above
+    std::sort(p.adj.begin() + static_cast<std::ptrdiff_t>(begin), p.adj.end());
+    p.adj_ptr[static_cast<std::size_t>(e) + 1] = static_cast<Index>(p.adj.size());
   }
-  p.adj.reserve(static_cast<std::size_t>(p.adj_ptr.back()));
-  p.adj_prefix.reserve(p.adj.capacity());
+  p.adj.shrink_to_fit();
+  p.adj_prefix.resize(p.adj.size());
   for (Index e = 0; e < E; ++e) {
     Index pre = 0;
-    for (Index b : adj[static_cast<std::size_t>(e)]) {
-      p.adj.push_back(b);
-      p.adj_prefix.push_back(pre);
-      pre += p.ent_ndof[static_cast<std::size_t>(b)];
+    for (Index k = p.adj_ptr[static_cast<std::size_t>(e)]; k < p.adj_ptr[static_cast<std::size_t>(e) + 1]; ++k) {
+      p.adj_prefix[static_cast<std::size_t>(k)] = pre;
+      pre += p.ent_ndof[static_cast<std::size_t>(p.adj[static_cast<std::size_t>(k)])];
     }
-    std::vector<Index>().swap(adj[static_cast<std::size_t>(e)]);
   }
 
   // DOF-level columns: each DOF of entity e has the rows of all DOFs of e's neighbours.

@@ -3,6 +3,7 @@
 #include "ffr/preproc/reduce/reduction.hpp"
 #include "ffr/preproc/solver/memory.hpp"
 #include "ffr/preproc/threads.hpp"
+#include "pattern_analysis.hpp"
 #include "setup.hpp"
 #include "sparse_ops.hpp"
 
@@ -43,17 +44,20 @@ EarlyAnalysis EarlyAnalysis::start(const FeModel& model, const ReductionSpec& sp
       // Craig-Bampton, that of the constrained K's interior block.
       const DofTransform t = build_transform(model, detail::states_for(model, spec));
       const bool cb = spec.method == ReductionSpec::Method::CraigBampton;
-      SparseMatrix C = detail::constrained(t, assembly_pattern(model), cb);
-      if (cb) {
-        const auto interior = detail::interior_of(C.rows(), detail::boundary_dofs(model, t, spec));
-        SparseMatrix Kii = detail::congruence(detail::selection(C.rows(), interior), C);
-        C.swap(Kii);  // (Eigen 3.4's SparseMatrix has no move assignment)
+      const FactorOptions options = detail::eigen_factor_options(spec);
+      auto f = std::make_unique<CholmodFactor>(options);
+      if (!(options.ordering == Ordering::Metis && detail::analyse_from_pattern(model, t, spec, nullptr, &s->cancel, *f))) {
+        SparseMatrix C = detail::constrained(t, assembly_pattern(model), cb);
+        if (cb) {
+          const auto interior = detail::interior_of(C.rows(), detail::boundary_dofs(model, t, spec));
+          SparseMatrix Kii = detail::congruence(detail::selection(C.rows(), interior), C);
+          C.swap(Kii);  // (Eigen 3.4's SparseMatrix has no move assignment)
+        }
+        if (s->cancel) return;
+        f->analyze(C);
       }
       if (s->cancel) return;
-      auto f = std::make_unique<CholmodFactor>(detail::eigen_factor_options(spec));
-      f->analyze(C);
       s->factor = std::move(f);
-      detail::release(C);
       // What this thread freed (the structure, METIS's and CHOLMOD's work arrays) stays in its
       // own malloc arena otherwise: ~100 MiB of resident memory on the 100k plate, which
       // raised the run's peak (at the factorization) by 70 MiB.

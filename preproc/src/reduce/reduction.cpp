@@ -3,6 +3,7 @@
 #include "ffr/formats/h5.hpp"
 #include "ffr/preproc/solver/eigen_solver.hpp"
 #include "ffr/preproc/solver/memory.hpp"
+#include "pattern_analysis.hpp"
 #include "setup.hpp"
 #include "sparse_ops.hpp"
 
@@ -130,11 +131,15 @@ std::string factor_line(const FactorStatistics& f) {
 // The eigen-solve's factor of A, analysed: taken over from the early analysis when there was
 // one (it keeps that analysis as long as A has the structure it was made for: factorize
 // compares them), else analysed here. Its statistics go to the log either way.
-CholmodFactor analysed_factor(const SparseMatrix& A, const ReductionSpec& spec, EarlyAnalysis* early,
-                              const ReductionLog& log) {
+CholmodFactor analysed_factor(const SparseMatrix& A, const FeModel& model, const DofTransform& t,
+                              const ReductionSpec& spec, EarlyAnalysis* early, const ReductionLog& log) {
   std::unique_ptr<CholmodFactor> taken = early ? early->take() : nullptr;
-  CholmodFactor factor = taken ? std::move(*taken) : CholmodFactor(detail::eigen_factor_options(spec));
-  std::string line = factor_line(taken ? factor.info().stats : factor.analyze(A));
+  const FactorOptions options = detail::eigen_factor_options(spec);
+  CholmodFactor factor = taken ? std::move(*taken) : CholmodFactor(options);
+  // The early analysis's order from the node graph here too (pattern_analysis.hpp).
+  if (!taken && !(options.ordering == Ordering::Metis && detail::analyse_from_pattern(model, t, spec, &A, nullptr, factor)))
+    factor.analyze(A);
+  std::string line = factor_line(factor.info().stats);
   if (taken) {
     std::ostringstream o;
     o.precision(3);
@@ -224,7 +229,7 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     if (shared) detail::add_scaled_values(K, Mr, -sigma);
     else shifted = shifted_upper(K, Mr, sigma);
     const SparseMatrix& C = shared ? K : shifted;
-    CholmodFactor factor = analysed_factor(C, spec, early, log);
+    CholmodFactor factor = analysed_factor(C, model, t, spec, early, log);
     const double t_analyze = lap(clock);
     double t_factorize = 0;
     EigenSolver solver(o);
@@ -267,7 +272,7 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     say("craig-bampton: " + std::to_string(boundary.size()) + " boundary DOF, " +
         std::to_string(split.interior.size()) + " interior DOF");
     const double t_constraints = lap(clock);
-    CholmodFactor factor = analysed_factor(split.Kii, spec, early, log);
+    CholmodFactor factor = analysed_factor(split.Kii, model, t, spec, early, log);
     const double t_analyze = lap(clock);
     try {
       factor.factorize(split.Kii);

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <limits>
 #include <sstream>
+#include <string>
 
 namespace ffr::preproc {
 
@@ -115,14 +116,16 @@ struct CholmodFactor::Impl {
     if (!e.empty()) os << ": " << e;
     return os.str();
   }
-  void analyze(const SparseMatrix& A);
+  void analyze(const SparseMatrix& A, const detail::NodalOrdering* given = nullptr);
   void factorize(const SparseMatrix& A, double shift);
   void check_memory(std::uint64_t needed);
   [[noreturn]] void throw_not_posdef(std::int64_t permuted, bool singular, double ratio);
 };
 
-void CholmodFactor::Impl::analyze(const SparseMatrix& A) {
-  if (opt.check_symmetry) validate_symmetric(A, "matrix to factorize");
+void CholmodFactor::Impl::analyze(const SparseMatrix& A, const detail::NodalOrdering* given) {
+  // With an order given, A is a structure only (its values are not read; factorize checks the
+  // matrix it gets).
+  if (opt.check_symmetry && !given) validate_symmetric(A, "matrix to factorize");
   else if (A.rows() != A.cols() || A.rows() == 0)
     throw std::invalid_argument("matrix to factorize: must be square and non-empty");
   cholmod_common* c = common.get();
@@ -142,11 +145,16 @@ void CholmodFactor::Impl::analyze(const SparseMatrix& A) {
   std::int64_t upper_nnz = 0;
   pattern = upper_pattern_hash(A, &upper_nnz);
   cholmod_sparse view = detail::view_upper(A);
+  if (given) {
+    view.xtype = CHOLMOD_PATTERN;
+    view.x = nullptr;
+  }
   const auto t0 = Clock::now();
   // METIS on the node graph where the matrix has one (see nodal_ordering.hpp); CHOLMOD then
   // only post-orders it and does the symbolic factorization.
   detail::NodalOrdering nodal;
-  if (opt.ordering == Ordering::Metis) nodal = detail::nodal_metis_ordering(A);
+  if (given) nodal = *given;
+  else if (opt.ordering == Ordering::Metis) nodal = detail::nodal_metis_ordering(A);
   if (!nodal.perm.empty()) {
     c->nmethods = 1;
     c->method[0].ordering = CHOLMOD_GIVEN;
@@ -308,6 +316,25 @@ CholmodFactor& CholmodFactor::operator=(CholmodFactor&&) noexcept = default;
 
 const FactorStatistics& CholmodFactor::analyze(const SparseMatrix& A) {
   impl_->analyze(A);
+  return impl_->info.stats;
+}
+
+const FactorStatistics& CholmodFactor::analyze(const SparseMatrix& A, const std::vector<std::int64_t>& perm,
+                                               std::int64_t vertices, const std::string& name) {
+  const auto n = static_cast<std::int64_t>(A.cols());
+  std::vector<char> seen(static_cast<std::size_t>(std::max<std::int64_t>(n, 0)), 0);
+  bool valid = static_cast<std::int64_t>(perm.size()) == n;
+  for (std::size_t k = 0; valid && k < perm.size(); ++k) {
+    const std::int64_t c = perm[k];
+    valid = c >= 0 && c < n && !seen[static_cast<std::size_t>(c)];
+    if (valid) seen[static_cast<std::size_t>(c)] = 1;
+  }
+  if (!valid)
+    throw std::invalid_argument("matrix to factorize: the given order is not a permutation of its " + std::to_string(n) +
+                                " columns");
+  detail::NodalOrdering given{perm, vertices};
+  impl_->analyze(A, &given);
+  impl_->info.stats.ordering = name;
   return impl_->info.stats;
 }
 

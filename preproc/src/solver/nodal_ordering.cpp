@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 namespace ffr::preproc::detail {
 namespace {
@@ -63,6 +64,29 @@ bool same_closed(const Graph& g, idx_t v, idx_t w) {
   }
 }
 
+// METIS_NodeND on the quotient graph (group G: columns first[G] .. first[G + 1] - 1, weight
+// its column count), the order expanded to the n columns.
+NodalOrdering order_groups(idx_t ng, std::vector<idx_t> xadj, std::vector<idx_t> adjncy, std::vector<idx_t> weight,
+                           const std::vector<idx_t>& first, Index n) {
+  NodalOrdering out;
+  idx_t nv = ng;
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_NUMBERING] = 0;
+  std::vector<idx_t> order(static_cast<std::size_t>(ng)), inverse(static_cast<std::size_t>(ng));
+  if (METIS_NodeND(&nv, xadj.data(), adjncy.data(), weight.data(), options, order.data(), inverse.data()) != METIS_OK)
+    return out;
+
+  // METIS: row k of the permuted matrix is row order[k] of the original.
+  out.perm.reserve(static_cast<std::size_t>(n));
+  for (idx_t k = 0; k < ng; ++k) {
+    const idx_t G = order[static_cast<std::size_t>(k)];
+    for (idx_t v = first[static_cast<std::size_t>(G)]; v < first[static_cast<std::size_t>(G) + 1]; ++v) out.perm.push_back(v);
+  }
+  out.groups = ng;
+  return out;
+}
+
 }  // namespace
 
 NodalOrdering nodal_metis_ordering(const SparseMatrix& A) {
@@ -100,23 +124,21 @@ NodalOrdering nodal_metis_ordering(const SparseMatrix& A) {
     xadj[static_cast<std::size_t>(G) + 1] = static_cast<idx_t>(adjncy.size());
   }
   g = Graph{};  // the DOF graph is no longer needed: free it before METIS works
+  return order_groups(ng, std::move(xadj), std::move(adjncy), std::move(weight), first, n);
+}
 
-  idx_t nv = ng;
-  idx_t options[METIS_NOPTIONS];
-  METIS_SetDefaultOptions(options);
-  options[METIS_OPTION_NUMBERING] = 0;
-  std::vector<idx_t> order(static_cast<std::size_t>(ng)), inverse(static_cast<std::size_t>(ng));
-  if (METIS_NodeND(&nv, xadj.data(), adjncy.data(), weight.data(), options, order.data(), inverse.data()) != METIS_OK)
-    return out;
-
-  // METIS: row k of the permuted matrix is row order[k] of the original.
-  out.perm.reserve(static_cast<std::size_t>(n));
-  for (idx_t k = 0; k < ng; ++k) {
-    const idx_t G = order[static_cast<std::size_t>(k)];
-    for (idx_t v = first[static_cast<std::size_t>(G)]; v < first[static_cast<std::size_t>(G) + 1]; ++v) out.perm.push_back(v);
-  }
-  out.groups = ng;
-  return out;
+NodalOrdering metis_ordering(const QuotientGraph& q) {
+  const auto ng = static_cast<std::int64_t>(q.first.size()) - 1;
+  const std::int64_t n = ng >= 0 ? q.first.back() : 0;
+  constexpr auto kMax = static_cast<std::int64_t>(std::numeric_limits<idx_t>::max());
+  if (ng < 1 || n > kMax || static_cast<std::int64_t>(q.adjncy.size()) > kMax ||
+      static_cast<std::int64_t>(q.xadj.size()) != ng + 1)
+    return {};
+  const auto narrow = [](const std::vector<std::int64_t>& v) { return std::vector<idx_t>(v.begin(), v.end()); };
+  const std::vector<idx_t> first = narrow(q.first);
+  std::vector<idx_t> weight(static_cast<std::size_t>(ng));
+  for (std::size_t G = 0; G < weight.size(); ++G) weight[G] = first[G + 1] - first[G];
+  return order_groups(static_cast<idx_t>(ng), narrow(q.xadj), narrow(q.adjncy), std::move(weight), first, n);
 }
 
 }  // namespace ffr::preproc::detail

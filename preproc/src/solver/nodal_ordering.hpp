@@ -29,4 +29,16 @@ struct NodalOrdering {
 /// CHOLMOD order the matrix itself.
 NodalOrdering nodal_metis_ordering(const SparseMatrix& A);
 
+/// A quotient graph given by the caller: group G holds the columns first[G] .. first[G + 1] - 1
+/// (first[0] = 0, increasing, first.back() = n), and its neighbours are adjncy[xadj[G] ..
+/// xadj[G + 1] - 1] (other groups, each once, G itself not among them). What the reductions
+/// build from the mesh's node graph, without the matrix's own graph (reduce/pattern_analysis.hpp).
+struct QuotientGraph {
+  std::vector<std::int64_t> first, xadj, adjncy;
+};
+
+/// METIS_NodeND on that graph (each group weighted by its columns), expanded to the columns.
+/// An empty perm when the graph does not fit METIS's indices or METIS fails.
+NodalOrdering metis_ordering(const QuotientGraph& q);
+
 }  // namespace ffr::preproc::detail

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace ffr::preproc {
 
@@ -109,6 +110,16 @@ class CholmodFactor {
   /// Symbolic analysis (ordering, elimination tree, supernodes). Throws std::invalid_argument
   /// for bad input, SolverError if CHOLMOD fails (e.g. out of memory in the ordering).
   const FactorStatistics& analyze(const SparseMatrix& A);
+
+  /// The same with a fill-reducing order the caller computed: perm[k] = the column of A at
+  /// position k, a permutation of 0 .. n-1; `vertices` = the size of the graph it was
+  /// computed on and `name` what computed it (both reported in the statistics). Why: the reductions order the mesh's node
+  /// graph before A's values exist, without forming A's own graph (10x its edges).
+  /// Only A's structure is read (its upper triangle; the values may be unset): factorize checks
+  /// the matrix it is given. Throws std::invalid_argument when perm is not a permutation of A's
+  /// columns.
+  const FactorStatistics& analyze(const SparseMatrix& A, const std::vector<std::int64_t>& perm, std::int64_t vertices,
+                                  const std::string& name);
 
   /// Numeric factorization of A. Re-analyzes first if A's pattern differs from the analyzed
   /// one. Throws InsufficientMemoryError before allocating the factor if it would not fit,
