@@ -99,18 +99,21 @@ std::optional<SelectedStructure> selected_structure(const Pattern& p, const std:
   return out;
 }
 
-bool analyse_from_pattern(const FeModel& model, const DofTransform& t, const ReductionSpec& spec, const SparseMatrix* C,
-                          const std::atomic<bool>* cancel, CholmodFactor& f) {
-  const auto cancelled = [cancel] { return cancel && cancel->load(); };
-  const bool cb = spec.method == ReductionSpec::Method::CraigBampton;
+std::vector<Index> factorized_rows(const FeModel& model, const DofTransform& t, const ReductionSpec& spec) {
   std::vector<Index> columns;
-  if (cb) {
+  if (spec.method == ReductionSpec::Method::CraigBampton) {
     columns = interior_of(t.num_ind(), boundary_dofs(model, t, spec));
   } else {
     columns.resize(static_cast<std::size_t>(t.num_ind()));
     for (std::size_t j = 0; j < columns.size(); ++j) columns[j] = static_cast<Index>(j);
   }
-  const std::vector<Index> rows = unit_column_rows(t, columns);
+  return unit_column_rows(t, columns);
+}
+
+bool analyse_from_pattern(const FeModel& model, const DofTransform& t, const ReductionSpec& spec, const SparseMatrix* C,
+                          const std::atomic<bool>* cancel, CholmodFactor& f) {
+  const auto cancelled = [cancel] { return cancel && cancel->load(); };
+  const std::vector<Index> rows = factorized_rows(model, t, spec);
   if (rows.empty()) return false;
   std::optional<SelectedStructure> st;
   {

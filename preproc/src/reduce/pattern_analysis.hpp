@@ -32,6 +32,10 @@ struct SelectedStructure {
 /// otherwise (a rigid spider's coupling, say): the caller then forms C by the transform.
 std::vector<Index> unit_column_rows(const DofTransform& t, const std::vector<Index>& columns);
 
+/// unit_column_rows for the independent DOFs of the reduction's eigen-solve: all of them, or
+/// Craig-Bampton's interior ones. Empty where its matrix is not a principal submatrix.
+std::vector<Index> factorized_rows(const FeModel& model, const DofTransform& t, const ReductionSpec& spec);
+
 /// The structure of A(rows, rows) for the pattern's matrix A and ascending, distinct full DOFs
 /// `rows`: its node graph, and with `upper` its upper triangle too. Empty when the pattern's
 /// entities are not numbered in DOF order (each entity's DOFs contiguous, entities ascending),

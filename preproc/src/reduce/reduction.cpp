@@ -3,6 +3,7 @@
 #include "ffr/formats/h5.hpp"
 #include "ffr/preproc/solver/eigen_solver.hpp"
 #include "ffr/preproc/solver/memory.hpp"
+#include "node_mass.hpp"
 #include "pattern_analysis.hpp"
 #include "setup.hpp"
 #include "sparse_ops.hpp"
@@ -150,6 +151,14 @@ CholmodFactor analysed_factor(const SparseMatrix& A, const FeModel& model, const
   return factor;
 }
 
+// The block Lanczos's products with M from the solids' node mass, where it is the same matrix
+// (node_mass.hpp).
+void use_node_mass(EigenOptions& o, const FeModel& model, const Assembled& fe, const DofTransform& t,
+                   const ReductionSpec& spec) {
+  if (auto product = detail::NodeMassProduct::make(model, fe, detail::factorized_rows(model, t, spec)))
+    o.mass_product = [product](const Eigen::MatrixXd& X, Eigen::MatrixXd& Y) { product->apply(X, Y); };
+}
+
 // fe_owned: the same object as fe, when its K and M may be freed after use.
 ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled* fe_owned, const ReductionSpec& spec,
                             const ReductionLog& log, EarlyAnalysis* early) {
@@ -215,6 +224,7 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     const double sigma = free ? -lambda_of_hz(1.0, part) : -lambda_of_hz(0.1, part);
     EigenOptions o = eigen_options(spec, part, sigma);
     if (free) o.deflation = rigid_body_modes(model, t);
+    use_node_mass(o, model, fe, t, spec);
     say(std::string(free ? "free-free" : "clamped") + " eigen-solve: " + std::to_string(t.num_ind()) + " DOF, " +
         (spec.max_frequency_hz ? "up to " + std::to_string(*spec.max_frequency_hz) + " Hz" : std::to_string(o.nev) + " modes") +
         ", " + spec.backend);
@@ -287,7 +297,9 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
     Eigen::MatrixXd modes_i;
     Eigen::VectorXd lambda_n;
     if (spec.modes > 0 || spec.max_frequency_hz) {
-      EigenSolver solver(eigen_options(spec, part, 0.0));
+      EigenOptions o = eigen_options(spec, part, 0.0);
+      use_node_mass(o, model, fe, t, spec);
+      EigenSolver solver(o);
       attach_progress(solver, log);
       solver.compute(split.Kii, split.Mii, factor);
       say(timing_line(t_constraints, t_analyze, t_factorize, &solver.info()));

@@ -93,6 +93,10 @@ BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseRef& M, Symmetri
     return fail("basis size " + std::to_string(m_max) + " does not fit nev = " + std::to_string(nev) + ", block " +
                 std::to_string(p) + ", n = " + std::to_string(n));
 
+  const auto mass = [&](const MatrixXd& X, MatrixXd& Y) {
+    if (req.mass_product) req.mass_product(X, Y);
+    else sym_multiply(M, sM, X, Y);
+  };
   MatrixXd Q(n, m_max);                    // M-orthonormal basis, columns [0, k)
   MatrixXd T = MatrixXd::Zero(m_max, m_max);  // Q^T M A Q, filled block column by block column
   MatrixXd W(n, p), MW(n, p), R;
@@ -115,7 +119,7 @@ BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseRef& M, Symmetri
   // step put 10 MB more on the 100k-DOF plate's peak, at the end of this stage.
   op.apply_block(W, W);
   for (int pass = 0; pass < 2; ++pass) {
-    sym_multiply(M, sM, W, MW);
+    mass(W, MW);
     if (!cholesky_qr(W, MW, R)) return fail("the start block has no full rank");
   }
   Q.leftCols(p) = W;
@@ -129,7 +133,7 @@ BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseRef& M, Symmetri
     auto basis = Q.leftCols(k);
     MatrixXd h = MatrixXd::Zero(k, p);
     for (int pass = 0; pass < 2; ++pass) {
-      sym_multiply(M, sM, W, MW);
+      mass(W, MW);
       h += project_out(basis, MW, W);
     }
     // MW is now M W up to M basis c of the second pass, which is at the rounding level.

@@ -1,4 +1,5 @@
 #pragma once
+#include <functional>
 // Private interface between EigenSolver and its three backends, and the post-processing
 // every backend's output goes through.
 
@@ -35,6 +36,8 @@ struct BlockRequest {
   double tol = 0;
   double sigma = 0;
   unsigned long long seed = 0;  ///< of the pseudo-random start block
+  /// Y = M X in place of the products with M (EigenOptions::mass_product), when set.
+  std::function<void(const Eigen::MatrixXd& X, Eigen::MatrixXd& Y)> mass_product;
 };
 
 /// Block shift-invert Lanczos (block_lanczos_backend.cpp). On failure (breakdown, no

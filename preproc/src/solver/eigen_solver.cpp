@@ -242,7 +242,7 @@ const EigenResult& EigenSolver::run(const SparseRef& K, const SparseRef& M,
         const Eigen::Index m_max = o.ncv > 0 ? std::max(o.ncv, nev + 2 * p) : std::max(4 * nev + 2 * p, nev + 4 * p);
         if (2 * m_max <= n_eff) {
           const detail::BlockRequest breq{nev, p, m_max, std::min(o.max_restarts, 100), o.lanczos_tol, o.sigma,
-                                          20240611ULL};
+                                          20240611ULL, o.mass_product};
           run = detail::run_block_lanczos(op, M, sM, defl, breq);
           done = run.success;
         }

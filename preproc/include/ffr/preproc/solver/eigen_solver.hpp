@@ -77,6 +77,10 @@ struct EigenOptions {
   /// Largest problem (DOF after deflation) the Dense backend or the automatic fallback may
   /// take. Lanczos needs nev < ncv <= n; smaller problems are handed to Dense if they fit.
   std::int64_t dense_max_n = 3000;
+  /// Optional Y = M X for the block backend's products with M (X with a block's columns), where
+  /// the caller has a cheaper form of the same M (the reductions: from the solids' node mass
+  /// matrix). M itself is still what the checks and the other backends use.
+  std::function<void(const Eigen::MatrixXd& X, Eigen::MatrixXd& Y)> mass_product;
   /// Ordering and memory limit of the factorization of K - sigma M. Its min_pivot_ratio
   /// (the mechanism test) applies for sigma >= 0 only: for sigma < 0 small pivots are the
   /// intended nearness of the rigid-body modes (set to 0 internally).

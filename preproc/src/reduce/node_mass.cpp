@@ -1,0 +1,97 @@
+#include "node_mass.hpp"
+
+#include "../solver/kernel_clones.hpp"
+
+#include <algorithm>
+
+namespace ffr::preproc::detail {
+namespace {
+
+// yf += (Ms (x) I3) xf over the nodes, for an upper-only Ms and rows of R = 3 p values a node:
+// each stored m_ab (a < b) adds m_ab x_b to y_a and m_ab x_a to y_b. R fixed at compile time
+// where the block Lanczos needs it (blocks of four: R = 12, three vectors of four), 0 for any.
+template <int R>
+void node_product(const SparseMatrix& Ms, Index r, const double* xf, double* yf) {
+  const auto* outer = Ms.outerIndexPtr();
+  const auto* inner = Ms.innerIndexPtr();
+  const double* val = Ms.valuePtr();
+  if constexpr (R > 0) {
+    using simd::load;
+    using simd::store;
+    using simd::v4;
+    constexpr int NV = R / 4;
+    for (Index b = 0; b < Ms.outerSize(); ++b) {
+      v4 xb[NV], acc[NV] = {};
+      for (int k = 0; k < NV; ++k) xb[k] = load(xf + b * R + 4 * k);
+      for (auto e = outer[b]; e < outer[b + 1]; ++e) {
+        const Index a = inner[e];
+        const double m = val[e];
+        if (a < b) {
+          for (int k = 0; k < NV; ++k) {
+            store(yf + a * R + 4 * k, load(yf + a * R + 4 * k) + m * xb[k]);
+            acc[k] += m * load(xf + a * R + 4 * k);
+          }
+        } else if (a == b) {
+          for (int k = 0; k < NV; ++k) acc[k] += m * xb[k];
+        }
+      }
+      for (int k = 0; k < NV; ++k) store(yf + b * R + 4 * k, load(yf + b * R + 4 * k) + acc[k]);
+    }
+  } else {
+    for (Index b = 0; b < Ms.outerSize(); ++b)
+      for (auto e = outer[b]; e < outer[b + 1]; ++e) {
+        const Index a = inner[e];
+        const double m = val[e];
+        for (Index c = 0; c < r; ++c) yf[b * r + c] += m * xf[a * r + c];
+        if (a < b)
+          for (Index c = 0; c < r; ++c) yf[a * r + c] += m * xf[b * r + c];
+      }
+  }
+}
+
+FFR_KERNEL_CLONES
+void node_product_any(const SparseMatrix& Ms, Index r, const double* xf, double* yf) {
+  switch (r) {
+    case 12: node_product<12>(Ms, r, xf, yf); break;
+    default: node_product<0>(Ms, r, xf, yf); break;
+  }
+}
+
+}  // namespace
+
+std::shared_ptr<const NodeMassProduct> NodeMassProduct::make(const FeModel& model, const Assembled& fe,
+                                                             const std::vector<Index>& rows) {
+  if (fe.has_structural || fe.Ms.nonZeros() == 0 || rows.empty() || fe.Ms.rows() != model.mesh->num_nodes())
+    return nullptr;
+  std::vector<Index> slot;
+  slot.reserve(rows.size());
+  for (const Index r : rows) {
+    if (r < 0 || r >= model.mesh_dofs()) return nullptr;  // an interface node's DOF
+    const Index a = model.dof_node[static_cast<std::size_t>(r)];
+    if (model.node_ndof[static_cast<std::size_t>(a)] != 3) return nullptr;
+    slot.push_back(3 * a + (r - model.node_dof[static_cast<std::size_t>(a)]));
+  }
+  return std::shared_ptr<const NodeMassProduct>(new NodeMassProduct(fe.Ms, std::move(slot)));
+}
+
+void NodeMassProduct::apply(const Eigen::MatrixXd& X, Eigen::MatrixXd& Y) const {
+  const Index n = rows(), p = X.cols(), r = 3 * p;
+  const auto size = static_cast<std::size_t>(Ms_.rows() * r);
+  // Node a's component c of column k sits at (3 a + c) p + k = slot p + k. The slots of nodes
+  // without a row here (held ones) are never written, so xf's zeros from its sizing stay: their
+  // columns of Ms (x) I3 are not M's.
+  if (xf_.size() != size) xf_.assign(size, 0.0);
+  yf_.assign(size, 0.0);
+  for (Index k = 0; k < p; ++k) {
+    const double* x = X.col(k).data();
+    for (Index j = 0; j < n; ++j) xf_[static_cast<std::size_t>(slot_[static_cast<std::size_t>(j)] * p + k)] = x[j];
+  }
+  node_product_any(Ms_, r, xf_.data(), yf_.data());
+  Y.resize(n, p);
+  for (Index k = 0; k < p; ++k) {
+    double* y = Y.col(k).data();
+    for (Index j = 0; j < n; ++j) y[j] = yf_[static_cast<std::size_t>(slot_[static_cast<std::size_t>(j)] * p + k)];
+  }
+}
+
+}  // namespace ffr::preproc::detail

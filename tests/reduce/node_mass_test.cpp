@@ -1,0 +1,129 @@
+// The block Lanczos's products with M from the solids' node mass Ms (reduce/node_mass.hpp)
+// against the products with the constrained M the reduction forms by the transform: equal to
+// rounding where M is a principal submatrix of a part of solids alone (clamped on the only
+// interface; Craig-Bampton's interior with rigid interfaces), for a block of four columns (the
+// vectorised kernel) and of three (the general one); refused where M is not Ms (x) I3 on its
+// rows: a point mass in the part, or a free spider coupling its nodes.
+#include "ffr/preproc/assembly/assembly.hpp"
+#include "ffr/preproc/model/constraints.hpp"
+#include "ffr/preproc/model/fe_model.hpp"
+#include "ffr/preproc/reduce/reduction.hpp"
+#include "reduce/node_mass.hpp"
+#include "reduce/pattern_analysis.hpp"
+#include "reduce/setup.hpp"
+#include "reduce/sparse_ops.hpp"
+#include "support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+using namespace ffr;
+using preproc::Index;
+using preproc::SparseMatrix;
+
+namespace {
+
+preproc::ReductionSpec clamped_left() {
+  preproc::ReductionSpec s;
+  s.method = preproc::ReductionSpec::Method::Clamped;
+  s.interface = "L";
+  s.modes = 4;
+  return s;
+}
+
+preproc::ReductionSpec craig_bampton() {
+  preproc::ReductionSpec s;
+  s.method = preproc::ReductionSpec::Method::CraigBampton;
+  s.interfaces = {"L", "R"};
+  s.frame = "L";
+  s.modes = 4;
+  return s;
+}
+
+preproc::ReductionSpec free_free() {
+  preproc::ReductionSpec s;
+  s.method = preproc::ReductionSpec::Method::Free;
+  s.modes = 4;
+  return s;
+}
+
+// The eigen-solve's M as the reduction forms it (reduction.cpp): the transform's congruence,
+// and for Craig-Bampton its interior block; full storage.
+SparseMatrix eigen_mass(const preproc::FeModel& model, const preproc::Assembled& fe, const preproc::DofTransform& t,
+                        const preproc::ReductionSpec& spec) {
+  SparseMatrix M = preproc::detail::constrained(t, fe.M, true);
+  if (spec.method != preproc::ReductionSpec::Method::CraigBampton) return M;
+  const auto interior = preproc::detail::interior_of(M.rows(), preproc::detail::boundary_dofs(model, t, spec));
+  return preproc::detail::congruence(preproc::detail::selection(M.rows(), interior), M);
+}
+
+}  // namespace
+
+TEST(NodeMassProduct, EqualsTheProductWithTheConstrainedMass) {
+  struct Case {
+    const char* what;
+    bool right_rigid, left_only;
+    preproc::ReductionSpec spec;
+  };
+  for (const Case& c : {Case{"clamped, L alone", false, true, clamped_left()},
+                        Case{"craig-bampton, R rigid", true, false, craig_bampton()}}) {
+    SCOPED_TRACE(c.what);
+    test::HexGrid grid(6, 3, 2);
+    auto& itf = grid.part.interfaces;
+    if (c.right_rigid)
+      for (auto& i : itf) i.coupling = "rigid";
+    if (c.left_only) itf.erase(std::remove_if(itf.begin(), itf.end(), [](const auto& i) { return i.name != "L"; }), itf.end());
+    const auto model = preproc::build_model(grid.mesh, grid.part);
+    const preproc::Assembled fe = preproc::assemble(model);
+    const preproc::DofTransform t = preproc::build_transform(model, preproc::detail::states_for(model, c.spec));
+    const auto rows = preproc::detail::factorized_rows(model, t, c.spec);
+    const auto product = preproc::detail::NodeMassProduct::make(model, fe, rows);
+    ASSERT_NE(product, nullptr);
+    const SparseMatrix M = eigen_mass(model, fe, t, c.spec);
+    ASSERT_EQ(product->rows(), M.rows());
+    for (const Index p : {Index{4}, Index{3}}) {
+      const Eigen::MatrixXd X = Eigen::MatrixXd::Random(M.rows(), p);
+      const Eigen::MatrixXd expect = M * X;
+      Eigen::MatrixXd Y;
+      product->apply(X, Y);
+      product->apply(X, Y);  // a second call on the kept buffers gives the same
+      ASSERT_EQ(Y.rows(), M.rows());
+      ASSERT_EQ(Y.cols(), p);
+      EXPECT_LT((Y - expect).cwiseAbs().maxCoeff(), 1e-14 * expect.cwiseAbs().maxCoeff()) << p << " columns";
+    }
+  }
+}
+
+TEST(NodeMassProduct, DeclinesWhereMIsNotTheNodeMass) {
+  // A point mass adds to M and not to Ms.
+  {
+    test::HexGrid grid(4, 2, 2);
+    auto& itf = grid.part.interfaces;
+    itf.erase(std::remove_if(itf.begin(), itf.end(), [](const auto& i) { return i.name != "L"; }), itf.end());
+    preproc::PointMassSpec m;
+    m.name = "tip";
+    m.at = grid.mesh.x.row(grid.mesh.x.rows() - 1).transpose();
+    m.mass = 2.0;
+    grid.part.point_masses.push_back(m);
+    const auto model = preproc::build_model(grid.mesh, grid.part);
+    const preproc::Assembled fe = preproc::assemble(model);
+    const preproc::DofTransform t = preproc::build_transform(model, preproc::detail::states_for(model, clamped_left()));
+    const auto rows = preproc::detail::factorized_rows(model, t, clamped_left());
+    ASSERT_FALSE(rows.empty());
+    EXPECT_EQ(preproc::detail::NodeMassProduct::make(model, fe, rows), nullptr);
+  }
+  // Free-free with both spiders free: the transform couples their nodes (no principal
+  // submatrix, so no rows to take).
+  {
+    test::HexGrid grid(4, 2, 2);
+    const auto model = preproc::build_model(grid.mesh, grid.part);
+    const preproc::Assembled fe = preproc::assemble(model);
+    const preproc::DofTransform t = preproc::build_transform(model, preproc::detail::states_for(model, free_free()));
+    const auto rows = preproc::detail::factorized_rows(model, t, free_free());
+    EXPECT_TRUE(rows.empty());
+    EXPECT_EQ(preproc::detail::NodeMassProduct::make(model, fe, rows), nullptr);
+  }
+}
