@@ -3,6 +3,7 @@
 #include "ffr/formats/h5.hpp"
 #include "gmsh_session.hpp"
 #include "mesh_child.hpp"
+#include "msh41_reader.hpp"
 #include "node_order.hpp"
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <optional>
 #include <set>
 #include <unordered_map>
 
@@ -247,8 +249,20 @@ Mesh load_mesh_here(const PartSpec& part, MeshReport* report, const MeshLog& log
 
 }  // namespace
 
+namespace detail {
+
+Mesh load_mesh_with_gmsh(const PartSpec& part, MeshReport* report, const MeshLog& log) {
+  return load_in_child(part.geometry.string(), [&](MeshReport* r) { return load_mesh_here(part, r, log); }, report);
+}
+
+}  // namespace detail
+
 Mesh load_mesh(const PartSpec& part, MeshReport* report, const MeshLog& log) {
-  return detail::load_in_child(part.geometry.string(), [&](MeshReport* r) { return load_mesh_here(part, r, log); }, report);
+  // An ASCII MSH 4.1 file is read here when the part adds no groups of its own (those need
+  // gmsh's entities, bounding boxes included); anything else goes to gmsh (msh41_reader.hpp).
+  if (part.geometry.extension() == ".msh" && part.groups.empty())
+    if (std::optional<Mesh> mesh = detail::read_msh41(part.geometry.string(), report)) return std::move(*mesh);
+  return detail::load_mesh_with_gmsh(part, report, log);
 }
 
 GeometryMass occ_mass_properties(const std::filesystem::path& geometry) {
