@@ -1,7 +1,9 @@
 // bin/ffr-reduce is a launcher (preproc/launcher): it chooses the page size of the reduction's
 // heap and starts libexec/ffr/ffr-reduce-main. The choice must change the page faults, never
 // the result; the user's setting and glibc tunables stand; a broken installation is an error
-// that names the missing program.
+// that names the missing program. gmsh's module (preproc/src/mesh/gmsh_module.hpp) is loaded
+// only for a part that needs gmsh: without it the program starts and reads an MSH 4.1 file,
+// and a geometry to mesh is refused naming the module, unless FFR_GMSH_MODULE points at it.
 #include "support.hpp"
 
 #include <gtest/gtest.h>
@@ -124,6 +126,42 @@ TEST(Launcher, MissingReductionProgramIsNamed) {
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("cannot start the reduction program"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("libexec/ffr/ffr-reduce-main"), std::string::npos) << r.output;
+}
+
+TEST(Launcher, GmshModuleIsLoadedOnlyForPartsThatNeedIt) {
+  test::TempDir dir("no-gmsh");
+  std::filesystem::create_directories(dir / "bin");
+  std::filesystem::create_directories(dir / "libexec/ffr");
+  std::filesystem::copy_file(test::bin("ffr-reduce"), dir / "bin/ffr-reduce");
+  const std::filesystem::path build(FFR_BINARY_DIR);
+  std::filesystem::copy_file(build / "libexec/ffr/ffr-reduce-main", dir / "libexec/ffr/ffr-reduce-main");
+  const std::string reduce = (dir / "bin/ffr-reduce").string();
+  EXPECT_EQ(test::run(reduce + " --version").status, 0);
+
+  write_bar(dir);
+  // Meshed by gmsh's command line into an MSH 4.1 file, which the program reads itself.
+  test::gmsh_mesh(dir / "bar.geo", dir / "bar.msh", 0.012, 2);
+  std::string part;
+  {
+    std::ifstream in(dir / "part.json");
+    std::ostringstream s;
+    s << in.rdbuf();
+    part = s.str();
+  }
+  test::write_text(dir / "msh.json", part.replace(part.find("\"bar.geo\""), 9, "\"bar.msh\""));
+  const auto from_msh = test::run(reduce + " " + (dir / "msh.json").string() + " -o " + (dir / "msh.sid.h5").string());
+  EXPECT_EQ(from_msh.status, 0) << from_msh.output;
+
+  const std::string geo = reduce + " " + (dir / "part.json").string() + " -o " + (dir / "geo.sid.h5").string();
+  const auto missing = test::run(geo);
+  EXPECT_EQ(missing.status, 1) << missing.output;
+  EXPECT_NE(missing.output.find("libffr-gmsh.so was not found"), std::string::npos) << missing.output;
+  EXPECT_NE(missing.output.find("FFR_GMSH_MODULE"), std::string::npos) << missing.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "geo.sid.h5"));
+
+  const auto pointed = test::run("FFR_GMSH_MODULE=" + (build / "libexec/ffr/libffr-gmsh.so").string() + " " + geo);
+  EXPECT_EQ(pointed.status, 0) << pointed.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "geo.sid.h5"));
 }
 
 TEST(Launcher, UnknownPageSettingIsBadInput) {
