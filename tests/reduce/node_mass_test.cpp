@@ -8,6 +8,7 @@
 #include "ffr/preproc/model/constraints.hpp"
 #include "ffr/preproc/model/fe_model.hpp"
 #include "ffr/preproc/reduce/reduction.hpp"
+#include "ffr/preproc/threads.hpp"
 #include "reduce/node_mass.hpp"
 #include "reduce/pattern_analysis.hpp"
 #include "reduce/setup.hpp"
@@ -67,11 +68,18 @@ TEST(NodeMassProduct, EqualsTheProductWithTheConstrainedMass) {
     const char* what;
     bool right_rigid, left_only;
     preproc::ReductionSpec spec;
+    int nx, ny, nz;
+    unsigned threads;
   };
-  for (const Case& c : {Case{"clamped, L alone", false, true, clamped_left()},
-                        Case{"craig-bampton, R rigid", true, false, craig_bampton()}}) {
+  const unsigned before = preproc::max_threads();
+  // The last case is large enough (97 000 entries of Ms, four columns) for two threads, whose
+  // parts add into buffers of their own.
+  for (const Case& c : {Case{"clamped, L alone", false, true, clamped_left(), 6, 3, 2, 1},
+                        Case{"craig-bampton, R rigid", true, false, craig_bampton(), 6, 3, 2, 1},
+                        Case{"clamped, L alone, two threads", false, true, clamped_left(), 40, 12, 12, 2}}) {
     SCOPED_TRACE(c.what);
-    test::HexGrid grid(6, 3, 2);
+    preproc::set_max_threads(c.threads);
+    test::HexGrid grid(c.nx, c.ny, c.nz);
     auto& itf = grid.part.interfaces;
     if (c.right_rigid)
       for (auto& i : itf) i.coupling = "rigid";
@@ -95,6 +103,7 @@ TEST(NodeMassProduct, EqualsTheProductWithTheConstrainedMass) {
       EXPECT_LT((Y - expect).cwiseAbs().maxCoeff(), 1e-14 * expect.cwiseAbs().maxCoeff()) << p << " columns";
     }
   }
+  preproc::set_max_threads(before);
 }
 
 TEST(NodeMassProduct, DeclinesWhereMIsNotTheNodeMass) {

@@ -1,5 +1,6 @@
 #include "node_mass.hpp"
 
+#include "../run_parts.hpp"
 #include "../solver/kernel_clones.hpp"
 
 #include <algorithm>
@@ -11,7 +12,7 @@ namespace {
 // each stored m_ab (a < b) adds m_ab x_b to y_a and m_ab x_a to y_b. R fixed at compile time
 // where the block Lanczos needs it (blocks of four: R = 12, three vectors of four), 0 for any.
 template <int R>
-void node_product(const SparseMatrix& Ms, Index r, const double* xf, double* yf) {
+void node_product(const SparseMatrix& Ms, Index b0, Index b1, Index r, const double* xf, double* yf) {
   const auto* outer = Ms.outerIndexPtr();
   const auto* inner = Ms.innerIndexPtr();
   const double* val = Ms.valuePtr();
@@ -20,7 +21,7 @@ void node_product(const SparseMatrix& Ms, Index r, const double* xf, double* yf)
     using simd::store;
     using simd::v4;
     constexpr int NV = R / 4;
-    for (Index b = 0; b < Ms.outerSize(); ++b) {
+    for (Index b = b0; b < b1; ++b) {
       v4 xb[NV], acc[NV] = {};
       for (int k = 0; k < NV; ++k) xb[k] = load(xf + b * R + 4 * k);
       for (auto e = outer[b]; e < outer[b + 1]; ++e) {
@@ -38,7 +39,7 @@ void node_product(const SparseMatrix& Ms, Index r, const double* xf, double* yf)
       for (int k = 0; k < NV; ++k) store(yf + b * R + 4 * k, load(yf + b * R + 4 * k) + acc[k]);
     }
   } else {
-    for (Index b = 0; b < Ms.outerSize(); ++b)
+    for (Index b = b0; b < b1; ++b)
       for (auto e = outer[b]; e < outer[b + 1]; ++e) {
         const Index a = inner[e];
         const double m = val[e];
@@ -50,10 +51,10 @@ void node_product(const SparseMatrix& Ms, Index r, const double* xf, double* yf)
 }
 
 FFR_KERNEL_CLONES
-void node_product_any(const SparseMatrix& Ms, Index r, const double* xf, double* yf) {
+void node_product_any(const SparseMatrix& Ms, Index b0, Index b1, Index r, const double* xf, double* yf) {
   switch (r) {
-    case 12: node_product<12>(Ms, r, xf, yf); break;
-    default: node_product<0>(Ms, r, xf, yf); break;
+    case 12: node_product<12>(Ms, b0, b1, r, xf, yf); break;
+    default: node_product<0>(Ms, b0, b1, r, xf, yf); break;
   }
 }
 
@@ -86,7 +87,30 @@ void NodeMassProduct::apply(const Eigen::MatrixXd& X, Eigen::MatrixXd& Y) const 
     const double* x = X.col(k).data();
     for (Index j = 0; j < n; ++j) xf_[static_cast<std::size_t>(slot_[static_cast<std::size_t>(j)] * p + k)] = x[j];
   }
-  node_product_any(Ms_, r, xf_.data(), yf_.data());
+  // The columns in parts of about equal entries, one thread each (run_parts.hpp); a part writes
+  // the rows of its own columns and, mirrored, rows of earlier ones, so each part after the
+  // first adds into a buffer of its own (rows up to its last column), summed at the end.
+  const Index N = Ms_.outerSize();
+  const auto* outer = Ms_.outerIndexPtr();
+  const unsigned parts = parts_for(Ms_.nonZeros() * p, Index{1} << 18);
+  if (extra_.size() + 1 < parts) extra_.resize(parts - 1);
+  const auto split = [&](unsigned q) -> Index {
+    if (q == 0) return 0;
+    if (q >= parts) return N;
+    const auto target = static_cast<Index>(static_cast<double>(outer[N]) * q / parts);
+    return static_cast<Index>(std::lower_bound(outer, outer + N + 1, target) - outer);
+  };
+  run_parts(parts, split, [&](unsigned q, Index b0, Index b1) {
+    double* y = yf_.data();
+    if (q > 0) {
+      auto& e = extra_[q - 1];
+      e.assign(static_cast<std::size_t>(b1 * r), 0.0);
+      y = e.data();
+    }
+    node_product_any(Ms_, b0, b1, r, xf_.data(), y);
+  });
+  for (unsigned q = 1; q < parts; ++q)
+    for (std::size_t i = 0; i < extra_[q - 1].size(); ++i) yf_[i] += extra_[q - 1][i];
   Y.resize(n, p);
   for (Index k = 0; k < p; ++k) {
     double* y = Y.col(k).data();

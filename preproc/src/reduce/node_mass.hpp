@@ -27,8 +27,8 @@ class NodeMassProduct {
   static std::shared_ptr<const NodeMassProduct> make(const FeModel& model, const Assembled& fe,
                                                      const std::vector<Index>& rows);
 
-  /// Y = M X (Y resized to X's shape). X must not be Y. Not for concurrent calls (it keeps its
-  /// buffers).
+  /// Y = M X (Y resized to X's shape), on up to max_threads() threads. X must not be Y. Not
+  /// for concurrent calls (it keeps its buffers).
   void apply(const Eigen::MatrixXd& X, Eigen::MatrixXd& Y) const;
 
   Index rows() const { return static_cast<Index>(slot_.size()); }
@@ -38,6 +38,7 @@ class NodeMassProduct {
   const SparseMatrix& Ms_;
   std::vector<Index> slot_;  ///< per row of M: 3 * node + component
   mutable std::vector<double> xf_, yf_;  ///< X and Y by node: 3 p values a node, component-major
+  mutable std::vector<std::vector<double>> extra_;  ///< the other threads' parts of Y
 };
 
 }  // namespace ffr::preproc::detail
