@@ -89,18 +89,10 @@ Mesh extract(const std::string& file) {
   std::vector<double> coord, param;
   gmsh::model::mesh::getNodes(tags, coord, param, -1, -1, false, false);
   if (tags.empty()) throw FormatError(file, "", "the mesh has no nodes");
-  // Nodes numbered along a space-filling curve, not in gmsh's order (node_order.hpp).
-  const std::vector<Index> order = detail::spatial_order(coord.data(), static_cast<Index>(tags.size()));
-  mesh.x.resize(static_cast<Index>(tags.size()), 3);
-  mesh.node_tags.resize(tags.size());
+  // Nodes numbered along a space-filling curve, not in gmsh's order (node_order.hpp); gmsh's
+  // tags are distinct.
   std::unordered_map<std::size_t, Index> index;
-  index.reserve(tags.size() * 2);
-  for (std::size_t i = 0; i < tags.size(); ++i) {
-    const auto from = static_cast<std::size_t>(order[i]);
-    index[tags[from]] = static_cast<Index>(i);
-    mesh.node_tags[i] = tags[from];
-    for (int c = 0; c < 3; ++c) mesh.x(static_cast<Index>(i), c) = coord[3 * from + c];
-  }
+  detail::number_nodes(tags, coord, mesh, index);
 
   gmsh::vectorpair groups;
   gmsh::model::getPhysicalGroups(groups);
@@ -234,11 +226,7 @@ Mesh load_mesh_here(const PartSpec& part, MeshReport* report, const MeshLog& log
   gmsh_call(file, "cannot extract mesh", [&] { mesh = extract(file); });
 
   if (report) {
-    // An element can be in several groups ("all" and a named one): count each once.
-    std::map<std::string, std::set<std::size_t>> tags;
-    for (const auto& b : mesh.blocks) tags[name(b.type)].insert(b.tags.begin(), b.tags.end());
-    report->element_counts.clear();
-    for (const auto& [t, s] : tags) report->element_counts[t] = static_cast<Index>(s.size());
+    report->element_counts = element_counts(mesh);
     report->nodes = mesh.num_nodes();
     report->meshed = !is_msh;
     report->gmsh_log = detail::GmshSession::log_text();

@@ -1,5 +1,6 @@
 #include "ffr/preproc/mesh/mesh.hpp"
 
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -62,6 +63,14 @@ std::size_t Mesh::element_tag(const ElementBlock& b, Index e) const {
 
 std::size_t Mesh::node_tag(Index n) const {
   return node_tags.empty() ? static_cast<std::size_t>(n + 1) : node_tags[static_cast<std::size_t>(n)];
+}
+
+std::map<std::string, Index> element_counts(const Mesh& mesh) {
+  std::map<std::string, std::set<std::size_t>> tags;
+  for (const auto& b : mesh.blocks) tags[name(b.type)].insert(b.tags.begin(), b.tags.end());
+  std::map<std::string, Index> counts;
+  for (const auto& [t, s] : tags) counts[t] = static_cast<Index>(s.size());
+  return counts;
 }
 
 }  // namespace ffr::preproc

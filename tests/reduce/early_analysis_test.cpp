@@ -34,29 +34,9 @@ struct TwoThreads {
   ~TwoThreads() { preproc::set_max_threads(before); }
 };
 
-preproc::ReductionSpec clamped() {
-  preproc::ReductionSpec s;
-  s.method = preproc::ReductionSpec::Method::Clamped;
-  s.interface = "L";
-  s.modes = 6;
-  return s;
-}
-
-preproc::ReductionSpec free_free() {
-  preproc::ReductionSpec s;
-  s.method = preproc::ReductionSpec::Method::Free;
-  s.modes = 6;
-  return s;
-}
-
-preproc::ReductionSpec craig_bampton() {
-  preproc::ReductionSpec s;
-  s.method = preproc::ReductionSpec::Method::CraigBampton;
-  s.interfaces = {"L", "R"};
-  s.frame = "L";
-  s.modes = 6;
-  return s;
-}
+preproc::ReductionSpec clamped() { return test::clamped_spec("L", 6); }
+preproc::ReductionSpec free_free() { return test::free_free_spec(6); }
+preproc::ReductionSpec craig_bampton() { return test::craig_bampton_spec(6); }
 
 const char* name(const preproc::ReductionSpec& s) {
   switch (s.method) {

@@ -4,6 +4,7 @@
 // that names the missing program. gmsh's module (preproc/src/mesh/gmsh_module.hpp) is loaded
 // only for a part that needs gmsh: without it the program starts and reads an MSH 4.1 file,
 // and a geometry to mesh is refused naming the module, unless FFR_GMSH_MODULE points at it.
+#include "ffr/formats/text_file.hpp"
 #include "support.hpp"
 
 #include <gtest/gtest.h>
@@ -141,13 +142,7 @@ TEST(Launcher, GmshModuleIsLoadedOnlyForPartsThatNeedIt) {
   write_bar(dir);
   // Meshed by gmsh's command line into an MSH 4.1 file, which the program reads itself.
   test::gmsh_mesh(dir / "bar.geo", dir / "bar.msh", 0.012, 2);
-  std::string part;
-  {
-    std::ifstream in(dir / "part.json");
-    std::ostringstream s;
-    s << in.rdbuf();
-    part = s.str();
-  }
+  std::string part = formats::read_text_file(dir / "part.json");
   test::write_text(dir / "msh.json", part.replace(part.find("\"bar.geo\""), 9, "\"bar.msh\""));
   const auto from_msh = test::run(reduce + " " + (dir / "msh.json").string() + " -o " + (dir / "msh.sid.h5").string());
   EXPECT_EQ(from_msh.status, 0) << from_msh.output;

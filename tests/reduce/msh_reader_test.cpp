@@ -4,6 +4,7 @@
 // volumes with named, unnamed and point groups, a surface mesh); and files it leaves to gmsh
 // (MSH 2.2, binary, truncated), which load_mesh still reads, or refuses with gmsh's error.
 #include "ffr/formats/h5.hpp"
+#include "ffr/formats/text_file.hpp"
 #include "ffr/preproc/mesh/gmsh_import.hpp"
 #include "ffr/preproc/part/part.hpp"
 #include "mesh/msh41_reader.hpp"
@@ -11,17 +12,11 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
-#include <sstream>
 #include <string>
 
 using namespace ffr;
 
 namespace {
-
-void write(const std::filesystem::path& p, const std::string& text) {
-  std::ofstream(p) << text;
-}
 
 preproc::PartSpec part_for(const std::filesystem::path& msh) {
   preproc::PartSpec part;
@@ -89,10 +84,10 @@ TEST(Msh41Reader, GivesGmshsMeshForFilesGmshWrote) {
     test::gmsh_mesh(cantilever, msh, 0.02, order);
     compare(msh);
   }
-  write(dir / "boxes.geo", kTwoBoxes);
+  test::write_text(dir / "boxes.geo", kTwoBoxes);
   test::gmsh_mesh(dir / "boxes.geo", dir / "boxes.msh", 0.3, 2);
   compare(dir / "boxes.msh");
-  write(dir / "plate.geo", kPlate);
+  test::write_text(dir / "plate.geo", kPlate);
   test::gmsh_mesh(dir / "plate.geo", dir / "plate.msh", 0.25, 1);
   compare(dir / "plate.msh");
 }
@@ -105,7 +100,7 @@ TEST(Msh41Reader, LeavesOtherFilesToGmsh) {
   EXPECT_GT(preproc::load_mesh(part_for(msh22)).num_nodes(), 0);
 
   // Binary MSH 4.1.
-  write(dir / "boxes.geo", kTwoBoxes);
+  test::write_text(dir / "boxes.geo", kTwoBoxes);
   const auto r = test::run("gmsh -3 -bin -format msh41 " + (dir / "boxes.geo").string() + " -o " +
                                    (dir / "boxes_bin.msh").string());
   ASSERT_EQ(r.status, 0) << r.output;
@@ -114,16 +109,10 @@ TEST(Msh41Reader, LeavesOtherFilesToGmsh) {
 
   // Truncated in its elements: left to gmsh, whose error names the file.
   test::gmsh_mesh(dir / "boxes.geo", dir / "boxes.msh", 0.3, 1);
-  std::string text;
-  {
-    std::ifstream in(dir / "boxes.msh");
-    std::ostringstream s;
-    s << in.rdbuf();
-    text = s.str();
-  }
+  std::string text = formats::read_text_file(dir / "boxes.msh");
   const auto cut = text.find("$Elements");
   ASSERT_NE(cut, std::string::npos);
-  write(dir / "cut.msh", text.substr(0, cut + (text.size() - cut) / 2));
+  test::write_text(dir / "cut.msh", text.substr(0, cut + (text.size() - cut) / 2));
   EXPECT_FALSE(preproc::detail::read_msh41((dir / "cut.msh").string(), nullptr).has_value());
   try {
     preproc::load_mesh(part_for(dir / "cut.msh"));

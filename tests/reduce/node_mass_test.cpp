@@ -27,29 +27,9 @@ using preproc::SparseMatrix;
 
 namespace {
 
-preproc::ReductionSpec clamped_left() {
-  preproc::ReductionSpec s;
-  s.method = preproc::ReductionSpec::Method::Clamped;
-  s.interface = "L";
-  s.modes = 4;
-  return s;
-}
-
-preproc::ReductionSpec craig_bampton() {
-  preproc::ReductionSpec s;
-  s.method = preproc::ReductionSpec::Method::CraigBampton;
-  s.interfaces = {"L", "R"};
-  s.frame = "L";
-  s.modes = 4;
-  return s;
-}
-
-preproc::ReductionSpec free_free() {
-  preproc::ReductionSpec s;
-  s.method = preproc::ReductionSpec::Method::Free;
-  s.modes = 4;
-  return s;
-}
+preproc::ReductionSpec clamped_left() { return test::clamped_spec("L", 4); }
+preproc::ReductionSpec craig_bampton() { return test::craig_bampton_spec(4); }
+preproc::ReductionSpec free_free() { return test::free_free_spec(4); }
 
 // The eigen-solve's M as the reduction forms it (reduction.cpp): the transform's congruence,
 // and for Craig-Bampton its interior block; full storage.

@@ -39,6 +39,30 @@ RunResult run(const std::string& command) {
 std::filesystem::path bin(const std::string& tool) { return std::filesystem::path(FFR_BINARY_DIR) / "bin" / tool; }
 std::filesystem::path source(const std::string& rel) { return std::filesystem::path(FFR_SOURCE_DIR) / rel; }
 
+preproc::ReductionSpec clamped_spec(const std::string& interface, int modes) {
+  preproc::ReductionSpec s;
+  s.method = preproc::ReductionSpec::Method::Clamped;
+  s.interface = interface;
+  s.modes = modes;
+  return s;
+}
+
+preproc::ReductionSpec free_free_spec(int modes) {
+  preproc::ReductionSpec s;
+  s.method = preproc::ReductionSpec::Method::Free;
+  s.modes = modes;
+  return s;
+}
+
+preproc::ReductionSpec craig_bampton_spec(int modes) {
+  preproc::ReductionSpec s;
+  s.method = preproc::ReductionSpec::Method::CraigBampton;
+  s.interfaces = {"L", "R"};
+  s.frame = "L";
+  s.modes = modes;
+  return s;
+}
+
 HexGrid::HexGrid(int nx, int ny, int nz) {
   using preproc::Index;
   auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };

@@ -41,6 +41,12 @@ void write_text(const std::filesystem::path& p, const std::string& text);
 /// Meshes a .geo with the gmsh command line into `msh` (order 1 or 2, serendipity).
 void gmsh_mesh(const std::filesystem::path& geo, const std::filesystem::path& msh, double size, int order);
 
+/// Reduction specs of the HexGrid tests: clamped on `interface`, free-free, and Craig-Bampton
+/// with interfaces L and R, L the frame.
+preproc::ReductionSpec clamped_spec(const std::string& interface, int modes);
+preproc::ReductionSpec free_free_spec(int modes);
+preproc::ReductionSpec craig_bampton_spec(int modes);
+
 /// nx x ny x nz HEX8 cells of a unit-spaced grid (slightly sheared so that no two elements are
 /// equal), one material group "body", node groups "left" (x = 0) and "right" (x = nx), and a
 /// part with a rigid interface L on the left and an averaged one R on the right.

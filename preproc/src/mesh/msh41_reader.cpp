@@ -8,7 +8,6 @@
 #include <chrono>
 #include <fstream>
 #include <map>
-#include <set>
 #include <sstream>
 #include <string_view>
 #include <unordered_map>
@@ -282,17 +281,8 @@ std::optional<Mesh> read_msh41(const std::string& file, MeshReport* report) {
     tags.insert(tags.end(), e.node_tags.begin(), e.node_tags.end());
     coord.insert(coord.end(), e.xyz.begin(), e.xyz.end());
   }
-  const std::vector<Index> order = spatial_order(coord.data(), static_cast<Index>(tags.size()));
-  mesh.x.resize(static_cast<Index>(tags.size()), 3);
-  mesh.node_tags.resize(tags.size());
   std::unordered_map<std::size_t, Index> index;
-  index.reserve(tags.size() * 2);
-  for (std::size_t i = 0; i < tags.size(); ++i) {
-    const auto from = static_cast<std::size_t>(order[i]);
-    if (!index.emplace(tags[from], static_cast<Index>(i)).second) return std::nullopt;  // a tag twice
-    mesh.node_tags[i] = tags[from];
-    for (int k = 0; k < 3; ++k) mesh.x(static_cast<Index>(i), k) = coord[3 * from + static_cast<std::size_t>(k)];
-  }
+  if (!number_nodes(tags, coord, mesh, index)) return std::nullopt;  // a tag twice
 
   // Physical groups by dimension and tag, each with its entities by tag; then "all" (every
   // entity of the highest dimension) unless a group has that name, last, as gmsh_import adds it.
@@ -364,10 +354,7 @@ std::optional<Mesh> read_msh41(const std::string& file, MeshReport* report) {
   if (mesh.blocks.empty()) return std::nullopt;  // gmsh's import names that error
 
   if (report) {
-    std::map<std::string, std::set<std::size_t>> counted;
-    for (const auto& b : mesh.blocks) counted[name(b.type)].insert(b.tags.begin(), b.tags.end());
-    report->element_counts.clear();
-    for (const auto& [t, s] : counted) report->element_counts[t] = static_cast<Index>(s.size());
+    report->element_counts = element_counts(mesh);
     report->nodes = mesh.num_nodes();
     report->meshed = false;
     report->gmsh_log.clear();

@@ -50,4 +50,21 @@ std::vector<Index> spatial_order(const double* x, Index rows) {
   return order;
 }
 
+bool number_nodes(const std::vector<std::size_t>& tags, const std::vector<double>& coord, Mesh& mesh,
+                  std::unordered_map<std::size_t, Index>& index) {
+  const std::vector<Index> order = spatial_order(coord.data(), static_cast<Index>(tags.size()));
+  mesh.x.resize(static_cast<Index>(tags.size()), 3);
+  mesh.node_tags.resize(tags.size());
+  index.clear();
+  index.reserve(tags.size() * 2);
+  bool distinct = true;
+  for (std::size_t i = 0; i < tags.size(); ++i) {
+    const auto from = static_cast<std::size_t>(order[i]);
+    distinct = index.emplace(tags[from], static_cast<Index>(i)).second && distinct;
+    mesh.node_tags[i] = tags[from];
+    for (int c = 0; c < 3; ++c) mesh.x(static_cast<Index>(i), c) = coord[3 * from + static_cast<std::size_t>(c)];
+  }
+  return distinct;
+}
+
 }  // namespace ffr::preproc::detail

@@ -2,6 +2,7 @@
 // The order in which the mesh's nodes are numbered (gmsh_import).
 #include "ffr/preproc/mesh/mesh.hpp"
 
+#include <unordered_map>
 #include <vector>
 
 namespace ffr::preproc::detail {
@@ -16,5 +17,11 @@ namespace ffr::preproc::detail {
 /// entries lay more than 4096 DOFs off the diagonal (9.7 % in this order), and a product with
 /// 4 vectors, which touches the vectors' rows at those distances, took 7.4 ms instead of 1.4.
 std::vector<Index> spatial_order(const double* x, Index rows);
+
+/// The mesh's nodes, given in gmsh's order (tags, and x y z each in coord), numbered in that
+/// spatial order: fills mesh.x and mesh.node_tags, and index (tag -> index). False if a tag is
+/// there twice (index then holds the first).
+bool number_nodes(const std::vector<std::size_t>& tags, const std::vector<double>& coord, Mesh& mesh,
+                  std::unordered_map<std::size_t, Index>& index);
 
 }  // namespace ffr::preproc::detail

@@ -56,4 +56,9 @@ struct Mesh {
   std::size_t node_tag(Index n) const;
 };
 
+/// Element type name ("TET10", ...) -> elements of that type over all blocks, each counted once
+/// (an element can be in two groups: "all" and a named one), for the mesh report.
+std::map<std::string, Index> element_counts(const Mesh& mesh);
+
+
 }  // namespace ffr::preproc
