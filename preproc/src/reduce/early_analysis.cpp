@@ -44,9 +44,8 @@ EarlyAnalysis EarlyAnalysis::start(const FeModel& model, const ReductionSpec& sp
       // Craig-Bampton, that of the constrained K's interior block.
       const DofTransform t = build_transform(model, detail::states_for(model, spec));
       const bool cb = spec.method == ReductionSpec::Method::CraigBampton;
-      const FactorOptions options = detail::eigen_factor_options(spec);
-      auto f = std::make_unique<CholmodFactor>(options);
-      if (!(options.ordering == Ordering::Metis && detail::analyse_from_pattern(model, t, spec, nullptr, &s->cancel, *f))) {
+      auto f = std::make_unique<CholmodFactor>(detail::eigen_factor_options(spec));
+      if (!detail::analyse_from_pattern(model, t, spec, nullptr, &s->cancel, *f)) {
         SparseMatrix C = detail::constrained(t, assembly_pattern(model), cb);
         if (cb) {
           const auto interior = detail::interior_of(C.rows(), detail::boundary_dofs(model, t, spec));

@@ -112,6 +112,7 @@ std::vector<Index> factorized_rows(const FeModel& model, const DofTransform& t, 
 
 bool analyse_from_pattern(const FeModel& model, const DofTransform& t, const ReductionSpec& spec, const SparseMatrix* C,
                           const std::atomic<bool>* cancel, CholmodFactor& f) {
+  if (eigen_factor_options(spec).ordering != Ordering::Metis) return false;  // another order asked for
   const auto cancelled = [cancel] { return cancel && cancel->load(); };
   const std::vector<Index> rows = factorized_rows(model, t, spec);
   if (rows.empty()) return false;

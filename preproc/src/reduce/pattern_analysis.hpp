@@ -46,7 +46,8 @@ std::optional<SelectedStructure> selected_structure(const Pattern& p, const std:
 /// METIS on the graph of the entities that keep DOFs in the factorized matrix, the order
 /// expanded to their DOFs; the structure analysed is `C` when given, else written from the
 /// pattern. False (f untouched) where the factorized matrix is not a principal submatrix of the
-/// assembled one (a rigid spider left free, say) or METIS fails: the caller analyses C by
+/// assembled one (a rigid spider left free, say), the factor options ask for another ordering
+/// than METIS, or METIS fails: the caller analyses C by
 /// itself then. Why one function for both: the early analysis and the one after the assembly
 /// must give one order, so that the modes do not depend on the number of threads.
 bool analyse_from_pattern(const FeModel& model, const DofTransform& t, const ReductionSpec& spec, const SparseMatrix* C,

@@ -135,11 +135,9 @@ std::string factor_line(const FactorStatistics& f) {
 CholmodFactor analysed_factor(const SparseMatrix& A, const FeModel& model, const DofTransform& t,
                               const ReductionSpec& spec, EarlyAnalysis* early, const ReductionLog& log) {
   std::unique_ptr<CholmodFactor> taken = early ? early->take() : nullptr;
-  const FactorOptions options = detail::eigen_factor_options(spec);
-  CholmodFactor factor = taken ? std::move(*taken) : CholmodFactor(options);
+  CholmodFactor factor = taken ? std::move(*taken) : CholmodFactor(detail::eigen_factor_options(spec));
   // The early analysis's order from the node graph here too (pattern_analysis.hpp).
-  if (!taken && !(options.ordering == Ordering::Metis && detail::analyse_from_pattern(model, t, spec, &A, nullptr, factor)))
-    factor.analyze(A);
+  if (!taken && !detail::analyse_from_pattern(model, t, spec, &A, nullptr, factor)) factor.analyze(A);
   std::string line = factor_line(factor.info().stats);
   if (taken) {
     std::ostringstream o;
