@@ -8,21 +8,10 @@
 namespace ffr::preproc::detail {
 
 std::vector<Index> unit_column_rows(const DofTransform& t, const std::vector<Index>& columns) {
-  std::vector<Index> rows;
-  rows.reserve(columns.size());
-  for (const Index j : columns) {
-    Index r = j;
-    if (!t.identity) {
-      if (j < 0 || j >= t.T.cols()) return {};
-      SparseMatrix::InnerIterator it(t.T, j);
-      if (!it || it.value() != 1.0) return {};
-      r = it.row();
-      if (++it) return {};
-    }
-    if (!rows.empty() && r <= rows.back()) return {};
-    rows.push_back(r);
-  }
-  return rows;
+  if (!t.identity) return selected_rows(t.T, &columns);
+  for (std::size_t k = 1; k < columns.size(); ++k)
+    if (columns[k] <= columns[k - 1]) return {};
+  return columns;
 }
 
 std::optional<SelectedStructure> selected_structure(const Pattern& p, const std::vector<Index>& rows, bool upper) {

@@ -8,14 +8,17 @@
 
 namespace ffr::preproc::detail {
 
-/// If T is a selection (every column one entry 1.0, rows strictly increasing from column to
-/// column): the row of each column. Else empty. Holding nodes and picking interior DOFs give
-/// such T, and then T^T A T is a principal submatrix.
-inline std::vector<std::int64_t> selected_rows(const SparseMatrix& T) {
+/// If T's columns (all, or those in `columns`) are a selection (each one entry 1.0, rows strictly
+/// increasing from column to column): the row of each. Else empty. Holding nodes and picking
+/// interior DOFs give such T, and then T^T A T (over those columns) is a principal submatrix.
+inline std::vector<std::int64_t> selected_rows(const SparseMatrix& T, const std::vector<std::int64_t>* columns = nullptr) {
   std::vector<std::int64_t> rows;
-  if (T.cols() == 0 || T.nonZeros() != T.cols()) return rows;
-  rows.reserve(static_cast<std::size_t>(T.cols()));
-  for (std::int64_t j = 0; j < T.cols(); ++j) {
+  const std::int64_t count = columns ? static_cast<std::int64_t>(columns->size()) : T.cols();
+  if (count == 0) return rows;
+  rows.reserve(static_cast<std::size_t>(count));
+  for (std::int64_t k = 0; k < count; ++k) {
+    const std::int64_t j = columns ? (*columns)[static_cast<std::size_t>(k)] : k;
+    if (j < 0 || j >= T.cols()) return {};
     SparseMatrix::InnerIterator it(T, j);
     if (!it || it.value() != 1.0 || (!rows.empty() && it.row() <= rows.back())) return {};
     rows.push_back(it.row());
