@@ -82,6 +82,11 @@ TEST(Cli, BadInputIsExitTwoWithFileAndField) {
   EXPECT_NE(r.output.find("m.json: solver.tolerance: expected a positive number"), std::string::npos) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
+  ffr::runtime::test::write_text(dir / "m.json", pendulum(R"(, "newton_tolerance": 0)"));
+  const Result r2 = run((dir / "m.json").string() + " -o " + (dir / "out.h5").string());
+  EXPECT_EQ(r2.status, 2) << r2.output;
+  EXPECT_NE(r2.output.find("m.json: solver.newton_tolerance: expected a positive number"), std::string::npos) << r2.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
 
   ffr::runtime::test::write_text(dir / "broken.json", "{\"bodies\": [");
   EXPECT_EQ(run((dir / "broken.json").string() + " -o " + (dir / "out.h5").string()).status, 2);
@@ -94,7 +99,7 @@ TEST(Cli, BadInputIsExitTwoWithFileAndField) {
 TEST(Cli, NewtonFailureIsExitOneWithTimeAndResidual) {
   ffr::runtime::test::TempDir dir("cli");
   // One Newton iteration cannot reach the tolerance: the solver must give up cleanly.
-  ffr::runtime::test::write_text(dir / "m.json", pendulum(R"(, "max_iterations": 1, "tolerance": 1e-15)"));
+  ffr::runtime::test::write_text(dir / "m.json", pendulum(R"(, "max_iterations": 1, "newton_tolerance": 1e-15)"));
   const Result r = run((dir / "m.json").string() + " -o " + (dir / "out.h5").string() + " --csv " + (dir / "out.csv").string());
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("Newton did not converge at t = 0.001 s"), std::string::npos) << r.output;

@@ -89,6 +89,13 @@ TEST(Corotational, MassMatrixAndInertiaForcesAgreeWithInvariants) {
   EXPECT_LT(dC, 1e-12);
 }
 
+// The bound is not round-off: the two runs may take different tangent decisions where a
+// contraction rate falls on the threshold (measured: at step 27 one run's third iteration
+// contracted by 0.4996 and refreshed the tangent, the other's by 0.5009 and did not), and the
+// projections' metric is the last factorised tangent, so the runs then part by ~1e-10 (2.3e-10
+// after 50 steps, against 1.7e-11 when no decision differs). An inertia term that differed
+// between the paths would part them by far more (MassMatrixAndInertiaForcesAgreeWithInvariants
+// checks the terms themselves to 1e-12).
 TEST(Corotational, SameMotion) {
   auto p = make_pair(9, 4);
   Data a(p->inv), b(p->cor);
@@ -100,5 +107,5 @@ TEST(Corotational, SameMotion) {
   }
   const double d = (a.q - b.q).cwiseAbs().maxCoeff();
   std::printf("after 50 steps: max |q_inv - q_fe| = %.2e\n", d);
-  EXPECT_LT(d, 1e-10);
+  EXPECT_LT(d, 1e-9);
 }

@@ -154,3 +154,36 @@ TEST(SliderCrank, ProjectionsMeetConstraintsEvaluatedAfresh) {
   EXPECT_LT(worst_v, 1e-13);
   EXPECT_LT(worst_a, 1e-13);
 }
+
+// Newton stops at the default newton_tolerance (1e-10, scaled), on the benchmark's crank mostly
+// right after the tangent rebuilt at the second iterate, on its quadratic-convergence estimate
+// (ali3p.cpp, kKappaLife). The states it accepts must be those of Newton run to round-off
+// (newton_tolerance 1e-15) to within what the tolerance allows, with the constraints still at
+// round-off.
+TEST(SliderCrank, NewtonToleranceBoundsTheAcceptedState) {
+  test::TempDir dir("crank_newton");
+  auto chain = ffr::formats::synthetic::spring_chain(bench::rod_params(11, 10));
+  bench::add_section_inertia(chain.sid, 0.008, 0.008);
+  test::write_sid_file(chain.sid, dir / "rod.sid.h5");
+  Model loose = test::model_from(bench::slider_crank_json("rod.sid.h5", 1e-3, 0.1, 150.0), dir.path);
+  Model tight = loose;
+  tight.settings.newton_tolerance = 1e-15;
+  Data a(loose), b(tight);
+  initialize(loose, a);
+  initialize(tight, b);
+  double worst = 0, worst_violation = 0;
+  const auto n = step_count(loose);
+  for (std::int64_t i = 0; i < n; ++i) {
+    step(loose, a);
+    step(tight, b);
+    worst = std::max(worst, scaled_norm(loose, a.q - b.q));
+    worst_violation = std::max(worst_violation, a.stats.last_violation);
+  }
+  const double its_a = static_cast<double>(a.stats.newton_iterations) / static_cast<double>(n);
+  const double its_b = static_cast<double>(b.stats.newton_iterations) / static_cast<double>(n);
+  std::printf("states apart by %.2e at most (scaled as Newton's increments); %.2f against %.2f Newton iterations a step; violation %.2e\n",
+              worst, its_a, its_b, worst_violation);
+  EXPECT_LT(its_a, its_b - 0.5);  // the default does stop earlier
+  EXPECT_LT(worst, 1e-8);
+  EXPECT_LT(worst_violation, 1e-12);
+}

@@ -39,6 +39,9 @@ void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& 
   add_penalty_tangent(model, data, data.alpha, 0.25 * h * h, data.T);
   // The constraint forces' own derivative, with the multipliers of the current iterate.
   add_constraint_hessian(model, data, lam, 0.25 * h * h, data.T);
+  // The inertia forces' derivative through the modal masses at the iterate's accelerations: like
+  // the constraint Hessian it depends on the iterate, so it is rebuilt here, not kept in W.
+  add_modal_acceleration_tangent(model, data, 0.25 * h * h, data.T);
   factorize_tangent(data);
   data.tangent_valid = true;
   ++data.stats.factorizations;

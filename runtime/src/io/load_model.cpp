@@ -54,7 +54,7 @@ Table parse_table(const Field& f, int ncomp) {
 
 void parse_solver(const Field& root, ParseContext& ctx) {
   const Field s = root.at("solver");
-  s.allow_only({"start", "end", "step", "output_every", "tolerance", "max_iterations", "penalty", "reuse_jacobian",
+  s.allow_only({"start", "end", "step", "output_every", "tolerance", "newton_tolerance", "max_iterations", "penalty", "reuse_jacobian",
                 "eliminate_driven_bodies"});
   SolverSettings& st = ctx.model.settings;
   if (auto f = s.find("start")) st.start = f->number();
@@ -72,6 +72,7 @@ void parse_solver(const Field& root, ParseContext& ctx) {
     if (st.output_every < 1) f->fail("must be at least 1");
   }
   if (auto f = s.find("tolerance")) st.tolerance = f->positive();
+  if (auto f = s.find("newton_tolerance")) st.newton_tolerance = f->positive();
   if (auto f = s.find("max_iterations")) {
     st.max_iterations = f->small_integer();
     if (st.max_iterations < 1) f->fail("must be at least 1");

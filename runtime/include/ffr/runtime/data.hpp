@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace ffr::runtime {
@@ -106,6 +107,10 @@ struct Data {
   VectorXd qdd_prev;            ///< accelerations of the step before (predictor)
   bool have_previous = false;
   VectorXd f, dq, r, sigma, c, tmp, vstar;
+  /// Newton's quadratic constant after a fresh tangent, inc_next / inc^2, as last measured, and
+  /// the steps since (ali3p.cpp: accepting an iterate on it).
+  double newton_kappa = std::numeric_limits<double>::infinity();
+  int kappa_age = 0;
 
   // Joints: unwrapped angle of each revolute/cylindrical joint at the last accepted step.
   std::vector<double> angle_ref;

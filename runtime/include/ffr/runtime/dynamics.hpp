@@ -19,6 +19,10 @@ void mass_matrices(const Model& model, Data& data);
 /// (integrated()); a driven body's entries of y are left as they are.
 void mass_times(const Model& model, const Data& data, const VectorXd& x, VectorXd& y);
 
+/// T += scale * d(M(q) q_dd)/dy at frozen q_dd, for the modal block of each integrated flexible
+/// body (FORMULATION.md 9): sum_ab (A_b . A_dd_a) PPdm[b][a]. Needs update_bodies (bd.A, bd.Add).
+void add_modal_acceleration_tangent(const Model& model, const Data& data, double scale, MatrixXd& T);
+
 /// data.Q at time t. Needs update_bodies, update_markers and the mass matrices (for nothing
 /// else than the stiffening accelerations, which come from data.qdd). A driven body's own terms
 /// (while it is eliminated) are left out: nothing reads them.
@@ -35,6 +39,9 @@ void force_tangents(const Model& model, Data& data, double t);
 void fe_mass_matrix(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& z);
 void fe_inertia_forces(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<VectorXd> Qb);
 void fe_inertia_tangents(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<MatrixXd> Cb);
+
+/// One body's part of add_modal_acceleration_tangent, into its [nq, nq] block.
+void body_modal_acceleration_tangent(const Body& b, const BodyData& bd, double scale, Eigen::Ref<MatrixXd> Tyy);
 
 /// Velocity-dependent inertia forces of one body (local vector, nb) added to Qb.
 void body_inertia_forces(const Body& b, const BodyData& bd, const Eigen::Ref<const VectorXd>& zd,

@@ -197,7 +197,10 @@ struct SolverSettings {
   double end = 1.0;
   double step = 1e-3;
   int output_every = 1;          ///< record every n-th step
-  double tolerance = 1e-12;      ///< Newton: scaled increment and constraint violation
+  double tolerance = 1e-12;      ///< constraint violation left by Newton and the projections (model lengths)
+  /// Newton: estimated error of the accepted coordinates (scaled: lengths / model length, frame
+  /// vectors, modal amplitudes / y_scale). Far below a step's truncation error, far above round-off.
+  double newton_tolerance = 1e-10;
   int max_iterations = 30;
   double penalty = 1e4;          ///< alpha * h^2/4 relative to the mean body mass (FORMULATION.md 9)
   /// Keep the factorised tangent over steps while Newton converges fast (it is refreshed as
