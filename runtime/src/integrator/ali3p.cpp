@@ -32,10 +32,13 @@ std::string newton_failure(double t, int it, double inc, double viol) {
 // speed; the usual step needs one or two).
 constexpr int kMaxRefreshes = 5;
 
-// Number of multiplier passes inside one Newton iteration (see newton_direction). The second
-// runs only when the first leaves the linearised violation above the tolerance; it takes it to
-// round-off (on the benchmark's crank from ~1e-12 to ~1e-15 of the model length), which lets an
-// iterate be accepted right after a fresh tangent (kKappaLife).
+// Number of multiplier passes inside one Newton iteration (see newton_direction). From the
+// second iteration on, a second runs when the first leaves the linearised violation above the
+// tolerance; it takes it to round-off (on the benchmark's crank from ~1e-12 to ~1e-15 of the
+// model length), which lets an iterate be accepted right after a fresh tangent (kKappaLife).
+// The first iteration's update is never the last on a step of any speed, and its second pass
+// changed nothing after it (the second iterate's increment stayed 6.4e-9 on the trace of
+// FORMULATION.md 9): one pass there.
 constexpr int kMultiplierPasses = 2;
 
 // An update made with a tangent built at its own iterate leaves an error of about
@@ -69,9 +72,9 @@ constexpr double kStaleTangent = 1.0;
 // only linearly where the penalty is weak against the tangent (a loop closed through an
 // elastic body). One pass costs a solve and two products with Phi_q, far less than an
 // iteration; on the benchmark's slider-crank it takes Newton from 7.0 to 4.5 iterations per
-// step (more passes gained nothing more). Returns the linearised violation left at q - dq, in
-// model lengths.
-double newton_direction(const Model& model, Data& data, double h) {
+// step (more passes gained nothing more then; see kMultiplierPasses for the second). At most
+// `passes` passes. Returns the linearised violation left at q - dq, in model lengths.
+double newton_direction(const Model& model, Data& data, double h, int passes) {
   const double h4 = 0.25 * h * h;
   solve_tangent(data, data.f, data.dq);
   data.sigma.setZero();
@@ -80,7 +83,7 @@ double newton_direction(const Model& model, Data& data, double h) {
     constraint_times(model, data, data.dq, data.c);
     data.c = data.Phi - data.c;
     left = data.c.cwiseAbs().maxCoeff() / model.length;
-    if (pass == kMultiplierPasses || left < model.settings.tolerance) break;
+    if (pass == passes || left < model.settings.tolerance) break;
     data.sigma += data.alpha.cwiseProduct(data.c);
     data.r = data.f;
     data.tmp = h4 * data.sigma;
@@ -184,7 +187,8 @@ void step(const Model& model, Data& data) {
       refactor = constraints_only = false;
       ++refreshes;
     }
-    double left = newton_direction(model, data, h);
+    const int passes = it == 1 ? 1 : kMultiplierPasses;
+    double left = newton_direction(model, data, h, passes);
     double next_inc = scaled_norm(model, data.dq);
     // A tangent built at an earlier iterate under which the increment more than doubles is not
     // used: its update is discarded and the direction recomputed with a tangent built here.
@@ -197,7 +201,7 @@ void step(const Model& model, Data& data) {
       data.tangent_fresh_step = true;
       refreshed_now = true;
       ++refreshes;
-      left = newton_direction(model, data, h);
+      left = newton_direction(model, data, h, passes);
       next_inc = scaled_norm(model, data.dq);
     }
     data.q -= data.dq;
