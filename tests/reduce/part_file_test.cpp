@@ -55,3 +55,36 @@ TEST(PartFile, BadInputsNameTheField) {
     EXPECT_NE(e.find(c.expect), std::string::npos) << "input: " << c.json << "\nmessage: " << e;
   }
 }
+
+// E and rho in another unit system than the part's: sqrt(E / rho) leaves the range of solids
+// (20 m/s for soft rubber to 18 km/s for diamond; refused outside 10 m/s .. 1e5 m/s).
+TEST(PartFile, UnitMistakesAreRefused) {
+  const auto part = [](const std::string& units, const std::string& block, const std::string& mat) {
+    return R"({"geometry": "g.geo", "units": )" + units + ", \"" + block + R"(": [{"group": "all", )" + mat +
+           R"(}], "reduction": {"method": "free", "modes": 6}})";
+  };
+  const std::string si = R"({"length": "m", "mass": "kg", "time": "s"})";
+  const std::string mm = R"({"length": "mm", "mass": "t", "time": "s"})";
+  // Aluminium: 5.09 km/s in every consistent system.
+  EXPECT_EQ(error_of(part(si, "materials", R"("E": 7e10, "nu": 0.33, "rho": 2700)")), "");
+  EXPECT_EQ(error_of(part(mm, "materials", R"("E": 70000, "nu": 0.33, "rho": 2.7e-9)")), "");
+  // Soft rubber, 42.6 m/s: a material, not a mistake.
+  EXPECT_EQ(error_of(part(si, "materials", R"("E": 2e6, "nu": 0.45, "rho": 1100)")), "");
+  struct Case { std::string json, expect; };
+  const std::vector<Case> cases = {
+      // E in MPa with rho in kg/m^3 and lengths in mm: 5.09 mm/s.
+      {part(mm, "materials", R"("E": 70000, "nu": 0.33, "rho": 2700)"), "materials[0]: sqrt(E / rho) = 5.09 mm/s (0.00509 m/s)"},
+      // E in GPa in SI: 0.161 m/s.
+      {part(si, "materials", R"("E": 70, "nu": 0.33, "rho": 2700)"), "(0.161 m/s)"},
+      // E in Pa with lengths in mm: 5.09e6 m/s.
+      {part(mm, "materials", R"("E": 7e10, "nu": 0.33, "rho": 2.7e-9)"), "E and rho are not in the part's units (length mm, mass t, time s"},
+      // The SI values in a part declared in mm and t: 5.09 m/s.
+      {part(mm, "materials", R"("E": 7e10, "nu": 0.33, "rho": 2700)"), "(5.09 m/s)"},
+      // rho in g/cm^3 in SI, on a shell.
+      {part(si, "shells", R"("thickness": 0.002, "E": 7e10, "nu": 0.33, "rho": 2.7)"), "shells[0]: sqrt(E / rho)"},
+  };
+  for (const auto& c : cases) {
+    const std::string e = error_of(c.json);
+    EXPECT_NE(e.find(c.expect), std::string::npos) << "input: " << c.json << "\nmessage: " << e;
+  }
+}

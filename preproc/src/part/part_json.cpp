@@ -4,6 +4,8 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <set>
 
 namespace ffr::preproc {
@@ -20,12 +22,33 @@ std::string name_of(const JsonNode& n) {
   return name;
 }
 
-Material read_material(const JsonNode& n) {
+// Bounds on sqrt(E / rho), the bar wave speed, in m/s. Solids run from about 20 m/s (soft
+// rubber) to 18 km/s (diamond); a value out of [10, 1e5] m/s is a unit mistake, not a material.
+// Metals are near 5 km/s, and the usual mistakes move them by a factor 1000 or more: SI values
+// in a part declared in mm and t, or E in MPa in SI (5 m/s), E in MPa with rho in kg/m^3 in mm
+// (5 mm/s), E in Pa with rho in t/mm^3 (5e6 m/s), E in GPa (0.16 m/s), rho in t/m^3 (1.6e5 m/s).
+constexpr double kSlowestWave = 10.0, kFastestWave = 1e5;
+
+double length_in_m(const std::string& u) { return u == "mm" ? 1e-3 : u == "cm" ? 1e-2 : 1.0; }
+double time_in_s(const std::string& u) { return u == "ms" ? 1e-3 : 1.0; }
+
+Material read_material(const JsonNode& n, const Units& u) {
   Material m;
   m.E = n.at("E").positive();
   m.nu = n.at("nu").number();
   if (!(m.nu > -1.0 && m.nu < 0.5)) n.at("nu").fail("Poisson's ratio must lie in (-1, 0.5)");
   m.rho = n.at("rho").non_negative();
+  if (m.rho > 0) {
+    const double c = std::sqrt(m.E / m.rho);  // length / time of the part's units
+    const double c_si = c * length_in_m(u.length) / time_in_s(u.time);
+    if (!(c_si >= kSlowestWave && c_si <= kFastestWave)) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "sqrt(E / rho) = %.3g %s/%s (%.3g m/s), where solids have 20 m/s to 18 km/s", c,
+                    u.length.c_str(), u.time.c_str(), c_si);
+      n.fail(std::string(buf) + ": E and rho are not in the part's units (length " + u.length + ", mass " + u.mass +
+             ", time " + u.time + "; E in MPa goes with lengths in mm and rho in t/mm^3)");
+    }
+  }
   return m;
 }
 
@@ -72,11 +95,11 @@ GroupDef read_group(const JsonNode& n) {
   return g;
 }
 
-BeamProps read_beam(const JsonNode& n) {
+BeamProps read_beam(const JsonNode& n, const Units& u) {
   n.allow_only({"group", "E", "nu", "rho", "section", "y_axis"});
   BeamProps b;
   b.group = n.at("group").string();
-  b.mat = read_material(n);
+  b.mat = read_material(n, u);
   const JsonNode s = n.at("section");
   s.allow_only({"A", "Iy", "Iz", "J", "ky", "kz"});
   b.A = s.at("A").positive();
@@ -223,15 +246,15 @@ PartSpec load_part(const std::filesystem::path& path) {
   if (auto ms = root.find("materials"))
     for (const auto& n : ms->items()) {
       n.allow_only({"group", "E", "nu", "rho"});
-      p.materials.push_back({n.at("group").string(), read_material(n)});
+      p.materials.push_back({n.at("group").string(), read_material(n, p.units)});
     }
   if (auto ss = root.find("shells"))
     for (const auto& n : ss->items()) {
       n.allow_only({"group", "thickness", "E", "nu", "rho"});
-      p.shells.push_back({n.at("group").string(), n.at("thickness").positive(), read_material(n)});
+      p.shells.push_back({n.at("group").string(), n.at("thickness").positive(), read_material(n, p.units)});
     }
   if (auto bs = root.find("beams"))
-    for (const auto& n : bs->items()) p.beams.push_back(read_beam(n));
+    for (const auto& n : bs->items()) p.beams.push_back(read_beam(n, p.units));
   if (p.materials.empty() && p.shells.empty() && p.beams.empty())
     root.fail("the part has no material: give \"materials\", \"shells\" or \"beams\"");
   if (auto pm = root.find("point_masses"))
