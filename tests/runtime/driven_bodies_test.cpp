@@ -85,14 +85,20 @@ TEST(DrivenBodies, TheDrivenCrankLeavesTheUnknowns) {
   EXPECT_EQ(m.ncoord, 46);
   EXPECT_EQ(m.nfree, 34);         // rod (12 + 10 modes) and slider (12)
   EXPECT_EQ(m.nconstraints, 39);
-  EXPECT_EQ(m.nactive, 27);       // the crank's frame, its hub and the hub's motion drop out
+  // The crank's frame, its hub and the hub's motion drop out, and the slider's frame (frame-locked
+  // by its guide).
+  EXPECT_EQ(m.nactive, 21);
   EXPECT_EQ(crank.offset, 34);    // the driven coordinates after the integrated ones
+  EXPECT_TRUE(m.bodies[static_cast<std::size_t>(m.find_body("slider"))].frame_locked);
+  EXPECT_EQ(m.nunknown, 25);      // the slider's frame vectors are known
   Data data(m);
   initialize(m, data);
   EXPECT_EQ(data.nf, 34);
-  EXPECT_EQ(data.na, 27);
+  EXPECT_EQ(data.unknowns.size(), 25u);
+  EXPECT_EQ(data.na, 21);
   const Model whole = with_drives(m, false);
   EXPECT_EQ(whole.nfree, 46);
+  EXPECT_EQ(whole.nunknown, 46);
   EXPECT_EQ(whole.nactive, 39);
 }
 
@@ -116,6 +122,47 @@ TEST(DrivenBodies, PrismaticAndFixedDrivesAgreeWithTheIntegratedBodies) {
   const double d = largest_difference(m, {"table", "arm", "post"});
   std::printf("largest coordinate difference over 400 steps: %.3g\n", d);
   EXPECT_LT(d, 1e-8);
+}
+
+// An elliptic trammel: a link hinged to two sliders on perpendicular rails, swinging under
+// gravity. Both sliders are frame-locked (prismatic joints to the ground without motions): 18
+// frame coordinates and 12 frame rows leave the step; the motion must be the integrated one's.
+TEST(DrivenBodies, FrameLockedSlidersAgreeWithTheIntegratedBodies) {
+  const Model m = test::model_from(R"({
+  "gravity": [0, -9.81, 0],
+  "bodies": [
+    {"name": "a", "type": "rigid", "mass": 0.5, "com": [0, 0, 0], "inertia": [[1e-3, 0, 0], [0, 1e-3, 0], [0, 0, 1e-3]],
+     "position": [0.21213203435596426, 0, 0]},
+    {"name": "b", "type": "rigid", "mass": 0.3, "com": [0, 0, 0], "inertia": [[1e-3, 0, 0], [0, 1e-3, 0], [0, 0, 1e-3]],
+     "position": [0, 0.21213203435596426, 0]},
+    {"name": "link", "type": "rigid", "mass": 0.2, "com": [0, 0, 0],
+     "inertia": [[7.6e-4, 7.5e-4, 0], [7.5e-4, 7.6e-4, 0], [0, 0, 1.51e-3]],
+     "position": [0.10606601717798213, 0.10606601717798213, 0], "angular_velocity": [0, 0, 4]}
+  ],
+  "joints": [
+    {"name": "rail_a", "type": "prismatic", "body1": "ground", "body2": "a", "at": [0.21213203435596426, 0, 0], "axis": [1, 0, 0]},
+    {"name": "rail_b", "type": "prismatic", "body1": "b", "body2": "ground", "at": [0, 0.21213203435596426, 0], "axis": [0, 1, 0]},
+    {"name": "pin_a", "type": "revolute", "body1": "a", "body2": "link", "at": [0.21213203435596426, 0, 0], "axis": [0, 0, 1]},
+    {"name": "pin_b", "type": "revolute", "body1": "link", "body2": "b", "at": [0, 0.21213203435596426, 0], "axis": [0, 0, 1]}
+  ],
+  "solver": {"end": 0.4, "step": 1e-3}
+})");
+  EXPECT_TRUE(m.bodies[0].frame_locked);
+  EXPECT_TRUE(m.bodies[1].frame_locked);  // its rail's ground side is marker 2
+  EXPECT_FALSE(m.bodies[2].frame_locked);
+  EXPECT_EQ(m.nfree, 36);
+  EXPECT_EQ(m.nunknown, 18);
+  EXPECT_EQ(m.nactive, 3 * 6 + 2 * 5 + 2 * 5 - 2 * 6);
+  const double d = largest_difference(m, {"a", "b", "link"});
+  std::printf("largest coordinate difference over 400 steps: %.3g\n", d);
+  EXPECT_LT(d, 1e-8);
+  EXPECT_GT(d, 0.0);  // two computations, not one
+  // The sliders did slide (the check is not of a model at rest).
+  Data data(m);
+  initialize(m, data);
+  const Vector3d a0 = data.q.segment<3>(m.bodies[0].offset);
+  for (int i = 0; i < 200; ++i) step(m, data);
+  EXPECT_GT((data.q.segment<3>(m.bodies[0].offset) - a0).norm(), 1e-2);
 }
 
 // Phi_t and gamma of the rows that join integrated to driven bodies are the first and second

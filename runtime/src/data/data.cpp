@@ -32,6 +32,8 @@ Data::Data(const Model& model) {
   K = C = W = T = MatrixXd::Zero(n, n);
   Phiq = MatrixXd::Zero(m, n);
   lu.resize(n);
+  unknowns.reserve(static_cast<std::size_t>(n));  // set_unknowns fills it without allocating
+  lu_work = VectorXd::Zero(n);
   scale = VectorXd::Ones(n);
   Phi = Phit = gamma = VectorXd::Zero(m);
 

@@ -47,6 +47,7 @@ DriveReference reference(const Model& model, const Data& data, int i) {
 void set_unknowns(const Model& model, Data& data, bool eliminate) {
   // (A model whose bodies are all driven is integrated whole: nothing would be left to solve.)
   const bool any = model.nfree < model.ncoord && model.nfree > 0;
+  data.unknowns.clear();
   if (!eliminate || !any) {
     data.nf = model.ncoord;
     data.na = model.nconstraints;
@@ -56,9 +57,18 @@ void set_unknowns(const Model& model, Data& data, bool eliminate) {
   }
   update_bodies(model, data);
   update_markers(model, data);
-  for (std::size_t i = 0; i < model.bodies.size(); ++i)
-    if (model.bodies[i].driven()) data.drive_ref[i] = reference(model, data, static_cast<int>(i));
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    const Body& b = model.bodies[i];
+    if (b.driven()) data.drive_ref[i] = reference(model, data, static_cast<int>(i));
+    if (b.frame_locked) data.drive_ref[i].A = Eigen::Map<const Matrix3d>(data.q.data() + b.offset + 3);
+  }
   data.nf = model.nfree;
+  if (model.nunknown < model.nfree)
+    for (const Body& b : model.bodies) {  // the integrated ones come in the order of their offsets
+      if (b.driven()) continue;
+      for (int k = 0; k < b.ncoord(); ++k)
+        if (!(b.frame_locked && k >= 3 && k < 12)) data.unknowns.push_back(b.offset + k);
+    }
   data.na = model.nactive;
   data.nblocks = model.active_blocks;
   for (std::size_t i = 0; i < model.bodies.size(); ++i) data.integrated[i] = model.bodies[i].driven() ? 0 : 1;
@@ -70,6 +80,13 @@ void drive_bodies(const Model& model, Data& data, double t) {
   if (data.nf == model.ncoord) return;
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
+    if (b.frame_locked) {  // it slides only: the frame as it was, at rest
+      const int o = b.offset;
+      Eigen::Map<Matrix3d>(data.q.data() + o + 3) = data.drive_ref[i].A;
+      data.qd.segment<9>(o + 3).setZero();
+      data.qdd.segment<9>(o + 3).setZero();
+      continue;
+    }
     if (!b.driven()) continue;
     const DriveReference& ref = data.drive_ref[i];
     const Vector3d v = b.drive.motion >= 0 ? motion_target(model, data, b.drive.motion, t) : Vector3d::Zero();

@@ -53,6 +53,14 @@ void factorize_tangent(Data& data) {
     const double d = std::abs(data.T(i, i));
     data.scale(i) = d > 0 ? 1.0 / std::sqrt(d) : 1.0;
   }
+  if (!data.unknowns.empty()) {  // the unknowns' rows and columns only (Data::unknowns)
+    const auto& u = data.unknowns;
+    const auto k = static_cast<Eigen::Index>(u.size());
+    data.lu.compute(Eigen::MatrixXd::NullaryExpr(k, k, [&](Eigen::Index i, Eigen::Index j) {
+      return data.scale(u[i]) * data.T(u[i], u[j]) * data.scale(u[j]);
+    }));
+    return;
+  }
   const auto S = data.scale.head(nf).asDiagonal();
   data.lu.compute(S * data.T.topLeftCorner(nf, nf) * S);
 }
@@ -65,6 +73,15 @@ void solve_tangent(Data& data, const VectorXd& rhs, VectorXd& out) {
   // A singular tangent gives a non-finite direction, which the callers report.
   if (!data.lu.ok()) {
     out.head(nf).setConstant(std::numeric_limits<double>::quiet_NaN());
+    return;
+  }
+  if (!data.unknowns.empty()) {  // gathered to the unknowns, solved, scattered back
+    const auto& u = data.unknowns;
+    const auto k = static_cast<Eigen::Index>(u.size());
+    for (Eigen::Index i = 0; i < k; ++i) data.lu_work(i) = data.scale(u[i]) * rhs(u[i]);
+    data.lu.solve_in_place(data.lu_work);
+    out.head(nf).setZero();  // the known frame vectors do not move
+    for (Eigen::Index i = 0; i < k; ++i) out(u[i]) = data.scale(u[i]) * data.lu_work(i);
     return;
   }
   out.head(nf) = data.scale.head(nf).cwiseProduct(rhs.head(nf));

@@ -106,12 +106,30 @@ void find_drives(Model& m) {
   }
 }
 
-// Active blocks (touching an integrated body) first, in their order, then the others; rows
+// Frame-locked bodies (Body::frame_locked): rigid, not driven, on a prismatic joint to the
+// ground without a motion (with one it is driven). Why: such a body only slides, and its nine
+// frame coordinates with the six rows of its frame made a slider-crank's step work on 34
+// unknowns and 27 rows where 25 and 21 describe it (measured: 27 us a step instead of 33).
+void find_frame_locks(Model& m) {
+  for (auto& b : m.bodies) b.frame_locked = false;
+  if (!m.settings.eliminate_driven) return;
+  for (const Joint& jt : m.joints) {
+    const int b1 = m.markers[jt.m1].body, b2 = m.markers[jt.m2].body;
+    if (jt.type != JointType::Prismatic || (b1 == kGround) == (b2 == kGround)) continue;
+    Body& b = m.bodies[b1 == kGround ? b2 : b1];
+    if (b.nq == 0 && !b.driven()) b.frame_locked = true;
+  }
+}
+
+// Active blocks (touching an integrated body, other than a frame-locked body's own frame) first, in their order, then the others; rows
 // numbered in that order, and the joints' and motions' block indices with them.
 void order_blocks(Model& m) {
   const auto integrated = [&](int body) { return body != kGround && !m.bodies[body].driven(); };
-  std::stable_partition(m.blocks.begin(), m.blocks.end(),
-                        [&](const ConstraintBlock& b) { return integrated(b.body1) || integrated(b.body2); });
+  const auto active = [&](const ConstraintBlock& b) {
+    if (b.kind == BlockKind::RigidBody && m.bodies[b.body1].frame_locked) return false;  // holds: the frame is known
+    return integrated(b.body1) || integrated(b.body2);
+  };
+  std::stable_partition(m.blocks.begin(), m.blocks.end(), active);
   int row = 0;
   m.active_blocks = 0;
   m.nactive = 0;
@@ -121,7 +139,7 @@ void order_blocks(Model& m) {
     row += b.rows;
     if (b.kind == BlockKind::Joint) m.joints[b.index].block = static_cast<int>(i);
     if (b.kind == BlockKind::Motion) m.motions[b.index].block = static_cast<int>(i);
-    if (integrated(b.body1) || integrated(b.body2)) {
+    if (active(b)) {
       m.active_blocks = static_cast<int>(i) + 1;
       m.nactive = row;
     }
@@ -134,6 +152,7 @@ void order_blocks(Model& m) {
 void finalize(Model& m) {
   // Coordinates: the integrated bodies first, the driven ones after them.
   find_drives(m);
+  find_frame_locks(m);
   int off = 0;
   double gyration = 0, mass_sum = 0;
   m.nfree = 0;
@@ -150,6 +169,9 @@ void finalize(Model& m) {
     mass_sum += b.mass;
   }
   m.ncoord = off;
+  m.nunknown = m.nfree;
+  for (const auto& b : m.bodies)
+    if (b.frame_locked) m.nunknown -= 9;
   m.length = gyration > 0 ? gyration : 1.0;
   m.mass = m.bodies.empty() ? 1.0 : mass_sum / static_cast<double>(m.bodies.size());
   for (auto& b : m.bodies) {

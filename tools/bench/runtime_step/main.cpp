@@ -112,8 +112,8 @@ int run(ffr::cli::Args& args) {
               repeats, end);
   const Model sc = slider_crank(dir, 11, 10, 1e-3, end);
   const Timing t = time_model(sc, repeats);
-  std::printf("coordinates %d, constraint rows %d; unknowns of the step %d and %d (driven bodies eliminated)\n", sc.ncoord, sc.nconstraints,
-              sc.nfree, sc.nactive);
+  std::printf("coordinates %d, constraint rows %d; unknowns of the step %d and %d (driven bodies eliminated, frames locked)\n",
+              sc.ncoord, sc.nconstraints, sc.nunknown, sc.nactive);
   std::printf("per step %.2f us  (Newton iterations %.2f, factorisations %.2f, solves %.2f per step)  target <= 25 us: %s\n",
               t.us_per_step, t.iterations_per_step, t.factorizations_per_step, t.solves_per_step,
               t.us_per_step <= 25 ? "met" : "NOT met");

@@ -80,6 +80,11 @@ struct Data {
   // (every body moves); afterwards, with driven bodies eliminated, model.nfree and
   // model.nactive, the driven bodies following their drives (drive_bodies).
   int nf = 0, na = 0, nblocks = 0;
+  /// The coordinates solved for, ascending: [0, nf) less the frame vectors of frame-locked
+  /// bodies (Body::frame_locked), which follow drive_bodies like a driven body's. The tangent is
+  /// built over [0, nf) and factorised over these (empty: all of [0, nf)).
+  std::vector<int> unknowns;
+  VectorXd lu_work;             ///< the right-hand side gathered to the unknowns
   std::vector<char> integrated;           ///< per body: its coordinates are unknowns now
   std::vector<DriveReference> drive_ref;  ///< per body (driven bodies only)
 

@@ -83,6 +83,10 @@ struct Body {
   int ncoord() const { return 12 + nq; }
   Drive drive;         ///< set by finalize() (rigid bodies driven relative to the ground)
   bool driven() const { return drive.kind != DriveKind::None; }
+  /// A rigid body on a prismatic joint to the ground without a motion cannot turn: while driven
+  /// bodies are eliminated, its frame vectors are known (its pose after the initial conditions)
+  /// and only its position is an unknown of the step (FORMULATION.md section 9). Set by finalize().
+  bool frame_locked = false;
 
   // Inertia (body frame, about the frame origin O).
   double mass = 0;
@@ -228,11 +232,13 @@ struct Model {
   SolverSettings settings;
 
   // Filled by finalize(). Coordinates: the bodies that are integrated first (nfree numbers),
-  // the driven ones after them. Constraint blocks: those that involve an integrated body first
+  // the driven ones after them; the frame vectors of frame-locked bodies among the first are
+  // known too (nunknown unknowns). Constraint blocks: those that involve an integrated body first
   // (nactive rows in active_blocks blocks), then those among the ground and driven bodies only,
   // which hold by construction once the driven bodies follow their drives.
   std::vector<ConstraintBlock> blocks;
   int nfree = 0;
+  int nunknown = 0;              ///< unknowns of the step: nfree less 9 per frame-locked body
   int nactive = 0;
   int active_blocks = 0;
   /// Per body, where external loads (C API) can act: slot 0 the frame origin, 1 + p node p.
