@@ -157,9 +157,12 @@ TEST(DrivenBodies, FrameLockedSlidersAgreeWithTheIntegratedBodies) {
   std::printf("largest coordinate difference over 400 steps: %.3g\n", d);
   EXPECT_LT(d, 1e-8);
   EXPECT_GT(d, 0.0);  // two computations, not one
-  // The sliders did slide (the check is not of a model at rest).
+  // The sliders did slide (the check is not of a model at rest), with their frames out of the
+  // unknowns (no body is driven here).
   Data data(m);
   initialize(m, data);
+  EXPECT_EQ(data.unknowns.size(), 18u);
+  EXPECT_EQ(data.na, m.nactive);
   const Vector3d a0 = data.q.segment<3>(m.bodies[0].offset);
   for (int i = 0; i < 200; ++i) step(m, data);
   EXPECT_GT((data.q.segment<3>(m.bodies[0].offset) - a0).norm(), 1e-2);

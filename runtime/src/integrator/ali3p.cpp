@@ -41,7 +41,8 @@ constexpr int kMaxRefreshes = 5;
 // FORMULATION.md 9): one pass there.
 constexpr int kMultiplierPasses = 2;
 
-// An update made with a tangent built at its own iterate leaves an error of about
+// An update made with a tangent built at its own iterate (a rebuild after the first iteration:
+// the predictor's tangent, whose iterate is far off, behaves otherwise) leaves an error of about
 // kappa * inc^2 (Newton's quadratic convergence), with kappa = inc_next / inc^2 as last measured
 // (an iteration that followed such an update). The iterate is accepted on that estimate, with a
 // factor 2 of margin, for up to kKappaLife steps after the measurement; then one step goes on
@@ -207,9 +208,8 @@ void step(const Model& model, Data& data) {
     data.q -= data.dq;
     prev_inc = inc;
     inc = next_inc;
-
     if (!std::isfinite(inc)) throw SolverError(t1, inc, newton_failure(t1, it, inc, viol) + ": singular tangent");
-    // Converged when the error left after this update is below the tolerance: for a contracting
+    // Converged when the error left after this update is below newton_tolerance: for a contracting
     // iteration (rate theta = inc / prev_inc < 1) it is at most inc theta / (1 - theta)
     // (Hairer & Wanner, Solving ODEs II, IV.8), and the constraints left by the update are
     // the linearised violation (plus O(inc^2)).

@@ -46,7 +46,7 @@ DriveReference reference(const Model& model, const Data& data, int i) {
 
 void set_unknowns(const Model& model, Data& data, bool eliminate) {
   // (A model whose bodies are all driven is integrated whole: nothing would be left to solve.)
-  const bool any = model.nfree < model.ncoord && model.nfree > 0;
+  const bool any = (model.nfree < model.ncoord || model.nunknown < model.nfree) && model.nfree > 0;
   data.unknowns.clear();
   if (!eliminate || !any) {
     data.nf = model.ncoord;
@@ -77,7 +77,7 @@ void set_unknowns(const Model& model, Data& data, bool eliminate) {
 }
 
 void drive_bodies(const Model& model, Data& data, double t) {
-  if (data.nf == model.ncoord) return;
+  if (data.nf == model.ncoord && data.unknowns.empty()) return;  // everything integrated
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
     if (b.frame_locked) {  // it slides only: the frame as it was, at rest

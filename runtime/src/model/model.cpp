@@ -121,8 +121,9 @@ void find_frame_locks(Model& m) {
   }
 }
 
-// Active blocks (touching an integrated body, other than a frame-locked body's own frame) first, in their order, then the others; rows
-// numbered in that order, and the joints' and motions' block indices with them.
+// Active blocks (touching an integrated body, other than a frame-locked body's own frame)
+// first, in their order, then the others; rows numbered in that order, and the joints' and
+// motions' block indices with them.
 void order_blocks(Model& m) {
   const auto integrated = [&](int body) { return body != kGround && !m.bodies[body].driven(); };
   const auto active = [&](const ConstraintBlock& b) {
