@@ -201,13 +201,8 @@ void add_constraint_hessian(const Model& model, Data& data, const VectorXd& lam,
     const bool h1 = integrated(data, b.body1), h2 = integrated(data, b.body2);
     T.off[1] = h1 ? model.bodies[b.body1].offset : 0;
     T.off[2] = h2 ? model.bodies[b.body2].offset : 0;
-    // A frame-locked body's unknowns are its position alone: its first three columns.
-    const auto columns = [&](int body) {
-      const Body& B = model.bodies[body];
-      return data.unknowns.empty() || !B.frame_locked ? B.ncoord() : 3;
-    };
-    T.nb[1] = h1 ? columns(b.body1) : 0;
-    T.nb[2] = h2 ? columns(b.body2) : 0;
+    T.nb[1] = h1 ? unknown_columns(model, data, b.body1) : 0;
+    T.nb[2] = h2 ? unknown_columns(model, data, b.body2) : 0;
     if (b.kind == BlockKind::Joint) {
       data.cl.head(b.rows) = factor * l;
       joint_hessian(model, data, model.joints[b.index], data.cl.head(b.rows), T);

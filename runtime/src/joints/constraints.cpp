@@ -253,12 +253,8 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
     }
     // A joint within one body has its rows once in Phiq: its term is that block's alone.
     const bool h1 = integrated(data, b.body1), h2 = integrated(data, b.body2) && b.body2 != b.body1;
-    // A frame-locked body's unknowns are its position alone: the block's first three columns.
-    const auto unknown_columns = [&](int body, const detail::JacobianBlock& J) {
-      return data.unknowns.empty() || !model.bodies[body].frame_locked ? static_cast<int>(J.cols()) : 3;
-    };
-    const int o1 = h1 ? model.bodies[b.body1].offset : 0, n1 = h1 ? unknown_columns(b.body1, J1) : 0;
-    const int o2 = h2 ? model.bodies[b.body2].offset : 0, n2 = h2 ? unknown_columns(b.body2, J2) : 0;
+    const int o1 = h1 ? model.bodies[b.body1].offset : 0, n1 = h1 ? unknown_columns(model, data, b.body1) : 0;
+    const int o2 = h2 ? model.bodies[b.body2].offset : 0, n2 = h2 ? unknown_columns(model, data, b.body2) : 0;
     if (h1) {
       weigh(J1, 0, n1);
       add(J1, o1, o1, 0, n1, n1);

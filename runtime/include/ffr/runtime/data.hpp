@@ -152,6 +152,13 @@ struct Data {
 /// of other bodies act like the ground's: points and axes that move as given, without columns.
 inline bool integrated(const Data& data, int body) { return body != kGround && data.integrated[static_cast<std::size_t>(body)]; }
 
+/// How many of an integrated body's coordinates, from its first, the tangent needs: all of them,
+/// or a frame-locked body's position alone while its frame is known (Data::unknowns).
+inline int unknown_columns(const Model& model, const Data& data, int body) {
+  const Body& b = model.bodies[static_cast<std::size_t>(body)];
+  return b.frame_locked && !data.unknowns.empty() ? 3 : b.ncoord();
+}
+
 /// Applies force and torque (global axes) at a body's load slot (0 = frame origin, 1 + p = its
 /// node p) from the next evaluation on, until clear_external_loads. Allocation-free.
 void set_external_load(Data& data, int body, int slot, const Vector3d& force, const Vector3d& torque);
