@@ -46,20 +46,17 @@ void mass_times(const Model& model, const Data& data, const VectorXd& x, VectorX
 // P_a(y) = y^T PPdm[a][b]: their derivative in y is sum_ab (A_b . A_dd_a) PPdm[a][b]^T, and
 // PPdm[a][b]^T = PPdm[b][a]. Why only this block of d(M(q) q_dd)/dq: on the benchmark's
 // slider-crank it is what kept Newton from converging quadratically once the tangent had been
-// rebuilt (spectral radius of T^-1 (T_fd - T) 1.6e-4 with it missing, 3.5e-5 without it, the
-// rest spread over the other blocks), at the cost of nine scaled nq x nq sums.
-void body_modal_acceleration_tangent(const Body& b, const BodyData& bd, double scale, Eigen::Ref<MatrixXd> Tyy) {
-  if (b.nq == 0) return;
-  const Matrix3d Om = bd.A.transpose() * bd.Add;  // Om(b, a) = A_b . A_dd_a
-  for (int a = 0; a < 3; ++a)
-    for (int c = 0; c < 3; ++c) Tyy += (scale * Om(c, a)) * b.PPdm[c][a];
-}
-
+// rebuilt (spectral radius of T^-1 (T_fd - T) 1.6e-4 with it missing, 3.5e-5 with it, the rest
+// spread over the other blocks), at the cost of nine scaled nq x nq sums.
 void add_modal_acceleration_tangent(const Model& model, const Data& data, double scale, MatrixXd& T) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
     if (b.nq == 0 || !data.integrated[i]) continue;
-    body_modal_acceleration_tangent(b, data.bodies[i], scale, T.block(b.offset + 12, b.offset + 12, b.nq, b.nq));
+    const BodyData& bd = data.bodies[i];
+    const Matrix3d Om = bd.A.transpose() * bd.Add;  // Om(c, a) = A_c . A_dd_a, the weight of PPdm[c][a]
+    auto Tyy = T.block(b.offset + 12, b.offset + 12, b.nq, b.nq);
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) Tyy += (scale * Om(c, a)) * b.PPdm[c][a];
   }
 }
 

@@ -79,8 +79,15 @@ Marker slot_marker(const Body& b, int node) {
 // The drive of each rigid body held, or moved by a motion, through a joint to the ground alone
 // (Drive). The first such joint of a body drives it; any other joint or motion between it and
 // the ground is then a condition among driven bodies, checked while the model runs.
+// A rigid body on a prismatic joint to the ground without a motion is frame-locked instead
+// (Body::frame_locked), unless another joint drives it. Why: such a body only slides, and its
+// nine frame coordinates with the six rows of its frame made a slider-crank's step work on 34
+// unknowns and 27 rows where 25 and 21 describe it (measured: 27 us a step instead of 33).
 void find_drives(Model& m) {
-  for (auto& b : m.bodies) b.drive = Drive{};
+  for (auto& b : m.bodies) {
+    b.drive = Drive{};
+    b.frame_locked = false;
+  }
   if (!m.settings.eliminate_driven) return;
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
     const Joint& jt = m.joints[j];
@@ -97,28 +104,18 @@ void find_drives(Model& m) {
     } else if (jt.type == JointType::Revolute || jt.type == JointType::Prismatic) {
       for (std::size_t i = 0; i < m.motions.size(); ++i)
         if (m.motions[i].joint == static_cast<int>(j)) d.motion = static_cast<int>(i);
-      if (d.motion < 0) continue;
+      if (d.motion < 0) {
+        b.frame_locked = b.frame_locked || jt.type == JointType::Prismatic;
+        continue;
+      }
       d.kind = jt.type == JointType::Revolute ? DriveKind::Revolute : DriveKind::Prismatic;
     } else {
       continue;
     }
     b.drive = d;
   }
-}
-
-// Frame-locked bodies (Body::frame_locked): rigid, not driven, on a prismatic joint to the
-// ground without a motion (with one it is driven). Why: such a body only slides, and its nine
-// frame coordinates with the six rows of its frame made a slider-crank's step work on 34
-// unknowns and 27 rows where 25 and 21 describe it (measured: 27 us a step instead of 33).
-void find_frame_locks(Model& m) {
-  for (auto& b : m.bodies) b.frame_locked = false;
-  if (!m.settings.eliminate_driven) return;
-  for (const Joint& jt : m.joints) {
-    const int b1 = m.markers[jt.m1].body, b2 = m.markers[jt.m2].body;
-    if (jt.type != JointType::Prismatic || (b1 == kGround) == (b2 == kGround)) continue;
-    Body& b = m.bodies[b1 == kGround ? b2 : b1];
-    if (b.nq == 0 && !b.driven()) b.frame_locked = true;
-  }
+  for (auto& b : m.bodies)
+    if (b.driven()) b.frame_locked = false;  // a later joint drove it: it is known whole
 }
 
 // Active blocks (touching an integrated body, other than a frame-locked body's own frame)
@@ -153,7 +150,6 @@ void order_blocks(Model& m) {
 void finalize(Model& m) {
   // Coordinates: the integrated bodies first, the driven ones after them.
   find_drives(m);
-  find_frame_locks(m);
   int off = 0;
   double gyration = 0, mass_sum = 0;
   m.nfree = 0;

@@ -40,9 +40,6 @@ void fe_mass_matrix(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd
 void fe_inertia_forces(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<VectorXd> Qb);
 void fe_inertia_tangents(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<MatrixXd> Cb);
 
-/// One body's part of add_modal_acceleration_tangent, into its [nq, nq] block.
-void body_modal_acceleration_tangent(const Body& b, const BodyData& bd, double scale, Eigen::Ref<MatrixXd> Tyy);
-
 /// Velocity-dependent inertia forces of one body (local vector, nb) added to Qb.
 void body_inertia_forces(const Body& b, const BodyData& bd, const Eigen::Ref<const VectorXd>& zd,
                          Eigen::Ref<VectorXd> Qb);
