@@ -53,6 +53,7 @@ Data::Data(const Model& model) {
       bd.PPy[a] = Matrix3Xd::Zero(3, nq);
     }
     bd.Pyd = MatrixXd::Zero(nq, 9);
+    bd.Py = MatrixXd::Zero(nq, 9);
     bd.M = MatrixXd::Zero(nb, nb);
     bd.omega = bd.alpha = bd.acc = Vector3d::Zero();
     bd.KG = MatrixXd::Zero(nq, nq);

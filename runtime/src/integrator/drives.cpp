@@ -48,6 +48,7 @@ void set_unknowns(const Model& model, Data& data, bool eliminate) {
   // (A model whose bodies are all driven is integrated whole: nothing would be left to solve.)
   const bool any = (model.nfree < model.ncoord || model.nunknown < model.nfree) && model.nfree > 0;
   data.unknowns.clear();
+  data.unknown_runs.clear();
   if (!eliminate || !any) {
     data.nf = model.ncoord;
     data.na = model.nconstraints;
@@ -69,6 +70,13 @@ void set_unknowns(const Model& model, Data& data, bool eliminate) {
       for (int k = 0; k < b.ncoord(); ++k)
         if (!(b.frame_locked && k >= 3 && k < 12)) data.unknowns.push_back(b.offset + k);
     }
+  for (std::size_t i = 0; i < data.unknowns.size(); ++i) {
+    const int at = static_cast<int>(i), u = data.unknowns[i];
+    if (at > 0 && u == data.unknowns[i - 1] + 1)
+      ++data.unknown_runs.back().len;
+    else
+      data.unknown_runs.push_back({at, u, 1});
+  }
   data.na = model.nactive;
   data.nblocks = model.active_blocks;
   for (std::size_t i = 0; i < model.bodies.size(); ++i) data.integrated[i] = model.bodies[i].driven() ? 0 : 1;

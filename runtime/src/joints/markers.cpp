@@ -6,6 +6,15 @@
 namespace ffr::runtime {
 namespace {
 
+// S y for a 3 x n slice (a mode slice, a marker's Jacobian), column by column in fixed-size
+// arithmetic: a dynamic-size Eigen product of this shape costs a call and its set-up, more than
+// its 3n multiply-adds, and the markers make dozens of them per evaluation.
+inline Vector3d slice_times(const Matrix3Xd& S, const double* y) {
+  Vector3d v = Vector3d::Zero();
+  for (Eigen::Index k = 0; k < S.cols(); ++k) v += S.col(k) * y[k];
+  return v;
+}
+
 // Fills J = [I?, x0 I, x1 I, x2 I, A S] for a local vector x with mode slice S.
 void local_jacobian(const Matrix3d& A, const Vector3d& x, const Matrix3Xd* S, bool point, Matrix3N& J) {
   J.leftCols<12>().setZero();
@@ -13,7 +22,7 @@ void local_jacobian(const Matrix3d& A, const Vector3d& x, const Matrix3Xd* S, bo
   for (int a = 0; a < 3; ++a) J.block<3, 3>(0, 3 + 3 * a).diagonal().setConstant(x(a));
   if (J.cols() > 12) {
     if (S)
-      J.rightCols(J.cols() - 12).noalias() = A * (*S);
+      for (Eigen::Index k = 0; k < S->cols(); ++k) J.col(12 + k).noalias() = A * S->col(k);
     else
       J.rightCols(J.cols() - 12).setZero();
   }
@@ -38,13 +47,14 @@ void marker_kinematics(const Model& model, const Marker& mk, const Data& data, M
   const int o = b.offset;
   const bool on_node = mk.node >= 0 && b.nq > 0;
   md.xbar = mk.c;
-  if (on_node) md.xbar.noalias() += mk.phi * data.q.segment(o + 12, b.nq);
+  const double* y = data.q.data() + o + 12;
+  if (on_node) md.xbar += slice_times(mk.phi, y);
   md.p = data.q.segment<3>(o);
   md.p.noalias() += bd.A * md.xbar;
   local_jacobian(bd.A, md.xbar, on_node ? &mk.phi : nullptr, true, md.Jp);
   for (int k = 0; k < 3; ++k) {
     md.ebar[k] = mk.E.col(k);
-    if (on_node) md.ebar[k].noalias() += mk.phiE[k] * data.q.segment(o + 12, b.nq);
+    if (on_node) md.ebar[k] += slice_times(mk.phiE[k], y);
     md.e[k].noalias() = bd.A * md.ebar[k];
     local_jacobian(bd.A, md.ebar[k], on_node ? &mk.phiE[k] : nullptr, false, md.Je[k]);
   }
@@ -60,16 +70,16 @@ void marker_rates(const Model& model, const Marker& mk, const Data& data, Marker
   md.pd = data.qd.segment<3>(o);
   md.pd.noalias() += bd.Ad * md.xbar;
   md.pb.setZero();
+  const double* yd = data.qd.data() + o + 12;
   if (on_node) {
-    const auto yd = data.qd.segment(o + 12, b.nq);
-    const Vector3d py = mk.phi * yd;
+    const Vector3d py = slice_times(mk.phi, yd);
     md.pd.noalias() += bd.A * py;
     md.pb.noalias() = 2.0 * bd.Ad * py;
   }
   for (int k = 0; k < 3; ++k) {
     md.ed[k].noalias() = bd.Ad * md.ebar[k];
     if (on_node) {
-      const Vector3d py = mk.phiE[k] * data.qd.segment(o + 12, b.nq);
+      const Vector3d py = slice_times(mk.phiE[k], yd);
       md.ed[k].noalias() += bd.A * py;
       md.eb[k].noalias() = 2.0 * bd.Ad * py;
     } else {
@@ -80,9 +90,9 @@ void marker_rates(const Model& model, const Marker& mk, const Data& data, Marker
   // are then their whole accelerations, J z_ddot + J_dot z_dot, which the constraints' gamma
   // takes as it takes the ground's zeros.
   if (!integrated(data, mk.body)) {
-    const auto zdd = data.qdd.segment(o, b.ncoord());
-    md.pb.noalias() += md.Jp * zdd;
-    for (int k = 0; k < 3; ++k) md.eb[k].noalias() += md.Je[k] * zdd;
+    const double* zdd = data.qdd.data() + o;
+    md.pb += slice_times(md.Jp, zdd);
+    for (int k = 0; k < 3; ++k) md.eb[k] += slice_times(md.Je[k], zdd);
   }
 }
 

@@ -172,6 +172,9 @@ void finalize(Model& m) {
   m.length = gyration > 0 ? gyration : 1.0;
   m.mass = m.bodies.empty() ? 1.0 : mass_sum / static_cast<double>(m.bodies.size());
   for (auto& b : m.bodies) {
+    b.PPdm_stack.resize(9 * b.nq, b.nq);
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) b.PPdm_stack.middleRows((3 * a + c) * b.nq, b.nq) = b.PPdm[a][c];
     b.y_scale.resize(b.nq);
     for (int k = 0; k < b.nq; ++k)
       b.y_scale(k) = b.Myy(k, k) > 0 ? m.length * std::sqrt(b.mass / b.Myy(k, k)) : m.length;

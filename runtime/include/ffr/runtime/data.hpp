@@ -24,6 +24,7 @@ struct BodyData {
   std::array<Matrix3Xd, 3> S;   ///< S_a = int xbar_a Phi dm = rPdm[a] + P_a(y), [3, nq]
   std::array<Matrix3Xd, 3> PPy; ///< work: rows (PPdm[a][b]^T y)^T, [3, nq]
   MatrixXd Pyd;                 ///< column 3b+c = PPdm[b][c] y_dot, [nq, 9]
+  MatrixXd Py;                  ///< work: column 3b+c = PPdm[b][c] y, [nq, 9]
   MatrixXd M;                   ///< body mass matrix [nb, nb]
   Vector3d omega;               ///< body-frame angular velocity (from the frame vectors)
   Vector3d alpha;               ///< body-frame angular acceleration
@@ -84,6 +85,12 @@ struct Data {
   /// bodies (Body::frame_locked), which follow drive_bodies like a driven body's. The tangent is
   /// built over [0, nf) and factorised over these (empty: all of [0, nf)).
   std::vector<int> unknowns;
+  /// unknowns as runs of consecutive coordinates (a body's, a frame-locked body's position):
+  /// unknowns[at + i] = first + i for i < len. The gathers go along them, contiguous.
+  struct Run {
+    int at, first, len;
+  };
+  std::vector<Run> unknown_runs;
   VectorXd lu_work;             ///< the right-hand side gathered to the unknowns
   std::vector<char> integrated;           ///< per body: its coordinates are unknowns now
   std::vector<DriveReference> drive_ref;  ///< per body (driven bodies only)
@@ -116,6 +123,9 @@ struct Data {
   /// the steps since (ali3p.cpp: accepting an iterate on it).
   double newton_kappa = std::numeric_limits<double>::infinity();
   int kappa_age = 0;
+  /// The last step rebuilt its predictor's tangent at the second iterate (kStaleTangent): the
+  /// predictor is then too far off for its accelerations to serve the tangent (ali3p.cpp).
+  bool predictor_far = false;
 
   // Joints: unwrapped angle of each revolute/cylindrical joint at the last accepted step.
   std::vector<double> angle_ref;

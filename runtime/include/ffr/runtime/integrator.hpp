@@ -51,11 +51,12 @@ double project_accelerations(const Model& model, Data& data, double t);
 
 /// Factorises T = W + h^2/4 (alpha Phi_q^T Phi_q + sum lam_i Phi_i,qq) with W = M + h/2 C + h^2/4 K
 /// at the current state (lam: the multipliers to use in the constraints' second derivatives;
-/// alpha: the step's penalties, which step() sets).
-void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& lam);
+/// alpha: the step's penalties, which step() sets). Without modal_acceleration, the inertia
+/// forces' derivative through the modal masses at the current accelerations is left out.
+void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& lam, bool modal_acceleration = true);
 /// The same with the W of the last refresh: only the constraint terms are rebuilt at the
 /// current state (what a tangent built a little way off misses most, see step()).
-void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& lam);
+void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& lam, bool modal_acceleration = true);
 
 /// Factorises data.T after symmetric diagonal scaling S T S, S = diag(|T_ii|^-1/2). The tangent
 /// mixes masses (down to ~1e-6 for a bar's section inertia) with h^2/4 K of stiff modes and the

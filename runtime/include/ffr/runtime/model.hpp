@@ -95,6 +95,9 @@ struct Body {
   Matrix3Xd Pdm;                     ///< [3, nq]
   std::array<Matrix3Xd, 3> rPdm;     ///< rPdm[a] = int c_a Phi dm, [3, nq]
   std::array<std::array<MatrixXd, 3>, 3> PPdm;  ///< int Phi_a^T Phi_b dm, [nq, nq]
+  /// The nine PPdm[a][b] stacked, rows 3a+b first: PPdm_stack x is all nine PPdm[a][b] x
+  /// ([9 nq]) in one product. Set by finalize().
+  MatrixXd PPdm_stack;
   MatrixXd PsiI;                     ///< [nq, 3] = sum Psi_p^T I_p (rotary coupling)
   MatrixXd Myy;                      ///< sum_a PPdm[a][a] + sum Psi^T I Psi: constant modal mass
   MatrixXd Ke, De;                   ///< modal stiffness and total modal damping

@@ -38,6 +38,16 @@ class SmallLU {
     Eigen::Map<Eigen::MatrixXd>(buffer_.data(), n_, n_) = A;  // in the buffer: no allocation
     return factorize();
   }
+  /// Factorises the k x k matrix that fill(Eigen::Map<Eigen::MatrixXd>&) writes into the own
+  /// buffer (for gathers an expression cannot state cheaply); otherwise as compute.
+  template <class Fill>
+  bool compute_filled(Eigen::Index k, Fill&& fill) {
+    eigen_assert(k <= capacity_);
+    n_ = k;
+    Eigen::Map<Eigen::MatrixXd> a(buffer_.data(), k, k);
+    fill(a);
+    return factorize();
+  }
   /// x <- A^-1 x with the last factorisation (its first k entries; x may be longer).
   void solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const;
 
