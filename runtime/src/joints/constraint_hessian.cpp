@@ -133,11 +133,12 @@ void joint_hessian(const Model& model, const Data& data, const Joint& j, const E
       break;
     case JointType::Cylindrical:
     case JointType::Prismatic:
-      dot_hessian(T, e1(0), e2(1), L * l(0));
-      dot_hessian(T, e1(0), e2(2), L * l(1));
-      dot_hessian(T, d, e1(1), l(2));
-      dot_hessian(T, d, e1(2), l(3));
-      if (j.type == JointType::Prismatic) dot_hessian(T, e1(1), e2(2), L * l(4));
+      // Rows as in constraints.cpp; a block holding some of them has zeros for the others.
+      if (l(0) != 0.0) dot_hessian(T, d, e1(1), l(0));
+      if (l(1) != 0.0) dot_hessian(T, d, e1(2), l(1));
+      if (l(2) != 0.0) dot_hessian(T, e1(0), e2(1), L * l(2));
+      if (l(3) != 0.0) dot_hessian(T, e1(0), e2(2), L * l(3));
+      if (j.type == JointType::Prismatic && l(4) != 0.0) dot_hessian(T, e1(1), e2(2), L * l(4));
       break;
   }
 }
@@ -204,8 +205,12 @@ void add_constraint_hessian(const Model& model, Data& data, const VectorXd& lam,
     T.nb[1] = h1 ? unknown_columns(model, data, b.body1) : 0;
     T.nb[2] = h2 ? unknown_columns(model, data, b.body2) : 0;
     if (b.kind == BlockKind::Joint) {
-      data.cl.head(b.rows) = factor * l;
-      joint_hessian(model, data, model.joints[b.index], data.cl.head(b.rows), T);
+      // The joint's rows, those of other blocks (a split joint, ConstraintBlock::first) zero.
+      const Joint& j = model.joints[b.index];
+      const int n = joint_rows(j.type);
+      data.cl.head(n).setZero();
+      data.cl.segment(b.first, b.rows) = factor * l;
+      joint_hessian(model, data, j, data.cl.head(n), T);
     } else {
       motion_hessian(model, data, model.motions[b.index], factor * l(0), T);
     }

@@ -24,6 +24,9 @@ struct Rows {
   Eigen::Ref<VectorXd> Phi, Phit, gamma;
   detail::JacobianBlock J1, J2;
   bool jacobian = true;  ///< false: values and biases only, J1 and J2 untouched
+  int first = 0;         ///< the block holds the joint's rows [first, first + Phi.size())
+  /// The block's own index of the joint's row `row`, or -1 when another block holds it.
+  int local(int row) const { return row >= first && row < first + Phi.size() ? row - first : -1; }
 };
 
 // The six conditions on a body's frame vectors: L/2 (u.u - 1), ..., L u.v, ... (each a length).
@@ -62,7 +65,9 @@ JointSides sides(const Model& model, const Data& data, const Joint& j) {
           !integrated(data, model.markers[j.m2].body)};
 }
 
-void dot_row(const VecExpr& a, const VecExpr& b, double scale, Rows& r, int row) {
+void dot_row(const VecExpr& a, const VecExpr& b, double scale, Rows& r, int joint_row) {
+  const int row = r.local(joint_row);
+  if (row < 0) return;
   const auto v = dot(a, b);
   r.Phi(row) = scale * v.value;
   r.Phit(row) = scale * v.given;
@@ -71,6 +76,7 @@ void dot_row(const VecExpr& a, const VecExpr& b, double scale, Rows& r, int row)
 }
 
 void coincident_points(const JointSides& s, Rows& r, int row) {
+  eigen_assert(r.first == 0);  // only prismatic joints are split
   r.Phi.segment<3>(row) = s.m2->p - s.m1->p;
   r.gamma.segment<3>(row) = s.m2->pb - s.m1->pb;
   if (s.g2) r.Phit.segment<3>(row) += s.m2->pd;
@@ -107,10 +113,11 @@ void joint_rows(const Model& model, const Data& data, const Joint& j, Rows& r) {
       break;
     case JointType::Cylindrical:
     case JointType::Prismatic:
-      dot_row(e1(0), e2(1), L, r, 0);
-      dot_row(e1(0), e2(2), L, r, 1);
-      dot_row(d, e1(1), 1.0, r, 2);
-      dot_row(d, e1(2), 1.0, r, 3);
+      // The translational rows first (a block may hold them alone, see ConstraintBlock::first).
+      dot_row(d, e1(1), 1.0, r, 0);
+      dot_row(d, e1(2), 1.0, r, 1);
+      dot_row(e1(0), e2(1), L, r, 2);
+      dot_row(e1(0), e2(2), L, r, 3);
       if (j.type == JointType::Prismatic) dot_row(e1(1), e2(2), L, r, 4);
       break;
   }
@@ -189,7 +196,7 @@ void evaluate_rows(const Model& model, Data& data, double t, bool jacobian) {
     const ConstraintBlock& b = model.blocks[bi];
     const bool active = static_cast<int>(bi) < data.nblocks;
     Rows r{data.Phi.segment(b.row0, b.rows), data.Phit.segment(b.row0, b.rows), data.gamma.segment(b.row0, b.rows),
-           block_columns(model, data, b, b.body1), block_columns(model, data, b, b.body2), jacobian && active};
+           block_columns(model, data, b, b.body1), block_columns(model, data, b, b.body2), jacobian && active, b.first};
     switch (b.kind) {
       case BlockKind::RigidBody: rigid_body_rows(model, data, b.index, r); break;
       case BlockKind::Joint: joint_rows(model, data, model.joints[b.index], r); break;

@@ -197,6 +197,11 @@ struct ConstraintBlock {
   int index = -1;                 ///< body, joint or motion index
   int row0 = 0, rows = 0;
   int body1 = kGround, body2 = kGround;
+  /// A joint's block holds its rows [first, first + rows). A frame-locked body's prismatic joint
+  /// to the ground is split in two: its two translational rows, then its three rotational rows,
+  /// which hold while the frames are known (held_by_lock, see order_blocks).
+  int first = 0;
+  bool held_by_lock = false;
 };
 
 struct SolverSettings {
