@@ -63,18 +63,27 @@ void body_inertia_tangents(const Body& b, const BodyData& bd, const Eigen::Ref<c
     const Vector3d sa = bd.S[a] * yd;
     for (int c = 0; c < 3; ++c) Cb.block<3, 3>(3 + 3 * a, 3 + 3 * c) += 2.0 * sa(c) * I;
     Cb.block(3 + 3 * a, 12, 3, nq).noalias() += 2.0 * bd.Ad * bd.S[a];
-    // d(S_a y_dot)/dy has row c = (PPdm[a][c] y_dot)^T.
-    for (int c = 0; c < 3; ++c) Kb.block(3 + 3 * a, 12, 3, nq).noalias() += 2.0 * bd.Ad.col(c) * bd.Pyd.col(3 * a + c).transpose();
   }
-  // Q_y = -2 sum_bc (A_b . A_dot_c) PPdm[b][c] y_dot
+  // The outer products with the columns of Pyd, mode by mode in fixed-size pieces (as
+  // dynamic-size outer products they cost more than their multiply-adds):
+  //   d(S_a y_dot)/dy has row c = (PPdm[a][c] y_dot)^T: column k of the (A_a, y) block of K is
+  //   2 A_dot p_a(k), p_a(k) = (Pyd(k, 3a + c))_c;
+  //   Q_y = -2 sum_bc (A_b . A_dot_c) PPdm[b][c] y_dot: row k of the (y, A_c) block of C is
+  //   2 (A q_c(k))^T with q_c(k) = (Pyd(k, 3b + c))_b, and of the (y, A_b) block of K 2 (A_dot p_b(k))^T.
+  for (int k = 0; k < nq; ++k) {
+    const auto P = bd.Pyd.row(k);
+    for (int a = 0; a < 3; ++a) {
+      const Vector3d pa(P(3 * a), P(3 * a + 1), P(3 * a + 2));
+      const Vector3d qa(P(a), P(3 + a), P(6 + a));
+      const Vector3d Kp = 2.0 * bd.Ad * pa;
+      Kb.block<3, 1>(3 + 3 * a, 12 + k) += Kp;
+      Kb.block<1, 3>(12 + k, 3 + 3 * a) += Kp.transpose();
+      Cb.block<1, 3>(12 + k, 3 + 3 * a) += 2.0 * (bd.A * qa).transpose();
+    }
+  }
   const Matrix3d Wm = bd.A.transpose() * bd.Ad;
   for (int bb = 0; bb < 3; ++bb)
-    for (int c = 0; c < 3; ++c) {
-      const auto p = bd.Pyd.col(3 * bb + c);
-      Cb.block(12, 3 + 3 * c, nq, 3).noalias() += 2.0 * p * bd.A.col(bb).transpose();
-      Kb.block(12, 3 + 3 * bb, nq, 3).noalias() += 2.0 * p * bd.Ad.col(c).transpose();
-      Cb.block(12, 12, nq, nq) += 2.0 * Wm(bb, c) * b.PPdm[bb][c];
-    }
+    for (int c = 0; c < 3; ++c) Cb.block(12, 12, nq, nq) += 2.0 * Wm(bb, c) * b.PPdm[bb][c];
   if (b.has_rotary_coupling) {
     const Vector3d s = b.PsiI.transpose() * yd;
     Cb.block<9, 9>(3, 3) += 2.0 * gbar_transpose_derivative(s);
