@@ -42,8 +42,9 @@ void update_body_rates(const Model& model, Data& data) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) body_rates(model.bodies[i], data, data.bodies[i]);
 }
 
-void update_bodies(const Model& model, Data& data) {
+void update_bodies(const Model& model, Data& data, Scope scope) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    if (scope == Scope::Unknowns && !data.integrated[i]) continue;
     const Body& b = model.bodies[i];
     BodyData& bd = data.bodies[i];
     const int o = b.offset;

@@ -165,7 +165,9 @@ void step(const Model& model, Data& data) {
     data.qd = (2.0 / h) * data.q + data.qd_hat;
     data.qdd = (4.0 / h2) * data.q + data.qdd_hat;
     drive_bodies(model, data, t1);
-    evaluate(model, data, t1);
+    // After the first iterate the driven bodies, their markers and the rows among them are
+    // those of t1 already (drive_bodies gives them the same values at every iterate).
+    evaluate(model, data, t1, it == 1 ? Scope::All : Scope::Unknowns);
     viol = data.Phi.cwiseAbs().maxCoeff() / model.length;
     if (!std::isfinite(viol)) throw SolverError(t1, viol, newton_failure(t1, it, inc, viol) + ": the state is not finite");
     if (it == 1) check_drives(model, data, t1);
@@ -275,9 +277,9 @@ void step(const Model& model, Data& data) {
   data.qd = (2.0 / h) * data.q + data.qd_hat;
   data.qdd = (4.0 / h2) * data.q + data.qdd_hat;
   drive_bodies(model, data, t1);
-  update_bodies(model, data);
-  update_markers(model, data);
-  evaluate_constraints(model, data, t1);
+  update_bodies(model, data, Scope::Unknowns);
+  update_markers(model, data, Scope::Unknowns);
+  evaluate_constraints(model, data, t1, Scope::Unknowns);
   data.lambda += data.alpha.cwiseProduct(data.Phi);
   data.stats.last_violation = data.Phi.cwiseAbs().maxCoeff() / model.length;
   data.stats.last_velocity_violation = project_velocities(model, data, t1);

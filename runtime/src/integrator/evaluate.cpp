@@ -9,12 +9,12 @@
 
 namespace ffr::runtime {
 
-void evaluate(const Model& model, Data& data, double t) {
-  update_bodies(model, data);
-  update_markers(model, data);
+void evaluate(const Model& model, Data& data, double t, Scope scope) {
+  update_bodies(model, data, scope);
+  update_markers(model, data, scope);
   mass_matrices(model, data);
   generalized_forces(model, data, t);
-  evaluate_constraints(model, data, t);
+  evaluate_constraints(model, data, t, scope);
 }
 
 // W, T and the factorisation cover the unknowns only: the leading nf x nf blocks.

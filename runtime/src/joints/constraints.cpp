@@ -181,17 +181,21 @@ Vector3d motion_target(const Model& model, const Data& data, int m, double t) {
 
 namespace {
 
-void evaluate_rows(const Model& model, Data& data, double t, bool jacobian) {
+void evaluate_rows(const Model& model, Data& data, double t, bool jacobian, bool all_blocks) {
   // The Jacobian is assembled dense (the products use it several times per Newton iteration),
   // the blocks adding into it. It is zeroed whole, in one pass over contiguous memory: zeroing
   // each block's columns took a memset call per column of a few rows (3-5 % of a step).
-  // With the Jacobian, every block's values: those among driven bodies hold by construction,
-  // and their values check that (step()); only the blocks of the unknowns have Jacobian columns.
-  // Without it (the projections' biases), the blocks of the unknowns alone: nothing reads the
-  // others' rates.
+  // With all_blocks, every block's values: those among driven bodies hold by construction,
+  // and their values check that (step(), once a step); only the blocks of the unknowns have
+  // Jacobian columns. Otherwise the blocks of the unknowns alone: the projections' biases
+  // (nothing reads the others' rates) and the later iterates of a step (the others' values do
+  // not change within it).
   if (jacobian) data.Phiq.setZero();
-  data.Phit.setZero();
-  const std::size_t nb = jacobian ? model.blocks.size() : static_cast<std::size_t>(data.nblocks);
+  const std::size_t nb = all_blocks ? model.blocks.size() : static_cast<std::size_t>(data.nblocks);
+  if (all_blocks)
+    data.Phit.setZero();
+  else
+    data.Phit.head(data.na).setZero();
   for (std::size_t bi = 0; bi < nb; ++bi) {
     const ConstraintBlock& b = model.blocks[bi];
     const bool active = static_cast<int>(bi) < data.nblocks;
@@ -207,9 +211,11 @@ void evaluate_rows(const Model& model, Data& data, double t, bool jacobian) {
 
 }  // namespace
 
-void evaluate_constraints(const Model& model, Data& data, double t) { evaluate_rows(model, data, t, true); }
+void evaluate_constraints(const Model& model, Data& data, double t, Scope scope) {
+  evaluate_rows(model, data, t, true, scope == Scope::All);
+}
 
-void evaluate_constraint_biases(const Model& model, Data& data, double t) { evaluate_rows(model, data, t, false); }
+void evaluate_constraint_biases(const Model& model, Data& data, double t) { evaluate_rows(model, data, t, false, false); }
 
 double joint_coordinate(const Model& model, const Data& data, int joint, JointCoordinate c) {
   return coordinate(model, data, joint, c, nullptr, 0, 1.0).value;

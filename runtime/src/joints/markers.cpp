@@ -96,9 +96,10 @@ void marker_rates(const Model& model, const Marker& mk, const Data& data, Marker
   }
 }
 
-void update_markers(const Model& model, Data& data) {
+void update_markers(const Model& model, Data& data, Scope scope) {
   for (std::size_t i = 0; i < model.markers.size(); ++i)
-    marker_kinematics(model, model.markers[i], data, data.markers[i]);
+    if (scope == Scope::All || integrated(data, model.markers[i].body))
+      marker_kinematics(model, model.markers[i], data, data.markers[i]);
 }
 
 void update_marker_rates(const Model& model, Data& data) {

@@ -13,7 +13,9 @@
 namespace ffr::runtime {
 
 /// Phi, Phit, gamma and the Jacobian blocks at time t. Needs update_bodies and update_markers.
-void evaluate_constraints(const Model& model, Data& data, double t);
+/// Scope::Unknowns: the rows of the unknowns alone (the first data.na); the others, among the
+/// ground and driven bodies, keep their values (see Scope).
+void evaluate_constraints(const Model& model, Data& data, double t, Scope scope = Scope::All);
 
 /// Phi, Phit and gamma only, the Jacobian left as it is: for a change of the velocities at the
 /// same q (needs update_body_rates and update_marker_rates). Only the rows of the unknowns

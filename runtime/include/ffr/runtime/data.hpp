@@ -158,6 +158,11 @@ struct Data {
   VectorXd penalty_rows;        ///< work: the penalty weights of one block's rows
 };
 
+/// Which bodies and markers an update covers: all, or those of the unknowns alone (the ground's
+/// and driven bodies' are then left as they are: within a step, after drive_bodies at its time
+/// and one update of everything, they do not change).
+enum class Scope { All, Unknowns };
+
 /// True when `body` is not the ground and its coordinates are unknowns of the step now. Markers
 /// of other bodies act like the ground's: points and axes that move as given, without columns.
 inline bool integrated(const Data& data, int body) { return body != kGround && data.integrated[static_cast<std::size_t>(body)]; }

@@ -12,8 +12,9 @@
 
 namespace ffr::runtime {
 
-/// Everything at the current state: kinematics, mass matrices, forces Q, constraints.
-void evaluate(const Model& model, Data& data, double t);
+/// Everything at the current state: kinematics, mass matrices, forces Q, constraints (with
+/// Scope::Unknowns, the bodies, markers and rows of the unknowns alone, see Scope).
+void evaluate(const Model& model, Data& data, double t, Scope scope = Scope::All);
 
 /// Makes the initial state consistent (FORMULATION.md section 10): positions with the joints and
 /// motions at the start time (mass-weighted least change), velocities likewise, then the

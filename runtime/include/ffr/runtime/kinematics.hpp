@@ -16,10 +16,10 @@ Vector3d body_omega(const Matrix3d& A, const Matrix3d& Ad);
 Eigen::Matrix<double, 3, 9> gbar(const Matrix3d& A);
 
 /// Frames, deformed inertia integrals and frame rates of every body (FORMULATION.md 2-3).
-void update_bodies(const Model& model, Data& data);
+void update_bodies(const Model& model, Data& data, Scope scope = Scope::All);
 
 /// Positions, axes, Jacobians and acceleration biases of every marker. Needs update_bodies.
-void update_markers(const Model& model, Data& data);
+void update_markers(const Model& model, Data& data, Scope scope = Scope::All);
 
 /// After a change of the velocities only (q unchanged since update_bodies and update_markers):
 /// the velocity-dependent parts of bodies (frame rates, angular velocity, PPdm y_dot) and of
