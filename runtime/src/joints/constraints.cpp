@@ -223,8 +223,7 @@ double joint_coordinate(const Model& model, const Data& data, int joint, JointCo
 
 void update_angle_references(const Model& model, Data& data) {
   for (std::size_t j = 0; j < model.joints.size(); ++j) {
-    const JointType t = model.joints[j].type;
-    if (t == JointType::Revolute || t == JointType::Cylindrical)
+    if (model.joints[j].angle_read)  // nothing else reads it (mark_read_axes in model.cpp)
       data.angle_ref[j] = joint_coordinate(model, data, static_cast<int>(j), JointCoordinate::Angle);
   }
 }

@@ -53,6 +53,7 @@ void marker_kinematics(const Model& model, const Marker& mk, const Data& data, M
   md.p.noalias() += bd.A * md.xbar;
   local_jacobian(bd.A, md.xbar, on_node ? &mk.phi : nullptr, true, md.Jp);
   for (int k = 0; k < 3; ++k) {
+    if (!mk.axes[k]) continue;  // nothing reads it (Marker::axes)
     md.ebar[k] = mk.E.col(k);
     if (on_node) md.ebar[k] += slice_times(mk.phiE[k], y);
     md.e[k].noalias() = bd.A * md.ebar[k];
@@ -77,6 +78,7 @@ void marker_rates(const Model& model, const Marker& mk, const Data& data, Marker
     md.pb.noalias() = 2.0 * bd.Ad * py;
   }
   for (int k = 0; k < 3; ++k) {
+    if (!mk.axes[k]) continue;
     md.ed[k].noalias() = bd.Ad * md.ebar[k];
     if (on_node) {
       const Vector3d py = slice_times(mk.phiE[k], yd);
@@ -92,7 +94,8 @@ void marker_rates(const Model& model, const Marker& mk, const Data& data, Marker
   if (!integrated(data, mk.body)) {
     const double* zdd = data.qdd.data() + o;
     md.pb += slice_times(md.Jp, zdd);
-    for (int k = 0; k < 3; ++k) md.eb[k] += slice_times(md.Je[k], zdd);
+    for (int k = 0; k < 3; ++k)
+      if (mk.axes[k]) md.eb[k] += slice_times(md.Je[k], zdd);
   }
 }
 

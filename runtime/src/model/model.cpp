@@ -5,6 +5,7 @@
 #include "ffr/runtime/kinematics.hpp"
 
 #include <algorithm>
+#include <initializer_list>
 #include <cmath>
 
 namespace ffr::runtime {
@@ -146,6 +147,51 @@ void order_blocks(Model& m) {
   m.nconstraints = row;
 }
 
+// Which axes of each marker anything reads (Marker::axes), and which joints' angles are tracked
+// (Joint::angle_read). Why: a marker on a node computes each axis, its rate and its Jacobian
+// from the node's mode slices every evaluation, and most joints leave one of them unread (a
+// revolute joint's second marker its e axis; a spherical joint's markers all three). Every
+// joint coordinate stays readable at any time (joint_coordinate is public), so the angles of all
+// revolute and cylindrical joints are tracked, as the outputs and motions need.
+void mark_read_axes(Model& m) {
+  for (auto& mk : m.markers) mk.axes = {false, false, false};
+  const auto use = [&](int marker, std::initializer_list<int> ks) {
+    for (int k : ks) m.markers[static_cast<std::size_t>(marker)].axes[static_cast<std::size_t>(k)] = true;
+  };
+  for (auto& j : m.joints) {
+    j.angle_read = false;
+    switch (j.type) {  // the rows of constraints.cpp's joint_rows
+      case JointType::Spherical: break;
+      case JointType::Revolute: use(j.m1, {0}); use(j.m2, {1, 2}); break;
+      case JointType::Universal: use(j.m1, {0}); use(j.m2, {0}); break;
+      case JointType::Fixed: use(j.m1, {0, 1}); use(j.m2, {1, 2}); break;
+      case JointType::Cylindrical:
+      case JointType::Prismatic: use(j.m1, {0, 1, 2}); use(j.m2, {1, 2}); break;
+    }
+  }
+  // Joint coordinates (constraints.cpp's coordinate): the angle reads f1, g1 and f2, the
+  // displacement e1.
+  const auto coordinate = [&](int joint, JointCoordinate c) {
+    Joint& j = m.joints[static_cast<std::size_t>(joint)];
+    if (c == JointCoordinate::Displacement) {
+      use(j.m1, {0});
+      return;
+    }
+    j.angle_read = true;
+    use(j.m1, {1, 2});
+    use(j.m2, {1});
+  };
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    const JointType t = m.joints[j].type;
+    if (t == JointType::Revolute || t == JointType::Cylindrical) coordinate(static_cast<int>(j), JointCoordinate::Angle);
+    if (t == JointType::Prismatic || t == JointType::Cylindrical) coordinate(static_cast<int>(j), JointCoordinate::Displacement);
+  }
+  for (const auto& bu : m.bushings) {
+    use(bu.m1, {0, 1, 2});
+    use(bu.m2, {0, 1, 2});
+  }
+}
+
 }  // namespace
 
 void finalize(Model& m) {
@@ -218,6 +264,7 @@ void finalize(Model& m) {
     m.blocks.push_back({BlockKind::Motion, static_cast<int>(i), 0, 1, m.markers[jt.m1].body, m.markers[jt.m2].body});
   }
   order_blocks(m);
+  mark_read_axes(m);
 
   // Load slots for external inputs: the frame origin and every node of every body.
   m.load_slots.assign(m.bodies.size(), {});

@@ -132,6 +132,9 @@ struct Marker {
   Matrix3Xd phi;                     ///< [3, nq] (zero when node < 0)
   Matrix3Xd psi;                     ///< [3, nq] node rotation slice (zero when node < 0)
   std::array<Matrix3Xd, 3> phiE;     ///< -skew(E_k) psi: the axes' mode slices
+  /// The axes something reads (joint rows, joint coordinates, bushings; set by finalize): the
+  /// others, their rates and Jacobians are not computed (left zero).
+  std::array<bool, 3> axes{true, true, true};
 };
 
 enum class JointType { Revolute, Spherical, Fixed, Prismatic, Cylindrical, Universal };
@@ -146,6 +149,9 @@ struct Joint {
   int m1 = -1, m2 = -1;  ///< markers
   int block = -1;        ///< its constraint block
   double d0 = 0;         ///< initial displacement along the axis (prismatic/cylindrical coordinate zero)
+  /// The joint has an angle (revolute, cylindrical): its unwrapping reference is kept up to date
+  /// at every step (update_angle_references). Set by finalize.
+  bool angle_read = false;
 };
 
 struct Motion {
