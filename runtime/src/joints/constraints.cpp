@@ -223,7 +223,8 @@ double joint_coordinate(const Model& model, const Data& data, int joint, JointCo
 
 void update_angle_references(const Model& model, Data& data) {
   for (std::size_t j = 0; j < model.joints.size(); ++j) {
-    if (model.joints[j].angle_read)  // nothing else reads it (mark_read_axes in model.cpp)
+    const JointType t = model.joints[j].type;
+    if (t == JointType::Revolute || t == JointType::Cylindrical)
       data.angle_ref[j] = joint_coordinate(model, data, static_cast<int>(j), JointCoordinate::Angle);
   }
 }

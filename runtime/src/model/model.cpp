@@ -5,8 +5,8 @@
 #include "ffr/runtime/kinematics.hpp"
 
 #include <algorithm>
-#include <initializer_list>
 #include <cmath>
+#include <initializer_list>
 
 namespace ffr::runtime {
 
@@ -147,19 +147,18 @@ void order_blocks(Model& m) {
   m.nconstraints = row;
 }
 
-// Which axes of each marker anything reads (Marker::axes), and which joints' angles are tracked
-// (Joint::angle_read). Why: a marker on a node computes each axis, its rate and its Jacobian
-// from the node's mode slices every evaluation, and most joints leave one of them unread (a
-// revolute joint's second marker its e axis; a spherical joint's markers all three). Every
-// joint coordinate stays readable at any time (joint_coordinate is public), so the angles of all
-// revolute and cylindrical joints are tracked, as the outputs and motions need.
+// Which axes of each marker anything reads (Marker::axes). Why: a marker on a node computes each
+// axis, its rate and its Jacobian from the node's mode slices every evaluation, and most joints
+// leave one of them unread (a revolute joint's second marker its e axis; a spherical joint's
+// markers all three). Every joint coordinate stays readable at any time (joint_coordinate is
+// public, and update_angle_references tracks every revolute and cylindrical angle), so the axes
+// of each joint's own coordinates count as read.
 void mark_read_axes(Model& m) {
   for (auto& mk : m.markers) mk.axes = {false, false, false};
   const auto use = [&](int marker, std::initializer_list<int> ks) {
     for (int k : ks) m.markers[static_cast<std::size_t>(marker)].axes[static_cast<std::size_t>(k)] = true;
   };
-  for (auto& j : m.joints) {
-    j.angle_read = false;
+  for (const auto& j : m.joints) {
     switch (j.type) {  // the rows of constraints.cpp's joint_rows
       case JointType::Spherical: break;
       case JointType::Revolute: use(j.m1, {0}); use(j.m2, {1, 2}); break;
@@ -171,20 +170,12 @@ void mark_read_axes(Model& m) {
   }
   // Joint coordinates (constraints.cpp's coordinate): the angle reads f1, g1 and f2, the
   // displacement e1.
-  const auto coordinate = [&](int joint, JointCoordinate c) {
-    Joint& j = m.joints[static_cast<std::size_t>(joint)];
-    if (c == JointCoordinate::Displacement) {
-      use(j.m1, {0});
-      return;
+  for (const auto& j : m.joints) {
+    if (j.type == JointType::Revolute || j.type == JointType::Cylindrical) {
+      use(j.m1, {1, 2});
+      use(j.m2, {1});
     }
-    j.angle_read = true;
-    use(j.m1, {1, 2});
-    use(j.m2, {1});
-  };
-  for (std::size_t j = 0; j < m.joints.size(); ++j) {
-    const JointType t = m.joints[j].type;
-    if (t == JointType::Revolute || t == JointType::Cylindrical) coordinate(static_cast<int>(j), JointCoordinate::Angle);
-    if (t == JointType::Prismatic || t == JointType::Cylindrical) coordinate(static_cast<int>(j), JointCoordinate::Displacement);
+    if (j.type == JointType::Prismatic || j.type == JointType::Cylindrical) use(j.m1, {0});
   }
   for (const auto& bu : m.bushings) {
     use(bu.m1, {0, 1, 2});

@@ -149,9 +149,6 @@ struct Joint {
   int m1 = -1, m2 = -1;  ///< markers
   int block = -1;        ///< its constraint block
   double d0 = 0;         ///< initial displacement along the axis (prismatic/cylindrical coordinate zero)
-  /// The joint has an angle (revolute, cylindrical): its unwrapping reference is kept up to date
-  /// at every step (update_angle_references). Set by finalize.
-  bool angle_read = false;
 };
 
 struct Motion {
