@@ -1,6 +1,8 @@
 // Frame, deformed inertia integrals and rates of each body (FORMULATION.md sections 2-4).
 #include "ffr/runtime/kinematics.hpp"
 
+#include "../integrator/dense_products.hpp"
+
 namespace ffr::runtime {
 
 Vector3d body_omega(const Matrix3d& A, const Matrix3d& Ad) {
@@ -30,10 +32,10 @@ void body_rates(const Body& b, const Data& data, BodyData& bd) {
   for (int a = 0; a < 3; ++a) bd.Ad.col(a) = data.qd.segment<3>(o + 3 + 3 * a);
   bd.omega = body_omega(bd.A, bd.Ad);
   if (b.nq == 0) return;
-  const auto yd = data.qd.segment(o + 12, b.nq);
   // One product with the stacked matrices instead of nine small ones, whose calls cost more
-  // than their multiply-adds.
-  Eigen::Map<VectorXd>(bd.Pyd.data(), 9 * b.nq).noalias() = b.PPdm_stack * yd;
+  // than their multiply-adds (through the vectorised kernel of the step's products).
+  const Eigen::Index n9 = 9 * b.nq;
+  detail::times(b.PPdm_stack.data(), n9, n9, b.nq, data.qd.data() + o + 12, bd.Pyd.data(), false);
 }
 
 }  // namespace
@@ -65,7 +67,7 @@ void update_bodies(const Model& model, Data& data, Scope scope) {
     bd.md.noalias() += b.Pdm * y;
     // P_a(y): row b is (PPdm[a][b]^T y)^T = (PPdm[b][a] y)^T, all nine from one product (as
     // in body_rates); then S_a = rPdm[a] + P_a(y).
-    Eigen::Map<VectorXd>(bd.Py.data(), 9 * b.nq).noalias() = b.PPdm_stack * y;
+    detail::times(b.PPdm_stack.data(), 9 * b.nq, 9 * b.nq, b.nq, y.data(), bd.Py.data(), false);
     for (int a = 0; a < 3; ++a) {
       for (int c = 0; c < 3; ++c) bd.PPy[a].row(c) = bd.Py.col(3 * c + a).transpose();
       bd.S[a] = b.rPdm[a] + bd.PPy[a];

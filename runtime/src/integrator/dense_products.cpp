@@ -6,14 +6,17 @@
 
 namespace ffr::runtime::detail {
 
-FFR_RT_CLONES
 void times(const Eigen::MatrixXd& A, Eigen::Index m, Eigen::Index n, const Eigen::VectorXd& x, Eigen::VectorXd& y,
            bool accumulate) {
-  const Eigen::Index ld = A.rows();
-  eigen_assert(m <= ld && n <= A.cols() && x.size() >= n && y.size() >= m);
-  const double* __restrict a = A.data();
-  const double* __restrict xv = x.data();
-  double* __restrict yv = y.data();
+  eigen_assert(m <= A.rows() && n <= A.cols() && x.size() >= n && y.size() >= m);
+  times(A.data(), A.rows(), m, n, x.data(), y.data(), accumulate);
+}
+
+FFR_RT_CLONES
+void times(const double* A, Eigen::Index ld, Eigen::Index m, Eigen::Index n, const double* x, double* y, bool accumulate) {
+  const double* __restrict a = A;
+  const double* __restrict xv = x;
+  double* __restrict yv = y;
   if (!accumulate)
     for (Eigen::Index i = 0; i < m; ++i) yv[i] = 0.0;
   // Four columns at a time; columns whose coefficients are all zero (coordinates the vector

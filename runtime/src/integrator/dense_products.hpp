@@ -17,6 +17,10 @@ namespace ffr::runtime::detail {
 /// y (the callers test the state, not these products, for NaN).
 void times(const Eigen::MatrixXd& A, Eigen::Index rows, Eigen::Index cols, const Eigen::VectorXd& x, Eigen::VectorXd& y,
            bool accumulate);
+/// The same on raw storage: A column-major with leading dimension ld (also for the stacked
+/// modal integrals, Body::PPdm_stack, whose products with y and y_dot each evaluation makes).
+void times(const double* A, Eigen::Index ld, Eigen::Index rows, Eigen::Index cols, const double* x, double* y,
+           bool accumulate);
 inline void times(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y, bool accumulate) {
   times(A, A.rows(), A.cols(), x, y, accumulate);
 }
