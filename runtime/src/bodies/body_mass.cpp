@@ -3,6 +3,8 @@
 #include "ffr/runtime/dynamics.hpp"
 #include "ffr/runtime/kinematics.hpp"
 
+#include "../integrator/dense_products.hpp"
+
 namespace ffr::runtime {
 void body_mass_matrix(const Body& b, BodyData& bd) {
   MatrixXd& M = bd.M;
@@ -38,7 +40,8 @@ void mass_times(const Model& model, const Data& data, const VectorXd& x, VectorX
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     if (!data.integrated[i]) continue;  // a driven body's rows are not unknowns
     const Body& b = model.bodies[i];
-    y.segment(b.offset, b.ncoord()).noalias() = data.bodies[i].M * x.segment(b.offset, b.ncoord());
+    const MatrixXd& M = data.bodies[i].M;  // through the step's vectorised kernel
+    detail::times(M.data(), M.rows(), b.ncoord(), b.ncoord(), x.data() + b.offset, y.data() + b.offset, false);
   }
 }
 
