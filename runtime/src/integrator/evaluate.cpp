@@ -23,8 +23,7 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
   const int nf = data.nf;
   force_tangents(model, data, t);
   auto W = data.W.topLeftCorner(nf, nf);
-  W.noalias() = (0.5 * h) * data.C.topLeftCorner(nf, nf);
-  W.noalias() += (0.25 * h * h) * data.K.topLeftCorner(nf, nf);
+  W = (0.5 * h) * data.C.topLeftCorner(nf, nf) + (0.25 * h * h) * data.K.topLeftCorner(nf, nf);  // one pass
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
     if (data.integrated[i]) W.block(b.offset, b.offset, b.ncoord(), b.ncoord()) += data.bodies[i].M;
