@@ -65,17 +65,15 @@ void update_bodies(const Model& model, Data& data, Scope scope) {
     const auto y = data.q.segment(o + 12, b.nq);
     bd.md = b.rdm;
     bd.md.noalias() += b.Pdm * y;
-    // P_a(y): row b is (PPdm[a][b]^T y)^T = (PPdm[b][a] y)^T, all nine from one product (as
-    // in body_rates); then S_a = rPdm[a] + P_a(y).
+    // S_a = rPdm[a] + P_a(y), row c of P_a(y) being (PPdm[a][c]^T y)^T = (PPdm[c][a] y)^T =
+    // column 3c+a of Py, all nine from one product (as in body_rates).
     detail::times(b.PPdm_stack.data(), 9 * b.nq, 9 * b.nq, b.nq, y.data(), bd.Py.data(), false);
-    for (int a = 0; a < 3; ++a) {
-      for (int c = 0; c < 3; ++c) bd.PPy[a].row(c) = bd.Py.col(3 * c + a).transpose();
-      bd.S[a] = b.rPdm[a] + bd.PPy[a];
-    }
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) bd.S[a].row(c) = b.rPdm[a].row(c) + bd.Py.col(3 * c + a).transpose();
     // Jc(a,c) = J0 + R(a,c) + R(c,a) + y^T PPdm[a][c] y with R(a,c) = rPdm[a].row(c) y.
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < 3; ++c)
-        bd.Jc(a, c) = b.J0(a, c) + b.rPdm[a].row(c).dot(y) + b.rPdm[c].row(a).dot(y) + bd.PPy[a].row(c).dot(y);
+        bd.Jc(a, c) = b.J0(a, c) + b.rPdm[a].row(c).dot(y) + b.rPdm[c].row(a).dot(y) + bd.Py.col(3 * c + a).dot(y);
   }
 }
 

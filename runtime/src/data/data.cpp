@@ -50,7 +50,6 @@ Data::Data(const Model& model) {
     bd.Jc = b.J0;
     for (int a = 0; a < 3; ++a) {
       bd.S[a] = Matrix3Xd::Zero(3, nq);
-      bd.PPy[a] = Matrix3Xd::Zero(3, nq);
     }
     bd.Pyd = MatrixXd::Zero(nq, 9);
     bd.Py = MatrixXd::Zero(nq, 9);

@@ -254,8 +254,10 @@ void step(const Model& model, Data& data) {
     }
     // The predictor's tangent, far from this iterate: rebuild its constraint terms here (W, the
     // masses and force tangents, moved by O(increment) only).
-    if (it == 1 && refreshed_now) data.predictor_far = s.penalty * inc > kStaleTangent;
-    if (it == 1 && refreshed_now && data.predictor_far) refactor = constraints_only = true;
+    if (it == 1 && refreshed_now) {
+      data.predictor_far = s.penalty * inc > kStaleTangent;
+      if (data.predictor_far) refactor = constraints_only = true;
+    }
     if (it >= 2 && inc > 0.5 * prev_inc && refreshes < kMaxRefreshes) {
       refactor = true;
       // A stale tangent (reused from an earlier step) may already have thrown the iterate and

@@ -83,7 +83,8 @@ Marker slot_marker(const Body& b, int node) {
 // A rigid body on a prismatic joint to the ground without a motion is frame-locked instead
 // (Body::frame_locked), unless another joint drives it. Why: such a body only slides, and its
 // nine frame coordinates with the six rows of its frame made a slider-crank's step work on 34
-// unknowns and 27 rows where 25 and 21 describe it (measured: 27 us a step instead of 33).
+// unknowns and 27 rows where 25 and 21 describe it (measured: 27 us a step instead of 33; with
+// its guide's rotational rows split off as well, in finalize, 18 rows).
 void find_drives(Model& m) {
   for (auto& b : m.bodies) {
     b.drive = Drive{};

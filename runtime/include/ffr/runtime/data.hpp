@@ -22,7 +22,6 @@ struct BodyData {
   Vector3d md;                  ///< int xbar dm = rdm + Pdm y
   Matrix3d Jc;                  ///< int xbar xbar^T dm (+ rotary pseudo-inertia)
   std::array<Matrix3Xd, 3> S;   ///< S_a = int xbar_a Phi dm = rPdm[a] + P_a(y), [3, nq]
-  std::array<Matrix3Xd, 3> PPy; ///< work: rows (PPdm[a][b]^T y)^T, [3, nq]
   MatrixXd Pyd;                 ///< column 3b+c = PPdm[b][c] y_dot, [nq, 9]
   MatrixXd Py;                  ///< work: column 3b+c = PPdm[b][c] y, [nq, 9]
   MatrixXd M;                   ///< body mass matrix [nb, nb]
