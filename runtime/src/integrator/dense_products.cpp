@@ -2,7 +2,7 @@
 
 #include "kernel_clones.hpp"
 
-// Compiled at -O3 and for AVX2/AVX-512 as well (kernel_clones.hpp).
+// Compiled at -O3 and for AVX2 as well (kernel_clones.hpp).
 
 namespace ffr::runtime::detail {
 

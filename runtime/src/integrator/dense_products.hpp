@@ -3,7 +3,7 @@
 // (tens of rows and columns) and its transpose, and the projections' metric W.
 //
 // Why not Eigen's: the runtime builds for plain x86-64, where Eigen's products use SSE2 and a
-// general kernel with set-up per call; these are compiled for AVX2 and AVX-512 as well and
+// general kernel with set-up per call; these are compiled for AVX2 as well and
 // called some 30 times a step (Eigen's matrix-vector products were 18 % of a step).
 
 #include <Eigen/Core>

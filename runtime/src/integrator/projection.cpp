@@ -30,8 +30,13 @@ double project_once(const Model& model, Data& data, VectorXd& x, const VectorXd&
   double res = data.c.head(na).cwiseAbs().maxCoeff() * unit;
   const double res0 = res;
   for (int k = 0; k < kMaxProjection && res > target; ++k) {
-    data.tmp = x - data.vstar;
-    detail::times(data.W, data.nf, data.nf, data.tmp, data.r, false);
+    // x = x* at the first pass (project sets vstar = x): W (x - x*) is zero then.
+    if (k == 0) {
+      data.r.head(data.nf).setZero();
+    } else {
+      data.tmp = x - data.vstar;
+      detail::times(data.W, data.nf, data.nf, data.tmp, data.r, false);
+    }
     data.c = h4 * (data.sigma + data.alpha.cwiseProduct(data.c));
     add_constraint_forces(model, data, data.c, data.r);
     solve_tangent(data, data.r, data.dq);

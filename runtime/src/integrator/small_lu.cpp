@@ -106,7 +106,7 @@ inline void update_trailing_column(double* a, Index n, Index k0, Index last, Ind
 
 }  // namespace
 
-// The kernels are plain loops over raw columns, compiled at -O3 and for AVX2 and AVX-512 as well
+// The kernels are plain loops over raw columns, compiled at -O3 and for AVX2 as well
 // (kernel_clones.hpp): Eigen's dynamic segments cost a call and an alignment prologue per AXPY.
 // The elimination is blocked (LAPACK's right-looking getrf with a panel of kPanel columns):
 // partial pivoting inside the panel, each swap applied to the whole row at once, then the

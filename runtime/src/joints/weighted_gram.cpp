@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-// Compiled at -O3 and for AVX2/AVX-512 as well (../integrator/kernel_clones.hpp).
+// Compiled at -O3 and for AVX2 as well (../integrator/kernel_clones.hpp).
 
 namespace ffr::runtime::detail {
 namespace {
