@@ -203,10 +203,17 @@ void step(const Model& model, Data& data) {
     // used: its update is discarded and the direction recomputed with a tangent built here.
     // (Applied, it can throw the iterate so far that no later tangent recovers: a Craig-Bampton
     // rod started at 1500 rpm with h = 1 ms went from a scaled increment of 0.017 to 11, then
-    // diverged.)
-    if (!refreshed_now && it >= 2 && refreshes < kMaxRefreshes && !(next_inc < 2 * inc)) {
+    // diverged.) At the first iterate the tangent can only be one kept from an earlier step
+    // (reuse_jacobian); it is dropped when its increment is one that would have made the
+    // predictor's own tangent stale (kStaleTangent): with the benchmark's crank at 150 rad/s,
+    // applying it threw the second iterate 7 scaled units off, from which Newton diverged to a
+    // non-finite state (SliderCrank.ReusedTangentFallsBackWhenTheCrankTurnsFast).
+    const bool stale = it >= 2 ? !(next_inc < 2 * inc) : s.penalty * next_inc > kStaleTangent;
+    if (!refreshed_now && refreshes < kMaxRefreshes && stale) {
       data.lambda -= data.sigma;
-      refresh_tangent(model, data, t1, data.lambda);
+      // (At the first iterate as the usual refresh there: without the modal acceleration
+      // block after a step that found its predictor far off.)
+      refresh_tangent(model, data, t1, data.lambda, !(it == 1 && data.predictor_far));
       data.tangent_fresh_step = true;
       refreshed_now = true;
       ++refreshes;
