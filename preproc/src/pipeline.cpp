@@ -97,6 +97,11 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   // took 0.90-1.02 s together instead of 1.12-1.23, and whole runs 3.41-3.55 s instead of
   // 3.53-3.88 (four alternating runs each).
   if (early.started()) aopt.threads = static_cast<int>(std::max(1u, max_threads() - 1));
+  // The structure of K and M on every core, though: it is the first touch of their 250 MB on
+  // that plate, and on the AMD VM of RESULTS.md (memory backed at 0.35-0.7 GB/s at first
+  // touch) one thread took up to 0.4 s longer for it. Eleven alternating pairs of whole runs at
+  // two threads: 3.27-3.80 s (mean 3.54) against 3.36-4.23 s (mean 3.71).
+  aopt.fill_threads = static_cast<int>(max_threads());
   aopt.progress = [&](double f) { progress("assembly " + std::to_string(static_cast<int>(100 * f)) + " %"); };
   Assembled fe = assemble(model, aopt);
   stage("assembly: " + std::to_string(fe.elements) + " elements, nnz(K) = " + std::to_string(fe.K.nonZeros()) +

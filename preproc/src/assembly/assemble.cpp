@@ -58,9 +58,10 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   const unsigned nthreads = std::max(1u, opt.threads > 0 ? static_cast<unsigned>(opt.threads) : max_threads());
   Assembled out;
   out.elements = static_cast<Index>(refs.size());
-  pattern.make_matrix(out.K, nthreads);
+  const unsigned fill_threads = opt.fill_threads > 0 ? static_cast<unsigned>(opt.fill_threads) : nthreads;
+  pattern.make_matrix(out.K, fill_threads);
   if (!opt.stiffness_only) {
-    pattern.make_matrix(out.M, nthreads);
+    pattern.make_matrix(out.M, fill_threads);
     pattern.make_node_matrix(out.Ms);
   }
   for (const auto& pb : model.blocks) out.has_structural = out.has_structural || pb.kind != ElementKind::Solid;

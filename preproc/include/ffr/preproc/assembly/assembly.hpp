@@ -30,6 +30,11 @@ std::vector<ElementRef> all_elements(const FeModel& model);
 
 struct AssemblyOptions {
   int threads = 0;                                   ///< 0: hardware concurrency
+  /// Threads that write K's and M's structure before the elements (0: as `threads`). That
+  /// pass is the first touch of their memory, which some VMs back slowly (tools/bench/reduce/
+  /// RESULTS.md), so it pays to run it on every core even where the element loop leaves one
+  /// to another task (the pipeline's early analysis).
+  int fill_threads = 0;
   /// Elements per block of neighbours: the unit of work of a thread (the elements of a block
   /// share entries of K and M; blocks of one colour class share none). The 100k-DOF plate's
   /// 20662 elements make 323 blocks of 64; blocks of 32 to 256 assembled it equally fast at
