@@ -58,7 +58,7 @@ void factorize_tangent(Data& data) {
     // Column by column, along the runs of consecutive unknowns, so the inner loops are
     // contiguous: an element-wise indexed gather cost as much as a third of the factorisation.
     const double* s = data.scale.data();
-    data.lu.compute_filled(k, [&](Eigen::Map<Eigen::MatrixXd>& a) {
+    data.lu.compute_filled(k, [&](SmallLU::MatrixMap& a) {
       for (Eigen::Index j = 0; j < k; ++j) {
         const double* t = data.T.col(u[j]).data();
         const double sj = s[u[j]];

@@ -13,10 +13,13 @@ namespace ffr::runtime {
 using Eigen::Index;
 
 void SmallLU::resize(Index n) {
-  buffer_.setZero(n * n);
+  buffer_.setZero((n + 2 * kPad) * n);
+  work_.setZero(n + 2 * kPad);
   capacity_ = n;
   n_ = n;
+  ld_ = n + 2 * kPad;
   perm_.setZero(n);
+  row_of_.setZero(n);
   lower_.setZero(n);
   upper_.setZero(n);
   inv_diag_.setZero(n);
@@ -30,19 +33,27 @@ namespace {
 // once per pivot (two loads, one store and one multiply-add, four times over).
 constexpr Index kPanel = 4;
 
+// Blocks of four rows from `from` up to at least `to`: the blocks that cover from .. to (to < from:
+// none). They reach at most three rows past `to`, into the zero rows below the columns
+// (SmallLU::kPad).
+inline Index blocks_of_four(Index from, Index to) { return to < from ? 0 : ((to - from) >> 2) + 1; }
+
 // Rows k+1 .. last of column k scaled by 1 / pivot, then the panel's own columns k+1 .. p1-1
-// updated by them (rank-1: the panel is at most four wide).
-inline void eliminate_in_panel(double* a, Index n, Index k, Index last, Index p1) {
-  double* ck = a + k * n;
-  const Index len = last - k;
+// updated by them (rank-1: the panel is at most four wide). Rows past `last` are zero in column
+// k, so the blocks of four leave them zero.
+inline void eliminate_in_panel(double* a, Index ld, Index k, Index last, Index p1) {
+  double* ck = a + k * ld;
+  const Index blocks = blocks_of_four(k + 1, last);
   const double inv = 1.0 / ck[k];
   double* __restrict l = ck + k + 1;
-  for (Index i = 0; i < len; ++i) l[i] *= inv;
+  for (Index b = 0; b < blocks; ++b)
+    for (int q = 0; q < 4; ++q) l[4 * b + q] *= inv;
   for (Index j = k + 1; j < p1; ++j) {
-    double* __restrict u = a + j * n + k + 1;
-    const double f = a[k + j * n];
+    double* __restrict u = a + j * ld + k + 1;
+    const double f = a[k + j * ld];
     if (f == 0.0) continue;
-    for (Index i = 0; i < len; ++i) u[i] -= f * l[i];
+    for (Index b = 0; b < blocks; ++b)
+      for (int q = 0; q < 4; ++q) u[4 * b + q] -= f * l[4 * b + q];
   }
 }
 
@@ -81,26 +92,30 @@ inline double pivot_search(const double* c, Index k, Index last, Index& p) {
 }
 
 // Trailing column j after the panel k0 .. k0+B-1: its rows in the panel become U12 (the unit
-// lower triangle L11 solved), then its rows k0+B .. last lose L21 U12. Columns whose panel
-// rows are all zero are left as they are.
+// lower triangle L11 solved), then its rows from k0+B on lose L21 U12, in `blocks` blocks of
+// four (blocks_of_four up to the panel's last nonzero row). Columns whose panel rows are all
+// zero are left as they are.
 template <int B>
-inline void update_trailing_column(double* a, Index n, Index k0, Index last, Index j) {
-  double* __restrict c = a + j * n;
+inline void update_trailing_column(double* a, Index ld, Index k0, Index blocks, Index j) {
+  double* __restrict c = a + j * ld;
   double u[B];
   bool any = false;
   for (int q = 0; q < B; ++q) {
     double x = c[k0 + q];
-    for (int r = 0; r < q; ++r) x -= a[(k0 + q) + (k0 + r) * n] * u[r];
+    for (int r = 0; r < q; ++r) x -= a[(k0 + q) + (k0 + r) * ld] * u[r];
     u[q] = x;
     c[k0 + q] = x;
     any = any || x != 0.0;
   }
   if (!any) return;
-  const double* __restrict l = a + k0 * n;
-  for (Index i = k0 + B; i <= last; ++i) {
-    double x = c[i];
-    for (int q = 0; q < B; ++q) x -= l[i + q * n] * u[q];
-    c[i] = x;
+  const double* __restrict l = a + k0 * ld;
+  for (Index b = 0; b < blocks; ++b) {
+    const Index i0 = k0 + B + 4 * b;
+    for (int r = 0; r < 4; ++r) {
+      double x = c[i0 + r];
+      for (int q = 0; q < B; ++q) x -= l[i0 + r + q * ld] * u[q];
+      c[i0 + r] = x;
+    }
   }
 }
 
@@ -114,15 +129,19 @@ inline void update_trailing_column(double* a, Index n, Index k0, Index last, Ind
 // benchmark's tangent made about a thousand AXPYs of 10 to 40 entries.
 FFR_RT_CLONES
 bool SmallLU::factorize() {
-  const Index n = n_;
-  double* a = buffer_.data();
+  const Index n = n_, ld = ld_;
+  double* a = buffer_.data() + kPad;
   ok_ = false;
+  for (Index j = 0; j < n; ++j) {  // the zero rows around each column (kPad)
+    std::fill(a + j * ld - kPad, a + j * ld, 0.0);
+    std::fill(a + j * ld + n, a + j * ld + n + kPad, 0.0);
+  }
   for (Index k0 = 0; k0 < n; k0 += kPanel) {
     const Index p1 = std::min(n, k0 + kPanel);
     // Last nonzero row of the panel's columns of L: the trailing update runs down to it.
     Index last_panel = k0;
     for (Index k = k0; k < p1; ++k) {
-      double* ck = a + k * n;
+      double* ck = a + k * ld;
       // Rows below the column's last nonzero take no part in this step.
       Index last = n - 1;
       while (last > k && ck[last] == 0.0) --last;
@@ -131,16 +150,17 @@ bool SmallLU::factorize() {
       if (!(big > 0.0)) return false;  // exactly zero column (or NaN)
       perm_(k) = static_cast<int>(p);
       if (p != k)
-        for (Index j = 0; j < n; ++j) std::swap(a[k + j * n], a[p + j * n]);
+        for (Index j = 0; j < n; ++j) std::swap(a[k + j * ld], a[p + j * ld]);
       last_panel = std::max(last_panel, last);
-      if (last > k) eliminate_in_panel(a, n, k, last, p1);
+      if (last > k) eliminate_in_panel(a, ld, k, last, p1);
     }
     // (Only the last panel can be narrower, and no columns follow it.)
-    for (Index j = p1; j < n; ++j) update_trailing_column<kPanel>(a, n, k0, last_panel, j);
+    const Index blocks = blocks_of_four(k0 + kPanel, last_panel);
+    for (Index j = p1; j < n; ++j) update_trailing_column<kPanel>(a, ld, k0, blocks, j);
   }
-  // Nonzero spans of each column of L and U for the solves.
+  // Nonzero spans of each column of L and U for the solves, and the swaps as one permutation.
   for (Index k = 0; k < n; ++k) {
-    const double* ck = a + k * n;
+    const double* ck = a + k * ld;
     Index lo = n - 1;
     while (lo > k && ck[lo] == 0.0) --lo;
     Index up = 0;
@@ -148,26 +168,31 @@ bool SmallLU::factorize() {
     lower_(k) = static_cast<int>(lo);
     upper_(k) = static_cast<int>(up);
     inv_diag_(k) = 1.0 / ck[k];
+    row_of_(k) = static_cast<int>(k);
   }
+  for (Index k = 0; k < n; ++k)
+    if (perm_(k) != k) std::swap(row_of_(k), row_of_(perm_(k)));
   ok_ = true;
   return true;
 }
 
 // The substitutions go four columns at a time: the triangle inside the four in registers,
-// then one loop over the rows outside it with four multiply-adds a row; the diagonal is
-// applied by its stored reciprocals. One AXPY a column and a division a row, as before, left
-// the solve dominated by the loops' set-up and the chain of divisions (0.7 us a solve of the
-// benchmark's 46 x 46 tangent, 13 solves a step).
+// then one loop over the rows outside it with four multiply-adds a row, in blocks of four rows
+// (kPad); the diagonal is applied by its stored reciprocals. One AXPY a column and a division a
+// row, as before, left the solve dominated by the loops' set-up and the chain of divisions
+// (0.7 us a solve of the benchmark's 46 x 46 tangent, 13 solves a step).
 FFR_RT_CLONES
 void SmallLU::solve_in_place(Eigen::Ref<Eigen::VectorXd> xv) const {
-  const Index n = n_;
+  const Index n = n_, ld = ld_;
   eigen_assert(xv.size() >= n);
-  const double* a = buffer_.data();
+  const double* a = buffer_.data() + kPad;
   const double* rd = inv_diag_.data();
-  double* __restrict x = xv.data();
-  const auto A = [&](Index i, Index j) { return a[i + j * n]; };
-  for (Index k = 0; k < n; ++k)
-    if (perm_(k) != k) std::swap(x[k], x[perm_(k)]);
+  double* __restrict x = work_.data() + kPad;
+  const auto A = [&](Index i, Index j) { return a[i + j * ld]; };
+  // The right-hand side in the factors' row order, between zeros.
+  for (Index k = 0; k < n; ++k) x[k] = xv[row_of_(k)];
+  std::fill(x - kPad, x, 0.0);
+  std::fill(x + n, x + n + kPad, 0.0);
   // Forward: unit lower L; column k is zero below row lower_(k).
   Index k0 = 0;
   for (; k0 + 4 <= n; k0 += 4) {
@@ -179,12 +204,21 @@ void SmallLU::solve_in_place(Eigen::Ref<Eigen::VectorXd> xv) const {
     x[k0 + 2] = x2;
     x[k0 + 3] = x3;
     const Index last = std::max({lower_(k0), lower_(k0 + 1), lower_(k0 + 2), lower_(k0 + 3)});
-    const double *__restrict c0 = a + k0 * n, *__restrict c1 = c0 + n, *__restrict c2 = c1 + n, *__restrict c3 = c2 + n;
-    for (Index i = k0 + 4; i <= last; ++i) x[i] -= c0[i] * x0 + c1[i] * x1 + c2[i] * x2 + c3[i] * x3;
+    const double *__restrict c0 = a + k0 * ld, *__restrict c1 = c0 + ld, *__restrict c2 = c1 + ld, *__restrict c3 = c2 + ld;
+    const Index blocks = blocks_of_four(k0 + 4, last);
+    for (Index b = 0; b < blocks; ++b) {
+      const Index i0 = k0 + 4 + 4 * b;
+      for (int r = 0; r < 4; ++r) {
+        const Index i = i0 + r;
+        x[i] -= c0[i] * x0 + c1[i] * x1 + c2[i] * x2 + c3[i] * x3;
+      }
+    }
   }
   for (Index c = k0; c < n; ++c)  // the last columns: nothing below them
     for (Index r = c + 1; r < n; ++r) x[r] -= A(r, c) * x[c];
-  // Back: U on and above the diagonal; column k is zero above row upper_(k).
+  // Back: U on and above the diagonal; column k is zero above row upper_(k). The rows above a
+  // block go in blocks of four that end right above it, the first starting at most three rows
+  // above the first nonzero (zeros, or the zero rows above the columns).
   Index k1 = n;
   for (; k1 >= 4; k1 -= 4) {
     const Index b = k1 - 4;
@@ -198,13 +232,21 @@ void SmallLU::solve_in_place(Eigen::Ref<Eigen::VectorXd> xv) const {
     x[b + 2] = x2;
     x[b + 3] = x3;
     const Index first = std::min({upper_(b), upper_(b + 1), upper_(b + 2), upper_(b + 3)});
-    const double *__restrict c0 = a + b * n, *__restrict c1 = c0 + n, *__restrict c2 = c1 + n, *__restrict c3 = c2 + n;
-    for (Index i = first; i < b; ++i) x[i] -= c0[i] * x0 + c1[i] * x1 + c2[i] * x2 + c3[i] * x3;
+    const double *__restrict c0 = a + b * ld, *__restrict c1 = c0 + ld, *__restrict c2 = c1 + ld, *__restrict c3 = c2 + ld;
+    const Index blocks = blocks_of_four(first, b - 1), i_lo = b - 4 * blocks;
+    for (Index k = 0; k < blocks; ++k) {
+      const Index i0 = i_lo + 4 * k;
+      for (int r = 0; r < 4; ++r) {
+        const Index i = i0 + r;
+        x[i] -= c0[i] * x0 + c1[i] * x1 + c2[i] * x2 + c3[i] * x3;
+      }
+    }
   }
   for (Index c = k1 - 1; c >= 0; --c) {  // the first columns: nothing above them
     x[c] *= rd[c];
     for (Index r = 0; r < c; ++r) x[r] -= A(r, c) * x[c];
   }
+  for (Index k = 0; k < n; ++k) xv[k] = x[k];
 }
 
 }  // namespace ffr::runtime

@@ -22,6 +22,9 @@ namespace ffr::runtime {
 
 class SmallLU {
  public:
+  /// A k x k matrix in the own buffer (leading dimension k + 2 kPad, see below).
+  using MatrixMap = Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+
   SmallLU() = default;
   explicit SmallLU(Eigen::Index n) { resize(n); }
   /// Buffers for matrices of up to n x n.
@@ -34,37 +37,51 @@ class SmallLU {
   template <class Derived>
   bool compute(const Eigen::MatrixBase<Derived>& A) {
     eigen_assert(A.rows() == A.cols() && A.rows() <= capacity_);
-    n_ = A.rows();
-    Eigen::Map<Eigen::MatrixXd>(buffer_.data(), n_, n_) = A;  // in the buffer: no allocation
+    MatrixMap a = begin(A.rows());
+    a = A;  // in the buffer: no allocation
     return factorize();
   }
-  /// Factorises the k x k matrix that fill(Eigen::Map<Eigen::MatrixXd>&) writes into the own
-  /// buffer (for gathers an expression cannot state cheaply); otherwise as compute.
+  /// Factorises the k x k matrix that fill(MatrixMap&) writes into the own buffer (for gathers
+  /// an expression cannot state cheaply); otherwise as compute.
   template <class Fill>
   bool compute_filled(Eigen::Index k, Fill&& fill) {
     eigen_assert(k <= capacity_);
-    n_ = k;
-    Eigen::Map<Eigen::MatrixXd> a(buffer_.data(), k, k);
+    MatrixMap a = begin(k);
     fill(a);
     return factorize();
   }
-  /// x <- A^-1 x with the last factorisation (its first k entries; x may be longer).
+  /// x <- A^-1 x with the last factorisation (its first k entries; x may be longer). Uses a
+  /// work vector of the object: one solve at a time.
   void solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const;
 
   bool ok() const { return ok_; }
   Eigen::Index size() const { return n_; }
 
  private:
+  /// Zero rows above and below every column of the buffer and of the solves' work vector.
+  /// Why: the kernels' loops over a column's rows then run in whole blocks of four, reading
+  /// at most three rows past the column's nonzero span (zeros, so nothing changes), with no
+  /// scalar remainder loop; with the tangent's columns of 1 to 25 rows, the loops' set-up and
+  /// remainders were most of a solve's instructions.
+  static constexpr Eigen::Index kPad = 4;
+
+  MatrixMap begin(Eigen::Index k) {
+    n_ = k;
+    ld_ = k + 2 * kPad;
+    return MatrixMap(buffer_.data() + kPad, k, k, Eigen::OuterStride<>(ld_));
+  }
   bool factorize();  // in place on the buffer
 
-  /// Packed factors of the last matrix (k x k, column-major, leading dimension k): unit lower L
-  /// below the diagonal, U on and above.
+  /// Packed factors of the last matrix (k x k, column-major from buffer_ + kPad, leading
+  /// dimension ld_): unit lower L below the diagonal, U on and above.
   Eigen::VectorXd buffer_;
-  Eigen::Index capacity_ = 0, n_ = 0;
+  Eigen::Index capacity_ = 0, n_ = 0, ld_ = 0;
   Eigen::VectorXi perm_;    ///< row k was swapped with row perm_(k) at step k
+  Eigen::VectorXi row_of_;  ///< the swaps together: row k of the factors is row row_of_(k) of A
   Eigen::VectorXi lower_;   ///< last nonzero row of L's column k (k when none)
   Eigen::VectorXi upper_;   ///< first nonzero row of U's column k above the diagonal (k when none)
   Eigen::VectorXd inv_diag_;  ///< 1 / U(k, k)
+  mutable Eigen::VectorXd work_;  ///< the solves' right-hand side, kPad zeros either side
   bool ok_ = false;
 };
 
