@@ -26,6 +26,10 @@ namespace ffr::runtime::detail::simd {
 // Four doubles at any 8-byte alignment (GCC's vector extension), for the reductions GCC does
 // not vectorise by itself without reassociating (-ffast-math).
 typedef double v4 __attribute__((vector_size(32), aligned(8), may_alias));
+typedef long long m4 __attribute__((vector_size(32)));  ///< a comparison's lanes: all ones or zero
 inline v4 load(const double* p) { return *reinterpret_cast<const v4*>(p); }
+/// Lanes l >= from (0 <= from <= 4): the rows of a last block of four, started at m - 4 so
+/// that it stays inside the column, that the whole blocks before it have not done.
+inline m4 lanes_from(long long from) { return m4{0, 1, 2, 3} >= from; }
 
 }  // namespace ffr::runtime::detail::simd
