@@ -73,6 +73,14 @@ Result run(double h) {
   return r;
 }
 
+// The runtime benchmark's rod (tools/bench/runtime_step: a 10-mode steel chain of 11 points)
+// as dir/rod.sid.h5, for the models of bench::slider_crank_json.
+void write_benchmark_rod(const test::TempDir& dir) {
+  auto chain = ffr::formats::synthetic::spring_chain(bench::rod_params(11, 10));
+  bench::add_section_inertia(chain.sid, 0.008, 0.008);
+  test::write_sid_file(chain.sid, dir / "rod.sid.h5");
+}
+
 }  // namespace
 
 TEST(SliderCrank, FlexibleRodMatchesIvpTestSetReference) {
@@ -100,9 +108,7 @@ TEST(SliderCrank, FlexibleRodMatchesIvpTestSetReference) {
 // physical ones.
 TEST(SliderCrank, RedundantMultipliersStayBounded) {
   test::TempDir dir("crank_redundant");
-  auto chain = ffr::formats::synthetic::spring_chain(bench::rod_params(11, 10));
-  bench::add_section_inertia(chain.sid, 0.008, 0.008);
-  test::write_sid_file(chain.sid, dir / "rod.sid.h5");
+  write_benchmark_rod(dir);
   for (const double penalty : {3e3, 3e4}) {
     Model model = test::model_from(bench::slider_crank_json("rod.sid.h5", 1e-3, 1.0, 150.0), dir.path);
     model.settings.penalty = penalty;
@@ -129,9 +135,7 @@ TEST(SliderCrank, RedundantMultipliersStayBounded) {
 // joints sit on moving nodes of the flexible rod (their biases 2 A_dot phi y_dot are not zero).
 TEST(SliderCrank, ProjectionsMeetConstraintsEvaluatedAfresh) {
   test::TempDir dir("crank_fresh");
-  auto chain = ffr::formats::synthetic::spring_chain(bench::rod_params(11, 10));
-  bench::add_section_inertia(chain.sid, 0.008, 0.008);
-  test::write_sid_file(chain.sid, dir / "rod.sid.h5");
+  write_benchmark_rod(dir);
   const Model model = test::model_from(bench::slider_crank_json("rod.sid.h5", 1e-3, 0.1, 150.0), dir.path);
   Data data(model);
   initialize(model, data);
@@ -162,9 +166,7 @@ TEST(SliderCrank, ProjectionsMeetConstraintsEvaluatedAfresh) {
 // round-off.
 TEST(SliderCrank, NewtonToleranceBoundsTheAcceptedState) {
   test::TempDir dir("crank_newton");
-  auto chain = ffr::formats::synthetic::spring_chain(bench::rod_params(11, 10));
-  bench::add_section_inertia(chain.sid, 0.008, 0.008);
-  test::write_sid_file(chain.sid, dir / "rod.sid.h5");
+  write_benchmark_rod(dir);
   Model loose = test::model_from(bench::slider_crank_json("rod.sid.h5", 1e-3, 0.1, 150.0), dir.path);
   Model tight = loose;
   tight.settings.newton_tolerance = 1e-15;
@@ -195,9 +197,7 @@ TEST(SliderCrank, NewtonToleranceBoundsTheAcceptedState) {
 // off (ali3p.cpp): it is rebuilt there, and the run gives the states of the default one.
 TEST(SliderCrank, ReusedTangentFallsBackWhenTheCrankTurnsFast) {
   test::TempDir dir("crank_reuse");
-  auto chain = ffr::formats::synthetic::spring_chain(bench::rod_params(11, 10));
-  bench::add_section_inertia(chain.sid, 0.008, 0.008);
-  test::write_sid_file(chain.sid, dir / "rod.sid.h5");
+  write_benchmark_rod(dir);
   const Model fresh = test::model_from(bench::slider_crank_json("rod.sid.h5", 1e-3, 0.1, 150.0), dir.path);
   Model kept = fresh;
   kept.settings.reuse_jacobian = true;
