@@ -64,8 +64,14 @@ Outcome run(bool free_hub, bool stiffening, int modes, double h, double T) {
   test::write_sid_file(body.sid, dir / "chain.sid.h5");
   std::string table_t, table_v;
   for (int i = 0; i <= 300; ++i) {
-    table_t += (i ? ", " : "") + num(0.01 * i);
-    table_v += (i ? ", " : "") + num(spin_up(0.01 * i));
+    // (Appended piece by piece: `const char* + std::string&&` trips GCC 12's -Wrestrict false
+    // positive, PR105329.)
+    if (i) {
+      table_t += ", ";
+      table_v += ", ";
+    }
+    table_t += num(0.01 * i);
+    table_v += num(spin_up(0.01 * i));
   }
   const std::string stiff = stiffening ? "true" : "false";
   std::string json = R"({"gravity": [0, 0, -9.81], "solver": {"end": )" + num(T) + R"(, "step": )" + num(h) + "},\n";

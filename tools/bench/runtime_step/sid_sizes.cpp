@@ -44,7 +44,11 @@ int run_sid_sizes(const std::filesystem::path& model_path, const std::string& pl
   std::vector<Model> models;
   for (const SidCase& c : sids) {
     std::string t = text;
-    t.replace(at, key.size(), "\"" + std::filesystem::absolute(c.path).string() + "\"");
+    // (Quoted by appending: `"\"" + std::string&&` trips GCC 12's -Wrestrict false positive, PR105329.)
+    std::string quoted = "\"";
+    quoted += std::filesystem::absolute(c.path).string();
+    quoted += '"';
+    t.replace(at, key.size(), quoted);
     models.push_back(parse_model(t, model_path.parent_path(), model_path.string()));
   }
   std::printf("# per-step time vs the mesh the SID was reduced from (%s; %d rounds interleaved, best of each)\n",
