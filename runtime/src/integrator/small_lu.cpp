@@ -18,7 +18,6 @@ void SmallLU::resize(Index n) {
   capacity_ = n;
   n_ = n;
   ld_ = n + 2 * kPad;
-  perm_.setZero(n);
   row_of_.setZero(n);
   lower_.setZero(n);
   upper_.setZero(n);
@@ -132,6 +131,7 @@ bool SmallLU::factorize() {
   const Index n = n_, ld = ld_;
   double* a = buffer_.data() + kPad;
   ok_ = false;
+  for (Index k = 0; k < n; ++k) row_of_(k) = static_cast<int>(k);
   for (Index j = 0; j < n; ++j) {  // the zero rows around each column (kPad)
     std::fill(a + j * ld - kPad, a + j * ld, 0.0);
     std::fill(a + j * ld + n, a + j * ld + n + kPad, 0.0);
@@ -148,9 +148,10 @@ bool SmallLU::factorize() {
       Index p = 0;
       const double big = pivot_search(ck, k, last, p);
       if (!(big > 0.0)) return false;  // exactly zero column (or NaN)
-      perm_(k) = static_cast<int>(p);
-      if (p != k)
+      if (p != k) {
         for (Index j = 0; j < n; ++j) std::swap(a[k + j * ld], a[p + j * ld]);
+        std::swap(row_of_(k), row_of_(p));
+      }
       last_panel = std::max(last_panel, last);
       if (last > k) eliminate_in_panel(a, ld, k, last, p1);
     }
@@ -158,7 +159,7 @@ bool SmallLU::factorize() {
     const Index blocks = blocks_of_four(k0 + kPanel, last_panel);
     for (Index j = p1; j < n; ++j) update_trailing_column<kPanel>(a, ld, k0, blocks, j);
   }
-  // Nonzero spans of each column of L and U for the solves, and the swaps as one permutation.
+  // Nonzero spans of each column of L and U for the solves.
   for (Index k = 0; k < n; ++k) {
     const double* ck = a + k * ld;
     Index lo = n - 1;
@@ -168,10 +169,7 @@ bool SmallLU::factorize() {
     lower_(k) = static_cast<int>(lo);
     upper_(k) = static_cast<int>(up);
     inv_diag_(k) = 1.0 / ck[k];
-    row_of_(k) = static_cast<int>(k);
   }
-  for (Index k = 0; k < n; ++k)
-    if (perm_(k) != k) std::swap(row_of_(k), row_of_(perm_(k)));
   ok_ = true;
   return true;
 }

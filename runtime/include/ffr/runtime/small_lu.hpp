@@ -9,7 +9,7 @@
 // span. Pivoting is partial pivoting over the column (its rows below the last nonzero are
 // zero). On the runtime benchmark's 46 x 46 tangent a factorisation took about 6.3 us of the
 // step (perf) against 10.3 us for equilibration and PartialPivLU timed alone before; with raw
-// loops compiled for AVX2/AVX-512 (small_lu.cpp) about 3.9 us, and a solve 0.37 us (0.67 us
+// loops compiled for AVX2 and (then) AVX-512 (small_lu.cpp) about 3.9 us, and a solve 0.37 us (0.67 us
 // with one AXPY a column through Eigen segments). Blocked in panels of four columns, with a
 // pivot search of four independent maxima: 60.6 thousand instructions a factorisation of a
 // tangent saved from that benchmark instead of 77 thousand (callgrind), best times 4.9-5.1 us
@@ -76,8 +76,7 @@ class SmallLU {
   /// dimension ld_): unit lower L below the diagonal, U on and above.
   Eigen::VectorXd buffer_;
   Eigen::Index capacity_ = 0, n_ = 0, ld_ = 0;
-  Eigen::VectorXi perm_;    ///< row k was swapped with row perm_(k) at step k
-  Eigen::VectorXi row_of_;  ///< the swaps together: row k of the factors is row row_of_(k) of A
+  Eigen::VectorXi row_of_;  ///< the row swaps so far: row k of the factors is row row_of_(k) of A
   Eigen::VectorXi lower_;   ///< last nonzero row of L's column k (k when none)
   Eigen::VectorXi upper_;   ///< first nonzero row of U's column k above the diagonal (k when none)
   Eigen::VectorXd inv_diag_;  ///< 1 / U(k, k)
