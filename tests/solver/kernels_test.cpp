@@ -3,6 +3,7 @@
 // and the Z-order by hand for the node numbering.
 #include "mesh/node_order.hpp"
 #include "solver/tall_skinny.hpp"
+#include "ffr/preproc/threads.hpp"
 
 #include <gtest/gtest.h>
 
@@ -46,6 +47,35 @@ TEST(TallSkinny, MatchesEigenProductsForEveryShape) {
       }
     }
   }
+}
+
+// The row-parallel helpers (the Gram matrices, the triangular normalization and the in-place
+// rotation) against Eigen's serial products, on one thread and on two: the shapes are large
+// enough (n k above 2^18) for the rows to be split, at a point that is not a multiple of 4 or of
+// the rotation's bands.
+TEST(TallSkinny, RowParallelHelpersMatchEigenOnOneAndTwoThreads) {
+  const unsigned before = ffr::preproc::max_threads();
+  for (const unsigned threads : {1u, 2u}) {
+    ffr::preproc::set_max_threads(threads);
+    const Index n = 70001, k = 23, p = 4;
+    const Eigen::MatrixXd A = random_matrix(n, k, 21), B = random_matrix(n, p, 22);
+    const Eigen::MatrixXd G = ffr::preproc::detail::transposed_product(A, B);
+    const Eigen::MatrixXd G_ref = A.transpose() * B;
+    EXPECT_LT((G - G_ref).norm(), 1e-13 * G_ref.norm()) << threads << " threads";
+
+    Eigen::MatrixXd U = random_matrix(p, p, 23).triangularView<Eigen::Upper>();
+    U.diagonal().array() += 3.0;  // well conditioned
+    Eigen::MatrixXd X = B;
+    ffr::preproc::detail::solve_upper_on_right(U, X);
+    EXPECT_LT((X * U.triangularView<Eigen::Upper>() - B).norm(), 1e-13 * B.norm()) << threads << " threads";
+
+    const Eigen::MatrixXd S = random_matrix(k, 7, 24);
+    Eigen::MatrixXd Q = A;
+    ffr::preproc::detail::rotate_columns_in_place(Q, k, S);
+    const Eigen::MatrixXd R_ref = A * S;
+    EXPECT_LT((Q.leftCols(7) - R_ref).norm(), 1e-13 * R_ref.norm()) << threads << " threads";
+  }
+  ffr::preproc::set_max_threads(before);
 }
 
 // The 2 x 2 x 2 corners of a cube in Z-order (x the lowest bit of each cell's code, then y,

@@ -44,16 +44,15 @@ using Eigen::VectorXd;
 // W <- W R^{-1} and MW <- MW R^{-1} with W^T MW = R^T R. False if the block is (nearly)
 // rank-deficient in the M norm.
 bool cholesky_qr(MatrixXd& W, MatrixXd& MW, MatrixXd& R) {
-  MatrixXd G = W.transpose() * MW;
+  MatrixXd G = transposed_product(W, MW);
   G = 0.5 * (G + G.transpose());
   Eigen::LLT<MatrixXd> llt(G);
   if (llt.info() != Eigen::Success) return false;
   R = llt.matrixU();
   const VectorXd d = R.diagonal().cwiseAbs();
   if (!(d.minCoeff() > 1e-7 * d.maxCoeff())) return false;  // condition of G above ~1e14
-  const auto U = R.triangularView<Eigen::Upper>();
-  U.solveInPlace<Eigen::OnTheRight>(W);
-  U.solveInPlace<Eigen::OnTheRight>(MW);
+  solve_upper_on_right(R, W);
+  solve_upper_on_right(R, MW);
   return true;
 }
 

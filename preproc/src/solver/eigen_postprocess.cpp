@@ -71,8 +71,8 @@ void finish_eigenpairs(const SparseRef& K, SymmetricStorage sK, const SparseRef&
     const Eigen::Index k = X.cols();
     Eigen::MatrixXd Ks(k, k), Ms(k, k);
     for_product_chunks(K, sK, M, sM, X, [&](Eigen::Index c0, const Eigen::MatrixXd& KXc, const Eigen::MatrixXd& MXc) {
-      Ks.middleCols(c0, KXc.cols()).noalias() = X.transpose() * KXc;
-      Ms.middleCols(c0, MXc.cols()).noalias() = X.transpose() * MXc;
+      Ks.middleCols(c0, KXc.cols()) = transposed_product(X, KXc);
+      Ms.middleCols(c0, MXc.cols()) = transposed_product(X, MXc);
     });
     Ks = 0.5 * (Ks + Ks.transpose());
     Ms = 0.5 * (Ms + Ms.transpose());
@@ -107,8 +107,8 @@ void finish_eigenpairs(const SparseRef& K, SymmetricStorage sK, const SparseRef&
       const double bden = (nK + std::abs(l) * nM) * X.col(j).norm();
       out.backward_error[j] = bden > 0 ? r / bden : r;
     }
-    out.XtKX.middleCols(c0, KXc.cols()).noalias() = X.transpose() * KXc;
-    out.XtMX.middleCols(c0, MXc.cols()).noalias() = X.transpose() * MXc;
+    out.XtKX.middleCols(c0, KXc.cols()) = transposed_product(X, KXc);
+    out.XtMX.middleCols(c0, MXc.cols()) = transposed_product(X, MXc);
   });
   out.max_relative_residual = m > 0 ? out.relative_residual.maxCoeff() : 0.0;
   out.orthonormality_error = m > 0 ? (out.XtMX - Eigen::MatrixXd::Identity(m, m)).cwiseAbs().maxCoeff() : 0.0;

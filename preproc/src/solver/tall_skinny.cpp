@@ -1,10 +1,14 @@
 // Tall-skinny products for the block Gram-Schmidt (see tall_skinny.hpp for why).
 #include "tall_skinny.hpp"
 
+#include "../run_parts.hpp"
 #include "kernel_clones.hpp"
+
+#include <Eigen/Core>
 
 #include <algorithm>
 #include <type_traits>
+#include <vector>
 
 namespace ffr::preproc::detail {
 namespace {
@@ -106,15 +110,51 @@ void subtract_product(const double* Q, Index ldq, Index k, const double* C, Inde
   });
 }
 
+namespace {
+
+// Parts of n rows for work of about n * width values: the eigen-solver's threshold for vector
+// work (parts_for), split at multiples of `align` rows.
+template <class Body>
+void over_row_parts(Index n, Index width, Index align, Body&& body) {
+  const unsigned parts = parts_for(n * width, Index{1} << 18);
+  const auto split = [&](unsigned part) {
+    if (part >= parts) return n;
+    return n * static_cast<Index>(part) / static_cast<Index>(parts) / align * align;
+  };
+  run_parts(parts, split, body);
+}
+
+}  // namespace
+
 void rotate_columns_in_place(Eigen::MatrixXd& Q, Eigen::Index k, const Eigen::Ref<const Eigen::MatrixXd>& S) {
   const Eigen::Index n = Q.rows(), m = S.cols();
   constexpr Eigen::Index kBand = 256;
-  Eigen::MatrixXd band(kBand, m);
-  for (Eigen::Index r0 = 0; r0 < n; r0 += kBand) {
-    const Eigen::Index rows = std::min(kBand, n - r0);
-    band.topRows(rows).noalias() = Q.block(r0, 0, rows, k) * S;
-    Q.block(r0, 0, rows, m) = band.topRows(rows);
-  }
+  over_row_parts(n, k, kBand, [&](unsigned, Index b, Index e) {
+    Eigen::MatrixXd band(kBand, m);
+    for (Eigen::Index r0 = b; r0 < e; r0 += kBand) {
+      const Eigen::Index rows = std::min(kBand, e - r0);
+      band.topRows(rows).noalias() = Q.block(r0, 0, rows, k) * S;
+      Q.block(r0, 0, rows, m) = band.topRows(rows);
+    }
+  });
+}
+
+Eigen::MatrixXd transposed_product(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B) {
+  const Index n = A.rows(), k = A.cols(), p = B.cols();
+  std::vector<Eigen::MatrixXd> partial(std::max(1u, parts_for(n * k, Index{1} << 18)), Eigen::MatrixXd::Zero(k, p));
+  over_row_parts(n, k, 1, [&](unsigned part, Index r0, Index r1) {
+    add_transposed_product(A.data(), A.outerStride(), k, B.data(), B.outerStride(), p, r0, r1, partial[part].data());
+  });
+  for (std::size_t part = 1; part < partial.size(); ++part) partial[0] += partial[part];
+  return std::move(partial[0]);
+}
+
+void solve_upper_on_right(const Eigen::Ref<const Eigen::MatrixXd>& U, Eigen::MatrixXd& X) {
+  const auto upper = U.triangularView<Eigen::Upper>();
+  over_row_parts(X.rows(), X.cols(), 1, [&](unsigned, Index r0, Index r1) {
+    auto rows = X.middleRows(r0, r1 - r0);
+    upper.solveInPlace<Eigen::OnTheRight>(rows);
+  });
 }
 
 }  // namespace ffr::preproc::detail

@@ -30,6 +30,18 @@ void subtract_product(const double* Q, std::int64_t ldq, std::int64_t k, const d
 /// 100k-DOF plate), and a separate n x m result, with the temporary of the product, raised the
 /// process's peak by two more n x m matrices (32 MB measured with heaptrack at 20 modes, at the
 /// end of the Lanczos stage, which set the peak of the whole run at 1 thread).
+/// The bands run on up to max_threads() threads.
 void rotate_columns_in_place(Eigen::MatrixXd& Q, Eigen::Index k, const Eigen::Ref<const Eigen::MatrixXd>& S);
+
+/// A^T B (A n x k, B n x p, both with unit inner stride), with add_transposed_product over
+/// parts of the rows on up to max_threads() threads, the parts' sums added in order. Why: the
+/// Gram matrices of the block Lanczos's normalizations and of the eigen-solver's checks were
+/// Eigen products, compiled for SSE2 (the project's baseline) and on one thread: 40 ms of the
+/// 100k-DOF plate's Lanczos stage and 50 ms of its checks, while the other core waited.
+Eigen::MatrixXd transposed_product(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B);
+
+/// X <- X U^{-1} for an upper-triangular p x p U (X n x p), over parts of the rows on up to
+/// max_threads() threads (each row is independent).
+void solve_upper_on_right(const Eigen::Ref<const Eigen::MatrixXd>& U, Eigen::MatrixXd& X);
 
 }  // namespace ffr::preproc::detail
