@@ -67,6 +67,6 @@ void finish_eigenpairs(const SparseRef& K, SymmetricStorage sK, const SparseRef&
 std::string check_eigenpairs(const EigenResult& r, const EigenOptions& o);
 
 /// Flips each column so that its first component with |x_i| >= kSignThreshold max|x| is > 0.
-void normalize_signs(Eigen::MatrixXd& X);
+Eigen::VectorXd normalize_signs(Eigen::MatrixXd& X);
 
 }  // namespace ffr::preproc::detail

@@ -5,12 +5,14 @@
 //     (the best estimate from the subspace), and resolves the arbitrary basis a backend
 //     returns inside a multiple eigenvalue (e.g. the symmetric modes of a cube);
 //  3. selection, sign convention;
-//  4. checks with freshly computed K X and M X (not the transformed ones), so the reported
-//     residuals are those of the vectors actually returned.
-// K X and M X are formed kChunk columns at a time, and X is rotated in place: whole n x m
-// products (with the new X of the Rayleigh-Ritz step and the products' own temporaries) put
-// 85 MB on top of the factor at the end of the eigen-solve, which set the peak of the 100k-DOF
-// plate's reduction at one thread (tools/bench/reduce, 20 modes).
+//  4. checks of the returned vectors: their residuals K x - l M x, X^T M X and X^T K X.
+// K X and M X are formed once, kChunk columns at a time, and rotated with X (K (X Y) = (K X) Y):
+// a second pass over K and M for the checks took 40-60 ms of the 100k-DOF plate's run. The
+// rotated products differ from fresh ones by rounding in the rotation, of the order of
+// eps |K X| |Y|, below the rounding of a fresh product itself (eps |K| |X|): the residuals
+// checked are those of the returned vectors. X and the products are rotated in place: whole
+// new n x m matrices, with the products' temporaries, put 85 MB on top of the factor at the end
+// of the eigen-solve (100k-DOF plate, 20 modes), the run's peak at one thread then.
 
 #include "eigen_backends.hpp"
 #include "tall_skinny.hpp"
@@ -28,33 +30,37 @@ namespace {
 // 4, 8 and 16 (sparse_types.cpp).
 constexpr Eigen::Index kChunk = 8;
 
-// Calls f(c0, KXc, MXc) for the column chunks [c0, c0 + w) of X with KXc = K X(:, c0:c0+w)
-// and MXc = M X(:, c0:c0+w).
-template <class F>
-void for_product_chunks(const SparseRef& K, SymmetricStorage sK, const SparseRef& M, SymmetricStorage sM,
-                        const Eigen::MatrixXd& X, F&& f) {
+// K X and M X, kChunk columns per product.
+void products(const SparseRef& K, SymmetricStorage sK, const SparseRef& M, SymmetricStorage sM, const Eigen::MatrixXd& X,
+              Eigen::MatrixXd& KX, Eigen::MatrixXd& MX) {
+  KX.resize(X.rows(), X.cols());
+  MX.resize(X.rows(), X.cols());
   for (Eigen::Index c0 = 0; c0 < X.cols(); c0 += kChunk) {
     const Eigen::Index w = std::min(kChunk, X.cols() - c0);
-    const Eigen::MatrixXd KXc = sym_multiply(K, sK, X.middleCols(c0, w));
-    const Eigen::MatrixXd MXc = sym_multiply(M, sM, X.middleCols(c0, w));
-    f(c0, KXc, MXc);
+    KX.middleCols(c0, w) = sym_multiply(K, sK, X.middleCols(c0, w));
+    MX.middleCols(c0, w) = sym_multiply(M, sM, X.middleCols(c0, w));
   }
 }
 
 }  // namespace
 
-void normalize_signs(Eigen::MatrixXd& X) {
+Eigen::VectorXd normalize_signs(Eigen::MatrixXd& X) {
+  Eigen::VectorXd signs = Eigen::VectorXd::Ones(X.cols());
   for (Eigen::Index j = 0; j < X.cols(); ++j) {
     auto x = X.col(j);
     const double amax = x.cwiseAbs().maxCoeff();
     if (!(amax > 0)) continue;
     for (Eigen::Index i = 0; i < x.size(); ++i) {
       if (std::abs(x[i]) >= kSignThreshold * amax) {
-        if (x[i] < 0) x = -x;
+        if (x[i] < 0) {
+          x = -x;
+          signs[j] = -1.0;
+        }
         break;
       }
     }
   }
+  return signs;
 }
 
 void finish_eigenpairs(const SparseRef& K, SymmetricStorage sK, const SparseRef& M,
@@ -67,18 +73,17 @@ void finish_eigenpairs(const SparseRef& K, SymmetricStorage sK, const SparseRef&
     const double nrm = X.col(j).norm();
     if (nrm > 0) X.col(j) /= nrm;
   }
+  Eigen::MatrixXd KX, MX;
+  products(K, sK, M, sM, X, KX, MX);
   {
     const Eigen::Index k = X.cols();
-    Eigen::MatrixXd Ks(k, k), Ms(k, k);
-    for_product_chunks(K, sK, M, sM, X, [&](Eigen::Index c0, const Eigen::MatrixXd& KXc, const Eigen::MatrixXd& MXc) {
-      Ks.middleCols(c0, KXc.cols()) = transposed_product(X, KXc);
-      Ms.middleCols(c0, MXc.cols()) = transposed_product(X, MXc);
-    });
+    Eigen::MatrixXd Ks = transposed_product(X, KX), Ms = transposed_product(X, MX);
     Ks = 0.5 * (Ks + Ks.transpose());
     Ms = 0.5 * (Ms + Ms.transpose());
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> rr(Ks, Ms);
-    out.lambda = rr.eigenvalues();                     // ascending
-    rotate_columns_in_place(X, k, rr.eigenvectors());  // M-orthonormal: Y^T Ms Y = I
+    out.lambda = rr.eigenvalues();  // ascending
+    // M-orthonormal: Y^T Ms Y = I.
+    for (Eigen::MatrixXd* Z : {&X, &KX, &MX}) rotate_columns_in_place(*Z, k, rr.eigenvectors());
   }
 
   // Selection: the `keep` lowest, and those not above lambda_max.
@@ -87,29 +92,29 @@ void finish_eigenpairs(const SparseRef& K, SymmetricStorage sK, const SparseRef&
   if (std::isfinite(lambda_max))
     while (m > 0 && out.lambda[m - 1] > lambda_max) --m;
   out.lambda.conservativeResize(m);
-  X.conservativeResize(Eigen::NoChange, m);
-  normalize_signs(X);
+  for (Eigen::MatrixXd* Z : {&X, &KX, &MX}) Z->conservativeResize(Eigen::NoChange, m);
+  const Eigen::VectorXd signs = normalize_signs(X);
+  for (Eigen::Index j = 0; j < m; ++j)
+    if (signs[j] < 0) {
+      KX.col(j) = -KX.col(j);
+      MX.col(j) = -MX.col(j);
+    }
 
   const double nK = sym_norm1(K, sK), nM = sym_norm1(M, sM);
   out.relative_residual.resize(m);
   out.backward_error.resize(m);
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const double l = out.lambda[j];
+    const double r = (KX.col(j) - l * MX.col(j)).norm();
+    const double denom = KX.col(j).norm() + std::abs(l) * MX.col(j).norm();
+    out.relative_residual[j] = denom > 0 ? r / denom : r;
+    const double bden = (nK + std::abs(l) * nM) * X.col(j).norm();
+    out.backward_error[j] = bden > 0 ? r / bden : r;
+  }
   // The reduced matrices come with the checks' products: a caller needs them and would
   // otherwise multiply K and M by X once more.
-  out.XtKX.resize(m, m);
-  out.XtMX.resize(m, m);
-  for_product_chunks(K, sK, M, sM, X, [&](Eigen::Index c0, const Eigen::MatrixXd& KXc, const Eigen::MatrixXd& MXc) {
-    for (Eigen::Index c = 0; c < KXc.cols(); ++c) {
-      const Eigen::Index j = c0 + c;
-      const double l = out.lambda[j];
-      const double r = (KXc.col(c) - l * MXc.col(c)).norm();
-      const double denom = KXc.col(c).norm() + std::abs(l) * MXc.col(c).norm();
-      out.relative_residual[j] = denom > 0 ? r / denom : r;
-      const double bden = (nK + std::abs(l) * nM) * X.col(j).norm();
-      out.backward_error[j] = bden > 0 ? r / bden : r;
-    }
-    out.XtKX.middleCols(c0, KXc.cols()) = transposed_product(X, KXc);
-    out.XtMX.middleCols(c0, MXc.cols()) = transposed_product(X, MXc);
-  });
+  out.XtKX = transposed_product(X, KX);
+  out.XtMX = transposed_product(X, MX);
   out.max_relative_residual = m > 0 ? out.relative_residual.maxCoeff() : 0.0;
   out.orthonormality_error = m > 0 ? (out.XtMX - Eigen::MatrixXd::Identity(m, m)).cwiseAbs().maxCoeff() : 0.0;
   out.deflation_error =
