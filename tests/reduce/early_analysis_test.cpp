@@ -12,8 +12,10 @@
 #include "ffr/preproc/reduce/reduction.hpp"
 #include "ffr/preproc/threads.hpp"
 #include "reduce/pattern_analysis.hpp"
+#include "solver/nodal_ordering.hpp"
 #include "reduce/setup.hpp"
 #include "reduce/sparse_ops.hpp"
+#include "solver/pattern_hash.hpp"
 #include "support.hpp"
 
 #include <gtest/gtest.h>
@@ -141,6 +143,14 @@ TEST(EarlyAnalysis, WritesThePrincipalSubmatrixFromTheNodeGraph) {
     const preproc::detail::Pattern p = preproc::detail::build_pattern(model, preproc::all_elements(model));
     const auto st = preproc::detail::selected_structure(p, rows, true);
     ASSERT_TRUE(st.has_value());
+    // The hash factorize checks, streamed without the matrix, is that of the matrix.
+    preproc::detail::PatternHash h(upper.rows());
+    for (Eigen::Index j = 0; j < upper.outerSize(); ++j) {
+      h.column(j);
+      for (SparseMatrix::InnerIterator it(upper, j); it; ++it) h.row(it.row());
+    }
+    EXPECT_EQ(st->hash, h.value());
+    EXPECT_EQ(st->upper_nnz, upper.nonZeros());
     ASSERT_EQ(st->upper.rows(), upper.rows());
     ASSERT_EQ(st->upper.nonZeros(), upper.nonZeros());
     EXPECT_TRUE(std::equal(upper.outerIndexPtr(), upper.outerIndexPtr() + upper.cols() + 1, st->upper.outerIndexPtr()));
@@ -169,6 +179,46 @@ TEST(EarlyAnalysis, WritesThePrincipalSubmatrixFromTheNodeGraph) {
       ASSERT_EQ(got, expect) << "group " << G;
     }
   }
+}
+
+// The symbolic factor from the node graph (CholmodFactor::analyze_groups, grouped_symbolic.hpp)
+// against CHOLMOD's analysis of the DOF matrix in the same order: the same nnz(L) and flops
+// (CHOLMOD's own counts), no second analysis at the factorization, and the same solutions.
+TEST(GroupedSymbolic, FactorsAsTheAnalysisOfTheDofMatrix) {
+  test::HexGrid grid(12, 6, 5);
+  auto& itf = grid.part.interfaces;
+  itf.erase(std::remove_if(itf.begin(), itf.end(), [](const auto& i) { return i.name != "L"; }), itf.end());
+  const auto model = preproc::build_model(grid.mesh, grid.part);
+  const auto spec = clamped();
+  const preproc::DofTransform t = preproc::build_transform(model, preproc::detail::states_for(model, spec));
+  const preproc::Assembled fe = preproc::assemble(model);
+  const SparseMatrix K = preproc::detail::constrained(t, fe.K, false);  // upper triangle
+  const auto rows = preproc::detail::factorized_rows(model, t, spec);
+  ASSERT_FALSE(rows.empty());
+  const preproc::detail::Pattern p = preproc::detail::build_pattern(model, preproc::all_elements(model));
+  const auto st = preproc::detail::selected_structure(p, rows, false);
+  ASSERT_TRUE(st.has_value());
+  const auto order = preproc::detail::metis_ordering(st->graph);
+  ASSERT_EQ(static_cast<Eigen::Index>(order.perm.size()), K.rows());
+
+  preproc::CholmodFactor dof, grouped;
+  const auto ref = dof.analyze(K, order.perm, order.groups, "METIS");
+  const auto got = grouped.analyze_groups(st->graph, order.perm, order.groups, st->hash, st->upper_nnz);
+  EXPECT_EQ(got.n, ref.n);
+  EXPECT_EQ(got.nnz_A, ref.nnz_A);
+  EXPECT_EQ(got.nnz_L, ref.nnz_L);
+  EXPECT_NEAR(got.flops, ref.flops, 1e-12 * ref.flops);
+  EXPECT_GT(got.factor_entries, 0);
+  dof.factorize(K);
+  grouped.factorize(K);
+  EXPECT_EQ(grouped.info().stats.analyses, 1) << "factorize analysed again: the hash did not match";
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(K.rows(), 5);
+  const Eigen::MatrixXd X_ref = dof.solve(B), X = grouped.solve(B);
+  EXPECT_LT((X - X_ref).norm(), 1e-10 * X_ref.norm());
+  // Splitting a group is refused.
+  std::vector<std::int64_t> split = order.perm;
+  std::swap(split[0], split.back());
+  EXPECT_THROW(grouped.analyze_groups(st->graph, split, order.groups, st->hash, st->upper_nnz), std::invalid_argument);
 }
 
 // A given order must be a permutation of the columns; the factor analysed with one reports it.

@@ -2,6 +2,7 @@
 
 #include "setup.hpp"
 #include "sparse_ops.hpp"
+#include "../solver/pattern_hash.hpp"
 
 #include <algorithm>
 
@@ -54,14 +55,11 @@ std::optional<SelectedStructure> selected_structure(const Pattern& p, const std:
     }
     g.xadj.push_back(static_cast<Index>(g.adjncy.size()));
   }
-  if (!upper) return out;
 
   // Upper triangle of A(rows, rows): column j (a kept DOF of entity e) holds the kept DOFs
   // i <= j of e's neighbours, ascending as the neighbours and their DOFs are: a prefix of the
-  // entity's row list, which its columns share. Counted first, then written.
+  // entity's row list, which its columns share. The columns come in ascending order.
   const auto n = static_cast<Index>(rows.size());
-  SparseMatrix& C = out.upper;
-  C.resize(n, n);
   std::vector<Index> list;
   auto each_column = [&](auto&& body) {
     for (Index e = 0; e < E; ++e) {
@@ -77,6 +75,18 @@ std::optional<SelectedStructure> selected_structure(const Pattern& p, const std:
           body(j, static_cast<Index>(std::upper_bound(list.begin(), list.end(), j) - list.begin()));
     }
   };
+  PatternHash hash(n);
+  each_column([&](Index j, Index count) {
+    hash.column(j);
+    for (Index k = 0; k < count; ++k) hash.row(list[static_cast<std::size_t>(k)]);
+  });
+  out.hash = hash.value();
+  out.upper_nnz = hash.entries();
+  if (!upper) return out;
+
+  // The matrix: counted first, then written.
+  SparseMatrix& C = out.upper;
+  C.resize(n, n);
   auto* outer = C.outerIndexPtr();
   outer[0] = 0;
   each_column([&](Index j, Index count) { outer[j + 1] = count; });
@@ -108,13 +118,26 @@ bool analyse_from_pattern(const FeModel& model, const DofTransform& t, const Red
   std::optional<SelectedStructure> st;
   {
     const Pattern p = build_pattern(model, all_elements(model));
-    st = selected_structure(p, rows, C == nullptr);
+    st = selected_structure(p, rows, false);
   }
   if (!st || cancelled()) return false;
   const NodalOrdering order = metis_ordering(st->graph);
-  st->graph = {};
   if (order.perm.empty() || cancelled()) return false;
-  f.analyze(C ? *C : st->upper, order.perm, order.groups, "METIS");
+  // The symbolic factor from the node graph (grouped_symbolic.hpp); the structure hashed is the
+  // one the factorized matrix has, which factorize checks (C's own, where it exists already).
+  std::uint64_t hash = st->hash;
+  std::int64_t upper_nnz = st->upper_nnz;
+  if (C) {
+    PatternHash h(C->rows());
+    for (Index j = 0; j < C->outerSize(); ++j) {
+      h.column(j);
+      for (SparseMatrix::InnerIterator it(*C, j); it; ++it)
+        if (it.row() <= it.col()) h.row(it.row());
+    }
+    hash = h.value();
+    upper_nnz = h.entries();
+  }
+  f.analyze_groups(st->graph, order.perm, order.groups, hash, upper_nnz);
   return true;
 }
 

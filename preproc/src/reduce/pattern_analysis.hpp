@@ -25,6 +25,8 @@ namespace ffr::preproc::detail {
 struct SelectedStructure {
   SparseMatrix upper;   ///< structure of the upper triangle of A(rows, rows); values unset (never read)
   QuotientGraph graph;  ///< its node graph: one group per entity with kept DOFs
+  std::uint64_t hash = 0;      ///< PatternHash of that upper triangle (solver/pattern_hash.hpp) ...
+  std::int64_t upper_nnz = 0;  ///< ... and its entries, with or without `upper`
 };
 
 /// The full DOFs whose matrix is the one factorized (C = A(rows, rows)), ascending: T's column
@@ -44,8 +46,8 @@ std::optional<SelectedStructure> selected_structure(const Pattern& p, const std:
 
 /// The eigen-solve's factor analysed from the mesh's node graph, with or without the matrix:
 /// METIS on the graph of the entities that keep DOFs in the factorized matrix, the order
-/// expanded to their DOFs; the structure analysed is `C` when given, else written from the
-/// pattern. False (f untouched) where the factorized matrix is not a principal submatrix of the
+/// expanded to their DOFs, and the symbolic factorization of that graph expanded too
+/// (CholmodFactor::analyze_groups); `C`, when given, is only hashed for factorize's check. False (f untouched) where the factorized matrix is not a principal submatrix of the
 /// assembled one (a rigid spider left free, say), the factor options ask for another ordering
 /// than METIS, or METIS fails: the caller analyses C by
 /// itself then. Why one function for both: the early analysis and the one after the assembly

@@ -4,7 +4,9 @@
 #include "cholmod_bridge.hpp"
 #include "factor_packing.hpp"
 #include "library_threads.hpp"
+#include "grouped_symbolic.hpp"
 #include "nodal_ordering.hpp"
+#include "pattern_hash.hpp"
 #include "supernodal_solve.hpp"
 #include "tree_cholesky.hpp"
 #include "ffr/preproc/solver/memory.hpp"
@@ -62,23 +64,14 @@ const char* ordering_name(int cholmod_ordering) {
 // FNV-1a over the upper-triangle pattern: decides whether a new matrix can reuse the
 // symbolic analysis. O(nnz), cheap next to any factorization.
 std::uint64_t upper_pattern_hash(const SparseMatrix& A, std::int64_t* upper_nnz) {
-  std::uint64_t h = 1469598103934665603ull;
-  auto mix = [&h](std::uint64_t v) {
-    h ^= v;
-    h *= 1099511628211ull;
-  };
-  mix(static_cast<std::uint64_t>(A.rows()));
-  std::int64_t count = 0;
+  detail::PatternHash h(A.rows());
   for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
-    mix(0xC011u + static_cast<std::uint64_t>(j));
+    h.column(j);
     for (SparseMatrix::InnerIterator it(A, j); it; ++it)
-      if (it.row() <= it.col()) {
-        mix(static_cast<std::uint64_t>(it.row()));
-        ++count;
-      }
+      if (it.row() <= it.col()) h.row(it.row());
   }
-  *upper_nnz = count;
-  return h;
+  *upper_nnz = h.entries();
+  return h.value();
 }
 
 }  // namespace
@@ -117,6 +110,10 @@ struct CholmodFactor::Impl {
     return os.str();
   }
   void analyze(const SparseMatrix& A, const detail::NodalOrdering* given = nullptr);
+  void analyze_groups(const detail::QuotientGraph& q, const std::vector<std::int64_t>& perm, std::int64_t vertices,
+                      std::uint64_t hash, std::int64_t upper_nnz);
+  void record_analysis(std::int64_t n_cols, std::int64_t upper_nnz, double lnz, double flops, const std::string& ordering,
+                       std::int64_t vertices, Clock::time_point t0);
   void factorize(const SparseMatrix& A, double shift);
   void check_memory(std::uint64_t needed);
   [[noreturn]] void throw_not_posdef(std::int64_t permuted, bool singular, double ratio);
@@ -165,6 +162,31 @@ void CholmodFactor::Impl::analyze(const SparseMatrix& A, const detail::NodalOrde
   }
   if (!L || c->status < CHOLMOD_OK) fail(cholmod_error("symbolic analysis (cholmod_l_analyze)"));
   if (!L->is_super) fail("symbolic analysis did not produce a supernodal factor");
+  record_analysis(A.rows(), upper_nnz, c->lnz, c->fl, nodal.perm.empty() ? ordering_name(L->ordering) : "METIS",
+                  nodal.perm.empty() ? A.rows() : nodal.groups, t0);
+}
+
+void CholmodFactor::Impl::analyze_groups(const detail::QuotientGraph& q, const std::vector<std::int64_t>& perm,
+                                         std::int64_t vertices, std::uint64_t hash, std::int64_t upper_nnz) {
+  cholmod_common* c = common.get();
+  solver.reset();
+  if (L) cholmod_l_free_factor(&L, c);
+  numeric = false;
+  packed = false;
+  info = FactorInfo{};
+  const auto t0 = Clock::now();
+  const std::vector<std::int64_t> order = detail::group_order(q, perm);
+  if (order.empty()) throw std::invalid_argument("matrix to factorize: the given order splits a group of columns");
+  const detail::GroupedSymbolic g = detail::grouped_symbolic(q, order, c);
+  L = g.L;
+  if (!L) fail(cholmod_error("symbolic analysis of the node graph (cholmod_l_analyze_p)"));
+  pattern = hash;
+  record_analysis(q.first.back(), upper_nnz, g.lnz, g.flops, "METIS", vertices, t0);
+}
+
+void CholmodFactor::Impl::record_analysis(std::int64_t n_cols, std::int64_t upper_nnz, double lnz, double flops,
+                                          const std::string& ordering, std::int64_t vertices, Clock::time_point t0) {
+  cholmod_common* c = common.get();
   // The analysis's work arrays in Common (about 7 n values) would otherwise stay allocated
   // through the factorization and the eigen-solve, the run's memory peaks; CHOLMOD allocates
   // them again where it needs them.
@@ -173,14 +195,14 @@ void CholmodFactor::Impl::analyze(const SparseMatrix& A, const detail::NodalOrde
   FactorStatistics& s = info.stats;
   s.analyses = ++analyses;
   s.analyze_seconds = seconds_since(t0);
-  s.n = A.rows();
+  s.n = n_cols;
   s.nnz_A = upper_nnz;
-  s.nnz_L = c->lnz;
-  s.flops = c->fl;
+  s.nnz_L = lnz;
+  s.flops = flops;
   s.factor_entries = static_cast<std::int64_t>(L->xsize);
   s.supernodes = static_cast<std::int64_t>(L->nsuper);
-  s.ordering = nodal.perm.empty() ? ordering_name(L->ordering) : "METIS";
-  s.ordering_vertices = nodal.perm.empty() ? s.n : nodal.groups;
+  s.ordering = ordering;
+  s.ordering_vertices = vertices;
   if (const char* kernels = detail::blas_kernel_name()) {
     s.blas_kernels = kernels;
     const char* suited = detail::openblas_core_for_this_cpu();
@@ -335,6 +357,13 @@ const FactorStatistics& CholmodFactor::analyze(const SparseMatrix& A, const std:
   detail::NodalOrdering given{perm, vertices};
   impl_->analyze(A, &given);
   impl_->info.stats.ordering = name;
+  return impl_->info.stats;
+}
+
+const FactorStatistics& CholmodFactor::analyze_groups(const detail::QuotientGraph& q, const std::vector<std::int64_t>& perm,
+                                                      std::int64_t vertices, std::uint64_t pattern_hash,
+                                                      std::int64_t upper_nnz) {
+  impl_->analyze_groups(q, perm, vertices, pattern_hash, upper_nnz);
   return impl_->info.stats;
 }
 

@@ -22,6 +22,10 @@
 
 namespace ffr::preproc {
 
+namespace detail {
+struct QuotientGraph;  // solver/nodal_ordering.hpp: column groups and their graph
+}
+
 enum class Ordering {
   Metis,    ///< METIS nested dissection (default: best for 3D FE meshes)
   Nesdis,   ///< CHOLMOD's own nested dissection (METIS + constrained AMD)
@@ -120,6 +124,14 @@ class CholmodFactor {
   /// columns.
   const FactorStatistics& analyze(const SparseMatrix& A, const std::vector<std::int64_t>& perm, std::int64_t vertices,
                                   const std::string& name);
+
+  /// The same from the graph of A's column groups (detail::grouped_symbolic: a mesh node's
+  /// DOFs, whose columns have one structure), without A: perm must keep each group's columns
+  /// together, in order; pattern_hash and upper_nnz are those of the upper triangle A will have
+  /// (detail::PatternHash), which factorize checks. Why: the symbolic analysis of the node graph
+  /// is several times cheaper than that of A (grouped_symbolic.hpp).
+  const FactorStatistics& analyze_groups(const detail::QuotientGraph& q, const std::vector<std::int64_t>& perm,
+                                         std::int64_t vertices, std::uint64_t pattern_hash, std::int64_t upper_nnz);
 
   /// Numeric factorization of A. Re-analyzes first if A's pattern differs from the analyzed
   /// one. Throws InsufficientMemoryError before allocating the factor if it would not fit,
