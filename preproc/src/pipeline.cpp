@@ -102,6 +102,8 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   // touch) one thread took up to 0.4 s longer for it. Eleven alternating pairs of whole runs at
   // two threads: 3.27-3.80 s (mean 3.54) against 3.36-4.23 s (mean 3.71).
   aopt.fill_threads = static_cast<int>(max_threads());
+  // And the core back to the element loop once the analysis is done.
+  if (early.started()) aopt.spare_core = [&early] { return early.finished(); };
   aopt.progress = [&](double f) { progress("assembly " + std::to_string(static_cast<int>(100 * f)) + " %"); };
   Assembled fe = assemble(model, aopt);
   stage("assembly: " + std::to_string(fe.elements) + " elements, nnz(K) = " + std::to_string(fe.K.nonZeros()) +

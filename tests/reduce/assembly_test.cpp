@@ -5,10 +5,13 @@
 // built from the same grid must not depend on the node numbering.
 #include "ffr/preproc/assembly/assembly.hpp"
 #include "ffr/preproc/model/fe_model.hpp"
+#include "ffr/preproc/threads.hpp"
 #include "ffr/preproc/visual/visual.hpp"
 #include "support.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -67,6 +70,41 @@ TEST(Assembly, MatchesTheElementSumAndIsTheSameOnTwoThreads) {
   // [[1, 0.1, 0], [0, 1, 0.05], [0.02, 0, 1]], whose determinant is 1.0001.
   EXPECT_NEAR(a2.mass, 7850.0 * 315 * 1.0001, 1e-12 * 7850.0 * 315);
   EXPECT_EQ(a1.worst_element, a2.worst_element);
+}
+
+// The pipeline's element loop starts on one thread beside the early analysis and takes a second
+// core once that has finished (AssemblyOptions::spare_core, asked before each colour class): a
+// second thread joining halfway gives the same bits, and the same sums. Point masses on the grid
+// (on solid nodes, so without offsets) make the sums of the mass samples (mass, first and second
+// moments) depend on the order they are added in: per block, the blocks in their order.
+TEST(Assembly, ASpareCoreJoiningHalfwayChangesNothing) {
+  if (preproc::max_threads() < 2) GTEST_SKIP() << "one core: no spare core to join";
+  test::HexGrid grid(9, 7, 5);
+  grid.part.materials[0].mat.rho = 1e-9;  // the solids' mass (through Ms) would hide the samples' rounding
+  for (int k = 0; k < 120; ++k) {
+    preproc::PointMassSpec m;
+    m.name = "m";
+    m.name += std::to_string(k);  // appended: "m" + to_string trips GCC 12 -Wrestrict (PR105329)
+    m.at = grid.mesh.x.row(static_cast<Index>(37 * k % grid.mesh.x.rows())).transpose();
+    m.mass = 0.1 + 0.7 * std::sqrt(static_cast<double>(k + 2));
+    grid.part.point_masses.push_back(m);
+  }
+  const auto model = preproc::build_model(grid.mesh, grid.part);
+  preproc::AssemblyOptions one, joined;
+  one.threads = joined.threads = 1;
+  one.block_elements = joined.block_elements = 4;
+  int asked = 0;
+  joined.spare_core = [&asked] { return ++asked > 2; };  // from the third class on
+  const auto a1 = preproc::assemble(model, one);
+  const auto aj = preproc::assemble(model, joined);
+  EXPECT_GT(asked, 3);  // the grid has more than three classes, so the second thread took part
+  ASSERT_EQ(a1.K.nonZeros(), aj.K.nonZeros());
+  EXPECT_TRUE(std::equal(a1.K.valuePtr(), a1.K.valuePtr() + a1.K.nonZeros(), aj.K.valuePtr()));
+  EXPECT_TRUE(std::equal(a1.M.valuePtr(), a1.M.valuePtr() + a1.M.nonZeros(), aj.M.valuePtr()));
+  EXPECT_EQ(a1.mass, aj.mass);
+  EXPECT_EQ(a1.rdm, aj.rdm);
+  EXPECT_EQ(a1.rrdm, aj.rrdm);
+  EXPECT_EQ(a1.worst_element, aj.worst_element);
 }
 
 // The visual surface follows the mesh file's node tags, not the internal node numbering (a

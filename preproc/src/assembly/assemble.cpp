@@ -80,7 +80,9 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   const auto blocks = detail::color_blocks(ents, static_cast<Index>(pattern.ent_dof0.size()), opt.block_elements);
   ents = {};
 
-  std::vector<Sums> sums(nthreads);
+  // Sums per block, merged in block order at the end: the same totals whatever thread did which
+  // block, and however many took part (spare_core).
+  std::vector<Sums> sums(blocks.block_ptr.size() - 1);
   std::atomic<bool> failed{false};
   std::size_t done = 0;
 
@@ -122,15 +124,16 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   auto last_report = std::chrono::steady_clock::now();
   for (const auto& cls : blocks.classes) {
     std::atomic<std::size_t> next{0};
-    const unsigned nt = static_cast<unsigned>(std::min<std::size_t>(nthreads, cls.size()));
+    const bool spare = opt.spare_core && nthreads < max_threads() && opt.spare_core();
+    const unsigned nt = static_cast<unsigned>(std::min<std::size_t>(nthreads + (spare ? 1u : 0u), cls.size()));
     // Workers take whole blocks of the class (the elements of a block share entries); one that
     // throws stops the others at their next block, and run_parts rethrows its error once all
     // have finished.
-    detail::run_parts(nt, [](unsigned p) { return p; }, [&](unsigned t, unsigned, unsigned) {
+    detail::run_parts(nt, [](unsigned p) { return p; }, [&](unsigned, unsigned, unsigned) {
       try {
         for (std::size_t k = 0; !failed && (k = next.fetch_add(1)) < cls.size();)
           for (std::size_t e = blocks.block_ptr[cls[k]]; e < blocks.block_ptr[cls[k] + 1]; ++e)
-            element(blocks.order[e], sums[t]);
+            element(blocks.order[e], sums[cls[k]]);
       } catch (...) {
         failed = true;
         throw;

@@ -16,6 +16,7 @@ namespace ffr::preproc {
 struct EarlyAnalysis::State {
   std::thread thread;
   std::atomic<bool> cancel{false};  ///< nobody will take the factor (an error upstream)
+  std::atomic<bool> done{false};    ///< the thread has finished
   std::unique_ptr<CholmodFactor> factor;  ///< analysed, or null after a failure
   double seconds = 0;
 };
@@ -38,6 +39,10 @@ EarlyAnalysis EarlyAnalysis::start(const FeModel& model, const ReductionSpec& sp
   State* s = e.state_.get();
   // The state lives on the heap, so the thread's pointer stays valid when `e` is moved.
   s->thread = std::thread([s, &model, spec] {
+    struct Done {
+      std::atomic<bool>& flag;
+      ~Done() { flag = true; }
+    } done{s->done};  // on every way out
     const auto t0 = std::chrono::steady_clock::now();
     try {
       // The structure of K - sigma M is that of the constrained K (M has K's structure); for
@@ -72,6 +77,8 @@ EarlyAnalysis EarlyAnalysis::start(const FeModel& model, const ReductionSpec& sp
 }
 
 bool EarlyAnalysis::started() const { return state_ != nullptr; }
+
+bool EarlyAnalysis::finished() const { return state_ && state_->done; }
 
 std::unique_ptr<CholmodFactor> EarlyAnalysis::take() {
   if (!state_) return nullptr;

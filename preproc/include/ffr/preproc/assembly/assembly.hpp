@@ -35,6 +35,10 @@ struct AssemblyOptions {
   /// RESULTS.md), so it pays to run it on every core even where the element loop leaves one
   /// to another task (the pipeline's early analysis).
   int fill_threads = 0;
+  /// Asked before each colour class: true once one more core than `threads` is free for the
+  /// element loop (the pipeline's early analysis has finished), which then takes it. Empty:
+  /// `threads` throughout. The matrices and sums do not depend on how many threads took part.
+  std::function<bool()> spare_core;
   /// Elements per block of neighbours: the unit of work of a thread (the elements of a block
   /// share entries of K and M; blocks of one colour class share none). The 100k-DOF plate's
   /// 20662 elements make 323 blocks of 64; blocks of 32 to 256 assembled it equally fast at

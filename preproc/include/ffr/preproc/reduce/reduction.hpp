@@ -58,6 +58,8 @@ class EarlyAnalysis {
   ~EarlyAnalysis();
 
   bool started() const;
+  /// The analysis's thread has finished (its factor, if any, is ready for take()).
+  bool finished() const;
   /// Waits for the analysis and hands its factor over; null if it was not started or failed
   /// (the caller then analyses itself, and meets the error, if any, where it always did).
   std::unique_ptr<CholmodFactor> take();
