@@ -1,6 +1,7 @@
 #include "ffr/preproc/reduce/invariants.hpp"
 
 #include "ffr/preproc/threads.hpp"
+#include "ffr/preproc/solver/sparse_types.hpp"
 
 #include <array>
 #include <mutex>
@@ -39,18 +40,22 @@ struct Accum {
 void solid_part(const FeModel& model, const Assembled& fe, const Eigen::MatrixXd& Phi, Accum& acc) {
   const Index N = model.mesh->num_nodes(), nq = Phi.cols();
   if (fe.Ms.nonZeros() == 0) return;
-  std::array<Eigen::MatrixXd, 3> Phi_a, Z;
-  for (int a = 0; a < 3; ++a) {
-    Phi_a[a] = Eigen::MatrixXd::Zero(N, nq);
+  // The three components side by side, [Phi_x Phi_y Phi_z] over the nodes, and their products
+  // with Ms in one call: sym_multiply passes over Ms once per 16 columns, vectorized and on the
+  // threads, where Eigen's selfadjoint product passed once per column on one thread (60 passes,
+  // 60 ms of the 100k-DOF plate's invariants stage with 20 modes).
+  Eigen::MatrixXd F = Eigen::MatrixXd::Zero(N, 3 * nq);
+  for (int a = 0; a < 3; ++a)
     for (Index n = 0; n < N; ++n)
-      if (model.node_ndof[static_cast<std::size_t>(n)] > 0) Phi_a[a].row(n) = Phi.row(model.dof(n, a));
-    Z[a] = fe.Ms.selfadjointView<Eigen::Upper>() * Phi_a[a];
-  }
+      if (model.node_ndof[static_cast<std::size_t>(n)] > 0) F.block(n, a * nq, 1, nq) = Phi.row(model.dof(n, a));
+  const Eigen::MatrixXd G = sym_multiply(fe.Ms, SymmetricStorage::UpperOnly, F);
+  const auto Phi_a = [&](int a) { return F.middleCols(a * nq, nq); };
+  const auto Z = [&](int a) { return G.middleCols(a * nq, nq); };
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(N);
   for (int b = 0; b < 3; ++b) {
-    acc.Pdm.row(b) += ones.transpose() * Z[b];
-    for (int a = 0; a < 3; ++a) acc.rPdm[a].row(b) += model.mesh->x.col(a).transpose() * Z[b];
-    acc.PPdm[b][b] += Phi_a[b].transpose() * Z[b];
+    acc.Pdm.row(b) += ones.transpose() * Z(b);
+    for (int a = 0; a < 3; ++a) acc.rPdm[a].row(b) += model.mesh->x.col(a).transpose() * Z(b);
+    acc.PPdm[b][b] += Phi_a(b).transpose() * Z(b);
   }
 }
 
