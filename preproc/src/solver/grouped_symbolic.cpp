@@ -117,7 +117,8 @@ GroupedSymbolic grouped_symbolic(const QuotientGraph& q, const std::vector<std::
   Long* px = allocate(static_cast<std::size_t>(nsuper) + 1, c);
   Long* rows = allocate(static_cast<std::size_t>(ssize), c);
   if (!super || !pi || !px || !rows) {
-    for (Long* a2 : {super, pi, px, rows}) cholmod_l_free(1, sizeof(Long), a2, c);
+    for (Long* a2 : {super, pi, px}) cholmod_l_free(static_cast<std::size_t>(nsuper) + 1, sizeof(Long), a2, c);
+    cholmod_l_free(std::max<std::size_t>(static_cast<std::size_t>(ssize), 1), sizeof(Long), rows, c);
     cholmod_l_free_factor(&L, c);
     cholmod_l_free_factor(&Lg, c);
     return out;
@@ -153,7 +154,8 @@ GroupedSymbolic grouped_symbolic(const QuotientGraph& q, const std::vector<std::
   }
   // Statistics as CHOLMOD reports them, from the group factor's exact column counts (no
   // amalgamation zeros): column t of a group of w columns whose group column has `count` group
-  // rows holds the rows of those groups; with groups of one size W that is W count - t.
+  // rows holds the columns of those groups from its own on, w count - t where they all have w
+  // columns (a solid mesh's nodes); an estimate where the sizes differ.
   for (Long k = 0; k < ng; ++k) {
     const Long w = weight(gperm[k]);
     for (Long t = 0; t < w; ++t) {

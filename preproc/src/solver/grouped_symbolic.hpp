@@ -27,8 +27,11 @@ namespace ffr::preproc::detail {
 
 struct GroupedSymbolic {
   cholmod_factor* L = nullptr;  ///< supernodal, pattern only, in the group order given (postordered by CHOLMOD)
-  double lnz = 0;               ///< entries of L without amalgamation's explicit zeros (as CHOLMOD's Common->lnz)
-  double flops = 0;             ///< sum of the squared column counts (as CHOLMOD's Common->fl)
+  /// Entries of L without amalgamation's explicit zeros, and the sum of the squared column
+  /// counts (CHOLMOD's Common->lnz and ->fl): exact where all groups have one size, an estimate
+  /// from each column's own group size otherwise.
+  double lnz = 0;
+  double flops = 0;
 };
 
 /// The symbolic factor of the n x n matrix whose column groups are q.first (group g: columns
