@@ -112,11 +112,13 @@ void subtract_product(const double* Q, Index ldq, Index k, const double* C, Inde
 
 namespace {
 
-// Parts of n rows for work of about n * width values: the eigen-solver's threshold for vector
-// work (parts_for), split at multiples of `align` rows.
+// How many parts for work of about n * width values: the eigen-solver's threshold for vector
+// work.
+unsigned row_parts(Index n, Index width) { return parts_for(n * width, Index{1} << 18); }
+
+// body(part, r0, r1) over `parts` parts of n rows, split at multiples of `align` rows.
 template <class Body>
-void over_row_parts(Index n, Index width, Index align, Body&& body) {
-  const unsigned parts = parts_for(n * width, Index{1} << 18);
+void over_row_parts(Index n, unsigned parts, Index align, Body&& body) {
   const auto split = [&](unsigned part) {
     if (part >= parts) return n;
     return n * static_cast<Index>(part) / static_cast<Index>(parts) / align * align;
@@ -129,7 +131,7 @@ void over_row_parts(Index n, Index width, Index align, Body&& body) {
 void rotate_columns_in_place(Eigen::MatrixXd& Q, Eigen::Index k, const Eigen::Ref<const Eigen::MatrixXd>& S) {
   const Eigen::Index n = Q.rows(), m = S.cols();
   constexpr Eigen::Index kBand = 256;
-  over_row_parts(n, k, kBand, [&](unsigned, Index b, Index e) {
+  over_row_parts(n, row_parts(n, k), kBand, [&](unsigned, Index b, Index e) {
     Eigen::MatrixXd band(kBand, m);
     for (Eigen::Index r0 = b; r0 < e; r0 += kBand) {
       const Eigen::Index rows = std::min(kBand, e - r0);
@@ -141,8 +143,9 @@ void rotate_columns_in_place(Eigen::MatrixXd& Q, Eigen::Index k, const Eigen::Re
 
 Eigen::MatrixXd transposed_product(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B) {
   const Index n = A.rows(), k = A.cols(), p = B.cols();
-  std::vector<Eigen::MatrixXd> partial(std::max(1u, parts_for(n * k, Index{1} << 18)), Eigen::MatrixXd::Zero(k, p));
-  over_row_parts(n, k, 1, [&](unsigned part, Index r0, Index r1) {
+  const unsigned parts = row_parts(n, k);
+  std::vector<Eigen::MatrixXd> partial(parts, Eigen::MatrixXd::Zero(k, p));
+  over_row_parts(n, parts, 1, [&](unsigned part, Index r0, Index r1) {
     add_transposed_product(A.data(), A.outerStride(), k, B.data(), B.outerStride(), p, r0, r1, partial[part].data());
   });
   for (std::size_t part = 1; part < partial.size(); ++part) partial[0] += partial[part];
@@ -151,7 +154,7 @@ Eigen::MatrixXd transposed_product(const Eigen::Ref<const Eigen::MatrixXd>& A, c
 
 void solve_upper_on_right(const Eigen::Ref<const Eigen::MatrixXd>& U, Eigen::MatrixXd& X) {
   const auto upper = U.triangularView<Eigen::Upper>();
-  over_row_parts(X.rows(), X.cols(), 1, [&](unsigned, Index r0, Index r1) {
+  over_row_parts(X.rows(), row_parts(X.rows(), X.cols()), 1, [&](unsigned, Index r0, Index r1) {
     auto rows = X.middleRows(r0, r1 - r0);
     upper.solveInPlace<Eigen::OnTheRight>(rows);
   });
