@@ -11,6 +11,8 @@
 #include "ffr/preproc/threads.hpp"
 #include "ffr/preproc/visual/visual.hpp"
 #include "ffr/version.hpp"
+#include "reduce/pattern_analysis.hpp"
+#include "reduce/setup.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -105,6 +107,20 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   // And the core back to the element loop once the analysis is done.
   if (early.started()) aopt.spare_core = [&early] { return early.finished(); };
   aopt.progress = [&](double f) { progress("assembly " + std::to_string(static_cast<int>(100 * f)) + " %"); };
+  // Only the stiffening's static solves use K and M after the reduction; otherwise they are
+  // freed before the factorization, the memory peak of the run.
+  const bool keep_matrices = part.stiffening || !part.preload.empty();
+  // M itself is needed only by the stiffening and Craig-Bampton, and where the eigen-solve's
+  // matrix is not a principal submatrix of the assembled one; otherwise a part of solids alone
+  // has it from Ms (the assembly checks the solids).
+  if (!keep_matrices && part.reduction.method != ReductionSpec::Method::CraigBampton) {
+    try {
+      const DofTransform t = build_transform(model, detail::states_for(model, part.reduction));
+      aopt.node_mass_only = !detail::factorized_rows(model, t, part.reduction).empty();
+    } catch (const std::exception&) {
+      // Bad interfaces: M is assembled, and the reduction reports them as it always did.
+    }
+  }
   Assembled fe = assemble(model, aopt);
   stage("assembly: " + std::to_string(fe.elements) + " elements, nnz(K) = " + std::to_string(fe.K.nonZeros()) +
         ", mass " + fmt(fe.mass, 6) + " " + part.units.mass + " [" + fmt(sw.lap()) + " s]");
@@ -115,9 +131,6 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   ReductionLog rlog;
   rlog.message = [&](const std::string& s) { stage("  " + s); };
   rlog.progress = progress;
-  // Only the stiffening's static solves use K and M after the reduction; otherwise they are
-  // freed before the factorization, the memory peak of the run.
-  const bool keep_matrices = part.stiffening || !part.preload.empty();
   ReductionResult red = keep_matrices ? reduce(model, fe, part.reduction, rlog, &early)
                                       : reduce_consuming_matrices(model, fe, part.reduction, rlog, &early);
   {

@@ -119,3 +119,53 @@ TEST(NodeMassProduct, DeclinesWhereMIsNotTheNodeMass) {
     EXPECT_FALSE(made);
   }
 }
+
+// M's values on the eigen-solve's structure from Ms (node_mass_values, for an assembly without
+// M: AssemblyOptions::node_mass_only) against the assembled M's, entry for entry and bit for
+// bit, and the reduction from such an assembly against the one from the full assembly: the
+// same eigenvalues and modes, exactly. Where M is not Ms (x) I3 (a point mass) the assembly
+// keeps M; rows that are not a node's translations give no values.
+TEST(NodeMassValues, AreTheAssembledMassBitForBit) {
+  test::HexGrid grid(8, 3, 3);
+  auto& itf = grid.part.interfaces;
+  itf.erase(std::remove_if(itf.begin(), itf.end(), [](const auto& i) { return i.name != "L"; }), itf.end());
+  const auto model = preproc::build_model(grid.mesh, grid.part);
+  const auto spec = clamped_left();
+  const preproc::DofTransform t = preproc::build_transform(model, preproc::detail::states_for(model, spec));
+  const auto rows = preproc::detail::factorized_rows(model, t, spec);
+  ASSERT_FALSE(rows.empty());
+  const preproc::Assembled full = preproc::assemble(model);
+  preproc::AssemblyOptions opt;
+  opt.node_mass_only = true;
+  const preproc::Assembled lean = preproc::assemble(model, opt);
+  EXPECT_EQ(lean.M.rows(), 0);
+  ASSERT_EQ(lean.K.nonZeros(), full.K.nonZeros());
+
+  const SparseMatrix K = preproc::detail::constrained(t, full.K, false);
+  const SparseMatrix M = preproc::detail::constrained(t, full.M, false);
+  ASSERT_TRUE(preproc::detail::same_structure(K, M));
+  const std::vector<double> values = preproc::detail::node_mass_values(model, lean.Ms, K, rows);
+  ASSERT_EQ(values.size(), static_cast<std::size_t>(M.nonZeros()));
+  for (Index e = 0; e < M.nonZeros(); ++e) ASSERT_EQ(values[static_cast<std::size_t>(e)], M.valuePtr()[e]) << "entry " << e;
+
+  const auto a = preproc::reduce(model, full, spec);
+  const auto b = preproc::reduce(model, lean, spec);
+  ASSERT_EQ(a.lambda.size(), b.lambda.size());
+  EXPECT_EQ((a.lambda - b.lambda).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((a.Phi - b.Phi).cwiseAbs().maxCoeff(), 0.0);
+
+  // A row outside the mesh's translations (an interface node's DOF): no values.
+  std::vector<Index> bad = rows;
+  bad.back() = model.mesh_dofs();
+  ASSERT_LT(bad.back(), model.num_dofs);  // the held interface's node
+  EXPECT_TRUE(preproc::detail::node_mass_values(model, lean.Ms, K, bad).empty());
+
+  // A point mass: M is not Ms (x) I3, and the assembly keeps it.
+  test::HexGrid massive(4, 2, 2);
+  preproc::PointMassSpec m;
+  m.name = "tip";
+  m.at = massive.mesh.x.row(massive.mesh.x.rows() - 1).transpose();
+  m.mass = 2.0;
+  massive.part.point_masses.push_back(m);
+  EXPECT_GT(preproc::assemble(preproc::build_model(massive.mesh, massive.part), opt).M.rows(), 0);
+}

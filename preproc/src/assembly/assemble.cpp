@@ -59,13 +59,12 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   Assembled out;
   out.elements = static_cast<Index>(refs.size());
   const unsigned fill_threads = opt.fill_threads > 0 ? static_cast<unsigned>(opt.fill_threads) : nthreads;
-  pattern.make_matrix(out.K, fill_threads);
-  if (!opt.stiffness_only) {
-    pattern.make_matrix(out.M, fill_threads);
-    pattern.make_node_matrix(out.Ms);
-  }
   for (const auto& pb : model.blocks) out.has_structural = out.has_structural || pb.kind != ElementKind::Solid;
   out.has_structural = out.has_structural || !model.masses.empty();
+  const bool with_M = !opt.stiffness_only && !(opt.node_mass_only && !out.has_structural);
+  pattern.make_matrix(out.K, fill_threads);
+  if (with_M) pattern.make_matrix(out.M, fill_threads);
+  if (!opt.stiffness_only) pattern.make_node_matrix(out.Ms);
 
   // Each element's DOFs and the entities they belong to; colour classes of elements with no
   // entity in common, whose scatters touch disjoint entries (coloring.hpp).
@@ -106,7 +105,7 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
       throw std::logic_error("kernel returned matrices of the wrong size for " + describe(model, ref));
     pattern.add(out.K, place, em.K);
     if (opt.stiffness_only) return;
-    pattern.add(out.M, place, em.M);
+    if (with_M) pattern.add(out.M, place, em.M);
     if (solid) pattern.add_node_scalar(out.Ms, place, em.M);
     if (solid && scaled_jacobian < 1.0) sum.consider(scaled_jacobian, i);  // solids below the ideal 1
     for (const auto& smp : em.samples) {

@@ -135,4 +135,61 @@ void NodeMassProduct::apply(const Eigen::MatrixXd& X, Eigen::MatrixXd& Y) const 
   });
 }
 
+std::vector<double> node_mass_values(const FeModel& model, const SparseMatrix& Ms, const SparseMatrix& C,
+                                     const std::vector<Index>& rows) {
+  const auto n = static_cast<Index>(rows.size());
+  if (C.rows() != n || C.cols() != n || !C.isCompressed() || Ms.rows() != model.mesh->num_nodes()) return {};
+  // Node and component of each row.
+  std::vector<Index> node(static_cast<std::size_t>(n));
+  std::vector<int> comp(static_cast<std::size_t>(n));
+  for (Index j = 0; j < n; ++j) {
+    const Index r = rows[static_cast<std::size_t>(j)];
+    if (r < 0 || r >= model.mesh_dofs()) return {};
+    const Index a = model.dof_node[static_cast<std::size_t>(r)];
+    if (model.node_ndof[static_cast<std::size_t>(a)] != 3) return {};
+    node[static_cast<std::size_t>(j)] = a;
+    comp[static_cast<std::size_t>(j)] = static_cast<int>(r - model.node_dof[static_cast<std::size_t>(a)]);
+  }
+  const auto* outer = C.outerIndexPtr();
+  const auto* inner = C.innerIndexPtr();
+  const auto* ms_outer = Ms.outerIndexPtr();
+  const auto* ms_inner = Ms.innerIndexPtr();
+  const double* ms_val = Ms.valuePtr();
+  // Ms(a, b) for a > b (C's numbering need not follow the nodes'): its upper triangle holds it
+  // in column a.
+  const auto lookup = [&](Index a, Index b) {
+    const auto* first = ms_inner + ms_outer[a];
+    const auto* last = ms_inner + ms_outer[a + 1];
+    const auto* it = std::lower_bound(first, last, b);
+    return it != last && *it == b ? ms_val[it - ms_inner] : 0.0;
+  };
+  std::vector<double> values(static_cast<std::size_t>(C.nonZeros()));
+  const unsigned parts = parts_for(C.nonZeros(), Index{1} << 20);
+  const auto split = [&](unsigned q) { return n * static_cast<Index>(q) / static_cast<Index>(parts); };
+  run_parts(parts, split, [&](unsigned, Index j0, Index j1) {
+    // Column b of Ms scattered by row node (a <= b), once for the columns of one node.
+    std::vector<double> column(static_cast<std::size_t>(Ms.rows()), 0.0);
+    Index held = -1;
+    const auto hold = [&](Index b) {
+      if (held == b) return;
+      if (held >= 0)
+        for (auto e = ms_outer[held]; e < ms_outer[held + 1]; ++e) column[static_cast<std::size_t>(ms_inner[e])] = 0.0;
+      for (auto e = ms_outer[b]; e < ms_outer[b + 1]; ++e) column[static_cast<std::size_t>(ms_inner[e])] = ms_val[e];
+      held = b;
+    };
+    for (Index j = j0; j < j1; ++j) {
+      const Index b = node[static_cast<std::size_t>(j)];
+      const int cb = comp[static_cast<std::size_t>(j)];
+      hold(b);
+      for (auto e = outer[j]; e < outer[j + 1]; ++e) {
+        const Index i = inner[e];
+        const Index a = node[static_cast<std::size_t>(i)];
+        values[static_cast<std::size_t>(e)] =
+            comp[static_cast<std::size_t>(i)] != cb ? 0.0 : a <= b ? column[static_cast<std::size_t>(a)] : lookup(a, b);
+      }
+    }
+  });
+  return values;
+}
+
 }  // namespace ffr::preproc::detail

@@ -41,4 +41,13 @@ class NodeMassProduct {
   mutable std::vector<std::vector<double>> extra_;  ///< the other threads' parts of Y
 };
 
+/// M's values on the structure of C, the upper triangle of A(rows, rows) for a matrix A of the
+/// model's DOFs, where M is Ms (x) I3 on those rows (each a mesh node's translation; entries
+/// of C that couple two different components get 0): the eigen-solve's mass of a part of solids
+/// alone without the assembled M (AssemblyOptions::node_mass_only). The sums are Ms's, which
+/// are M's bit for bit (both add the elements' m_ab in the same order). Empty where a row is
+/// not a translation of a node with three DOFs.
+std::vector<double> node_mass_values(const FeModel& model, const SparseMatrix& Ms, const SparseMatrix& C,
+                                     const std::vector<Index>& rows);
+
 }  // namespace ffr::preproc::detail

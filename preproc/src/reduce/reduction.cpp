@@ -180,14 +180,22 @@ ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled
   const SymmetricStorage storage = cb ? SymmetricStorage::Full : SymmetricStorage::UpperOnly;
   SparseMatrix K = detail::constrained(t, fe.K, cb);
   if (fe_owned) detail::release(fe_owned->K);
-  SparseMatrix M = detail::constrained(t, fe.M, cb);
+  // Without an assembled M (AssemblyOptions::node_mass_only) its values on K's structure come
+  // from Ms; the caller asks for that only where it can be done.
+  const bool assembled_M = fe.M.rows() > 0;
+  std::vector<double> m_values;
+  if (!assembled_M) {
+    m_values = cb ? std::vector<double>{} : detail::node_mass_values(model, fe.Ms, K, detail::factorized_rows(model, t, spec));
+    if (m_values.size() != static_cast<std::size_t>(K.nonZeros()))
+      throw std::logic_error("reduction: M was not assembled, and this reduction cannot form it from the node mass");
+  }
+  SparseMatrix M = assembled_M ? detail::constrained(t, fe.M, cb) : SparseMatrix();
   if (fe_owned) detail::release(fe_owned->M);
   // The eigen-solves read M on K's index arrays when the two have one structure (they come
   // from one pattern and one transform): M's own indices, half of it, are freed, 31 MB of the
   // 100k plate of tools/bench/reduce at both of its memory peaks (factorization, Lanczos).
-  const bool shared = !cb && detail::same_structure(K, M);
-  std::vector<double> m_values;
-  if (shared) {
+  const bool shared = !assembled_M || (!cb && detail::same_structure(K, M));
+  if (shared && assembled_M) {
     m_values.assign(M.valuePtr(), M.valuePtr() + M.nonZeros());
     detail::release(M);
   }

@@ -47,12 +47,18 @@ struct AssemblyOptions {
   std::function<void(double fraction)> progress;     ///< called from the calling thread
   /// Only K (no mass, no Ms, no quality): for geometric-stiffness assemblies.
   bool stiffness_only = false;
+  /// M left out (0 x 0) where the part has solid elements alone and no attached masses, where
+  /// it is Ms (x) I3 entry for entry and the caller forms what it needs of it from Ms
+  /// (reduce/node_mass.hpp). Why: the pipeline's clamped and free reductions need M only on
+  /// the eigen-solve's structure, and scattering it and extracting it from the whole assembled
+  /// M took 0.1-0.15 s of the 100k-DOF plate's 4.8-5.5 s at one thread (tools/bench/reduce).
+  bool node_mass_only = false;
   /// Substitute kernel (stiffening, tests); empty = element_matrices().
   std::function<ElementMatrices(const FeModel&, const ElementRef&)> kernel;
 };
 
 struct Assembled {
-  SparseMatrix K, M;                 ///< num_dofs x num_dofs, full symmetric storage
+  SparseMatrix K, M;                 ///< num_dofs x num_dofs, full symmetric storage (M 0 x 0: node_mass_only)
   double mass = 0;                   ///< exact: solids through Ms, the rest through mass samples
   Eigen::Vector3d rdm = Eigen::Vector3d::Zero();
   Eigen::Matrix3d rrdm = Eigen::Matrix3d::Zero();
