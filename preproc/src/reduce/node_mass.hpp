@@ -8,7 +8,9 @@
 // M X is Ms times X's rows gathered by node. Ms has a ninth of M's entries (on the 100k-DOF
 // plate of tools/bench/reduce 0.42 against 3.9 million in the upper triangles), and the
 // Lanczos stage multiplies by M twice a step (46 times on that plate). The checks and the
-// other backends keep using M itself.
+// other backends keep using M itself: its values on K's structure, taken from the assembled M
+// or, where the pipeline assembles none (AssemblyOptions::node_mass_only), from Ms
+// (node_mass_values below).
 #include "ffr/preproc/assembly/assembly.hpp"
 #include "ffr/preproc/model/fe_model.hpp"
 
