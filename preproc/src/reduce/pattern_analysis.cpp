@@ -127,16 +127,7 @@ bool analyse_from_pattern(const FeModel& model, const DofTransform& t, const Red
   // one the factorized matrix has, which factorize checks (C's own, where it exists already).
   std::uint64_t hash = st->hash;
   std::int64_t upper_nnz = st->upper_nnz;
-  if (C) {
-    PatternHash h(C->rows());
-    for (Index j = 0; j < C->outerSize(); ++j) {
-      h.column(j);
-      for (SparseMatrix::InnerIterator it(*C, j); it; ++it)
-        if (it.row() <= it.col()) h.row(it.row());
-    }
-    hash = h.value();
-    upper_nnz = h.entries();
-  }
+  if (C) hash = upper_pattern_hash(*C, &upper_nnz);
   f.analyze_groups(st->graph, order.perm, order.groups, hash, upper_nnz);
   return true;
 }

@@ -61,18 +61,6 @@ const char* ordering_name(int cholmod_ordering) {
   return "unknown";
 }
 
-// FNV-1a over the upper-triangle pattern: decides whether a new matrix can reuse the
-// symbolic analysis. O(nnz), cheap next to any factorization.
-std::uint64_t upper_pattern_hash(const SparseMatrix& A, std::int64_t* upper_nnz) {
-  detail::PatternHash h(A.rows());
-  for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
-    h.column(j);
-    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
-      if (it.row() <= it.col()) h.row(it.row());
-  }
-  *upper_nnz = h.entries();
-  return h.value();
-}
 
 }  // namespace
 
@@ -140,7 +128,7 @@ void CholmodFactor::Impl::analyze(const SparseMatrix& A, const detail::NodalOrde
   info = FactorInfo{};
 
   std::int64_t upper_nnz = 0;
-  pattern = upper_pattern_hash(A, &upper_nnz);
+  pattern = detail::upper_pattern_hash(A, &upper_nnz);
   cholmod_sparse view = detail::view_upper(A);
   if (given) {
     view.xtype = CHOLMOD_PATTERN;
@@ -269,7 +257,7 @@ void CholmodFactor::Impl::throw_not_posdef(std::int64_t permuted, bool singular,
 
 void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
   std::int64_t upper_nnz = 0;
-  if (!L || A.rows() != info.stats.n || upper_pattern_hash(A, &upper_nnz) != pattern) {
+  if (!L || A.rows() != info.stats.n || detail::upper_pattern_hash(A, &upper_nnz) != pattern) {
     analyze(A);
   } else if (opt.check_symmetry) {
     validate_symmetric(A, "matrix to factorize");

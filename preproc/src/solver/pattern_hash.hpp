@@ -4,6 +4,8 @@
 // analysis from the node graph (reduce/pattern_analysis.cpp), which hashes the structure of the
 // matrix to come without forming it.
 
+#include "ffr/preproc/model/sparse.hpp"
+
 #include <cstdint>
 
 namespace ffr::preproc::detail {
@@ -28,5 +30,18 @@ class PatternHash {
   std::uint64_t h_ = 1469598103934665603ull;
   std::int64_t count_ = 0;
 };
+
+/// The hash of A's upper triangle (entries with row <= column, full or upper storage); its
+/// entry count in *upper_nnz.
+inline std::uint64_t upper_pattern_hash(const SparseMatrix& A, std::int64_t* upper_nnz) {
+  PatternHash h(A.rows());
+  for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
+    h.column(j);
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+      if (it.row() <= it.col()) h.row(it.row());
+  }
+  *upper_nnz = h.entries();
+  return h.value();
+}
 
 }  // namespace ffr::preproc::detail
