@@ -182,9 +182,7 @@ TEST(EarlyAnalysis, WritesThePrincipalSubmatrixFromTheNodeGraph) {
 // against CHOLMOD's analysis of the DOF matrix in the same order: the same nnz(L) and flops
 // (CHOLMOD's own counts), no second analysis at the factorization, and the same solutions.
 TEST(GroupedSymbolic, FactorsAsTheAnalysisOfTheDofMatrix) {
-  test::HexGrid grid(12, 6, 5);
-  auto& itf = grid.part.interfaces;
-  itf.erase(std::remove_if(itf.begin(), itf.end(), [](const auto& i) { return i.name != "L"; }), itf.end());
+  const test::HexGrid grid = grid_with(12, 6, 5, Interfaces::LeftOnly);
   const auto model = preproc::build_model(grid.mesh, grid.part);
   const auto spec = clamped();
   const preproc::DofTransform t = preproc::build_transform(model, preproc::detail::states_for(model, spec));

@@ -29,6 +29,12 @@ using preproc::SparseMatrix;
 namespace {
 
 preproc::ReductionSpec clamped_left() { return test::clamped_spec("L", 4); }
+
+// The grid with its interface L alone (held by clamped_left, a principal submatrix then).
+void keep_left_only(test::HexGrid& grid) {
+  auto& itf = grid.part.interfaces;
+  itf.erase(std::remove_if(itf.begin(), itf.end(), [](const auto& i) { return i.name != "L"; }), itf.end());
+}
 preproc::ReductionSpec craig_bampton() { return test::craig_bampton_spec(4); }
 preproc::ReductionSpec free_free() { return test::free_free_spec(4); }
 
@@ -65,7 +71,7 @@ TEST(NodeMassProduct, EqualsTheProductWithTheConstrainedMass) {
     auto& itf = grid.part.interfaces;
     if (c.right_rigid)
       for (auto& i : itf) i.coupling = "rigid";
-    if (c.left_only) itf.erase(std::remove_if(itf.begin(), itf.end(), [](const auto& i) { return i.name != "L"; }), itf.end());
+    if (c.left_only) keep_left_only(grid);
     const auto model = preproc::build_model(grid.mesh, grid.part);
     const preproc::Assembled fe = preproc::assemble(model);
     const preproc::DofTransform t = preproc::build_transform(model, preproc::detail::states_for(model, c.spec));
@@ -100,8 +106,7 @@ TEST(NodeMassProduct, DeclinesWhereMIsNotTheNodeMass) {
   // A point mass adds to M and not to Ms.
   {
     test::HexGrid grid(4, 2, 2);
-    auto& itf = grid.part.interfaces;
-    itf.erase(std::remove_if(itf.begin(), itf.end(), [](const auto& i) { return i.name != "L"; }), itf.end());
+    keep_left_only(grid);
     preproc::PointMassSpec m;
     m.name = "tip";
     m.at = grid.mesh.x.row(grid.mesh.x.rows() - 1).transpose();
@@ -127,8 +132,7 @@ TEST(NodeMassProduct, DeclinesWhereMIsNotTheNodeMass) {
 // keeps M; rows that are not a node's translations give no values.
 TEST(NodeMassValues, AreTheAssembledMassBitForBit) {
   test::HexGrid grid(8, 3, 3);
-  auto& itf = grid.part.interfaces;
-  itf.erase(std::remove_if(itf.begin(), itf.end(), [](const auto& i) { return i.name != "L"; }), itf.end());
+  keep_left_only(grid);
   const auto model = preproc::build_model(grid.mesh, grid.part);
   const auto spec = clamped_left();
   const preproc::DofTransform t = preproc::build_transform(model, preproc::detail::states_for(model, spec));
