@@ -39,7 +39,10 @@ std::vector<Index> unit_column_rows(const DofTransform& t, const std::vector<Ind
 std::vector<Index> factorized_rows(const FeModel& model, const DofTransform& t, const ReductionSpec& spec);
 
 /// The structure of A(rows, rows) for the pattern's matrix A and ascending, distinct full DOFs
-/// `rows`: its node graph, and with `upper` its upper triangle too. Empty when the pattern's
+/// `rows`: its node graph and the hash of its upper triangle, and with `upper` that triangle
+/// itself. The analysis needs only the graph and the hash (analyse_from_pattern); `upper` is
+/// what a check compares entry for entry with the matrix the transform forms (the early
+/// analysis's tests), from the same column walk as the hash. Empty when the pattern's
 /// entities are not numbered in DOF order (each entity's DOFs contiguous, entities ascending),
 /// which the direct construction relies on.
 std::optional<SelectedStructure> selected_structure(const Pattern& p, const std::vector<Index>& rows, bool upper);
