@@ -7,10 +7,11 @@
  * costs ~10 us: 300 000 faults, a third of a 9 s run. glibc backs its heap with transparent huge
  * pages when told so by the tunable glibc.malloc.hugetlb=1, which it reads only when a program
  * starts, hence this launcher. On other machines fresh 2 MiB pages cost more than they save (a
- * host that has not backed the memory zeroes them slowly; measured in earlier benchmark runs).
- * So the choice is measured here, in a few milliseconds: fault in 8 MiB as 2 MiB pages and as
- * 4 KiB pages (twice each when the first round is close) and use the huge pages when they fault
- * in at most half the time.
+ * host that has not backed the memory zeroes them slowly). So the choice is measured here: 8 MiB
+ * faulted in as 4 KiB pages (twice), then up to 64 MiB as 2 MiB pages one page at a time, stopped
+ * as soon as the verdict is clear; where the guest reports its free pages to the host, huge pages
+ * are taken only when small faults are slower than the host's re-faulting of a huge page
+ * (huge_page_verdict.h says why a small sample of huge pages misleads there).
  *
  * FFR_HUGE_PAGES=on|off|auto (default auto) overrides the probe; a GLIBC_TUNABLES that already
  * names glibc.malloc.hugetlb is left as it is. The program logs the choice (FFR_HUGE_PAGES_CHOSEN).
@@ -26,6 +27,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "huge_page_verdict.h"
+
 #ifndef FFR_REDUCE_PROGRAM
 #define FFR_REDUCE_PROGRAM "../libexec/ffr/ffr-reduce-main" /* relative to this launcher's folder */
 #endif
@@ -36,20 +39,46 @@ static double seconds(void) {
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* Time to fault in `bytes` of fresh anonymous memory with the given advice; < 0 on failure. */
-static double fault_in(size_t bytes, int advice) {
+/* Fresh anonymous memory, 2 MiB aligned, with the given advice; null on failure. */
+static char* map_aligned(size_t bytes, int advice, char** raw) {
   const size_t huge = (size_t)2 << 20;
-  char* raw = mmap(NULL, bytes + huge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-  if (raw == MAP_FAILED) return -1;
-  char* p = (char*)(((uintptr_t)raw + huge - 1) & ~(uintptr_t)(huge - 1)); /* 2 MiB aligned */
-  double t = -1;
-  if (madvise(p, bytes, advice) == 0) {
-    t = seconds();
-    for (size_t i = 0; i < bytes; i += 4096) ((volatile char*)p)[i] = 1;
-    t = seconds() - t;
+  *raw = mmap(NULL, bytes + huge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (*raw == MAP_FAILED) return NULL;
+  char* p = (char*)(((uintptr_t)*raw + huge - 1) & ~(uintptr_t)(huge - 1));
+  if (madvise(p, bytes, advice) != 0) {
+    munmap(*raw, bytes + huge);
+    return NULL;
   }
+  return p;
+}
+
+/* Touches every 4 KiB page of [p, p + bytes): a 2 MiB page that fell back to small pages is
+ * timed as the 512 faults it then costs. */
+static double touch(char* p, size_t bytes) {
+  const double t = seconds();
+  for (size_t i = 0; i < bytes; i += 4096) ((volatile char*)p)[i] = 1;
+  return seconds() - t;
+}
+
+/* Walks up to FFR_PROBE_MAX_PAGES huge pages until ffr_huge_page_verdict decides; the pages
+ * walked and their time go to *pages and *total, the last FFR_PROBE_SLOW_RUN pages' to *last. */
+static int walk_huge_pages(double small_2mib, int* pages, double* total, double* last) {
+  const size_t huge = (size_t)2 << 20, bytes = (size_t)FFR_PROBE_MAX_PAGES * huge;
+  char* raw = NULL;
+  char* p = map_aligned(bytes, MADV_HUGEPAGE, &raw);
+  if (!p) return FFR_PROBE_OFF;
+  double t[FFR_PROBE_MAX_PAGES];
+  int verdict = FFR_PROBE_MORE, n = 0;
+  *total = *last = 0;
+  while (verdict == FFR_PROBE_MORE) {
+    t[n] = touch(p + (size_t)n * huge, huge);
+    *total += t[n];
+    verdict = ffr_huge_page_verdict(t, ++n, small_2mib);
+  }
+  for (int i = n > FFR_PROBE_SLOW_RUN ? n - FFR_PROBE_SLOW_RUN : 0; i < n; ++i) *last += t[i];
+  *pages = n;
   munmap(raw, bytes + huge);
-  return t;
+  return verdict;
 }
 
 static int thp_available(void) {
@@ -61,6 +90,26 @@ static int thp_available(void) {
   return ok;
 }
 
+/* Whether a virtio balloon device reports free pages to the host (feature bit 5,
+ * VIRTIO_BALLOON_F_REPORTING, in the driver's features string, bit 0 first). */
+static int free_page_reporting(void) {
+  for (int d = 0; d < 64; ++d) {
+    char path[96], text[160] = {0};
+    snprintf(path, sizeof path, "/sys/bus/virtio/devices/virtio%d/device", d);
+    FILE* f = fopen(path, "r");
+    if (!f) continue;
+    const int balloon = fgets(text, sizeof text, f) != NULL && strtol(text, NULL, 0) == 5;
+    fclose(f);
+    if (!balloon) continue;
+    snprintf(path, sizeof path, "/sys/bus/virtio/devices/virtio%d/features", d);
+    if (!(f = fopen(path, "r"))) continue;
+    const int reporting = fgets(text, sizeof text, f) != NULL && strlen(text) > 5 && text[5] == '1';
+    fclose(f);
+    if (reporting) return 1;
+  }
+  return 0;
+}
+
 /* "on" or "off", with the measurement behind an automatic choice in `why`; null for a value of
  * FFR_HUGE_PAGES that is none of the accepted ones. */
 static const char* choose(char* why, size_t n) {
@@ -69,20 +118,28 @@ static const char* choose(char* why, size_t n) {
   if (want && (!strcmp(want, "off") || !strcmp(want, "0"))) return "off";
   if (want && *want && strcmp(want, "auto") != 0) return NULL;
   if (!thp_available()) return "off";
-  const size_t bytes = (size_t)8 << 20;
-  double huge = 1e30, small = 1e30;
-  /* A second round only when the first is close to the threshold (huge pages at a quarter to
-   * the whole of the small pages' time): elsewhere one round decides (here 0.5 ms against 21). */
+  /* 4 KiB pages: the better of two samples of 8 MiB (a single one was 4-8 times slow at times). */
+  const size_t small_bytes = (size_t)8 << 20;
+  double small = 1e30;
   for (int round = 0; round < 2; ++round) {
-    const double h = fault_in(bytes, MADV_HUGEPAGE), s = fault_in(bytes, MADV_NOHUGEPAGE);
-    if (h < 0 || s < 0) return "off";
-    if (h < huge) huge = h;
-    if (s < small) small = s;
-    if (huge < 0.25 * small || huge > small) break;
+    char* raw = NULL;
+    char* p = map_aligned(small_bytes, MADV_NOHUGEPAGE, &raw);
+    if (!p) return "off";
+    const double t = touch(p, small_bytes);
+    if (t < small) small = t;
+    munmap(raw, small_bytes + ((size_t)2 << 20));
   }
-  snprintf(why, n, "%s (8 MiB faulted in %.1f ms as 2 MiB pages, %.1f ms as 4 KiB pages)",
-           huge <= 0.5 * small ? "on" : "off", 1e3 * huge, 1e3 * small);
-  return huge <= 0.5 * small ? "on" : "off";
+  int pages = 0;
+  double total = 0, last = 0;
+  const int verdict = walk_huge_pages(small / 4, &pages, &total, &last);
+  const int reporting = free_page_reporting();
+  const char* choice = ffr_huge_pages_pay(verdict, small / 4, reporting) ? "on" : "off";
+  snprintf(why, n,
+           "%s (%d MiB faulted in %.1f ms as 2 MiB pages, the last %d MiB in %.1f ms; 8 MiB in %.1f ms as 4 KiB "
+           "pages%s)",
+           choice, 2 * pages, 1e3 * total, 2 * (pages < FFR_PROBE_SLOW_RUN ? pages : FFR_PROBE_SLOW_RUN), 1e3 * last,
+           1e3 * small, reporting ? "; free pages are reported to the host" : "");
+  return choice;
 }
 
 int main(int argc, char** argv) {
@@ -103,7 +160,7 @@ int main(int argc, char** argv) {
 
   const char* tunables = getenv("GLIBC_TUNABLES");
   if (!tunables || !strstr(tunables, "glibc.malloc.hugetlb")) {
-    char why[160] = "";
+    char why[320] = "";
     const char* choice = choose(why, sizeof why);
     if (!choice) {
       fprintf(stderr, "ffr-reduce: error: environment variable FFR_HUGE_PAGES: expected on, off or auto, got '%s'\n",
