@@ -13,15 +13,14 @@ namespace ffr::preproc::detail::panels {
 
 using Index = std::int64_t;
 
-// Columns of L per sweep step for W interleaved right-hand sides. Eight for up to four: the
-// update rows of T (and, going back, the gathered rows) are read and written once per panel, so
-// wider panels halve that traffic against the same stream of L; on the 100k-DOF plate (92
-// solves of 4 right-hand sides) the Lanczos stage was faster in seven of seven alternating
-// runs, by 1-11 % (2.52-3.00 s against 2.59-3.09 s with four). Four for wider blocks, whose
-// P x W values of Y no longer fit the 16 vector registers of AVX2 with eight (16 right-hand
-// sides: 0.235-0.314 s a solve against 0.210-0.227 s with four, tools/bench/eigen, 100k grid).
+// Columns of L per sweep step: eight, a whole stripe of the packed factor (factor_packing.hpp),
+// whose rows are 64-byte lines. The update rows of T (and, going back, the gathered rows) are
+// read and written once per panel, so wider panels halve that traffic against the same stream of
+// L; on the 100k-DOF plate (92 solves of 4 right-hand sides, the factor then stored by columns)
+// the Lanczos stage was faster with eight than with four in seven of seven alternating runs, by
+// 1-11 %. Panels of four would read every line of a stripe twice.
 template <int W>
-constexpr int kPanel = W >= 8 ? 4 : 8;
+constexpr int kPanel = 8;
 
 // Four doubles (simd::v4, kernel_clones.hpp): GCC's vector extension, not auto-vectorisation: left to itself, GCC vectorised the interleaved loops across rows with
 // permutations and stack spills, slower than CHOLMOD's solve.
@@ -30,35 +29,39 @@ constexpr int kPanel = W >= 8 ? 4 : 8;
 // the sweep ran at two thirds of the speed.
 using simd::v4;
 
-// Software prefetch, kAhead entries (eight cache lines) ahead down each of the panel's columns,
-// once a line. Why: one core's stream from memory is bounded by the misses it can have in flight
-// (a plain read loop on one core of the Emerald Rapids VM of tools/bench/reduce reached 7.4 GB/s,
-// two cores 14 GB/s), and the panel's P column streams left the hardware prefetcher short of
-// that. Measured on the 100k-DOF plate, alternating with the code without it: the Lanczos stage
-// (92 solves) at 1 thread 2.59-3.23 s against 2.83-3.44 s (medians 2.79 and 3.01), at 2 threads
-// 1.77-1.99 s against 1.93-2.04 s; 32, 64 and 128 entries ahead were alike, 256 slower.
-inline constexpr Index kAhead = 64;
+// Software prefetch in the direction of the sweep (factor_packing.hpp: a forward sweep reads
+// the packed values as one ascending stream, a back sweep as one descending stream), 1 KB ahead
+// into L1 and 8 KB ahead into L2, at every row. Why both: one core keeps few misses in flight,
+// and its compute does not hide the wait for memory by itself. In a kernel benchmark of 400 MB
+// of panels of eight columns by rows (four right-hand sides, the AMD EPYC VM of
+// tools/bench/reduce, where a plain read loop reaches 22-25 GB/s), one prefetch 4 KB ahead
+// swept 14-21 GB/s, 1 KB ahead 17-24, and 1 KB plus 8 KB ahead 24-25 GB/s for panels of 100, 600
+// and 2000 rows. The addresses may lie past either end of the factor's values: prefetches do not
+// fault, and the address is formed as an integer, not as an out-of-range pointer.
+inline constexpr Index kNear = 128, kFar = 1024;  // entries
 
-// Prefetch of L[offset], also past the end of the factor's values near a supernode's last rows:
-// prefetches do not fault, and the address is formed as an integer, not as an out-of-range
-// pointer.
-inline void prefetch_entry(const double* L, Index offset) {
-  __builtin_prefetch(reinterpret_cast<const void*>(reinterpret_cast<std::uintptr_t>(L) +
-                                                   static_cast<std::uintptr_t>(offset) * sizeof(double)));
+template <bool Down>
+inline void prefetch_from(const double* row) {
+  const auto at = [&](Index entries) {
+    return reinterpret_cast<const void*>(reinterpret_cast<std::uintptr_t>(row) +
+                                         static_cast<std::uintptr_t>(Down ? -entries : entries) * sizeof(double));
+  };
+  __builtin_prefetch(at(kNear), 0, 3);
+  __builtin_prefetch(at(kFar), 0, 1);
 }
 
-// T[i] -= sum_q L(i, q) Y[q] for i < m, q < P: P columns of L from L (leading dimension ld)
+// T[i] -= sum_q L(i, q) Y[q] for i < m, q < P: a panel of P columns, L(i, q) = L[i rs + q],
 // against P rows of the interleaved block Y, into m interleaved rows of T.
 template <int W, int P>
-inline void panel_update(const double* L, Index ld, Index m, const double* Y, double* T) {
+inline void panel_update(const double* L, Index rs, Index m, const double* Y, double* T) {
   if constexpr (W == 1) {
-    // One right-hand side: plain AXPYs down the columns, vectorised across rows.
     double y[P];
     for (int q = 0; q < P; ++q) y[q] = Y[q];
     for (Index i = 0; i < m; ++i) {
-      double acc = T[i];
-      for (int q = 0; q < P; ++q) acc -= L[i + q * ld] * y[q];
-      T[i] = acc;
+      prefetch_from<false>(L + i * rs);
+      double acc = 0;
+      for (int q = 0; q < P; ++q) acc += L[i * rs + q] * y[q];
+      T[i] -= acc;
     }
   } else {
     constexpr int NV = W / 4;
@@ -66,12 +69,11 @@ inline void panel_update(const double* L, Index ld, Index m, const double* Y, do
     for (int q = 0; q < P; ++q)
       for (int k = 0; k < NV; ++k) y[q][k] = *reinterpret_cast<const v4*>(Y + q * W + 4 * k);
     for (Index i = 0; i < m; ++i) {
-      if ((i & 7) == 0)
-        for (int q = 0; q < P; ++q) prefetch_entry(L, i + kAhead + q * ld);
+      prefetch_from<false>(L + i * rs);
       v4 acc[NV];
       for (int k = 0; k < NV; ++k) acc[k] = *reinterpret_cast<const v4*>(T + i * W + 4 * k);
       for (int q = 0; q < P; ++q) {
-        const double l = L[i + q * ld];
+        const double l = L[i * rs + q];
         for (int k = 0; k < NV; ++k) acc[k] -= l * y[q][k];
       }
       for (int k = 0; k < NV; ++k) *reinterpret_cast<v4*>(T + i * W + 4 * k) = acc[k];
@@ -79,60 +81,60 @@ inline void panel_update(const double* L, Index ld, Index m, const double* Y, do
   }
 }
 
-// Y[q] -= sum_i L(i, q) G[i] for q < P: the transposed panel against m interleaved rows G.
+// Y[q] -= sum_i L(i, q) G[i] for q < P: the transposed panel against m interleaved rows G,
+// its rows from the last (the back sweep's descending stream). Two rows per iteration into two
+// sets of sums: with one set, each sum waits for its previous FMA, and the sweep ran at 7-8 GB/s
+// instead of 10-12 (grid pencil, 840 MB factor).
+template <int W>
+struct DotSum {
+  using type = v4;  // four right-hand sides a register
+};
+template <>
+struct DotSum<1> {
+  using type = double;
+};
+
 template <int W, int P>
-inline void panel_dot(const double* L, Index ld, Index m, const double* G, double* Y) {
-  if constexpr (W == 1) {
-    // One right-hand side: dot products, with four partial sums per column across rows.
-    v4 acc[P] = {};
-    Index i = 0;
-    for (; i + 4 <= m; i += 4) {
-      const v4 g = *reinterpret_cast<const v4*>(G + i);
-      for (int q = 0; q < P; ++q) acc[q] += *reinterpret_cast<const v4*>(L + i + q * ld) * g;
-    }
-    for (int q = 0; q < P; ++q) {
-      double sum = (acc[q][0] + acc[q][1]) + (acc[q][2] + acc[q][3]);
-      for (Index r = i; r < m; ++r) sum += L[r + q * ld] * G[r];
-      Y[q] -= sum;
-    }
-  } else {
-    // Two rows per iteration into two sets of sums: with one set, each sum waits for its
-    // previous FMA, and the sweep ran at 7-8 GB/s instead of 10-12 (grid pencil, 840 MB factor).
-    constexpr int NV = W / 4;
-    v4 acc[2][P][NV] = {};
-    Index i = 0;
-    for (; i + 2 <= m; i += 2) {
-      if ((i & 7) == 0)
-        for (int q = 0; q < P; ++q) prefetch_entry(L, i + kAhead + q * ld);
-      for (int h = 0; h < 2; ++h) {
-        v4 g[NV];
-        for (int k = 0; k < NV; ++k) g[k] = *reinterpret_cast<const v4*>(G + (i + h) * W + 4 * k);
-        for (int q = 0; q < P; ++q) {
-          const double l = L[i + h + q * ld];
-          for (int k = 0; k < NV; ++k) acc[h][q][k] += l * g[k];
-        }
-      }
-    }
-    for (; i < m; ++i) {
-      v4 g[NV];
-      for (int k = 0; k < NV; ++k) g[k] = *reinterpret_cast<const v4*>(G + i * W + 4 * k);
+inline void panel_dot(const double* L, Index rs, Index m, const double* G, double* Y) {
+  constexpr int NV = W < 4 ? 1 : W / 4;
+  using Sum = typename DotSum<W>::type;
+  Sum acc[2][P][NV] = {};
+  const auto rhs = [&](Index i, int k) -> Sum {
+    if constexpr (W == 1) return G[i];
+    else return *reinterpret_cast<const v4*>(G + i * W + 4 * k);
+  };
+  Index i = m - 1;
+  for (; i >= 1; i -= 2) {
+    prefetch_from<true>(L + i * rs);
+    prefetch_from<true>(L + (i - 1) * rs);
+    for (int h = 0; h < 2; ++h) {
+      Sum g[NV];
+      for (int k = 0; k < NV; ++k) g[k] = rhs(i - h, k);
       for (int q = 0; q < P; ++q) {
-        const double l = L[i + q * ld];
-        for (int k = 0; k < NV; ++k) acc[0][q][k] += l * g[k];
+        const double l = L[(i - h) * rs + q];
+        for (int k = 0; k < NV; ++k) acc[h][q][k] += l * g[k];
       }
     }
-    for (int q = 0; q < P; ++q)
-      for (int k = 0; k < NV; ++k) *reinterpret_cast<v4*>(Y + q * W + 4 * k) -= acc[0][q][k] + acc[1][q][k];
   }
+  if (i == 0)
+    for (int q = 0; q < P; ++q) {
+      const double l = L[q];
+      for (int k = 0; k < NV; ++k) acc[0][q][k] += l * rhs(0, k);
+    }
+  for (int q = 0; q < P; ++q)
+    for (int k = 0; k < NV; ++k) {
+      if constexpr (W == 1) Y[q] -= acc[0][q][k] + acc[1][q][k];
+      else *reinterpret_cast<v4*>(Y + q * W + 4 * k) -= acc[0][q][k] + acc[1][q][k];
+    }
 }
 
 // The P-wide panel operations for a run-time panel width p (the last panel of a supernode).
 template <int W, bool Dot>
-inline void panel_p(int p, const double* L, Index ld, Index m, const double* in, double* out) {
+inline void panel_p(int p, const double* L, Index rs, Index m, const double* in, double* out) {
   const auto run = [&](auto width) {
     constexpr int P = decltype(width)::value;
-    if constexpr (Dot) panel_dot<W, P>(L, ld, m, in, out);
-    else panel_update<W, P>(L, ld, m, in, out);
+    if constexpr (Dot) panel_dot<W, P>(L, rs, m, in, out);
+    else panel_update<W, P>(L, rs, m, in, out);
   };
   switch (p) {
     case 8: run(std::integral_constant<int, 8>{}); break;
@@ -146,12 +148,12 @@ inline void panel_p(int p, const double* L, Index ld, Index m, const double* in,
   }
 }
 template <int W>
-inline void update_p(int p, const double* L, Index ld, Index m, const double* Y, double* T) {
-  panel_p<W, false>(p, L, ld, m, Y, T);
+inline void update_p(int p, const double* L, Index rs, Index m, const double* Y, double* T) {
+  panel_p<W, false>(p, L, rs, m, Y, T);
 }
 template <int W>
-inline void dot_p(int p, const double* L, Index ld, Index m, const double* G, double* Y) {
-  panel_p<W, true>(p, L, ld, m, G, Y);
+inline void dot_p(int p, const double* L, Index rs, Index m, const double* G, double* Y) {
+  panel_p<W, true>(p, L, rs, m, G, Y);
 }
 
 }  // namespace ffr::preproc::detail::panels

@@ -4,13 +4,14 @@
 // of L on nsrow = pi[s+1] - pi[s] rows; its row indices rows[pi[s] ..] start with k1 .. k2 - 1
 // (the lower triangle L11 on top), followed by the nsrow - nscol rows of the rectangular L21
 // below. The values are packed (factor_packing.hpp): from values + px[s], in stripes of kStripe
-// columns, stripe t from row kStripe t down (panel_columns below finds a panel's).
+// columns, stripe t from row kStripe t down, row by row (panel_columns below finds a panel's).
 //
 // Forward (L y = P b), supernodes in order:  y1 <- L11^-1 y1,   y[rows of L21] -= L21 y1.
 // Back (L^T z = y), in reverse order:        y1 <- L11^-T (y1 - L21^T y[rows of L21]).
-// Both sweep the columns of a supernode in panels of eight (four for wide blocks, panels::kPanel):
-// each step reads the panel's columns of L once and applies them to all right-hand sides of
-// the interleaved block.
+// Both sweep the columns of a supernode in panels of eight (a stripe, panels::kPanel): each
+// step reads the panel's rows of L once and applies them to all right-hand sides of the
+// interleaved block. The forward sweep reads the packed values as one ascending stream, the back
+// sweep (rows from the last, in each panel) as one descending stream.
 #include "supernodal_solve.hpp"
 
 #include "../run_parts.hpp"
@@ -37,17 +38,18 @@ using panels::kPanel;
 using panels::update_p;
 
 // The packed values of a panel of supernode s starting at column j0 (a multiple of the panel
-// width, which divides kStripe): L(i, j0 + q) = at(i, q) for the rows i >= r0 its stripe holds.
+// width, which divides kStripe): L(i, j0 + q) = at(i, q) for the rows i >= r0 its stripe holds,
+// rows rs apart (the stripe's width).
 struct PanelColumns {
   const double* L;  // L(r0, j0)
-  Index ld, r0;
-  const double* row(Index i) const { return L + (i - r0); }
-  double at(Index i, Index q) const { return L[(i - r0) + q * ld]; }
+  Index rs, r0;
+  const double* row(Index i) const { return L + (i - r0) * rs; }
+  double at(Index i, Index q) const { return L[(i - r0) * rs + q]; }
 };
 
-inline PanelColumns panel_columns(const View& v, Index s, Index nsrow, Index j0) {
-  const Index t = j0 / kStripe, r0 = kStripe * t, ld = nsrow - r0;
-  return {v.values + v.px[s] + stripe_offset(nsrow, t) + (j0 - r0) * ld, ld, r0};
+inline PanelColumns panel_columns(const View& v, Index s, Index nscol, Index nsrow, Index j0) {
+  const Index t = j0 / kStripe, r0 = kStripe * t;
+  return {v.values + v.px[s] + stripe_offset(nsrow, t) + (j0 - r0), std::min(kStripe, nscol - r0), r0};
 }
 
 // Forward step of supernode s. Updates to rows with a slot (the top of a threaded sweep, see
@@ -63,7 +65,7 @@ void forward_node(const View& v, Index s, double* y, double* t, const std::int32
   static_assert(kStripe % kP == 0, "a panel must lie in one stripe");
   for (Index j0 = 0; j0 < nscol; j0 += kP) {
     const int p = static_cast<int>(std::min<Index>(kP, nscol - j0));
-    const PanelColumns L = panel_columns(v, s, nsrow, j0);
+    const PanelColumns L = panel_columns(v, s, nscol, nsrow, j0);
     // The panel's own triangle.
     for (int q = 0; q < p; ++q) {
       const Index j = j0 + q;
@@ -76,8 +78,8 @@ void forward_node(const View& v, Index s, double* y, double* t, const std::int32
       }
     }
     // The rest of L11 below the panel, then L21 into the update rows.
-    update_p<W>(p, L.row(j0 + p), L.ld, nscol - j0 - p, yd + j0 * W, yd + (j0 + p) * W);
-    update_p<W>(p, L.row(nscol), L.ld, m, yd + j0 * W, t);
+    update_p<W>(p, L.row(j0 + p), L.rs, nscol - j0 - p, yd + j0 * W, yd + (j0 + p) * W);
+    update_p<W>(p, L.row(nscol), L.rs, m, yd + j0 * W, t);
   }
   for (Index i = 0; i < m; ++i) {
     const Index r = below[i];
@@ -102,9 +104,9 @@ void backward_node(const View& v, Index s, double* y, double* t) {
   const Index last = ((nscol - 1) / kP) * kP;
   for (Index j0 = last; j0 >= 0; j0 -= kP) {
     const int p = static_cast<int>(std::min<Index>(kP, nscol - j0));
-    const PanelColumns L = panel_columns(v, s, nsrow, j0);
-    dot_p<W>(p, L.row(nscol), L.ld, m, t, yd + j0 * W);
-    dot_p<W>(p, L.row(j0 + p), L.ld, nscol - j0 - p, yd + (j0 + p) * W, yd + j0 * W);
+    const PanelColumns L = panel_columns(v, s, nscol, nsrow, j0);
+    dot_p<W>(p, L.row(nscol), L.rs, m, t, yd + j0 * W);
+    dot_p<W>(p, L.row(j0 + p), L.rs, nscol - j0 - p, yd + (j0 + p) * W, yd + j0 * W);
     for (int q = p - 1; q >= 0; --q) {
       const Index j = j0 + q;
       double* yj = yd + j * W;
