@@ -32,11 +32,11 @@ using simd::v4;
 // Software prefetch in the direction of the sweep (factor_packing.hpp: a forward sweep reads
 // the packed values as one ascending stream, a back sweep as one descending stream), 1 KB ahead
 // into L1 and 8 KB ahead into L2, at every row. Why both: one core keeps few misses in flight,
-// and its compute does not hide the wait for memory by itself. In a kernel benchmark of 400 MB
-// of panels of eight columns by rows (four right-hand sides, the AMD EPYC VM of
-// tools/bench/reduce, where a plain read loop reaches 22-25 GB/s), one prefetch 4 KB ahead
-// swept 14-21 GB/s, 1 KB ahead 17-24, and 1 KB plus 8 KB ahead 24-25 GB/s for panels of 100, 600
-// and 2000 rows. The addresses may lie past either end of the factor's values: prefetches do not
+// and its compute does not hide the wait for memory by itself. In a throwaway kernel benchmark of
+// 400 MB of panels of eight columns by rows (four right-hand sides, the AMD EPYC VM of
+// tools/bench/reduce, where a plain read loop reaches 22-25 GB/s), one prefetch 4 KB ahead swept
+// 14-21 GB/s, 1 KB ahead 17-24, and 1 KB plus 8 KB ahead 24-25 GB/s for panels of 100, 600 and
+// 2000 rows. The addresses may lie past either end of the factor's values: prefetches do not
 // fault, and the address is formed as an integer, not as an out-of-range pointer.
 inline constexpr Index kNear = 128, kFar = 1024;  // entries
 
