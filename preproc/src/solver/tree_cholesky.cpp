@@ -26,6 +26,7 @@
 #include "tree_cholesky.hpp"
 
 #include "library_threads.hpp"
+#include "../populate.hpp"
 #include "solve_schedule.hpp"
 #include "../run_parts.hpp"
 
@@ -150,7 +151,10 @@ class TreeCholesky {
     }
   }
 
-  void zero(Index begin, Index end) { std::fill(x_ + begin, x_ + end, 0.0); }
+  void zero(Index begin, Index end) {
+    populate_for_writing(x_ + begin, static_cast<std::size_t>(end - begin) * sizeof(double));
+    std::fill(x_ + begin, x_ + end, 0.0);
+  }
   Index stored() const { return xsize_; }
 
   /// Supernode s (its entries of P A P' already in place, the rest zero), with the lists it
