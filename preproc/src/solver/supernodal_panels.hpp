@@ -22,8 +22,7 @@ using Index = std::int64_t;
 // right-hand sides take panels of eight too (tools/bench/eigen, 100k grid, by rows against the
 // columns in panels of four: 16 right-hand sides 0.220-0.221 s a solve against 0.188-0.227 s,
 // 8 on two threads 0.062-0.075 s against 0.073-0.086 s).
-template <int W>
-constexpr int kPanel = 8;
+inline constexpr int kPanel = 8;
 
 // Four doubles (simd::v4, kernel_clones.hpp): GCC's vector extension, not auto-vectorisation: left to itself, GCC vectorised the interleaved loops across rows with
 // permutations and stack spills, slower than CHOLMOD's solve.

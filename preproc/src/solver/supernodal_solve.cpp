@@ -61,7 +61,7 @@ void forward_node(const View& v, Index s, double* y, double* t, const std::int32
   const SuiteSparse_long* below = v.rows + v.pi[s] + nscol;
   double* yd = y + k1 * W;
   std::fill(t, t + m * W, 0.0);
-  constexpr int kP = kPanel<W>;
+  constexpr int kP = kPanel;
   static_assert(kStripe % kP == 0, "a panel must lie in one stripe");
   for (Index j0 = 0; j0 < nscol; j0 += kP) {
     const int p = static_cast<int>(std::min<Index>(kP, nscol - j0));
@@ -100,7 +100,7 @@ void backward_node(const View& v, Index s, double* y, double* t) {
     for (int c = 0; c < W; ++c) t[i * W + c] = yi[c];
   }
   // Panels from the last: the rows below a panel are final when it is reached.
-  constexpr int kP = kPanel<W>;
+  constexpr int kP = kPanel;
   const Index last = ((nscol - 1) / kP) * kP;
   for (Index j0 = last; j0 >= 0; j0 -= kP) {
     const int p = static_cast<int>(std::min<Index>(kP, nscol - j0));
