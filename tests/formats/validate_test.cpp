@@ -110,7 +110,7 @@ std::vector<Violation> violations() {
       {"Ge = 2 eps PPdm", kRotary, [](Sid& s) { s.Ge[0](1, 2) += d; }},
       {"Oe.M1 from PPdm", kRotary, [](Sid& s) { s.Oe.M1[0](1, 4) += d; }},
       {"Me = sum_a PPdm[a][a] + rotary.PsiIPsi", kRotary, [](Sid& s) { s.rotary.PsiIPsi(0, 0) += d; }},
-      // cross-member identities (invariants.md section 5)
+      // cross-member identities (formats/SPEC.md section 9)
       {"mdCM.M1 = Ct.M0", kRotary, [](Sid& s) { s.mdCM.M1(0, 0) += d; }},
       {"Gr + Gr^T = 2 J.M1", kRotary, [](Sid& s) { s.Gr[0](0, 1) += d; }},
       {"diag Gr = diag J.M1", kRotary, [](Sid& s) { s.Gr[0](1, 1) += d; }},

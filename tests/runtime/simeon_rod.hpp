@@ -3,7 +3,7 @@
 // B. Simeon, "Modelling a flexible slider crank mechanism by a mixed system of DAEs and PDEs",
 // Math. Modelling of Systems 2 (1996) 1-18; IVP Test Set, F. Mazzia, C. Magherini, F. Iavernaro,
 // release 2.3, crank.f) as a SID: the same shape functions and matrices, turned into the
-// primitive integrals of design/invariants.md section 2.
+// primitive integrals of formats/SPEC.md section 8.
 //
 // Rod along the body x axis from node A (x = 0, the crank pin) to node B (x = L2). Modes:
 //   q1, q2  lateral (y): sin(pi xi), sin(2 pi xi)        (xi = x / L2)

@@ -4,7 +4,7 @@
 namespace ffr::runtime {
 namespace {
 
-// KG = sum_c a_c Kt[c] + alpha_c Kr[c] + sum_j omega_bar_j Kw[j] (invariants.md section 4), with
+// KG = sum_c a_c Kt[c] + alpha_c Kr[c] + sum_j omega_bar_j Kw[j] (formats/SPEC.md section 10), with
 // a the frame acceleration minus gravity (the inertial load a body feels), alpha the angular
 // acceleration and omega_bar = (wx^2, wy^2, wz^2, wx wy, wy wz, wx wz), all in the body frame.
 void geometric_stiffness(const StiffeningTerms& s, const BodyData& bd, MatrixXd& KG) {

@@ -2,7 +2,7 @@
 // Comparing two SIDs member by member, after aligning B's modes to A's.
 //
 // A mode's sign and a rotation of modes inside a repeated eigenvalue are not differences
-// (contract.md). So B's modal basis is first changed, Phi_B' = Phi_B T, with T block-diagonal
+// (docs/contract.md). So B's modal basis is first changed, Phi_B' = Phi_B T, with T block-diagonal
 // over the groups of (nearly) equal frequencies of A, each block the orthogonal matrix that
 // best maps B's modes onto A's (orthogonal Procrustes: T_g = U V^T from the SVD of
 // S_B,g^T S_A,g). S is a matrix of *linear* data of every mode, each block scaled to its

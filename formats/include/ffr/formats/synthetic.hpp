@@ -2,8 +2,7 @@
 // Synthetic SID bodies for tests: an independent oracle for everything that reads a SID.
 //
 // from_shapes() builds every SID member of a body made of point masses by *direct sums over
-// the points*, written straight from the definitions of /work/shared/design/invariants.md
-// (sections 2-3) and formats/SPEC.md; it does not go through the integral -> member formulas
+// the points*, written straight from the definitions of formats/SPEC.md (sections 6-8); it does not go through the integral -> member formulas
 // the preprocessor uses, so the two can check each other.
 //
 // spring_chain() is a physically meaningful flexible body: a straight chain of lumped masses

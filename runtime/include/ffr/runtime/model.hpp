@@ -2,7 +2,7 @@
 // The Model: everything about a multibody system that does not change while it moves.
 // Built once (load_model or by hand + finalize), then only read by the algorithms, which take
 // (const Model&, Data&) like Pinocchio. Every quantity here is reduced: a flexible body keeps
-// its primitive shape integrals (design/invariants.md section 2) and the slices of its exported
+// its primitive shape integrals (formats/SPEC.md sections 7-8) and the slices of its exported
 // nodes, never a mesh.
 //
 // Coordinates (FORMULATION.md): each body owns z = [r0, u, v, w, y] (12 + nq numbers): the
@@ -42,7 +42,7 @@ struct NodeSlice {
   Matrix3Xd psi;  ///< [3, nq] small rotation
 };
 
-/// Geometric stiffening (design/invariants.md section 4), regrouped per load component so the
+/// Geometric stiffening (formats/SPEC.md section 10), regrouped per load component so the
 /// per-step geometric stiffness is a sum of nq x nq matrices: KG = sum_c a_c Kt[c] + ...
 struct StiffeningTerms {
   std::array<MatrixXd, 3> Kt;  ///< Kt[c](i,k) = K0t[k](i,c)
@@ -50,7 +50,8 @@ struct StiffeningTerms {
   std::array<MatrixXd, 6> Kw;  ///< Kw[j](i,k) = K0om[k](i,j), j in omega_bar order
 };
 
-/// The unreduced mass data of a flexible body, for seed 000's comparison only (benchmarks):
+/// The unreduced mass data of a flexible body, for the co-rotational comparison only (benchmarks,
+/// docs/references.md "Shape integrals"):
 /// when a body has it, its mass matrix and inertia forces are computed each step the
 /// co-rotational way, B^T M_FE B and -B^T M_FE (2 A_dot Phi y_dot) with B the [3N, 12+nq]
 /// velocity map of all N nodes, instead of from the shape integrals. Translational mass only.

@@ -1,6 +1,6 @@
 #pragma once
-// The part file (input of ffr-reduce), validated. Field names follow ../shared/contract.md;
-// extensions are documented in preproc/PART_FILE.md.
+// The part file (input of ffr-reduce), validated. Every field is documented in
+// preproc/PART_FILE.md; docs/contract.md lists those outside scripts rely on.
 
 #include "ffr/preproc/elements/element.hpp"
 
