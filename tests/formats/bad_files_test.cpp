@@ -337,3 +337,29 @@ TEST(BadFiles, DamagedStiffeningInterfaceMember) {
   edit(f, [](hid_t h) { H5Ldelete(h, "/stiffening/interfaces/B/K0M", H5P_DEFAULT); });
   expect_refused(f, "/stiffening/interfaces/B/K0M", "missing dataset");
 }
+
+// /sid/Ke/M1 is optional, but when present it must be [nq,nq,nq] and finite.
+TEST(BadFiles, KeM1WrongShape) {
+  const auto f = clean_copy("kem1shape.sid.h5");
+  ASSERT_FALSE(read_sid(f).KeM1.empty());
+  edit(f, [](hid_t h) { replace_doubles(h, "/sid/Ke/M1", {4, 4}); });
+  expect_refused(f, "/sid/Ke/M1", "wrong shape: expected [4,4,4], found [4,4]");
+  edit(f, [](hid_t h) { replace_doubles(h, "/sid/Ke/M1", {3, 4, 4}); });
+  expect_refused(f, "/sid/Ke/M1", "expected [4,4,4]");
+}
+
+TEST(BadFiles, KeM1NaN) {
+  const auto f = clean_copy("kem1nan.sid.h5");
+  edit(f, [](hid_t h) {
+    std::vector<double> v(64, 1.0);
+    v[17] = std::numeric_limits<double>::quiet_NaN();
+    replace(h, "/sid/Ke/M1", H5T_NATIVE_DOUBLE, {4, 4, 4}, v.data());
+  });
+  expect_refused(f, "/sid/Ke/M1", "");
+}
+
+TEST(BadFiles, KeM1AbsentIsFine) {
+  const auto f = clean_copy("kem1absent.sid.h5");
+  edit(f, [](hid_t h) { H5Ldelete(h, "/sid/Ke/M1", H5P_DEFAULT); });
+  EXPECT_TRUE(read_sid(f).KeM1.empty());
+}

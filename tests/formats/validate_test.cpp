@@ -97,6 +97,7 @@ std::vector<Violation> violations() {
       {"interface names unique and non-empty", kRotary, [](Sid& s) { s.interfaces[1].name = ""; }},
       {"AP0 are rotation matrices", kRotary, [](Sid& s) { s.nodes[0].AP0(0, 0) = -1; }},
       {"stiffening symmetric in (k,i)", kFree, [](Sid& s) { s.stiffening->K0om[0](1, 2) += d; }},
+      {"Ke.M1 symmetric in (i,j)", kFree, [](Sid& s) { s.KeM1[1](0, 2) += d; }},
       // members against the primitive integrals
       {"mdCM.M0 = rdm", kRotary, [](Sid& s) { s.integrals.rdm.x() += d; }},
       {"mdCM.M1 = Pdm^T", kRotary, [](Sid& s) { s.integrals.Pdm(0, 1) += d; }},
@@ -206,6 +207,28 @@ TEST(Validate, InconsistentSizesGiveOneFailedCheck) {
   ASSERT_EQ(r.checks.size(), 1u);
   EXPECT_FALSE(r.ok());
   EXPECT_NE(r.checks[0].note.find("Me"), std::string::npos);
+}
+
+TEST(Validate, KeM1OfTheWrongShapeIsASizeFailure) {
+  Sid s = body(kFree);
+  ASSERT_FALSE(s.KeM1.empty());
+  s.KeM1[2].resize(3, 4);
+  const ValidationReport r = validate(s);
+  ASSERT_EQ(r.checks.size(), 1u);
+  EXPECT_NE(r.checks[0].note.find("Ke.M1"), std::string::npos) << r.checks[0].note;
+  s = body(kFree);
+  s.KeM1.pop_back();
+  EXPECT_FALSE(validate(s).ok());
+}
+
+// Ke.M1 is symmetric in (i,j) only: an asymmetry in k is how it is defined, not a failure.
+TEST(Validate, KeM1NeedNotBeSymmetricInK) {
+  Sid s = body(kClamped);
+  ASSERT_FALSE(s.KeM1.empty());
+  s.KeM1[0](1, 1) += 0.5;  // now KeM1[0](1,1) != KeM1[1](0,1)
+  EXPECT_TRUE(validate(s).find("Ke.M1 symmetric in (i,j)")->pass);
+  s.KeM1[0](0, 1) = NAN;
+  EXPECT_FALSE(validate(s).find("Ke.M1 symmetric in (i,j)")->pass);
 }
 
 TEST(Validate, NonFiniteValuesFail) {

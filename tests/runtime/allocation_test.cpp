@@ -41,8 +41,30 @@ using namespace ffr::runtime;
 
 TEST(Allocation, StepsAllocateNothing) {
   test::TempDir dir("alloc");
-  test::write_sid_file(test::simeon_rod_sid(), dir / "rod.sid.h5");
-  test::write_sid_file(test::lumpy_body(3, 4, true, 0.01), dir / "lumpy.sid.h5");
+  // Every stiffening member (FORMULATION.md 7): the rod's Ke/M1, the flap's load cases with the
+  // interface loads at its hinge, prestress, and Ke/M1.
+  ffr::formats::Sid rod = test::simeon_rod_sid();
+  rod.KeM1 = test::simeon_rod_ke_m1();
+  test::write_sid_file(rod, dir / "rod.sid.h5");
+  ffr::formats::Sid flap = test::lumpy_body(3, 4, true, 0.01);
+  {
+    const double k = flap.Ke.cwiseAbs().maxCoeff();
+    for (int m = 0; m < 3; ++m) flap.KeM1.push_back(0.1 * k * Eigen::Matrix3d::Identity() * (m + 1));
+    flap.ksigma.M0 = Eigen::Vector3d(1e-3, 0, 0) * k;
+    flap.ksigma.M1 = 0.01 * k * Eigen::Matrix3d::Identity();
+    // Load cases of a realistic size (a unit acceleration changes the stiffness by 1e-5): they
+    // are evaluated at the iterate's accelerations, which carry 4/h^2 times the predictor's error.
+    flap.stiffening.emplace();
+    flap.stiffening->K0t.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
+    flap.stiffening->K0r.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
+    flap.stiffening->K0om.assign(3, ffr::formats::MatX6::Constant(3, 6, 1e-5 * k));
+    ffr::formats::Stiffening::Interface itf;
+    itf.name = "A";
+    itf.K0F.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
+    itf.K0M.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
+    flap.stiffening->interfaces.push_back(itf);
+  }
+  test::write_sid_file(flap, dir / "lumpy.sid.h5");
   const std::string json = R"({
   "gravity": [0, -9.81, 0],
   "bodies": [
@@ -76,6 +98,8 @@ TEST(Allocation, StepsAllocateNothing) {
   ]
 })";
   const Model model = test::model_from(json, dir.path);
+  ASSERT_TRUE(model.bodies[1].modal_stress && model.bodies[3].modal_stress && model.bodies[3].prestress);
+  ASSERT_EQ(model.bodies[3].stiffening->interfaces.size(), 1u);
   Data data(model);
   initialize(model, data);
   set_external_load(data, 3, 1, Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d::Zero());  // at the flap's node A

@@ -13,6 +13,8 @@
 
 #include "ffr/formats/sid.hpp"
 
+#include <vector>
+
 namespace ffr::runtime::test {
 
 struct SimeonData {
@@ -22,5 +24,11 @@ struct SimeonData {
 };
 
 formats::Sid simeon_rod_sid();
+
+/// The rod's /sid/Ke/M1 from the same shape functions (formats/SPEC.md): the geometric stiffness
+/// of each mode's stress, M1[k](i,j) = int N_k (u_i' u_j' + w_i' w_j') dx with N_k = EA u_k' the
+/// axial force of mode k (bending stresses have no resultant in a beam), so the strain energy
+/// gains the cubic terms of the von Karman beam, int EA u' (u'^2 + w'^2) / 2 dx.
+std::vector<Eigen::MatrixXd> simeon_rod_ke_m1();
 
 }  // namespace ffr::runtime::test

@@ -105,6 +105,20 @@ void check_properties(Context& cx) {
     cx.record("AP0 are rotation matrices", "/nodes/AP0", w, 1.0, cx.opt.identity_rtol);
   }
 
+  // Ke.M1[k] is a projected geometric stiffness: symmetric in (i,j) like K_G, but not in k.
+  if (s.KeM1.empty()) {
+    cx.skip("Ke.M1 symmetric in (i,j)", "/sid/Ke/M1", "no /sid/Ke/M1 in this file");
+  } else {
+    Worst w;
+    double big = 0;
+    for (std::size_t k = 0; k < s.KeM1.size(); ++k) {
+      w.add_matrix(s.KeM1[k] - s.KeM1[k].transpose(), open_index({Eigen::Index(k)}));
+      if (s.KeM1[k].size()) big = std::max(big, s.KeM1[k].cwiseAbs().maxCoeff());
+    }
+    cx.record("Ke.M1 symmetric in (i,j)", "/sid/Ke/M1", w, big > 0 && std::isfinite(big) ? big : 1.0,
+              cx.opt.identity_rtol, Check::Kind::Property);
+  }
+
   if (!s.stiffening) {
     cx.skip("stiffening symmetric in (k,i)", "/stiffening", "no /stiffening in this file");
     return;

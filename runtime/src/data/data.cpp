@@ -56,6 +56,10 @@ Data::Data(const Model& model) {
     bd.M = MatrixXd::Zero(nb, nb);
     bd.omega = bd.alpha = bd.acc = Vector3d::Zero();
     bd.KG = MatrixXd::Zero(nq, nq);
+    const int nm = b.modal_stress ? nq : 0;
+    bd.G1 = MatrixXd::Zero(nm, nm);
+    bd.X1 = MatrixXd::Zero(nm, nm);
+    bd.iface_load = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, b.stiffening ? static_cast<Eigen::Index>(b.stiffening->interfaces.size()) : 0);
     bd.wq = VectorXd::Zero(nq);
     if (nq == 0) body_mass_matrix(b, bd);  // constant for a rigid body
     if (b.full_mass) {

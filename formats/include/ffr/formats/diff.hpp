@@ -17,7 +17,8 @@
 // first-order members (one mode index: mdCM.M1, J.M1, Ct.M0, Cr.M0, Gr, Oe.M0, Pdm, rPdm,
 // rotary.PsiI, ksigma.M0, node phi/psi, visual modes) linearly, X'_k = sum_j T_jk X_j;
 // second-order members (two mode indices: Me, Ke, De, PPdm, rotary.PsiIPsi, Cr.M1, Ge,
-// Oe.M1, ksigma.M1, every /stiffening member) bilinearly, X'_ki = sum_jl T_jk T_li X_jl.
+// Oe.M1, ksigma.M1, every /stiffening member) bilinearly, X'_ki = sum_jl T_jk T_li X_jl;
+// Ke.M1 (three mode indices) trilinearly, X'_kij = sum_jlm T_jk T_li T_mj X_jlm.
 // Frequencies and mode types are per-mode labels and are compared as they are.
 
 #include "ffr/formats/sid.hpp"

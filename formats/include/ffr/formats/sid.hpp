@@ -137,6 +137,10 @@ struct Sid {
   struct { MatX3 M0; } Ct;                                   ///< [nq,3]; M1 is Stiffening::K0t
   struct { MatX3 M0; std::vector<MatX3> M1; } Cr;            ///< M0 [nq,3]; M1[k](i,c) = Kr
   Eigen::MatrixXd Me, Ke, De;                                ///< [nq,nq]
+  /// Optional /sid/Ke/M1 [nq][nq,nq] (SPEC.md section 10): KeM1[k](i,j) = Phi_i^T K_G(sigma_k) Phi_j,
+  /// sigma_k the linear stress of mode k's displacement; symmetric in (i,j), not in k. The
+  /// cubic strain energy is 1/2 sum_k q_k q^T KeM1[k] q. Empty when the file has none.
+  std::vector<Eigen::MatrixXd> KeM1;
   std::vector<Eigen::Matrix3d> Gr;                           ///< [nq][3,3]
   std::vector<MatX3> Ge;                                     ///< [nq][nq,3]: Ge[k](i,c)
   struct { MatX6 M0; std::vector<MatX6> M1; } Oe;            ///< M0 [nq,6]; M1[k] [nq,6]

@@ -75,6 +75,8 @@ Sid from_shapes(const std::vector<PointMass>& masses, const Eigen::MatrixXd& Phi
 /// the axial force N_e = EA (u_b - u_a).e_x / h of each segment, whose geometric stiffness on
 /// the translations is the string form N_e/h (I - e_x e_x^T) [[1,-1],[-1,1]]; then
 /// K0[k](i) = Phi_i^T K_G Phi_k. A moment about the chain axis loads nothing (no torsion).
+/// It also adds /sid/Ke/M1 with the same string K_G, for the forces of each mode's own
+/// stretch: Ke.M1[k] = Phi^T K_G(N(Phi_k)) Phi.
 struct ChainParams {
   int points = 11;
   double length = 1.0;

@@ -42,12 +42,41 @@ struct NodeSlice {
   Matrix3Xd psi;  ///< [3, nq] small rotation
 };
 
+/// The interface-load members of one interface (SID /stiffening/interfaces/<name>): the
+/// geometric stiffness of a unit force and moment at its node, resolved in K (FORMULATION.md 7).
+struct InterfaceStiffening {
+  std::string name;
+  int node = -1;               ///< index into Body::nodes
+  std::array<MatrixXd, 3> KF;  ///< KF[c](i,k) = K0F[k](i,c), less its modal part (below)
+  std::array<MatrixXd, 3> KM;  ///< KM[c](i,k) = K0M[k](i,c), less its modal part
+};
+
 /// Geometric stiffening (formats/SPEC.md section 10), regrouped per load component so the
 /// per-step geometric stiffness is a sum of nq x nq matrices: KG = sum_c a_c Kt[c] + ...
+/// When the body also has the stiffness of its own modal stress (ModalStressStiffness), each
+/// load case's matrix is stored less the part of it that its quasi-static modal response
+/// already gives through Ke/M1 (FORMULATION.md 7: no double counting).
 struct StiffeningTerms {
   std::array<MatrixXd, 3> Kt;  ///< Kt[c](i,k) = K0t[k](i,c)
   std::array<MatrixXd, 3> Kr;  ///< Kr[c](i,k) = K0r[k](i,c)
   std::array<MatrixXd, 6> Kw;  ///< Kw[j](i,k) = K0om[k](i,j), j in omega_bar order
+  std::vector<InterfaceStiffening> interfaces;  ///< interfaces not held (loads from joints there)
+};
+
+/// The geometric stiffness of the body's own modal stress (SID /sid/Ke/M1, M1[k](i,j) =
+/// Phi_i^T K_G(sigma_k) Phi_j): the cubic strain energy U3 = 1/2 sum_k y_k y^T M1[k] y. Stored
+/// twice, so each per-step quantity is one product with y:
+///   by_mode  [nq*nq, nq], rows k*nq .. k*nq+nq-1 = M1[k]:  by_mode y = [M1[0] y; M1[1] y; ...]
+///   by_coeff [nq*nq, nq], column k = vec(M1[k]):           by_coeff y = vec(sum_k y_k M1[k])
+struct ModalStressStiffness {
+  MatrixXd by_mode, by_coeff;
+};
+
+/// Prestress (SID /sid/ksigma): the modal force of the preloaded state and its geometric
+/// stiffness, Q_y -= f0 + K1 y.
+struct Prestress {
+  VectorXd f0;
+  MatrixXd K1;
 };
 
 /// The unreduced mass data of a flexible body, for the co-rotational comparison only (benchmarks,
@@ -104,6 +133,8 @@ struct Body {
   MatrixXd Ke, De;                   ///< modal stiffness and total modal damping
   bool has_rotary_coupling = false;
   std::optional<StiffeningTerms> stiffening;  ///< only when the SID has it and it is enabled
+  std::optional<ModalStressStiffness> modal_stress;  ///< /sid/Ke/M1, when present and enabled
+  std::optional<Prestress> prestress;                 ///< /sid/ksigma, when nonzero and enabled
   std::shared_ptr<const FullMass> full_mass;  ///< benchmarks only (see FullMass)
   std::vector<NodeSlice> nodes;
 
