@@ -29,6 +29,8 @@ Data::Data(const Model& model) {
   lambda = lambda_eff = lambda0 = VectorXd::Zero(m);
   Q = f = dq = r = tmp = vstar = qdd_prev = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);
   sigma = c = alpha = VectorXd::Zero(m);
+  scheme.a = VectorXd::Zero(n);
+  scheme.k = trapezoidal_coefficients(model.settings.step);
   K = C = W = T = MatrixXd::Zero(n, n);
   Phiq = MatrixXd::Zero(m, n);
   lu.resize(n);

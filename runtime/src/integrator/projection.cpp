@@ -20,8 +20,7 @@ constexpr int kMaxProjection = 40;
 // Only the rows of the unknowns (the first data.na) take part: the others, among driven bodies,
 // hold by construction, and data.c stays zero there.
 double project_once(const Model& model, Data& data, VectorXd& x, const VectorXd& bias, double unit) {
-  const double h = model.settings.step;
-  const double h4 = 0.25 * h * h;
+  const double h4 = data.scheme.k.kq;
   const double target = 1e-2 * model.settings.tolerance;
   const int na = data.na;
   data.sigma.setZero();
@@ -71,12 +70,12 @@ double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias
 }  // namespace
 
 double project_velocities(const Model& model, Data& data, double t) {
-  const double h = model.settings.step;
+  const double h = data.scheme.k.h;
   return project(model, data, data.qd, data.Phit, h, t);
 }
 
 double project_accelerations(const Model& model, Data& data, double t) {
-  const double h = model.settings.step;
+  const double h = data.scheme.k.h;
   // gamma depends on the (projected) velocities; q, and with it the Jacobian, has not changed
   // since the final evaluation of the step.
   update_body_rates(model, data);

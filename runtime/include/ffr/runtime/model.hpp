@@ -239,10 +239,21 @@ struct ConstraintBlock {
   bool held_by_lock = false;
 };
 
+/// The step's integration scheme (FORMULATION.md section 9, scheme.hpp).
+enum class Integrator { Trapezoidal, GeneralizedAlpha };
+
 struct SolverSettings {
   double start = 0.0;
   double end = 1.0;
-  double step = 1e-3;
+  double step = 1e-3;            ///< fixed step; with `adaptive`, the first step tried
+  // Scheme and step control (scheme.hpp, step_control.cpp).
+  Integrator integrator = Integrator::Trapezoidal;
+  double spectral_radius = 1.0;  ///< generalized-alpha rho_inf in [0, 1] (1: no numerical damping)
+  bool adaptive = false;         ///< "step": "auto": steps chosen by the local error estimate
+  double rtol = 1e-6;            ///< adaptive: relative tolerance of the local error
+  double atol = -1;              ///< adaptive: absolute tolerance [m]; < 0: rtol times the model length
+  double output_interval = 0;    ///< adaptive: time between recorded samples (the steps land on them)
+  double max_step = 0;           ///< adaptive: largest step (0: the output interval)
   int output_every = 1;          ///< record every n-th step
   double tolerance = 1e-12;      ///< constraint violation left by Newton and the projections (model lengths)
   /// Newton: estimated error of the accepted coordinates (scaled: lengths / model length, frame
