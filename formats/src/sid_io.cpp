@@ -289,7 +289,13 @@ void write_sid(const Sid& sid, const std::filesystem::path& path) {
   out.commit();
 }
 
-Sid read_sid(const std::filesystem::path& path) {
+std::string no_checksums_warning(const std::string& file, std::int64_t version) {
+  return file + ": format_version " + std::to_string(version) +
+         " has no content checksums: damage that HDF5 does not detect (a chunk index) cannot be found; "
+         "write the file again with this version";
+}
+
+Sid read_sid(const std::filesystem::path& path, std::vector<std::string>* warnings) {
   h5::Reader r(path);
   r.set_max_magnitude(kMaxInputMagnitude);
   Sid s;
@@ -302,6 +308,10 @@ Sid read_sid(const std::filesystem::path& path) {
   if (version < 1 || version > kFormatVersion)
     r.fail("/@format_version", "unsupported format_version " + std::to_string(version) +
                                    " (this build reads 1.." + std::to_string(kFormatVersion) + ")");
+  if (version >= 2)
+    r.require_checksums();
+  else if (warnings)
+    warnings->push_back(no_checksums_warning(r.name(), version));
   s.units_length = r.attr_string("/", "units_length");
   s.units_mass = r.attr_string("/", "units_mass");
   s.units_time = r.attr_string("/", "units_time");
@@ -459,6 +469,8 @@ Sid read_sid(const std::filesystem::path& path) {
   if (s.provenance.generator.empty()) s.provenance.generator = r.attr_string("/", "generator");
   if (r.exists("/sid/De") && r.has_attr("/sid/De", "model") && s.provenance.damping_model.empty())
     s.provenance.damping_model = r.attr_string("/sid/De", "model");
+  // Last: a file edited by hand keeps the refusal of what is wrong with its content.
+  if (version >= 2) r.verify_content();
   return s;
 }
 

@@ -8,6 +8,7 @@
 #include "ffr/preproc/threads.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <unistd.h>
@@ -103,7 +104,11 @@ int main(int argc, char** argv) {
     if (!report.ok()) {
       std::string text;
       for (const auto& c : report.checks)
-        if (c.applicable && !c.pass) text += "\n  " + c.name + ": violation " + std::to_string(c.rel) + " (tolerance " + std::to_string(c.tol) + ") " + c.note;
+        if (c.applicable && !c.pass) {
+          char nums[96];  // %g: a relative violation of 1e300 is one short number, not 300 digits
+          std::snprintf(nums, sizeof nums, ": violation %.3g (tolerance %.3g) ", c.rel, c.tol);
+          text += "\n  " + c.name + nums + c.note;
+        }
       throw std::runtime_error("the reduced body fails validation (nothing written):" + text);
     }
     ffr::formats::write_sid(sid, *out);

@@ -93,6 +93,7 @@ std::vector<Violation> violations() {
       {"rotary.I positive semi-definite", kRotary, [](Sid& s) { s.rotary.I(0, 0) = -1; }},
       {"rotary.PsiIPsi positive semi-definite", kRotary, [](Sid& s) { s.rotary.PsiIPsi(1, 1) = -1; }},
       {"frequency_hz >= 0", kRotary, [](Sid& s) { s.refmod.frequency_hz[0] = -1; }},
+      {"normal modes: frequency_hz > 0", kRotary, [](Sid& s) { s.refmod.frequency_hz[2] = 0; }},
       {"node names unique and non-empty", kRotary, [](Sid& s) { s.nodes[1].name = s.nodes[0].name; }},
       {"interface names unique and non-empty", kRotary, [](Sid& s) { s.interfaces[1].name = ""; }},
       {"AP0 are rotation matrices", kRotary, [](Sid& s) { s.nodes[0].AP0(0, 0) = -1; }},
@@ -187,7 +188,10 @@ TEST(Validate, PropertiesOfOneMemberAreToldFromIdentities) {
   // ffr-sim refuses a body failing a property and only notes a failed identity.
   const ValidationReport r = validate(body(kFree));
   for (const char* name : {"mass positive", "Me symmetric", "Ke symmetric", "Me positive definite", "Ke positive semi-definite",
-                           "J.M0 positive semi-definite"})
+                           "J.M0 positive semi-definite", "J.M0 principal moments: triangle inequality",
+                           "J about the centre of mass: triangle inequality", "frequency_hz >= 0",
+                           "normal modes: frequency_hz > 0", "node names unique and non-empty",
+                           "interface names unique and non-empty", "AP0 are rotation matrices"})
     EXPECT_EQ(r.find(name)->kind, Check::Kind::Property) << name;
   for (const char* name : {"Me = sum_a PPdm[a][a] + rotary.PsiIPsi", "free: Ct.M0 = 0", "J.M1 symmetric"})
     EXPECT_EQ(r.find(name)->kind, Check::Kind::Identity) << name;

@@ -25,7 +25,8 @@ using Index = std::int64_t;
 using MatX3 = Eigen::Matrix<double, Eigen::Dynamic, 3>;
 using MatX6 = Eigen::Matrix<double, Eigen::Dynamic, 6>;
 
-inline constexpr int kFormatVersion = 1;
+/// 2: content checksums (SPEC.md section 4). Version 1 files are still read, with a warning.
+inline constexpr int kFormatVersion = 2;
 inline constexpr const char* kFormatName = "ffr-sid";
 
 enum class ModeType { Normal, Constraint };
