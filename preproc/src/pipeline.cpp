@@ -158,8 +158,10 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   sid.Ke = red.Ke;
   sid.De = damping_matrix(part.damping, sid.Me, sid.Ke);
   if (part.stiffening || !part.preload.empty()) {
-    StiffeningResult st = compute_stiffening(model, fe, red.Phi, part.stiffening, [&](const std::string& s) { stage("  " + s); });
+    StiffeningResult st = compute_stiffening(model, fe, red.Phi, part.stiffening, [&](const std::string& s) { stage("  " + s); },
+                                             progress);
     if (part.stiffening) sid.stiffening = std::move(st.stiffening);
+    if (part.stiffening) sid.KeM1 = std::move(st.KeM1);
     if (!part.preload.empty()) sid.ksigma = st.ksigma;
     stage("stiffening: " + std::to_string(st.load_cases) + " unit load cases" +
           (part.preload.empty() ? std::string() : ", prestress from the preload") + " [" + fmt(sw.lap()) + " s]");

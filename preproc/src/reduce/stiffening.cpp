@@ -1,14 +1,19 @@
 #include "ffr/preproc/reduce/stiffening.hpp"
 
+#include "ffr/formats/h5.hpp"
 #include "ffr/preproc/elements/solid.hpp"
+#include "ffr/preproc/solver/solver_errors.hpp"
 #include "ffr/preproc/threads.hpp"
 #include "geometric_kernels.hpp"
 #include "static_solver.hpp"
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
+#include <chrono>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 
 namespace ffr::preproc {
@@ -55,33 +60,43 @@ Eigen::MatrixXd inertial_loads(const FeModel& model, const Assembled& fe, const 
 }
 
 // Phi^T K_G(u_L) Phi for the stress of each displacement field u_L (columns of U, full DOFs):
-// one threaded pass over the elements, projecting element by element (no global K_G).
-std::vector<Eigen::MatrixXd> project_geometric(const FeModel& model, const Eigen::MatrixXd& U, const Eigen::MatrixXd& Phi) {
+// one threaded pass over the elements, projecting element by element (no global K_G). The
+// calling thread takes the first share and reports its progress (0..1).
+std::vector<Eigen::MatrixXd> project_geometric(const FeModel& model, const Eigen::MatrixXd& U, const Eigen::MatrixXd& Phi,
+                                               detail::GeometricRule rule = detail::GeometricRule::Stiffness,
+                                               const std::function<void(double)>& progress = {}) {
   const Index nq = Phi.cols(), nL = U.cols();
   const auto refs = all_elements(model);
   const unsigned nt = max_threads();
   std::vector<std::vector<Eigen::MatrixXd>> part(nt, std::vector<Eigen::MatrixXd>(static_cast<std::size_t>(nL), Eigen::MatrixXd::Zero(nq, nq)));
   std::exception_ptr error;
   std::mutex m;
-  std::vector<std::thread> pool;
-  for (unsigned t = 0; t < nt; ++t)
-    pool.emplace_back([&, t] {
-      try {
-        for (std::size_t r = refs.size() * t / nt; r < refs.size() * (t + 1) / nt; ++r) {
-          if (refs[r].block < 0) continue;  // attached masses carry no stress
-          const auto dofs = element_dofs(model, refs[r]);
-          Eigen::MatrixXd Phi_e(static_cast<Index>(dofs.size()), nq);
-          for (std::size_t i = 0; i < dofs.size(); ++i) Phi_e.row(static_cast<Index>(i)) = Phi.row(dofs[i]);
-          for (Index L = 0; L < nL; ++L) {
-            const Eigen::MatrixXd Kg = detail::geometric_element(model, refs[r], U.col(L)).K;
-            part[t][static_cast<std::size_t>(L)].noalias() += Phi_e.transpose() * (Kg * Phi_e);
-          }
+  auto work = [&](unsigned t) {
+    try {
+      const std::size_t r0 = refs.size() * t / nt, r1 = refs.size() * (t + 1) / nt;
+      std::size_t reported = 0;
+      for (std::size_t r = r0; r < r1; ++r) {
+        if (t == 0 && progress && (r - r0) * 100 / std::max<std::size_t>(r1 - r0, 1) > reported) {
+          reported = (r - r0) * 100 / (r1 - r0);
+          progress(static_cast<double>(reported) / 100);
         }
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(m);
-        error = std::current_exception();
+        if (refs[r].block < 0) continue;  // attached masses carry no stress
+        const auto dofs = element_dofs(model, refs[r]);
+        Eigen::MatrixXd Phi_e(static_cast<Index>(dofs.size()), nq);
+        for (std::size_t i = 0; i < dofs.size(); ++i) Phi_e.row(static_cast<Index>(i)) = Phi.row(dofs[i]);
+        for (Index L = 0; L < nL; ++L) {
+          const Eigen::MatrixXd Kg = detail::geometric_element(model, refs[r], U.col(L), rule).K;
+          part[t][static_cast<std::size_t>(L)].noalias() += Phi_e.transpose() * (Kg * Phi_e);
+        }
       }
-    });
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(m);
+      if (!error) error = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < nt; ++t) pool.emplace_back(work, t);
+  work(0);
   for (auto& th : pool) th.join();
   if (error) std::rethrow_exception(error);
   std::vector<Eigen::MatrixXd> out(static_cast<std::size_t>(nL), Eigen::MatrixXd::Zero(nq, nq));
@@ -186,13 +201,35 @@ Eigen::Matrix3d centrifugal_coefficient(int j) {
   return B;
 }
 
-StiffeningResult compute_stiffening(const FeModel& model, const Assembled& fe, const Eigen::MatrixXd& Phi,
-                                    bool unit_cases, const std::function<void(const std::string&)>& log) {
+std::vector<Eigen::MatrixXd> self_geometric_stiffness(const FeModel& model, const Eigen::MatrixXd& Phi,
+                                                      const std::function<void(const std::string&)>& progress) {
+  // The modes are the displacement fields: nq stress fields, each projected on the modes.
+  auto report = [&](double f) {
+    if (progress) progress("Ke/M1 " + std::to_string(static_cast<int>(100 * f)) + " %");
+  };
+  return project_geometric(model, Phi, Phi, detail::GeometricRule::Cubic, report);
+}
+
+namespace {
+
+StiffeningResult compute(const FeModel& model, const Assembled& fe, const Eigen::MatrixXd& Phi, bool unit_cases,
+                         const std::function<void(const std::string&)>& log,
+                         const std::function<void(const std::string&)>& progress) {
   const PartSpec& part = *model.part;
   StiffeningResult out;
   const auto fstates = force_states(model, part.reduction);
   const detail::StaticSolver forced(model, fe, fstates);
-  if (unit_cases) unit_load_cases(model, fe, Phi, forced, fstates, out, log);
+  if (unit_cases) {
+    unit_load_cases(model, fe, Phi, forced, fstates, out, log);
+    const auto t0 = std::chrono::steady_clock::now();
+    out.KeM1 = self_geometric_stiffness(model, Phi, progress);
+    for (std::size_t k = 0; k < out.KeM1.size(); ++k)
+      if (!out.KeM1[k].allFinite())
+        throw std::invalid_argument("the geometric stiffness of mode " + std::to_string(k) + "'s stress is not finite");
+    if (log)
+      log("stiffening: Ke/M1 from the stress of " + std::to_string(Phi.cols()) + " modes [" +
+          std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()) + " s]");
+  }
 
   // Prestress from the part's preload.
   if (!part.preload.empty()) {
@@ -210,6 +247,29 @@ StiffeningResult compute_stiffening(const FeModel& model, const Assembled& fe, c
     if (log) log("prestress: preload solved and projected");
   }
   return out;
+}
+
+}  // namespace
+
+StiffeningResult compute_stiffening(const FeModel& model, const Assembled& fe, const Eigen::MatrixXd& Phi,
+                                    bool unit_cases, const std::function<void(const std::string&)>& log,
+                                    const std::function<void(const std::string&)>& progress) {
+  // An element without a geometric stiffness, a load case the reference conditions cannot
+  // carry, or a non-finite result is the part's request that cannot be met: named as such
+  // (an input error), not as an internal failure.
+  const PartSpec& part = *model.part;
+  const std::string field = unit_cases ? "stiffening" : "preload";
+  try {
+    return compute(model, fe, Phi, unit_cases, log, progress);
+  } catch (const InsufficientMemoryError&) {
+    throw;
+  } catch (const ElementError& e) {
+    throw formats::FormatError(part.file.string(), field, std::string("cannot compute the geometric stiffness: ") + e.what());
+  } catch (const SolverError& e) {
+    throw formats::FormatError(part.file.string(), field, std::string("cannot solve its static load cases: ") + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw formats::FormatError(part.file.string(), field, std::string("cannot be computed: ") + e.what());
+  }
 }
 
 }  // namespace ffr::preproc

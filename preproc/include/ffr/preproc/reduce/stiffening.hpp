@@ -17,6 +17,10 @@
 // equation of formats/SPEC.md section 6 (Ct(q) a, Cr(q) alpha on the left, -Oe(q) omega_bar on
 // the right): a spinning cantilever stiffens (Southwell).
 //
+// The body's own geometric stiffness (SPEC.md section 10.1): with the unit load cases, each
+// mode's displacement Phi_k is taken as a stress field and Ke.M1[k] = Phi^T K_G(sigma(Phi_k)) Phi,
+// solids integrated with a rule exact for the cubic Green-Lagrange energy of affine elements.
+//
 // Prestress (ksigma): a static preload (gravity and forces at interfaces) solved the same way;
 // ksigma.M1 = Phi^T K_G(sigma_pre) Phi and ksigma.M0 = Phi^T K u_pre (the modal internal force
 // of the preloaded state, in equilibrium with the preload itself).
@@ -27,18 +31,26 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace ffr::preproc {
 
 struct StiffeningResult {
   formats::Stiffening stiffening;
   formats::KSigma ksigma;   ///< zero-sized unless the part has a preload
+  std::vector<Eigen::MatrixXd> KeM1;  ///< [nq][nq,nq] with the unit cases; empty otherwise
   int load_cases = 0;
 };
 
-/// The unit load cases (if `unit_cases`) and the part's preload (if any).
+/// The unit load cases and Ke.M1 (if `unit_cases`) and the part's preload (if any). `log`
+/// receives stage lines, `progress` the Ke.M1 pass's percentage.
 StiffeningResult compute_stiffening(const FeModel& model, const Assembled& fe, const Eigen::MatrixXd& Phi,
-                                    bool unit_cases, const std::function<void(const std::string&)>& log = {});
+                                    bool unit_cases, const std::function<void(const std::string&)>& log = {},
+                                    const std::function<void(const std::string&)>& progress = {});
+
+/// Ke.M1[k] = Phi^T K_G(sigma(Phi_k)) Phi for the modes Phi (full DOFs, one column a mode).
+std::vector<Eigen::MatrixXd> self_geometric_stiffness(const FeModel& model, const Eigen::MatrixXd& Phi,
+                                                      const std::function<void(const std::string&)>& progress = {});
 
 /// Coefficient matrix of omega_bar_j in skew(w) skew(w) (j in the order xx, yy, zz, xy, yz, xz).
 Eigen::Matrix3d centrifugal_coefficient(int j);
