@@ -25,12 +25,31 @@ void geometric_stiffness(const StiffeningTerms& s, const BodyData& bd, MatrixXd&
 
 }  // namespace
 
+// The strain energy of Ke/M1 with its quartic closure (FORMULATION.md 7):
+//   U = 1/2 s^T Ke s,  s = y + Ke^+ g(y),  g_k = 1/2 y^T M1[k] y
+// (M1[k] is the stress of mode k against the nonlinear strain of y, so g is that strain
+// projected on the modal stresses and s the modal strain, linear plus nonlinear). It writes
+//   X1 (column k = M1[k] y), g (bd.Py column 0), s (column 1), and
+//   G1 = sum_k s_k M1[k] + X1 + X1^T + X1 Ke^+ X1^T, the second derivative of U - 1/2 y^T Ke y.
+// bd.Py is work here: update_bodies fills and reads it before, nothing after.
 void modal_stress_terms(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& y) {
   const ModalStressStiffness& m = *b.modal_stress;
-  const Eigen::Index nq = b.nq;
-  // X1 column k = M1[k] y (by_mode y, read column-major); G1 = sum_k y_k M1[k] (by_coeff y).
-  detail::times(m.by_mode.data(), nq * nq, nq * nq, nq, y.data(), bd.X1.data(), false);
-  detail::times(m.by_coeff.data(), nq * nq, nq * nq, nq, y.data(), bd.G1.data(), false);
+  const Eigen::Index nq = b.nq, ld = m.by_mode.rows();
+  const auto Kinv = m.by_mode.bottomRows(nq);
+  detail::times(m.by_mode.data(), ld, nq * nq, nq, y.data(), bd.X1.data(), false);
+  auto g = bd.Py.col(0);
+  auto s = bd.Py.col(1);
+  auto v = bd.Py.col(2);
+  g.noalias() = 0.5 * (bd.X1.transpose() * y);
+  s = y;
+  s.noalias() += Kinv * g;
+  detail::times(m.by_coeff.data(), nq * nq, nq * nq, nq, s.data(), bd.G1.data(), false);
+  bd.G1 += bd.X1;
+  bd.G1 += bd.X1.transpose();
+  for (Eigen::Index j = 0; j < nq; ++j) {
+    v.noalias() = Kinv * bd.X1.row(j).transpose();
+    bd.G1.col(j).noalias() += bd.X1 * v;
+  }
 }
 
 void body_applied_forces(const Body& b, BodyData& bd, const Vector3d& g, const Eigen::Ref<const VectorXd>& z,
@@ -50,12 +69,11 @@ void body_applied_forces(const Body& b, BodyData& bd, const Vector3d& g, const E
     geometric_stiffness(*b.stiffening, bd, bd.KG);
     Qy.noalias() -= bd.KG * y;
   }
-  // The cubic strain energy's force: -dU3/dy_m = -(G1 y)_m - 1/2 y^T M1[m] y, the second term
-  // being (X1^T y)_m.
+  // -dU/dy beyond -Ke y: -(g + X1 s) (modal_stress_terms).
   if (b.modal_stress) {
     modal_stress_terms(b, bd, y);
-    Qy.noalias() -= bd.G1 * y;
-    Qy.noalias() -= 0.5 * (bd.X1.transpose() * y);
+    Qy -= bd.Py.col(0);
+    Qy.noalias() -= bd.X1 * bd.Py.col(1);
   }
   if (b.prestress) {
     Qy -= b.prestress->f0;
@@ -76,13 +94,9 @@ void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& g,
   Cb.block(12, 12, nq, nq) += b.De;
   // Stiffening: the y-dependence at the current (frozen) accelerations, spin and joint loads.
   if (b.stiffening) Kyy += bd.KG;
-  // d^2 U3 / dy_m dy_n = G1_mn + (M1[m] y)_n + (M1[n] y)_m = G1 + X1^T + X1 (at the y of the
-  // last body_applied_forces, which is the tangent's state).
-  if (b.modal_stress) {
-    Kyy += bd.G1;
-    Kyy += bd.X1;
-    Kyy += bd.X1.transpose();
-  }
+  // The rest of d^2 U / dy^2, as modal_stress_terms left it at the y of the last
+  // body_applied_forces (the tangent's state).
+  if (b.modal_stress) Kyy += bd.G1;
   if (b.prestress) Kyy += b.prestress->K1;
 }
 

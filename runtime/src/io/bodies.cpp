@@ -191,12 +191,16 @@ Body make_flexible_body(const std::string& name, const formats::Sid& sid, const 
   const ModalStress ms = modal_stress(sid, file);
   if (stiffening && !ms.M1.empty()) {
     ModalStressStiffness m;
-    m.by_mode.resize(nq * nq, nq);
+    // by_mode carries Ke^+ in its last nq rows (the quartic closure, FORMULATION.md 7).
+    m.by_mode.resize(nq * nq + nq, nq);
     m.by_coeff.resize(nq * nq, nq);
     for (int k = 0; k < nq; ++k) {
       m.by_mode.block(k * nq, 0, nq, nq) = ms.M1[static_cast<std::size_t>(k)];
       m.by_coeff.col(k) = ms.M1[static_cast<std::size_t>(k)].reshaped();
     }
+    std::vector<int> all(static_cast<std::size_t>(nq));
+    for (int k = 0; k < nq; ++k) all[static_cast<std::size_t>(k)] = k;
+    m.by_mode.bottomRows(nq) = static_flexibility(sid.Ke, all);
     b.modal_stress = std::move(m);
   }
   if (stiffening && nq > 0 && sid.ksigma.M0.size() == nq && sid.ksigma.M1.rows() == nq && sid.ksigma.M1.cols() == nq &&

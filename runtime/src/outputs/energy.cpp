@@ -21,13 +21,13 @@ Energy energy(const Model& model, Data& data) {
     if (b.nq) {
       const auto y = data.q.segment(b.offset + 12, b.nq);
       e.potential += 0.5 * y.dot(b.Ke * y);
-      // The cubic strain energy of Ke/M1, 1/2 y^T (sum_k y_k M1[k]) y, and the prestress's
-      // y^T f0 + 1/2 y^T K1 y (FORMULATION.md 7, 11).
+      // The strain energy of Ke/M1 (FORMULATION.md 7) and the prestress's y^T f0 + 1/2 y^T K1 y.
       BodyData& bdw = data.bodies[i];  // work vectors: energy() allocates nothing
+      // 1/2 s^T Ke s - 1/2 y^T Ke y = y.g + 1/2 g.(s - y) (modal_stress_terms: g, s).
       if (b.modal_stress) {
         modal_stress_terms(b, bdw, y);
-        bdw.wq.noalias() = bdw.G1 * y;
-        e.potential += 0.5 * y.dot(bdw.wq);
+        const auto g = bdw.Py.col(0), s = bdw.Py.col(1);
+        e.potential += y.dot(g) + 0.5 * (g.dot(s) - g.dot(y));
       }
       if (b.prestress) {
         bdw.wq.noalias() = b.prestress->K1 * y;

@@ -30,7 +30,7 @@ struct BodyData {
   Vector3d alpha;               ///< body-frame angular acceleration
   Vector3d acc;                 ///< body-frame acceleration of O minus gravity
   MatrixXd KG;                  ///< geometric stiffness [nq, nq] (stiffening)
-  MatrixXd G1, X1;              ///< Ke/M1: sum_k y_k M1[k], and column k = M1[k] y [nq, nq]
+  MatrixXd G1, X1;              ///< Ke/M1 (modal_stress_terms): its second derivative, and column k = M1[k] y
   Eigen::Matrix<double, 6, Eigen::Dynamic> iface_load;  ///< per stiffening interface: F, M in K
   MatrixXd feB, feG, feD;       ///< co-rotational path only: B, M_FE B, dw/dz_dot [3N, nb]
   VectorXd few;                 ///< co-rotational path only: 2 A_dot Phi y_dot [3N]

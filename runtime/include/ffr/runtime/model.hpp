@@ -64,10 +64,12 @@ struct StiffeningTerms {
 };
 
 /// The geometric stiffness of the body's own modal stress (SID /sid/Ke/M1, M1[k](i,j) =
-/// Phi_i^T K_G(sigma_k) Phi_j): the cubic strain energy U3 = 1/2 sum_k y_k y^T M1[k] y. Stored
-/// twice, so each per-step quantity is one product with y:
-///   by_mode  [nq*nq, nq], rows k*nq .. k*nq+nq-1 = M1[k]:  by_mode y = [M1[0] y; M1[1] y; ...]
-///   by_coeff [nq*nq, nq], column k = vec(M1[k]):           by_coeff y = vec(sum_k y_k M1[k])
+/// Phi_i^T K_G(sigma_k) Phi_j), for the strain energy 1/2 s^T Ke s, s = y + Ke^+ g(y),
+/// g_k = 1/2 y^T M1[k] y (FORMULATION.md 7). Stored twice, so each per-step quantity is one
+/// product:
+///   by_mode  [nq*nq + nq, nq], rows k*nq .. k*nq+nq-1 = M1[k] (by_mode y = [M1[0] y; ...]),
+///            then Ke^+ in its last nq rows
+///   by_coeff [nq*nq, nq], column k = vec(M1[k]):  by_coeff s = vec(sum_k s_k M1[k])
 struct ModalStressStiffness {
   MatrixXd by_mode, by_coeff;
 };
