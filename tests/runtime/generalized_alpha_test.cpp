@@ -196,7 +196,9 @@ TEST(GeneralizedAlpha, DampingOfOneModePerStepIsTheAnalyticAmplification) {
       EXPECT_LT(worst, 1e-6) << "rho_inf " << rho << ", omega h " << Omega;
       // The damping is there: far above 1/h the spectral radius tends to rho_inf (0.048, 0.537 and
       // 0.928 at omega h = 100).
-      if (Omega == 100.0) EXPECT_NEAR(spectral, rho, 0.06);
+      if (Omega == 100.0) {
+        EXPECT_NEAR(spectral, rho, 0.06);
+      }
     }
   }
 }
