@@ -4,7 +4,7 @@
 // Why a block method: single-vector Lanczos applies (K - sigma M)^{-1} one vector at a
 // time, and each application streams the whole Cholesky factor through memory twice
 // (forward and backward substitution). For the factors of 10^5..10^6-DOF parts that is
-// bandwidth-bound and dominated the reduction (measured: tools/bench/reduce/README.md). A
+// bandwidth-bound and dominated the reduction (measured: tools/bench/reduce/RESULTS.md). A
 // block of p vectors streams the factor once for all p (the substitutions apply each factor
 // entry to the p interleaved vectors at once, supernodal_solve.hpp), so the cost per vector
 // drops several-fold, while the block Krylov space needs only slightly more vectors than the

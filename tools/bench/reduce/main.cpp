@@ -11,7 +11,7 @@
 // Common: [--workdir DIR] [--ffr PATH] [--ccx PATH] [--wait-load L] [--wait-max S]
 //         [--md REPORT.md] [--title TEXT]
 // Every number is measured on child processes (wait4 rusage: wall, user+sys CPU, peak RSS);
-// see README.md next to this file.
+// see RESULTS.md next to this file (method and commands).
 #include "bench.hpp"
 
 #include <cstdio>

@@ -84,7 +84,7 @@ pkg() { dpkg-query -W -f='${Version}' "$1" 2>/dev/null || echo "?"; }
   echo
   echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC')"
   echo "- machine: $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -n1), $(nproc) cores," \
-       "OpenBLAS kernels: ${OPENBLAS_CORETYPE:-OpenBLAS's own choice}," \
+       "OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-(unset)}," \
        "$(awk '/MemTotal/ {printf "%.1f GiB", $2 / 1048576}' /proc/meminfo) RAM, Linux $(uname -r)"
   echo "- shared machine: 1/5/15-min load average $start_load at the start, $end_load at the end" \
        "(other engineers' builds and tests run on the same 2 cores; each row gives the load before its run)"
