@@ -6,6 +6,8 @@
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
+# build-essential's GCC brings the sanitizer runtimes (libasan, libubsan) of scripts/test.sh's
+# second pass; nothing else is needed for it.
 packages=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libspectra-dev libarpack2-dev

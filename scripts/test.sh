@@ -1,8 +1,32 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds Release in build/ and runs the whole test suite.
+# The test command (CI runs it through .ci/run). Two passes:
+#  1. installs what is missing, builds Release in build/ and runs the whole test suite there;
+#  2. builds the test suite again with AddressSanitizer and UndefinedBehaviorSanitizer
+#     (cmake -DFFR_SANITIZE=ON, Debug at -O1, benchmarks off) in build-asan/ and runs it there,
+#     stopping at the first report (scripts/sanitize/README.md: options, suppressions, subset).
+# Arguments go to both ctest runs (e.g. -R formats). FFR_SANITIZE=0 skips the second pass.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-bash "$here/scripts/setup.sh"
-cd "$here/build"
 jobs=$(nproc)
-ctest --output-on-failure -j "$jobs" --timeout 900 "$@"
+
+bash "$here/scripts/setup.sh"
+(cd "$here/build" && ctest --output-on-failure -j "$jobs" --timeout 900 "$@")
+
+[ "${FFR_SANITIZE:-1}" = "0" ] && exit 0
+
+# Every report ends the process with a non-zero status (halt_on_error, no recovery), so a
+# finding fails its test; leaks count. The same options hold while building, since
+# gtest_discover_tests runs each test binary once to list its tests.
+san="$here/scripts/sanitize"
+export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:check_initialization_order=1:strict_init_order=1"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+export LSAN_OPTIONS="suppressions=$san/lsan.supp:print_suppressions=0"
+
+cmake -S "$here" -B "$here/build-asan" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
+  -DCMAKE_C_FLAGS_DEBUG=-g1 -DCMAKE_CXX_FLAGS_DEBUG=-g1 \
+  -DFFR_SANITIZE=ON -DFFR_BUILD_BENCH=OFF >/dev/null
+cmake --build "$here/build-asan" -j "$jobs"
+# Left out under the sanitizers: the installed-package check (label install), which compiles
+# an outside project against an install of this tree with that project's own flags, so it
+# cannot link an instrumented library; the Release pass runs it.
+(cd "$here/build-asan" && ctest --output-on-failure -j "$jobs" --timeout 1800 -LE install "$@")
