@@ -477,3 +477,36 @@ TEST(BadFiles, Version1FilesAreReadWithAWarning) {
   read_sid(clean_copy("v2.sid.h5"), &warnings);
   EXPECT_TRUE(warnings.empty());
 }
+
+TEST(BadFiles, DamagedChunkSizesInTheChunkIndexAreRefusedNotACrash) {
+  // Every bit of the two low bytes of the first key's chunk size in every chunk-index node ("TREE"): a
+  // 6-byte chunk whose size read as 2 made libhdf5 run Fletcher-32 over fewer than 4 bytes and
+  // crash (found by the damaged-file corpus).
+  const auto clean = clean_copy("chunksize.sid.h5");
+  std::string bytes;
+  {
+    std::ifstream in(clean, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  int nodes = 0, refused = 0, runs = 0;
+  for (std::size_t at = bytes.find("TREE"); at != std::string::npos; at = bytes.find("TREE", at + 4)) {
+    if (at + 32 > bytes.size() || bytes[at + 4] != 1) continue;
+    ++nodes;
+    for (std::size_t b = at + 24; b < at + 26; ++b)
+      for (int bit = 0; bit < 8; ++bit) {
+        std::string d = bytes;
+        d[b] = static_cast<char>(d[b] ^ (1 << bit));
+        const fs::path f = dir() / "chunksize_damaged.sid.h5";
+        std::ofstream(f, std::ios::binary | std::ios::trunc).write(d.data(), static_cast<std::streamsize>(d.size()));
+        ++runs;
+        try {
+          read_sid(f);
+        } catch (const FormatError& e) {
+          ++refused;
+          EXPECT_NE(std::string(e.what()).find(f.string()), std::string::npos) << e.what();
+        }
+      }
+  }
+  EXPECT_GE(nodes, 40);
+  EXPECT_EQ(refused, runs);
+}
