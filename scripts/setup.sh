@@ -19,6 +19,7 @@ packages=(
   googletest libgtest-dev libgmock-dev
   calculix-ccx
   zlib1g-dev
+  clang libclang-rt-14-dev   # libFuzzer and the sanitizers of tools/fuzz
 )
 
 sudo_=""

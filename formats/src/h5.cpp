@@ -1,6 +1,7 @@
 #include "ffr/formats/h5.hpp"
 
 #include "ffr/formats/content_checksum.hpp"
+#include "stale_temp.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -756,10 +757,10 @@ void Reader::verify_content() const {
 // AtomicFile
 
 AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)) {
+  // Temporary files of earlier writers of this target that were killed (stale_temp.hpp).
+  detail::remove_stale_temporaries(target_);
   std::random_device rd;
-  std::ostringstream o;
-  o << '.' << target_.filename().string() << ".tmp-" << ::getpid() << '-' << std::hex << rd();
-  temp_ = target_.parent_path() / o.str();
+  temp_ = detail::temporary_name(target_, rd());
 }
 
 AtomicFile::~AtomicFile() {

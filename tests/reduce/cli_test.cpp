@@ -287,3 +287,27 @@ TEST(ReduceCli, FactorizationBackendIsChosenByThePartFile) {
   const auto bad_flag = reduce(dir, part("cholmod"), "--factorization lu");
   EXPECT_EQ(bad_flag.status, 2) << bad_flag.output;
 }
+
+// An output node is the mesh node nearest to its point; a point farther from every node than the
+// diagonal of the part's bounding box (the bar: sqrt(0.2^2 + 0.02^2 + 0.012^2) = 0.2013 m) is
+// refused naming the field (an output node 1e6 m away was noted only in the provenance).
+TEST(ReduceCli, OutputNodeFarFromThePartIsRefused) {
+  const auto part = [](const std::string& at) {
+    return R"({"geometry": "bar.geo", "mesh": {"size": 0.01}, "visual": false,
+      "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}], "reduction": {"method": "free", "modes": 4},
+      "output_nodes": [{"name": "tip", "at": [0.2, 0, 0]}, {"name": "probe", "at": )" + at + "}]}";
+  };
+  {
+    test::TempDir dir("far");
+    const auto r = reduce(dir, part("[0.35, 0, 0]"));  // 0.15 m beyond the end: accepted
+    EXPECT_EQ(r.status, 0) << r.output;
+  }
+  for (const std::string at : {"[1e6, 0, 0]", "[0.45, 0, 0]"}) {  // 1e6 m and 0.25 m from the nearest node
+    test::TempDir dir("far");
+    const auto r = reduce(dir, part(at));
+    EXPECT_EQ(r.status, 2) << at << ": " << r.output;
+    EXPECT_NE(r.output.find("part.json: output_nodes[1].at: the nearest mesh node is"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("bounding box (0.201"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
+  }
+}

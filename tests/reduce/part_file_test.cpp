@@ -88,3 +88,40 @@ TEST(PartFile, UnitMistakesAreRefused) {
     EXPECT_NE(e.find(c.expect), std::string::npos) << "input: " << c.json << "\nmessage: " << e;
   }
 }
+
+// Keys that contradict each other or belong to another reduction method were ignored without a
+// word (both "modes" and "max_frequency_hz" gave 74 modes for 4 asked); each is refused naming
+// the field, and the meaningful combinations still load.
+TEST(PartFile, ContradictoryOrForeignReductionKeysAreRefused) {
+  const std::string itf = R"("interfaces": [{"name": "a", "group": "all"}, {"name": "b", "group": "all"}], )";
+  const auto part = [&](const std::string& reduction) { return "{" + kOk + ", " + itf + R"("reduction": )" + reduction + "}"; };
+  EXPECT_EQ(error_of(part(R"({"method": "free", "max_frequency_hz": 500})")), "");
+  EXPECT_EQ(error_of(part(R"({"method": "clamped", "interface": "a", "modes": 4})")), "");
+  EXPECT_EQ(error_of(part(R"({"method": "craig-bampton", "interfaces": ["a", "b"], "frame": "b", "modes": 4, "orthonormalize": true})")), "");
+  EXPECT_EQ(error_of(part(R"({"method": "craig-bampton", "interfaces": ["a", "b"], "max_frequency_hz": 900})")), "");
+  struct Case { std::string reduction, expect; };
+  const std::vector<Case> cases = {
+      {R"({"method": "free", "modes": 4, "max_frequency_hz": 500})", "reduction.max_frequency_hz: give either \"modes\" (a count) or \"max_frequency_hz\", not both"},
+      {R"({"method": "clamped", "interface": "a", "modes": 0, "max_frequency_hz": 500})", "reduction.max_frequency_hz: give either"},
+      {R"({"method": "free", "modes": 4, "interface": "a"})", "reduction.interface: not a key of method \"free\" (it belongs to \"clamped\")"},
+      {R"({"method": "free", "modes": 4, "frame": "a"})", "reduction.frame: not a key of method \"free\" (it belongs to \"craig-bampton\")"},
+      {R"({"method": "free", "modes": 4, "interfaces": ["a"]})", "reduction.interfaces: not a key of method \"free\""},
+      {R"({"method": "free", "modes": 4, "orthonormalize": false})", "reduction.orthonormalize: not a key of method \"free\""},
+      {R"({"method": "clamped", "interface": "a", "modes": 4, "frame": "a"})", "reduction.frame: not a key of method \"clamped\""},
+      {R"({"method": "craig-bampton", "interfaces": ["a", "b"], "interface": "a", "modes": 4})", "reduction.interface: not a key of method \"craig-bampton\""},
+  };
+  for (const auto& c : cases) {
+    const std::string e = error_of(part(c.reduction));
+    EXPECT_NE(e.find(c.expect), std::string::npos) << "input: " << c.reduction << "\nmessage: " << e;
+  }
+}
+
+TEST(PartFile, MeshTimeLimitIsAPositiveNumberOfSeconds) {
+  const auto with = [](const std::string& mesh) {
+    return "{" + kOk + R"(, "mesh": )" + mesh + R"(, "reduction": {"method": "free", "modes": 6}})";
+  };
+  EXPECT_EQ(error_of(with(R"({"time_limit_s": 30})")), "");
+  EXPECT_NE(error_of(with(R"({"time_limit_s": 0})")).find("mesh.time_limit_s"), std::string::npos);
+  EXPECT_NE(error_of(with(R"({"time_limit_s": -5})")).find("mesh.time_limit_s"), std::string::npos);
+  EXPECT_NE(error_of(with(R"({"time_limit_s": "long"})")).find("mesh.time_limit_s"), std::string::npos);
+}

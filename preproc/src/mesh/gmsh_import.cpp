@@ -15,7 +15,9 @@ namespace detail {
 Mesh load_mesh_with_gmsh(const PartSpec& part, MeshReport* report, const MeshLog& log) {
   // Loaded here, before the fork: the child then only calls it.
   const GmshModule& gmsh = gmsh_module();
-  return load_in_child(part.geometry.string(), [&](MeshReport* r) { return gmsh.load_mesh(part, r, log); }, report);
+  const ChildLimit limit{part.mesh.time_limit_s, "mesh.time_limit_s of " + part.file.filename().string()};
+  return load_in_child(part.geometry.string(), [&](MeshReport* r) { return gmsh.load_mesh(part, r, log); }, report,
+                       limit);
 }
 
 }  // namespace detail

@@ -2,14 +2,19 @@
 
 #include "ffr/formats/h5.hpp"  // FormatError
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
 #include <stdexcept>
 
+#include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -147,14 +152,59 @@ void write_all(int fd, const std::string& s) {
   }
 }
 
+// The child while the parent has not collected it: killed and reaped on every way out of
+// load_in_child (an exception included), so no gmsh process outlives the call.
+class ChildGuard {
+ public:
+  explicit ChildGuard(pid_t pid) : pid_(pid) {}
+  ChildGuard(const ChildGuard&) = delete;
+  ChildGuard& operator=(const ChildGuard&) = delete;
+  ~ChildGuard() {
+    if (pid_ <= 0) return;
+    ::kill(pid_, SIGKILL);
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+  }
+  /// Waits for the child's end until `deadline`; kills it then. Returns its status and whether
+  /// it ended by itself.
+  bool wait_until(std::chrono::steady_clock::time_point deadline, int& status) {
+    for (;;) {
+      const pid_t w = ::waitpid(pid_, &status, WNOHANG);
+      if (w == pid_) {
+        pid_ = -1;
+        return true;
+      }
+      if (w < 0 && errno != EINTR) {  // not our child any more (cannot happen): nothing to reap
+        pid_ = -1;
+        status = 0;
+        return true;
+      }
+      if (std::chrono::steady_clock::now() >= deadline) return false;
+      ::usleep(2000);
+    }
+  }
+
+ private:
+  pid_t pid_;
+};
+
+// Seconds to milliseconds for poll(), at most a day per call.
+int poll_ms(std::chrono::steady_clock::time_point deadline) {
+  const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()).count();
+  return static_cast<int>(std::clamp<long long>(left, 0, 86400000LL));
+}
+
 }  // namespace
 
-Mesh load_in_child(const std::string& file, const std::function<Mesh(MeshReport*)>& load, MeshReport* report) {
+Mesh load_in_child(const std::string& file, const std::function<Mesh(MeshReport*)>& load, MeshReport* report,
+                   const ChildLimit& limit) {
   int fd[2];
-  if (::pipe(fd) != 0) return load(report);
+  if (::pipe2(fd, O_CLOEXEC) != 0) return load(report);
   std::fflush(nullptr);  // or the child's exit would write buffered output twice
   std::cout.flush();
   std::cerr.flush();
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) {
     ::close(fd[0]);
@@ -162,6 +212,11 @@ Mesh load_in_child(const std::string& file, const std::function<Mesh(MeshReport*
     return load(report);
   }
   if (pid == 0) {
+    // Die with the parent: a parent killed (kill -9 included) while gmsh meshes must not leave
+    // gmsh running. The signal is tied to the parent's death only from here on, so a parent
+    // that died between fork() and prctl() shows as a changed parent id: leave at once then.
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(1);
     ::close(fd[0]);
     std::string answer;
     try {
@@ -191,22 +246,49 @@ Mesh load_in_child(const std::string& file, const std::function<Mesh(MeshReport*
     std::fflush(nullptr);
     ::_exit(0);  // no destructors or atexit handlers of the parent's objects
   }
+  ChildGuard child(pid);
   ::close(fd[1]);
+  const auto start = std::chrono::steady_clock::now();
+  const bool limited = limit.seconds > 0 && limit.seconds < 1e9;  // beyond: none (and no overflow of the clock)
+  const auto deadline = limited ? start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                              std::chrono::duration<double>(limit.seconds))
+                                : std::chrono::steady_clock::time_point::max();
+  const auto too_slow = [&] {
+    char secs[32];
+    std::snprintf(secs, sizeof secs, "%g", limit.seconds);
+    return formats::FormatError(file, "",
+                                std::string("gmsh did not finish reading and meshing it within ") + secs + " s (" +
+                                    limit.setting + "): a geometry script that does not end (a loop), or a mesh " +
+                                    "too fine for the limit; check the script, give a larger mesh.size, or raise " +
+                                    limit.setting);
+  };
   std::string data;
-  char buf[1 << 16];
-  for (;;) {
-    const ssize_t k = ::read(fd[0], buf, sizeof buf);
-    if (k < 0 && errno == EINTR) continue;
-    if (k <= 0) break;
-    data.append(buf, static_cast<std::size_t>(k));
+  {
+    struct Close {
+      int fd;
+      ~Close() { ::close(fd); }
+    } reading{fd[0]};
+    char buf[1 << 16];
+    for (;;) {
+      pollfd p{fd[0], POLLIN, 0};
+      const int ready = ::poll(&p, 1, poll_ms(deadline));
+      if (ready < 0 && errno == EINTR) continue;
+      if (ready == 0) {
+        if (std::chrono::steady_clock::now() >= deadline) throw too_slow();  // the guard kills gmsh
+        continue;
+      }
+      if (ready < 0) break;
+      const ssize_t k = ::read(fd[0], buf, sizeof buf);
+      if (k < 0 && errno == EINTR) continue;
+      if (k <= 0) break;
+      data.append(buf, static_cast<std::size_t>(k));
+    }
   }
-  ::close(fd[0]);
   int status = 0;
-  pid_t w;
-  do {
-    w = ::waitpid(pid, &status, 0);
-  } while (w < 0 && errno == EINTR);
-  if (w == pid && WIFSIGNALED(status)) {
+  // The answer is complete; the child only exits now (a second is plenty, the limit aside).
+  if (!child.wait_until(std::max(deadline, std::chrono::steady_clock::now() + std::chrono::seconds(1)), status))
+    throw too_slow();
+  if (WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);
     std::string what = std::string("gmsh crashed on this file (") + ::strsignal(sig) +
                        "): it is damaged or not a file gmsh can read";

@@ -3,6 +3,8 @@
 
 #include <Eigen/Geometry>
 
+#include <cstdio>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <unordered_set>
@@ -197,11 +199,32 @@ FeModel build_model(const Mesh& mesh, const PartSpec& part) {
     model.masses.push_back(m);
   }
 
-  for (const auto& o : part.output_nodes) {
-    OutputNode out;
-    out.name = o.name;
-    out.node = nearest_used_node(model, o.at, out.distance);
-    model.outputs.push_back(out);
+  if (!part.output_nodes.empty()) {
+    // An output node is the mesh node nearest to `at`; one farther from it than the diagonal of
+    // the part's bounding box (of the nodes with DOFs) is not near the part at all: a point in
+    // the wrong units or a typo, refused rather than exporting an unrelated node.
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (Index n = 0; n < mesh.x.rows(); ++n)
+      if (model.node_ndof[static_cast<std::size_t>(n)] > 0) {
+        lo = lo.cwiseMin(mesh.x.row(n).transpose());
+        hi = hi.cwiseMax(mesh.x.row(n).transpose());
+      }
+    const double diagonal = (hi - lo).norm();
+    for (std::size_t i = 0; i < part.output_nodes.size(); ++i) {
+      const auto& o = part.output_nodes[i];
+      OutputNode out;
+      out.name = o.name;
+      out.node = nearest_used_node(model, o.at, out.distance);
+      if (!(out.distance <= diagonal)) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf,
+                      "the nearest mesh node is %g away, more than the diagonal of the part's bounding box (%g): "
+                      "'at' is not near the part (in the part's length unit)",
+                      out.distance, diagonal);
+        throw FormatError(part.file.string(), "output_nodes[" + std::to_string(i) + "].at", buf);
+      }
+      model.outputs.push_back(out);
+    }
   }
   return model;
 }

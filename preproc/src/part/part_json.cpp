@@ -66,7 +66,7 @@ Units read_units(const JsonNode& n) {
 }
 
 MeshSpec read_mesh(const JsonNode& n) {
-  n.allow_only({"size", "order", "optimize"});
+  n.allow_only({"size", "order", "optimize", "time_limit_s"});
   MeshSpec m;
   if (auto s = n.find("size")) m.size = s->positive();
   if (auto o = n.find("order")) {
@@ -74,6 +74,7 @@ MeshSpec read_mesh(const JsonNode& n) {
     if (m.order != 1 && m.order != 2) o->fail("mesh order must be 1 or 2");
   }
   m.optimize = n.boolean_or("optimize", true);
+  if (auto t = n.find("time_limit_s")) m.time_limit_s = t->positive();
   return m;
 }
 
@@ -164,7 +165,22 @@ ReductionSpec read_reduction(const JsonNode& n) {
     if (v < 0 || v > 10000) k->fail("number of modes must lie in 0..10000");
     r.modes = static_cast<int>(v);
   }
-  if (auto f = n.find("max_frequency_hz")) r.max_frequency_hz = f->positive();
+  if (auto f = n.find("max_frequency_hz")) {
+    // Two stopping rules for one eigen-solve: which one holds is not the user's to guess.
+    if (n.has("modes")) f->fail("give either \"modes\" (a count) or \"max_frequency_hz\", not both");
+    r.max_frequency_hz = f->positive();
+  }
+  // Keys of another method would be ignored without a word: refused, so that a part file
+  // says what it computes.
+  const auto foreign = [&](const char* key, const char* methods) {
+    if (n.has(key)) n.at(key).fail(std::string("not a key of method \"") + m + "\" (it belongs to " + methods + ")");
+  };
+  if (r.method != ReductionSpec::Method::Clamped) foreign("interface", "\"clamped\"");
+  if (r.method != ReductionSpec::Method::CraigBampton) {
+    foreign("interfaces", "\"craig-bampton\"");
+    foreign("frame", "\"craig-bampton\"");
+    foreign("orthonormalize", "\"craig-bampton\"");
+  }
   if (r.modes == 0 && !r.max_frequency_hz && r.method != ReductionSpec::Method::CraigBampton)
     n.fail("give \"modes\" (a count) or \"max_frequency_hz\"");
   r.orthonormalize = n.boolean_or("orthonormalize", false);

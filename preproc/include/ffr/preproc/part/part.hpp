@@ -33,6 +33,9 @@ struct MeshSpec {
   double size = 0;   ///< target element size (0: gmsh default)
   int order = 1;     ///< 1 or 2
   bool optimize = true;
+  /// Wall-clock limit of gmsh's reading and meshing [s]; past it gmsh is stopped and the part
+  /// refused. Generous: the mesh stage of a 1M-DOF TET10 plate takes seconds (gmsh_module.cpp).
+  double time_limit_s = 600;
 };
 
 struct SolidProps {
