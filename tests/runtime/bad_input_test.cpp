@@ -193,3 +193,12 @@ TEST(BadInput, MissingModelFile) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/model.json: no such file"), std::string::npos) << e.what();
   }
 }
+
+TEST(BadInput, ReusedTangentIsRefused) {
+  // A tangent kept over steps does not keep the integrator's accuracy (andrews_options_test.cpp):
+  // refused, not silently less accurate. The default spelled out is fine.
+  const std::string reuse = R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"end": 1, "step": 0.001, "reuse_jacobian": true}})";
+  expect_error(reuse, "solver.reuse_jacobian", "does not keep the integrator's accuracy");
+  const std::string plain = R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"end": 1, "step": 0.001, "reuse_jacobian": false}})";
+  EXPECT_EQ(error_of(plain), "");
+}

@@ -41,6 +41,7 @@ void factor_metric(const Model& model, Data& data, double alpha_factor, double t
   data.T = data.W;
   add_penalty_tangent(model, data, data.alpha, t_factor, data.T);
   factorize_tangent(data);
+  data.tangent_metric_only = true;
 }
 
 std::string fmt(double v) {
