@@ -1,5 +1,7 @@
 #include "ffr/formats/h5.hpp"
 
+#include "ffr/formats/content_checksum.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -108,12 +110,18 @@ Writer::~Writer() {
 
 void Writer::close() {
   if (!file_.valid()) return;
+  attr("/", kManifestAttribute, checksum_manifest(sealed_));
   if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0) fail("", "flush failed (" + last_error_text() + ")");
   file_ = Handle();
 }
 
 void Writer::fail(const std::string& object, const std::string& what) const {
   throw FormatError(name_, object, what);
+}
+
+void Writer::seal(const std::string& path, std::string checksum) {
+  attr(path, kChecksumAttribute, checksum);
+  sealed_.emplace_back(path, std::move(checksum));
 }
 
 void Writer::ensure_group(const std::string& path) {
@@ -173,6 +181,7 @@ void Writer::write(const std::string& path, const double* data, const Shape& sha
   if (!ds.valid()) fail(path, "cannot create dataset (" + last_error_text() + ")");
   if (product(shape) > 0 && H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
     fail(path, "write failed (" + last_error_text() + ")");
+  seal(path, checksum_doubles(data, shape));
 }
 
 void Writer::write(const std::string& path, const std::int64_t* data, const Shape& shape) {
@@ -184,6 +193,7 @@ void Writer::write(const std::string& path, const std::int64_t* data, const Shap
   if (!ds.valid()) fail(path, "cannot create dataset (" + last_error_text() + ")");
   if (product(shape) > 0 && H5Dwrite(ds.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
     fail(path, "write failed (" + last_error_text() + ")");
+  seal(path, checksum_int64(data, shape));
 }
 
 void Writer::write_scalar(const std::string& path, double v) {
@@ -194,6 +204,7 @@ void Writer::write_scalar(const std::string& path, double v) {
   Handle ds(H5Dcreate2(file_.get(), path.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT));
   if (!ds.valid() || H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v) < 0)
     fail(path, "write failed (" + last_error_text() + ")");
+  seal(path, checksum_doubles(&v, {}));
 }
 
 void Writer::write_string(const std::string& path, const std::string& s) {
@@ -206,6 +217,7 @@ void Writer::write_string(const std::string& path, const std::string& s) {
   std::string buf = s.empty() ? std::string(1, '\0') : s;
   if (!ds.valid() || H5Dwrite(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0)
     fail(path, "write failed (" + last_error_text() + ")");
+  seal(path, checksum_strings({s}, {}));
 }
 
 void Writer::write_strings(const std::string& path, const std::vector<std::string>& s) {
@@ -222,6 +234,7 @@ void Writer::write_strings(const std::string& path, const std::vector<std::strin
   for (std::size_t i = 0; i < s.size(); ++i) std::copy(s[i].begin(), s[i].end(), buf.begin() + i * len);
   if (!s.empty() && H5Dwrite(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0)
     fail(path, "write failed (" + last_error_text() + ")");
+  seal(path, checksum_strings(s, shape));
 }
 
 hid_t Writer::open_object(const std::string& object) {
@@ -335,6 +348,12 @@ std::vector<std::string> Reader::members(const std::string& group) const {
 
 Handle Reader::open_dataset(const std::string& path) const {
   if (!exists(path)) fail(path, "missing dataset");
+  // The object header is read (and its checksum checked) first: H5Dopen2 on a damaged header
+  // fails too, but libhdf5 1.10 leaks the half-opened dataset on that path.
+  H5O_info_t info;
+  if (H5Oget_info_by_name(file_.get(), path.c_str(), &info, H5P_DEFAULT) < 0)
+    fail(path, "not a dataset or unreadable (" + last_error_text() + ")");
+  if (info.type != H5O_TYPE_DATASET) fail(path, "not a dataset");
   Handle ds(H5Dopen2(file_.get(), path.c_str(), H5P_DEFAULT));
   if (!ds.valid()) fail(path, "not a dataset or unreadable (" + last_error_text() + ")");
   return ds;
@@ -382,7 +401,7 @@ void Reader::read(const std::string& path, const Shape& expected, double* out, b
   const std::uint64_t n = product(expected);
   // Sizes were checked above; we never compress, so the data cannot exceed the file.
   if (n * 8 > file_bytes_) fail(path, "dataset larger than the file: the file is truncated or corrupt");
-  if (n == 0) return;
+  if (n == 0) return check_content(path, ds.get(), checksum_doubles(out, expected));
   if (H5Dread(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) < 0) {
     const std::string e = last_error_text();
     if (e.find("checksum") != std::string::npos || e.find("Fletcher") != std::string::npos ||
@@ -398,6 +417,7 @@ void Reader::read(const std::string& path, const Shape& expected, double* out, b
           << " at flat index " << i;
         fail(path, o.str());
       }
+  check_content(path, ds.get(), checksum_doubles(out, expected));
 }
 
 void Reader::read(const std::string& path, const Shape& expected, std::int64_t* out) const {
@@ -409,13 +429,14 @@ void Reader::read(const std::string& path, const Shape& expected, std::int64_t* 
   const std::uint64_t n = product(expected);
   if (n * H5Tget_size(type.get()) > file_bytes_)
     fail(path, "dataset larger than the file: the file is truncated or corrupt");
-  if (n == 0) return;
+  if (n == 0) return check_content(path, ds.get(), checksum_int64(out, expected));
   if (H5Dread(ds.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) < 0) {
     const std::string e = last_error_text();
     if (e.find("checksum") != std::string::npos || e.find("filter") != std::string::npos)
       fail(path, "checksum mismatch: the data is damaged (" + e + ")");
     fail(path, "read failed (" + e + ")");
   }
+  check_content(path, ds.get(), checksum_int64(out, expected));
 }
 
 double Reader::read_scalar(const std::string& path) const {
@@ -431,6 +452,7 @@ double Reader::read_scalar(const std::string& path) const {
     fail(path, "read failed (" + last_error_text() + ")");
   if (!std::isfinite(v)) fail(path, "non-finite value");
   if (!(std::abs(v) <= max_magnitude_)) fail(path, "value beyond the magnitude this file may hold");
+  check_content(path, ds.get(), checksum_doubles(&v, {}));
   return v;
 }
 
@@ -486,6 +508,7 @@ std::string Reader::read_string(const std::string& path) const {
     return H5Dread(ds.get(), mem, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf);
   }, ok);
   if (!ok) fail(path, "read failed (" + last_error_text() + ")");
+  check_content(path, ds.get(), checksum_strings(v, {}));
   return v[0];
 }
 
@@ -507,6 +530,7 @@ std::vector<std::string> Reader::read_strings(const std::string& path, std::uint
       fail(path, "checksum mismatch: the data is damaged (" + e + ")");
     fail(path, "read failed (" + e + ")");
   }
+  check_content(path, ds.get(), checksum_strings(v, Shape{n}));
   return v;
 }
 
@@ -584,6 +608,89 @@ std::vector<std::pair<std::string, std::string>> Reader::attrs(const std::string
     }
   }
   return out;
+}
+
+// ------------------------------------------------------------------------------------------
+// Content checksums
+
+void Reader::check_content(const std::string& path, hid_t ds, const std::string& checksum) const {
+  const htri_t has = H5Aexists(ds, kChecksumAttribute);
+  if (has < 0) fail(path, "cannot read the attributes: the file's metadata is damaged (" + last_error_text() + ")");
+  if (has == 0) {
+    if (require_checksums_) unsealed_.push_back(path);
+    return;
+  }
+  const std::string stored = attr_string(path, kChecksumAttribute);
+  if (stored != checksum)
+    fail(path, "content checksum mismatch: the values read differ from those written (the file is damaged)");
+  verified_.insert(path);
+}
+
+void Reader::collect_datasets(const std::string& group, int depth, std::set<haddr_t>& seen,
+                              std::vector<std::string>& out) const {
+  // Hard links may form a cycle only in a damaged file; the depth bound is far beyond any
+  // layout of SPEC.md.
+  if (depth > 32) fail(group, "groups nested more than 32 deep: the file is damaged");
+  for (const auto& name : members(group)) {
+    const std::string path = (group == "/" ? "/" : group + "/") + name;
+    H5O_info_t info;
+    if (H5Oget_info_by_name(file_.get(), path.c_str(), &info, H5P_DEFAULT) < 0)
+      fail(path, "cannot read the object's header: the file is damaged (" + last_error_text() + ")");
+    if (info.type == H5O_TYPE_GROUP) {
+      if (!seen.insert(info.addr).second) fail(path, "a group linked twice: the file is damaged");
+      collect_datasets(path, depth + 1, seen, out);
+    } else if (info.type == H5O_TYPE_DATASET) {
+      out.push_back(path);
+    }
+  }
+}
+
+std::string Reader::content_checksum(const std::string& path) const {
+  const Shape s = shape(path);
+  const std::uint64_t n = product(s);
+  Handle ds = open_dataset(path);
+  Handle type(H5Dget_type(ds.get()));
+  switch (H5Tget_class(type.get())) {
+    case H5T_FLOAT: {
+      if (H5Tget_size(type.get()) != 8) fail(path, "wrong type: expected 64-bit float");
+      if (n * 8 > file_bytes_) fail(path, "dataset larger than the file: the file is truncated or corrupt");
+      std::vector<double> v(n);
+      if (n && H5Dread(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
+        fail(path, "read failed: the data is damaged (" + last_error_text() + ")");
+      return checksum_doubles(v.data(), s);
+    }
+    case H5T_INTEGER: {
+      if (n * H5Tget_size(type.get()) > file_bytes_) fail(path, "dataset larger than the file: the file is truncated or corrupt");
+      std::vector<std::int64_t> v(n);
+      if (n && H5Dread(ds.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
+        fail(path, "read failed: the data is damaged (" + last_error_text() + ")");
+      return checksum_int64(v.data(), s);
+    }
+    case H5T_STRING:
+      return checksum_strings(s.empty() ? std::vector<std::string>{read_string(path)} : read_strings(path, n), s);
+    default: fail(path, "unsupported type: the file is damaged or not written by ffr");
+  }
+}
+
+void Reader::verify_content() const {
+  const std::string hint = ": the dataset was not written by ffr, or was changed since";
+  if (!unsealed_.empty()) fail(unsealed_.front(), std::string("no content checksum (attribute ") + kChecksumAttribute + ")" + hint);
+  std::vector<std::string> datasets;
+  std::set<haddr_t> seen;
+  collect_datasets("/", 0, seen, datasets);
+  std::vector<std::pair<std::string, std::string>> entries;
+  for (const auto& path : datasets) {
+    if (!has_attr(path, kChecksumAttribute))
+      fail(path, std::string("no content checksum (attribute ") + kChecksumAttribute + ")" + hint);
+    if (!verified_.count(path) && content_checksum(path) != attr_string(path, kChecksumAttribute))
+      fail(path, "content checksum mismatch: the values read differ from those written (the file is damaged)");
+    verified_.insert(path);
+    entries.emplace_back(path, attr_string(path, kChecksumAttribute));
+  }
+  const std::string where = std::string("/@") + kManifestAttribute;
+  if (!has_attr("/", kManifestAttribute)) fail(where, "missing attribute: the file has no checksum of its list of datasets");
+  if (attr_string("/", kManifestAttribute) != checksum_manifest(entries))
+    fail(where, "the datasets in the file differ from those written (one was removed, added or renamed): the file is damaged");
 }
 
 // ------------------------------------------------------------------------------------------

@@ -53,17 +53,24 @@ bool is_results_file(const h5::Reader& r) {
   return r.exists("/time") && r.is_group("/outputs");
 }
 
-Results read_results(const std::filesystem::path& path) {
+Results read_results(const std::filesystem::path& path, std::vector<std::string>* warnings) {
   h5::Reader r(path);
+  std::int64_t version = 0;
   if (r.has_attr("/", "format")) {
     const std::string f = r.attr_string("/", "format");
     if (f != kResultsFormatName) r.fail("/@format", "not an ffr-sim results file (format = '" + f + "')");
-    const auto v = r.attr_int("/", "format_version");
-    if (v < 1 || v > kResultsFormatVersion)
-      r.fail("/@format_version", "unsupported format_version " + std::to_string(v));
+    version = r.attr_int("/", "format_version");
+    if (version < 1 || version > kResultsFormatVersion)
+      r.fail("/@format_version", "unsupported format_version " + std::to_string(version) + " (this build reads 1.." +
+                                     std::to_string(kResultsFormatVersion) + ")");
   } else if (!is_results_file(r)) {
     r.fail("/@format", "missing attribute: not an ffr-sim results file");
   }
+  if (version >= 2)
+    r.require_checksums();
+  else if (warnings)
+    warnings->push_back(r.name() + ": " + (version ? "format_version " + std::to_string(version) : std::string("a file without format_version")) +
+                        " has no content checksums: damage that HDF5 does not detect (a chunk index) cannot be found");
   Results res;
   if (r.has_attr("/", "generator")) res.generator = r.attr_string("/", "generator");
   const auto ts = r.shape("/time");
@@ -89,6 +96,7 @@ Results read_results(const std::filesystem::path& path) {
     if (r.has_attr(p, "type")) o.type = r.attr_string(p, "type");
     res.outputs.push_back(std::move(o));
   }
+  if (version >= 2) r.verify_content();
   return res;
 }
 

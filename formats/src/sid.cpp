@@ -30,6 +30,7 @@ void Sid::resize(Index n) {
   Me = Eigen::MatrixXd::Zero(n, n);
   Ke = Eigen::MatrixXd::Zero(n, n);
   De = Eigen::MatrixXd::Zero(n, n);
+  if (!KeM1.empty()) KeM1.assign(sn, Eigen::MatrixXd::Zero(n, n));
   Gr.assign(sn, Eigen::Matrix3d::Zero());
   Ge.assign(sn, MatX3::Zero(n, 3));
   Oe.M0 = MatX6::Zero(n, 6);

@@ -1,5 +1,6 @@
 // ffr-reduce PART.json -o OUT.sid.h5: geometry or mesh -> FE -> modes -> invariants -> SID file.
 #include "ffr/cli/cli.hpp"
+#include "ffr/cli/process_threads.hpp"
 #include "ffr/formats/sid_io.hpp"
 #include "ffr/formats/validate.hpp"
 #include "ffr/preproc/part/part.hpp"
@@ -7,6 +8,7 @@
 #include "ffr/preproc/threads.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <unistd.h>
@@ -27,7 +29,8 @@ options:
   --vtk FILE            also write the mesh with every mode shape for ParaView (.vtk)
   --backend NAME        eigen-solver: block (default; block Lanczos, falls back to spectra),
                         spectra or arpack (overrides the part file)
-  --threads N           threads of assembly, invariants and the BLAS under the factorization
+  --factorization NAME  sparse Cholesky: supernodal (default) or cholmod (overrides the part file)
+  --threads N           threads of assembly, factorization, invariants and the BLAS
                         (default: all cores; without it the BLAS follows OPENBLAS_NUM_THREADS)
   --max-memory GIB      refuse (before computing it) a factorization that needs more than this
                         many GiB; default: the memory available on the machine
@@ -35,12 +38,14 @@ options:
   --help, --version
 
 environment:
-  FFR_HUGE_PAGES        on, off or auto (default): whether the heap uses 2 MiB pages; auto
-                        measures which pages fault in faster on this machine, at start-up
+  GLIBC_TUNABLES=glibc.malloc.hugetlb=1   transparent 2 MiB pages for the heap (glibc 2.35+):
+                        fewer page faults where the kernel hands out huge pages cheaply
+  OPENBLAS_CORETYPE     OpenBLAS's kernels, when the log says the CPU suits newer ones
 
 exit status: 0 ok, 2 bad input (the message names the file and the field), 1 other failure.
 )",
-    "ffr-reduce PART.json -o OUT.sid.h5 [--vtk MODES.vtk] [--backend block|spectra|arpack] [--threads N] "
+    "ffr-reduce PART.json -o OUT.sid.h5 [--vtk MODES.vtk] [--backend block|spectra|arpack] "
+    "[--factorization supernodal|cholmod] [--threads N] "
     "[--max-memory GIB] [--quiet]"};
 
 }  // namespace
@@ -52,11 +57,13 @@ int main(int argc, char** argv) {
     if (auto o = args.option("-o")) out = o;
     const auto vtk = args.option("--vtk");
     const auto backend = args.option("--backend");
+    const auto factorization = args.option("--factorization");
     if (const auto threads = args.option("--threads")) {
       char* end = nullptr;
       const long n = std::strtol(threads->c_str(), &end, 10);
       if (threads->empty() || *end || n < 1 || n > 1024) throw ffr::cli::UsageError("--threads must be a count >= 1");
       ffr::preproc::set_max_threads(static_cast<unsigned>(n));
+      ffr::cli::set_numerical_library_threads(static_cast<unsigned>(n));
     }
     const auto max_memory = args.number("--max-memory");
     const auto pos = args.positionals();
@@ -68,6 +75,11 @@ int main(int argc, char** argv) {
       if (*backend != "spectra" && *backend != "arpack" && *backend != "block")
         throw ffr::cli::UsageError("--backend must be block, spectra or arpack");
       part.reduction.backend = *backend;
+    }
+    if (factorization) {
+      if (*factorization != "supernodal" && *factorization != "cholmod")
+        throw ffr::cli::UsageError("--factorization must be supernodal or cholmod");
+      part.reduction.factorization = *factorization;
     }
     if (max_memory) {
       if (!(*max_memory > 0)) throw ffr::cli::UsageError("--max-memory must be a positive number of GiB");
@@ -83,9 +95,6 @@ int main(int argc, char** argv) {
       };
       if (tty) log.progress = [](const std::string& s) { std::cerr << "\r\033[K  " << s << std::flush; };
     }
-    // The launcher's choice of heap pages (preproc/launcher), when it started this program.
-    if (const char* pages = std::getenv("FFR_HUGE_PAGES_CHOSEN"); pages && log.stage)
-      log.stage(std::string("memory: 2 MiB heap pages ") + pages);
     ffr::preproc::PipelineOptions opt;
     if (vtk) opt.vtk = *vtk;
     const ffr::formats::Sid sid = ffr::preproc::run_pipeline(part, opt, log);
@@ -95,7 +104,11 @@ int main(int argc, char** argv) {
     if (!report.ok()) {
       std::string text;
       for (const auto& c : report.checks)
-        if (c.applicable && !c.pass) text += "\n  " + c.name + ": violation " + std::to_string(c.rel) + " (tolerance " + std::to_string(c.tol) + ") " + c.note;
+        if (c.applicable && !c.pass) {
+          char nums[96];  // %g: a relative violation of 1e300 is one short number, not 300 digits
+          std::snprintf(nums, sizeof nums, ": violation %.3g (tolerance %.3g) ", c.rel, c.tol);
+          text += "\n  " + c.name + nums + c.note;
+        }
       throw std::runtime_error("the reduced body fails validation (nothing written):" + text);
     }
     ffr::formats::write_sid(sid, *out);

@@ -195,6 +195,7 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   p.mass_model["/integrals/rotary"] = "point rotary inertia carried by no material point (shell drilling)";
   p.extra["geometry"] = part.geometry.filename().string();
   p.extra["eigen_backend"] = red.backend;
+  p.extra["factorization"] = to_string(red.factor.backend);
   p.extra["max_relative_residual"] = fmt(red.max_residual, 3);
   p.extra["factor_nnz_L"] = fmt(red.factor.nnz_L, 6);
   for (const auto& o : model.outputs) p.extra["output_node." + o.name] = "mesh node " + std::to_string(mesh.node_tag(o.node)) +

@@ -1,7 +1,5 @@
 #include "ffr/preproc/threads.hpp"
 
-#include "solver/library_threads.hpp"
-
 #include <algorithm>
 #include <atomic>
 #include <thread>
@@ -18,8 +16,6 @@ unsigned max_threads() {
 
 void set_max_threads(unsigned n) {
   g_max_threads.store(n, std::memory_order_relaxed);
-  // The supernodal factorization and solves run in the BLAS: hold it to the same count.
-  detail::set_blas_threads(max_threads());
 }
 
 }  // namespace ffr::preproc

@@ -42,11 +42,12 @@ int ffr_open(const char* model_path, ffr_sim** sim);
 /* Frees everything; NULL is accepted. */
 void ffr_close(ffr_sim* sim);
 
-/* Current time and the fixed step of the model [s]. */
+/* Current time and the fixed step of the model [s] (with "step": "auto", the output interval). */
 int ffr_time(const ffr_sim* sim, double* t);
 int ffr_step_size(const ffr_sim* sim, double* h);
 
-/* Advances n >= 1 steps. On a solver failure the state is that of the last accepted step. */
+/* Advances n >= 1 steps (with "step": "auto", n output intervals of adaptive steps). On a solver
+   failure the state is that of the last accepted step. */
 int ffr_step(ffr_sim* sim, int n);
 
 /* External load on a body: force [N] and torque [N m], global components, applied at a SID node

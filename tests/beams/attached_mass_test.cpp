@@ -1,4 +1,4 @@
-// The rigid body hung on a node (seed 002): mass properties by the parallel-axis theorem,
+// The rigid body hung on a node (Wagner & Pfeiffer, 'On the Dynamics of Washing Machines'): mass properties by the parallel-axis theorem,
 // M from the rigid kinematics u_P = u_p + theta x (e + s), mass samples, input errors.
 
 #include "ffr/preproc/elements/attached_mass.hpp"
@@ -63,7 +63,7 @@ TEST(AttachedMass, MassMatrixIsTheRigidBodyKinematics) {
   const double m = 3.0;
   const Eigen::Matrix3d Ic = inertia();
   const ElementMatrices em = attached_mass(p, m, e, Ic);
-  // Closed form (seed 002): [[m 1, -m e~], [m e~, Ic - m e~ e~]].
+  // Closed form (Wagner & Pfeiffer, ibid.): [[m 1, -m e~], [m e~, Ic - m e~ e~]].
   Eigen::MatrixXd ref(6, 6);
   ref << m * Eigen::Matrix3d::Identity(), -m * skew(e), m * skew(e), Ic - m * skew(e) * skew(e);
   EXPECT_LT((em.M - ref).norm(), 1e-13 * ref.norm());

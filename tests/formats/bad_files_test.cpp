@@ -1,6 +1,7 @@
 // Damaged and malformed SID files: every one is refused with a FormatError whose message
 // names the file and the dataset or attribute. The damage is done with the HDF5 C API or by
 // byte surgery on a clean synthetic file.
+#include "ffr/formats/content_checksum.hpp"
 #include "ffr/formats/sid_io.hpp"
 #include "ffr/formats/synthetic.hpp"
 
@@ -8,6 +9,8 @@
 #include <hdf5.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -243,10 +246,10 @@ TEST(BadFiles, FlippedByteInMetadataIsRefused) {
 TEST(BadFiles, UnknownFormatVersion) {
   const auto f = clean_copy("version.sid.h5");
   edit(f, [](hid_t h) {
-    const std::int64_t v = 2;
+    const std::int64_t v = kFormatVersion + 1;
     set_root_attr(h, "format_version", H5T_NATIVE_INT64, &v);
   });
-  expect_refused(f, "/@format_version", "unsupported format_version 2");
+  expect_refused(f, "/@format_version", "unsupported format_version " + std::to_string(kFormatVersion + 1));
 }
 
 TEST(BadFiles, WrongFormatAttribute) {
@@ -336,4 +339,141 @@ TEST(BadFiles, DamagedStiffeningInterfaceMember) {
   const auto f = clean_copy("stiff.sid.h5");
   edit(f, [](hid_t h) { H5Ldelete(h, "/stiffening/interfaces/B/K0M", H5P_DEFAULT); });
   expect_refused(f, "/stiffening/interfaces/B/K0M", "missing dataset");
+}
+
+// /sid/Ke/M1 is optional, but when present it must be [nq,nq,nq] and finite.
+TEST(BadFiles, KeM1WrongShape) {
+  const auto f = clean_copy("kem1shape.sid.h5");
+  ASSERT_FALSE(read_sid(f).KeM1.empty());
+  edit(f, [](hid_t h) { replace_doubles(h, "/sid/Ke/M1", {4, 4}); });
+  expect_refused(f, "/sid/Ke/M1", "wrong shape: expected [4,4,4], found [4,4]");
+  edit(f, [](hid_t h) { replace_doubles(h, "/sid/Ke/M1", {3, 4, 4}); });
+  expect_refused(f, "/sid/Ke/M1", "expected [4,4,4]");
+}
+
+TEST(BadFiles, KeM1NaN) {
+  const auto f = clean_copy("kem1nan.sid.h5");
+  edit(f, [](hid_t h) {
+    std::vector<double> v(64, 1.0);
+    v[17] = std::numeric_limits<double>::quiet_NaN();
+    replace(h, "/sid/Ke/M1", H5T_NATIVE_DOUBLE, {4, 4, 4}, v.data());
+  });
+  expect_refused(f, "/sid/Ke/M1", "");
+}
+
+TEST(BadFiles, KeM1AbsentIsFine) {
+  const auto f = clean_copy("kem1absent.sid.h5");
+  edit(f, [](hid_t h) { H5Ldelete(h, "/sid/Ke/M1", H5P_DEFAULT); });
+  EXPECT_TRUE(read_sid(f).KeM1.empty());
+}
+
+// ---- content checksums (format_version 2, SPEC.md section 4) ------------------------------
+
+namespace {
+std::string dataset_checksum(hid_t file, const char* path) {
+  const hid_t a = H5Aopen_by_name(file, path, kChecksumAttribute, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t t = H5Aget_type(a);
+  std::string s(H5Tget_size(t), '\0');
+  H5Aread(a, t, s.data());
+  H5Tclose(t);
+  H5Aclose(a);
+  return s.substr(0, s.find('\0'));
+}
+}  // namespace
+
+TEST(BadFiles, ContentChecksumsMatchAnIndependentSha256OfTheValues) {
+  // The checksum of /refmod/frequency_hz recomputed here from SPEC.md section 4 with the
+  // system's sha256sum (an implementation other than formats/src/sha256.cpp).
+  const auto f = clean_copy("sums.sid.h5");
+  const Sid s = read_sid(f);
+  std::string canon("ffr-content-1\0f64\0", 18);
+  auto u64 = [&](std::uint64_t v) {
+    for (int i = 0; i < 8; ++i) canon.push_back(static_cast<char>(v >> (8 * i)));
+  };
+  u64(1);
+  u64(static_cast<std::uint64_t>(s.nq()));
+  for (Eigen::Index k = 0; k < s.nq(); ++k) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &s.refmod.frequency_hz[k], 8);
+    u64(bits);
+  }
+  const fs::path c = dir() / "canon.bin";
+  std::ofstream(c, std::ios::binary).write(canon.data(), static_cast<std::streamsize>(canon.size()));
+  const std::string cmd = "sha256sum " + c.string() + " > " + (dir() / "canon.sum").string();
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  std::ifstream in(dir() / "canon.sum");
+  std::string expected;
+  in >> expected;
+  std::string stored;
+  edit(f, [&](hid_t h) { stored = dataset_checksum(h, "/refmod/frequency_hz"); });
+  EXPECT_EQ(stored, expected);
+}
+
+TEST(BadFiles, ValuesReadBackAsFillValuesAreRefused) {
+  // What a damaged chunk key does (issue: one bit in the key of /sid/Gr/M0 read as zeros): the
+  // chunk is taken as never written and reads as the fill value. Made here by recreating the
+  // dataset without writing it, keeping its checksum attribute.
+  const auto f = clean_copy("fill.sid.h5");
+  edit(f, [](hid_t h) {
+    const std::string sum = dataset_checksum(h, "/sid/Gr/M0");
+    H5Ldelete(h, "/sid/Gr/M0", H5P_DEFAULT);
+    const hsize_t dims[3] = {4, 3, 3}, chunk[3] = {4, 3, 3};
+    const hid_t space = H5Screate_simple(3, dims, nullptr);
+    const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(dcpl, 3, chunk);
+    const hid_t ds = H5Dcreate2(h, "/sid/Gr/M0", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    const hid_t t = H5Tcopy(H5T_C_S1);
+    H5Tset_size(t, sum.size());
+    const hid_t s = H5Screate(H5S_SCALAR);
+    const hid_t a = H5Acreate2(ds, kChecksumAttribute, t, s, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(a, t, sum.data());
+    H5Aclose(a);
+    H5Sclose(s);
+    H5Tclose(t);
+    H5Dclose(ds);
+    H5Pclose(dcpl);
+    H5Sclose(space);
+  });
+  expect_refused(f, "/sid/Gr/M0", "content checksum mismatch");
+}
+
+TEST(BadFiles, AChangedValueIsRefusedNamingTheDataset) {
+  const auto f = clean_copy("changed.sid.h5");
+  edit(f, [](hid_t h) { poke(h, "/sid/Ke/M0", 1234.5); });
+  expect_refused(f, "/sid/Ke/M0", "content checksum mismatch");
+}
+
+TEST(BadFiles, ADatasetWithoutChecksumIsRefusedAfterTheContentChecks) {
+  const auto f = clean_copy("unsealed.sid.h5");
+  edit(f, [](hid_t h) { H5Adelete_by_name(h, "/sid/J/M1", kChecksumAttribute, H5P_DEFAULT); });
+  expect_refused(f, "/sid/J/M1", "no content checksum");
+}
+
+TEST(BadFiles, ARemovedOptionalGroupOrAnExtraDatasetIsRefused) {
+  // /stiffening is optional: only the root's checksum of the list of datasets notices.
+  auto f = clean_copy("nostiff.sid.h5");
+  edit(f, [](hid_t h) { H5Ldelete(h, "/stiffening", H5P_DEFAULT); });
+  expect_refused(f, "/@content_sha256", "differ from those written");
+  f = clean_copy("extra.sid.h5");
+  edit(f, [](hid_t h) { replace_doubles(h, "/sid/extra", {3}); });
+  expect_refused(f, "/sid/extra", "no content checksum");
+}
+
+TEST(BadFiles, Version1FilesAreReadWithAWarning) {
+  // A version 1 file: the same layout without the checksums.
+  const auto f = clean_copy("v1.sid.h5");
+  edit(f, [](hid_t h) {
+    const std::int64_t v = 1;
+    set_root_attr(h, "format_version", H5T_NATIVE_INT64, &v);
+    H5Adelete(h, kManifestAttribute);
+  });
+  std::vector<std::string> warnings;
+  const Sid s = read_sid(f, &warnings);
+  EXPECT_EQ(s.nq(), 4);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find(f.string() + ": format_version 1 has no content checksums"), std::string::npos) << warnings[0];
+  // A version 2 file gives no warning.
+  warnings.clear();
+  read_sid(clean_copy("v2.sid.h5"), &warnings);
+  EXPECT_TRUE(warnings.empty());
 }

@@ -260,3 +260,58 @@ TEST(Cli, SynthWritesAValidChainAndLeavesNothingOnError) {
   for (const auto& e : fs::directory_iterator(dir()))
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << "left behind: " << e.path();
 }
+
+TEST(Cli, InfoExitsTwoForASidFailingValidationAfterItsSummary) {
+  synthetic::ChainParams p;
+  p.modes = 4;
+  Sid s = synthetic::spring_chain(p).sid;
+  s.Gr[1](0, 1) += 0.5;  // breaks Gr against the integrals (identities: ffr-sim would only note them)
+  const fs::path f = dir() / "invalid.sid.h5";
+  write_sid(s, f);
+  const Outcome t = run("ffr-info", f.string());
+  EXPECT_EQ(t.rc, 2) << t.err;
+  EXPECT_NE(t.out.find("validation        FAILED"), std::string::npos) << t.out;
+  EXPECT_NE(t.err.find(f.string() + ": fails "), std::string::npos) << t.err;
+  EXPECT_NE(t.err.find("first Gr = 2 tr(R_k) I - 2 R_k^T (/sid/Gr/M0 /integrals/rPdm)"), std::string::npos) << t.err;
+  EXPECT_EQ(std::count(t.err.begin(), t.err.end(), '\n'), 1) << t.err;
+  const Outcome j = run("ffr-info", f.string() + " --json");
+  EXPECT_EQ(j.rc, 2);
+  EXPECT_FALSE(nlohmann::json::parse(j.out)["validation"]["ok"].get<bool>());
+}
+
+TEST(Cli, InfoJsonNeverFailsOnStringsThatAreNotUtf8) {
+  // A node name with bytes that are not UTF-8 made --json exit 1 with type_error.316.
+  synthetic::ChainParams p;
+  Sid s = synthetic::spring_chain(p).sid;
+  s.nodes[1].name = "B\xff\xfe";
+  s.provenance.extra["note"] = "\xc3\x28";
+  const fs::path f = dir() / "latin.sid.h5";
+  write_sid(s, f);
+  const Outcome j = run("ffr-info", f.string() + " --json");
+  ASSERT_EQ(j.rc, 0) << j.err;
+  const auto js = nlohmann::json::parse(j.out);  // valid JSON: the bad bytes are U+FFFD
+  EXPECT_EQ(js["nodes"][1]["name"].get<std::string>(), "B\xEF\xBF\xBD\xEF\xBF\xBD");
+  EXPECT_EQ(run("ffr-info", f.string()).rc, 0);
+}
+
+TEST(Cli, DamagedFilesAreRefusedByInfoAndDiffNamingFileAndDataset) {
+  const auto a = chain_file("sealed_a.sid.h5");
+  const auto b = chain_file("sealed_b.sid.h5");
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const hid_t h = H5Fopen(b.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(h, 0);
+  const hid_t ds = H5Dopen2(h, "/sid/Oe/M0", H5P_DEFAULT);
+  std::vector<double> v(24);
+  H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  v[3] *= 1.5;
+  H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Dclose(ds);
+  H5Fclose(h);
+  for (const auto& [tool, args] : {std::pair<std::string, std::string>{"ffr-info", b.string()},
+                                   std::pair<std::string, std::string>{"ffr-diff", a.string() + " " + b.string()}}) {
+    const Outcome o = run(tool, args);
+    EXPECT_EQ(o.rc, 2) << tool;
+    EXPECT_NE(o.err.find(b.string() + ": /sid/Oe/M0: content checksum mismatch"), std::string::npos) << tool << ": " << o.err;
+    EXPECT_TRUE(o.out.empty()) << o.out;
+  }
+}

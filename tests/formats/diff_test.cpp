@@ -173,6 +173,42 @@ TEST(Diff, TransformModesMatchesDirectSumsOfTheRotatedShapes) {
   EXPECT_TRUE(validate(transformed).ok());
 }
 
+// Ke.M1 has three mode indices; its transform is checked against the chain's own definition
+// Ke.M1[k] = Phi^T K_G(N(Phi_k)) Phi evaluated on the rotated modes Phi T.
+TEST(Diff, TransformModesOfKeM1MatchesTheDefinitionOnRotatedModes) {
+  ChainParams p;
+  p.points = 9;
+  p.modes = 4;
+  p.EA = 100;  // free-free: bending pairs at 22 and 62 rad/s, the first axial mode at 31 rad/s
+  p.stiffening = true;
+  const Chain c = spring_chain(p);
+  std::mt19937 rng(4);
+  const MatrixXd T = random_orthogonal(4, rng);
+  const Sid t = transform_modes(c.sid, T);
+  const MatrixXd PhiT = c.model.Phi.leftCols(4) * T;
+  double big = 0, err = 0;
+  for (int k = 0; k < 4; ++k) {
+    const MatrixXd direct = PhiT.transpose() * c.model.geometric_stiffness(c.model.axial_forces(PhiT.col(k))) * PhiT;
+    big = std::max(big, direct.cwiseAbs().maxCoeff());
+    err = std::max(err, (t.KeM1[k] - direct).cwiseAbs().maxCoeff());
+  }
+  ASSERT_GT(big, 0);
+  EXPECT_LT(err, 1e-12 * big);
+  // A sign flip of one mode is aligned away in Ke.M1 like everywhere else.
+  Eigen::VectorXd s = Eigen::VectorXd::Ones(4);
+  s[1] = -1;
+  const DiffReport r = diff(c.sid, transform_modes(c.sid, s.asDiagonal()));
+  EXPECT_TRUE(r.equivalent) << dump(r);
+  Sid b = c.sid;
+  Eigen::Index row = 0, col = 0;
+  b.KeM1[2].cwiseAbs().maxCoeff(&row, &col);
+  ASSERT_GT(std::abs(b.KeM1[2](row, col)), 0.1 * big) << "the axial mode (k = 2) stiffens the bending modes";
+  b.KeM1[2](row, col) *= 1.01;
+  const DiffReport d = diff(c.sid, b);
+  ASSERT_FALSE(d.equivalent);
+  EXPECT_EQ(d.worst.front().dataset, "/sid/Ke/M1");
+}
+
 // Modes are aligned by their surface shapes only where both files have the same vertices in
 // the same order. Here B's surface lists the vertices shifted by one, and each vertex's shape
 // of mode 1 is minus its neighbour's: paired by position, B's surface says "mode 1 flipped"

@@ -85,3 +85,39 @@ TEST(ResultsIo, StrictReading) {
   }
   fs::remove(f);
 }
+
+TEST(ResultsIo, DamagedValuesAreRefusedAndVersion1IsReadWithAWarning) {
+  // A value changed in place keeps the dataset's checksum attribute: refused naming it.
+  const auto f = temp("changed.h5");
+  write_results(sample(), f);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  hid_t h = H5Fopen(f.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  hid_t ds = H5Dopen2(h, "/time", H5P_DEFAULT);
+  std::vector<double> t(5);
+  H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.data());
+  t[4] += 1.0;  // still increasing: only the checksum can tell
+  H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.data());
+  H5Dclose(ds);
+  H5Fclose(h);
+  try {
+    read_results(f);
+    ADD_FAILURE() << "read a damaged results file";
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find(f.string() + ": /time: content checksum mismatch"), std::string::npos) << e.what();
+  }
+  // The same file as version 1 (no checksums promised, root list removed): read, with a warning.
+  h = H5Fopen(f.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  H5Adelete(h, "content_sha256");
+  H5Adelete_by_name(h, "/time", "sha256", H5P_DEFAULT);
+  const hid_t a = H5Aopen(h, "format_version", H5P_DEFAULT);
+  const std::int64_t one = 1;
+  H5Awrite(a, H5T_NATIVE_INT64, &one);
+  H5Aclose(a);
+  H5Fclose(h);
+  std::vector<std::string> warnings;
+  const Results r = read_results(f, &warnings);
+  EXPECT_EQ(r.time.size(), 5);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("format_version 1 has no content checksums"), std::string::npos) << warnings[0];
+  fs::remove(f);
+}

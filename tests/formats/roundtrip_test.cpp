@@ -45,6 +45,8 @@ Sid random_sid(int nq, int nodes, bool stiffening, std::uint32_t seed) {
     for (auto& m : s.stiffening->K0om) fill(m);
     for (auto& m : s.stiffening->interfaces[0].K0F) fill(m);
     for (auto& m : s.stiffening->interfaces[0].K0M) fill(m);
+    s.KeM1.assign(static_cast<std::size_t>(nq), Eigen::MatrixXd::Zero(nq, nq));
+    for (auto& m : s.KeM1) fill(m);
   }
   for (auto& n : s.nodes) { fill(n.origin); fill(n.phi); fill(n.psi); fill(n.AP0); }
   if (nodes > 0) s.interfaces.push_back({"root", 0, "rigid", "clamp"});
@@ -88,6 +90,7 @@ void expect_equal(const Sid& a, const Sid& b) {
   for (int i = 0; i < 3; ++i) for (int j = 0; j < 3; ++j) expect_bits(a.integrals.PPdm[i][j], b.integrals.PPdm[i][j], "PPdm");
   expect_bits(a.rotary.I, b.rotary.I, "rotary.I"); expect_bits(a.rotary.PsiI, b.rotary.PsiI, "PsiI");
   expect_bits(a.rotary.PsiIPsi, b.rotary.PsiIPsi, "PsiIPsi");
+  expect_bits(a.KeM1, b.KeM1, "Ke.M1");
   ASSERT_EQ(a.stiffening.has_value(), b.stiffening.has_value());
   if (a.stiffening) {
     expect_bits(a.stiffening->K0t, b.stiffening->K0t, "K0t");

@@ -1,6 +1,6 @@
 // The synthetic generator against references it did not compute:
 //  - Newton's law for every point mass in a rotating, accelerating frame (the SID members must
-//    reproduce the inertia forces of invariants.md section 3 term by term);
+//    reproduce the inertia forces of formats/SPEC.md section 6 term by term);
 //  - Euler-Bernoulli beam frequencies (Blevins, "Formulas for Natural Frequency and Mode
 //    Shape", 1979, table 8-1: lambda_1 = 1.87510 clamped-free, 4.73004 free-free;
 //    omega = lambda^2 sqrt(EI / (rho A L^4))) and the free-free bar's first axial mode
@@ -67,7 +67,7 @@ TEST(Synthetic, ModesAreMassOrthonormalIncludingRotaryInertia) {
 //   a_p = a + alpha x x + w x (w x x) + 2 w x Phi_p qd + Phi_p qdd,  x = c_p + Phi_p q,
 // and a point inertia I_p rotating with w + Psi_p qd adds I_p (alpha + Psi_p qdd) + gyroscopic
 // terms. Projected with the virtual displacements of the frame and the modes, this must equal
-// the left-hand side of the equations in invariants.md section 3 built from the SID members
+// the left-hand side of the equations in formats/SPEC.md section 6 built from the SID members
 // (at q = 0, where the rotary part enters only through J.M0, Cr.M0 and Me: SPEC.md).
 TEST(Synthetic, MembersReproduceNewtonsLawOnThePoints) {
   const auto b = random_body(2);

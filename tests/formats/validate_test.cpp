@@ -93,10 +93,12 @@ std::vector<Violation> violations() {
       {"rotary.I positive semi-definite", kRotary, [](Sid& s) { s.rotary.I(0, 0) = -1; }},
       {"rotary.PsiIPsi positive semi-definite", kRotary, [](Sid& s) { s.rotary.PsiIPsi(1, 1) = -1; }},
       {"frequency_hz >= 0", kRotary, [](Sid& s) { s.refmod.frequency_hz[0] = -1; }},
+      {"normal modes: frequency_hz > 0", kRotary, [](Sid& s) { s.refmod.frequency_hz[2] = 0; }},
       {"node names unique and non-empty", kRotary, [](Sid& s) { s.nodes[1].name = s.nodes[0].name; }},
       {"interface names unique and non-empty", kRotary, [](Sid& s) { s.interfaces[1].name = ""; }},
       {"AP0 are rotation matrices", kRotary, [](Sid& s) { s.nodes[0].AP0(0, 0) = -1; }},
       {"stiffening symmetric in (k,i)", kFree, [](Sid& s) { s.stiffening->K0om[0](1, 2) += d; }},
+      {"Ke.M1 symmetric in (i,j)", kFree, [](Sid& s) { s.KeM1[1](0, 2) += d; }},
       // members against the primitive integrals
       {"mdCM.M0 = rdm", kRotary, [](Sid& s) { s.integrals.rdm.x() += d; }},
       {"mdCM.M1 = Pdm^T", kRotary, [](Sid& s) { s.integrals.Pdm(0, 1) += d; }},
@@ -110,7 +112,7 @@ std::vector<Violation> violations() {
       {"Ge = 2 eps PPdm", kRotary, [](Sid& s) { s.Ge[0](1, 2) += d; }},
       {"Oe.M1 from PPdm", kRotary, [](Sid& s) { s.Oe.M1[0](1, 4) += d; }},
       {"Me = sum_a PPdm[a][a] + rotary.PsiIPsi", kRotary, [](Sid& s) { s.rotary.PsiIPsi(0, 0) += d; }},
-      // cross-member identities (invariants.md section 5)
+      // cross-member identities (formats/SPEC.md section 9)
       {"mdCM.M1 = Ct.M0", kRotary, [](Sid& s) { s.mdCM.M1(0, 0) += d; }},
       {"Gr + Gr^T = 2 J.M1", kRotary, [](Sid& s) { s.Gr[0](0, 1) += d; }},
       {"diag Gr = diag J.M1", kRotary, [](Sid& s) { s.Gr[0](1, 1) += d; }},
@@ -186,7 +188,10 @@ TEST(Validate, PropertiesOfOneMemberAreToldFromIdentities) {
   // ffr-sim refuses a body failing a property and only notes a failed identity.
   const ValidationReport r = validate(body(kFree));
   for (const char* name : {"mass positive", "Me symmetric", "Ke symmetric", "Me positive definite", "Ke positive semi-definite",
-                           "J.M0 positive semi-definite"})
+                           "J.M0 positive semi-definite", "J.M0 principal moments: triangle inequality",
+                           "J about the centre of mass: triangle inequality", "frequency_hz >= 0",
+                           "normal modes: frequency_hz > 0", "node names unique and non-empty",
+                           "interface names unique and non-empty", "AP0 are rotation matrices"})
     EXPECT_EQ(r.find(name)->kind, Check::Kind::Property) << name;
   for (const char* name : {"Me = sum_a PPdm[a][a] + rotary.PsiIPsi", "free: Ct.M0 = 0", "J.M1 symmetric"})
     EXPECT_EQ(r.find(name)->kind, Check::Kind::Identity) << name;
@@ -206,6 +211,28 @@ TEST(Validate, InconsistentSizesGiveOneFailedCheck) {
   ASSERT_EQ(r.checks.size(), 1u);
   EXPECT_FALSE(r.ok());
   EXPECT_NE(r.checks[0].note.find("Me"), std::string::npos);
+}
+
+TEST(Validate, KeM1OfTheWrongShapeIsASizeFailure) {
+  Sid s = body(kFree);
+  ASSERT_FALSE(s.KeM1.empty());
+  s.KeM1[2].resize(3, 4);
+  const ValidationReport r = validate(s);
+  ASSERT_EQ(r.checks.size(), 1u);
+  EXPECT_NE(r.checks[0].note.find("Ke.M1"), std::string::npos) << r.checks[0].note;
+  s = body(kFree);
+  s.KeM1.pop_back();
+  EXPECT_FALSE(validate(s).ok());
+}
+
+// Ke.M1 is symmetric in (i,j) only: an asymmetry in k is how it is defined, not a failure.
+TEST(Validate, KeM1NeedNotBeSymmetricInK) {
+  Sid s = body(kClamped);
+  ASSERT_FALSE(s.KeM1.empty());
+  s.KeM1[0](1, 1) += 0.5;  // now KeM1[0](1,1) != KeM1[1](0,1)
+  EXPECT_TRUE(validate(s).find("Ke.M1 symmetric in (i,j)")->pass);
+  s.KeM1[0](0, 1) = NAN;
+  EXPECT_FALSE(validate(s).find("Ke.M1 symmetric in (i,j)")->pass);
 }
 
 TEST(Validate, NonFiniteValuesFail) {

@@ -5,6 +5,8 @@
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
 
+#include "ffr/runtime/step_control.hpp"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -39,11 +41,11 @@ void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::f
 
 using namespace ffr::runtime;
 
-TEST(Allocation, StepsAllocateNothing) {
-  test::TempDir dir("alloc");
-  test::write_sid_file(test::simeon_rod_sid(), dir / "rod.sid.h5");
-  test::write_sid_file(test::lumpy_body(3, 4, true, 0.01), dir / "lumpy.sid.h5");
-  const std::string json = R"({
+namespace {
+
+// Every kind of element: a driven crank, a flexible rod, a slider, a flexible flap on a bushing,
+// springs, point forces and torques.
+const char* kMixedModel = R"({
   "gravity": [0, -9.81, 0],
   "bodies": [
     {"name": "crank", "type": "rigid", "mass": 0.36, "com": [0.075, 0, 0], "inertia": [[1e-6, 0, 0], [0, 7e-4, 0], [0, 0, 7e-4]]},
@@ -75,7 +77,40 @@ TEST(Allocation, StepsAllocateNothing) {
     {"name": "energy", "type": "energy"}
   ]
 })";
-  const Model model = test::model_from(json, dir.path);
+
+// Every stiffening member (FORMULATION.md 7): the rod's Ke/M1, the flap's load cases with the
+// interface loads at its hinge, prestress, and Ke/M1.
+void write_sids(const test::TempDir& dir) {
+  ffr::formats::Sid rod = test::simeon_rod_sid();
+  rod.KeM1 = test::simeon_rod_ke_m1();
+  test::write_sid_file(rod, dir / "rod.sid.h5");
+  ffr::formats::Sid flap = test::lumpy_body(3, 4, true, 0.01);
+  const double k = flap.Ke.cwiseAbs().maxCoeff();
+  for (int m = 0; m < 3; ++m) flap.KeM1.push_back(0.1 * k * Eigen::Matrix3d::Identity() * (m + 1));
+  flap.ksigma.M0 = Eigen::Vector3d(1e-3, 0, 0) * k;
+  flap.ksigma.M1 = 0.01 * k * Eigen::Matrix3d::Identity();
+  // Load cases of a realistic size (a unit acceleration changes the stiffness by 1e-5): they
+  // are evaluated at the iterate's accelerations, which carry 4/h^2 times the predictor's error.
+  flap.stiffening.emplace();
+  flap.stiffening->K0t.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
+  flap.stiffening->K0r.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
+  flap.stiffening->K0om.assign(3, ffr::formats::MatX6::Constant(3, 6, 1e-5 * k));
+  ffr::formats::Stiffening::Interface itf;
+  itf.name = "A";
+  itf.K0F.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
+  itf.K0M.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
+  flap.stiffening->interfaces.push_back(itf);
+  test::write_sid_file(flap, dir / "lumpy.sid.h5");
+}
+
+}  // namespace
+
+TEST(Allocation, StepsAllocateNothing) {
+  test::TempDir dir("alloc");
+  write_sids(dir);
+  const Model model = test::model_from(kMixedModel, dir.path);
+  ASSERT_TRUE(model.bodies[1].modal_stress && model.bodies[3].modal_stress && model.bodies[3].prestress);
+  ASSERT_EQ(model.bodies[3].stiffening->interfaces.size(), 1u);
   Data data(model);
   initialize(model, data);
   set_external_load(data, 3, 1, Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d::Zero());  // at the flap's node A
@@ -92,4 +127,46 @@ TEST(Allocation, StepsAllocateNothing) {
               static_cast<long long>(data.stats.factorizations - fact0));
   EXPECT_EQ(after - before, 0);
   EXPECT_GT(data.stats.factorizations - fact0, 0);  // the tangent refresh was exercised too
+}
+
+// The generalized-alpha step and adaptive steps (scheme_coefficients.cpp, step_control.cpp:
+// error estimates, rejected steps restored from the saved state, steps landing on output times).
+TEST(Allocation, GeneralizedAlphaAndAdaptiveStepsAllocateNothing) {
+  test::TempDir dir("alloc_schemes");
+  write_sids(dir);
+  Model model = test::model_from(kMixedModel, dir.path);
+  model.settings.integrator = Integrator::GeneralizedAlpha;
+  model.settings.spectral_radius = 0.6;
+  {
+    Data data(model);
+    initialize(model, data);
+    step(model, data);
+    const long before = g_allocations.load();
+    for (int i = 0; i < 100; ++i) step(model, data);
+    EXPECT_EQ(g_allocations.load() - before, 0) << "generalized-alpha";
+  }
+  for (const Integrator scheme : {Integrator::Trapezoidal, Integrator::GeneralizedAlpha}) {
+    model.settings.integrator = scheme;
+    model.settings.adaptive = true;
+    model.settings.rtol = 1e-5;
+    model.settings.atol = 1e-6;
+    model.settings.output_interval = 0.01;
+    model.settings.step = 1e-2;  // too long: the first steps are rejected
+    Data data(model);
+    initialize(model, data);
+    StepControl control(model, data);
+    Recorder rec(model, 100);
+    advance_to(model, data, control, 0.01);
+    const long before = g_allocations.load();
+    for (int k = 2; k <= 15; ++k) {
+      advance_to(model, data, control, 0.01 * k);
+      rec.record(model, data);
+    }
+    const long after = g_allocations.load();
+    std::printf("adaptive (%s): %lld steps accepted, %lld rejected, %lld Newton failures; %ld allocations\n",
+                scheme == Integrator::Trapezoidal ? "trapezoidal" : "generalized-alpha", static_cast<long long>(control.accepted),
+                static_cast<long long>(control.rejected), static_cast<long long>(control.newton_failures), after - before);
+    EXPECT_EQ(after - before, 0);
+    EXPECT_GT(control.rejected, 0);  // the restore was exercised
+  }
 }

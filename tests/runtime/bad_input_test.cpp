@@ -2,6 +2,7 @@
 // offending field (or the SID file and dataset), never a crash or a half-built model.
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
+#include "ffr/formats/synthetic.hpp"
 
 #include <gtest/gtest.h>
 
@@ -201,4 +202,42 @@ TEST(BadInput, ReusedTangentIsRefused) {
   expect_error(reuse, "solver.reuse_jacobian", "does not keep the integrator's accuracy");
   const std::string plain = R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"end": 1, "step": 0.001, "reuse_jacobian": false}})";
   EXPECT_EQ(error_of(plain), "");
+}
+
+TEST(BadInput, SidWhoseNormalModesHaveNoFrequencyIsRefused) {
+  // Frequencies read as zeros were summarised as "validation FAILED" yet run (issue 40): a
+  // normal mode without a positive frequency is now a failed property, refused at load.
+  test::TempDir dir("bad");
+  ffr::formats::Sid sid = test::lumpy_body();
+  for (auto& t : sid.refmod.mode_type) t = ffr::formats::ModeType::Normal;
+  sid.refmod.frequency_hz.setZero();
+  test::write_sid_file(sid, dir / "f0.sid.h5");
+  const std::string msg = error_of(model(R"({"name": "b", "type": "flexible", "sid": "f0.sid.h5"})"), dir.path);
+  EXPECT_NE(msg.find("f0.sid.h5: /refmod/frequency_hz /refmod/mode_type: fails the SID validation: normal modes: frequency_hz > 0"),
+            std::string::npos)
+      << msg;
+}
+
+TEST(BadInput, LineOfMassOnASphericalJointIsRefusedNamingTheBody) {
+  // Points on a line without rotary inertia: no inertia about the line. On a spherical joint
+  // nothing holds that rotation and the first step ended in "state is not finite" (issue 40);
+  // on a hinge across the line the body runs (chain_test).
+  test::TempDir dir("bad");
+  ffr::formats::synthetic::ChainParams p;  // points along x
+  test::write_sid_file(ffr::formats::synthetic::spring_chain(p).sid, dir / "line.sid.h5");
+  const std::string body = R"({"name": "rod", "type": "flexible", "sid": "line.sid.h5"})";
+  const std::string msg = error_of(
+      model(body, R"("joints": [{"name": "ball", "type": "spherical", "body1": "ground", "body2": "rod", "node2": "A"}])"),
+      dir.path);
+  EXPECT_NE(msg.find("test-model.json: bodies[0]: body 'rod' (line.sid.h5)"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("[1, 0, 0] (body frame) has no inertia, and its joints (spherical 'ball') leave it free"), std::string::npos)
+      << msg;
+  // A hinge along the line leaves it free too; one across it holds it.
+  EXPECT_NE(error_of(model(body, R"("joints": [{"name": "h", "type": "revolute", "body1": "ground", "body2": "rod", "node2": "A", "axis": [1, 0, 0]}])"),
+                     dir.path)
+                .find("body 'rod'"),
+            std::string::npos);
+  EXPECT_EQ(error_of(model(body, R"("joints": [{"name": "h", "type": "revolute", "body1": "ground", "body2": "rod", "node2": "A", "axis": [0, 1, 0]}])"),
+                     dir.path),
+            "");
 }

@@ -1,6 +1,7 @@
 // The shape-integral inertia (invariants) against the co-rotational computation from the full
 // FE mass matrix (B^T M_FE B and -B^T M_FE 2 A_dot Phi y_dot over every node): two independent
-// evaluations of seed 000's eq. 5-6 that must agree at any state, and give the same motion.
+// evaluations of M = int B^T B dm ('Improved efficiency in FFR methods ... by means of shape
+// integrals preprocessing', eqs. 5-6; docs/references.md) that must agree at any state, and give the same motion.
 #include "support.hpp"
 
 #include "ffr/formats/synthetic.hpp"

@@ -61,4 +61,34 @@ formats::Sid simeon_rod_sid() {
   return s;
 }
 
+std::vector<Eigen::MatrixXd> simeon_rod_ke_m1() {
+  using D = SimeonData;
+  const double L = D::L2, EA = D::EE * D::BB * D::HH, pi = M_PI;
+  // Slopes of the four shapes (u', w') at xi = x / L.
+  auto slopes = [&](double xi) {
+    Eigen::Matrix<double, 2, 4> d = Eigen::Matrix<double, 2, 4>::Zero();
+    d(1, 0) = pi * std::cos(pi * xi) / L;
+    d(1, 1) = 2 * pi * std::cos(2 * pi * xi) / L;
+    d(0, 2) = (4 - 8 * xi) / L;
+    d(0, 3) = (4 * xi - 1) / L;
+    return d;
+  };
+  // Composite 5-point Gauss-Legendre over 40 cells: the integrands are smooth.
+  const double gx[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831, 0.9061798459386640};
+  const double gw[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665, 0.2369268850561891};
+  std::vector<Eigen::MatrixXd> M1(4, Eigen::MatrixXd::Zero(4, 4));
+  const int cells = 40;
+  for (int c = 0; c < cells; ++c)
+    for (int g = 0; g < 5; ++g) {
+      const double xi = (c + 0.5 + 0.5 * gx[g]) / cells, w = 0.5 * gw[g] * L / cells;
+      const auto d = slopes(xi);
+      for (int k = 0; k < 4; ++k) {
+        const double N = EA * d(0, k);
+        if (N == 0) continue;
+        M1[static_cast<std::size_t>(k)] += w * N * (d.transpose() * d);
+      }
+    }
+  return M1;
+}
+
 }  // namespace ffr::runtime::test

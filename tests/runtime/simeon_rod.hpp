@@ -3,7 +3,7 @@
 // B. Simeon, "Modelling a flexible slider crank mechanism by a mixed system of DAEs and PDEs",
 // Math. Modelling of Systems 2 (1996) 1-18; IVP Test Set, F. Mazzia, C. Magherini, F. Iavernaro,
 // release 2.3, crank.f) as a SID: the same shape functions and matrices, turned into the
-// primitive integrals of design/invariants.md section 2.
+// primitive integrals of formats/SPEC.md section 8.
 //
 // Rod along the body x axis from node A (x = 0, the crank pin) to node B (x = L2). Modes:
 //   q1, q2  lateral (y): sin(pi xi), sin(2 pi xi)        (xi = x / L2)
@@ -12,6 +12,8 @@
 // mass block FACM [8 1; 1 2], which is what the published reference solution integrates).
 
 #include "ffr/formats/sid.hpp"
+
+#include <vector>
 
 namespace ffr::runtime::test {
 
@@ -22,5 +24,11 @@ struct SimeonData {
 };
 
 formats::Sid simeon_rod_sid();
+
+/// The rod's /sid/Ke/M1 from the same shape functions (formats/SPEC.md): the geometric stiffness
+/// of each mode's stress, M1[k](i,j) = int N_k (u_i' u_j' + w_i' w_j') dx with N_k = EA u_k' the
+/// axial force of mode k (bending stresses have no resultant in a beam), so the strain energy
+/// gains the cubic terms of the von Karman beam, int EA u' (u'^2 + w'^2) / 2 dx.
+std::vector<Eigen::MatrixXd> simeon_rod_ke_m1();
 
 }  // namespace ffr::runtime::test

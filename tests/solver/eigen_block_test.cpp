@@ -152,3 +152,18 @@ TEST(EigenBlock, VectorsThatMissTheChecksGetOneSubspaceStep) {
   ASSERT_EQ(r.lambda.size(), 12);
   for (int k = 0; k < 12; ++k) EXPECT_NEAR(r.lambda[k], ref[k], 1e-10 * ref[k]) << k;
 }
+
+// Regression: more modes than one block holds (5 modes, blocks of 4). The first Ritz
+// step has only 4 Ritz values; the convergence test once read theta[4] past their end (a
+// heap-buffer-overflow under AddressSanitizer, e.g. for a clamped 131-node TET4 part with 5
+// modes). Reference: pencils.hpp's closed-form box eigenvalues.
+TEST(EigenBlock, MoreModesThanABlockHolds) {
+  for (const int nev : {5, 6, 7}) {
+    BoxCase c(nev);
+    EigenSolver s(c.o);
+    const EigenResult r = s.compute(c.p.K, c.p.M);
+    EXPECT_EQ(s.info().backend_used, EigenBackend::Block) << nev;
+    ASSERT_EQ(r.lambda.size(), nev);
+    for (int k = 0; k < nev; ++k) EXPECT_NEAR(r.lambda[k], c.ref[k], 1e-10 * c.ref[k]) << nev << " " << k;
+  }
+}

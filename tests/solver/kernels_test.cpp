@@ -2,6 +2,7 @@
 // references: Eigen's dense products for the tall-skinny products of the block Gram-Schmidt,
 // and the Z-order by hand for the node numbering.
 #include "mesh/node_order.hpp"
+#include "solver/eigen_backends.hpp"
 #include "solver/tall_skinny.hpp"
 #include "ffr/preproc/threads.hpp"
 
@@ -100,4 +101,16 @@ TEST(NodeOrder, ZOrderOfACubeTiesByIndexAndAPermutationAlways) {
   EXPECT_LT(pos(1), pos(4));  // both at the origin
   EXPECT_LT(pos(0), pos(2));  // both at (1, 1, 1)
   EXPECT_TRUE(ffr::preproc::detail::spatial_order(nullptr, 0).empty());
+}
+
+// The block Lanczos convergence count looks only at the Ritz pairs the basis holds: with 2
+// Ritz values and 5 modes wanted it counts at most 2 (it once read theta past its end).
+TEST(BlockLanczos, ConvergenceCountStaysInsideTheRitzValues) {
+  Eigen::VectorXd theta(2);
+  theta << 3.0, 2.0;
+  Eigen::MatrixXd coupling = Eigen::MatrixXd::Zero(4, 2);
+  EXPECT_EQ(ffr::preproc::detail::count_converged_ritz_pairs(theta, coupling, 5, 1e-12), 2);
+  coupling(0, 1) = 1.0;  // pair 2's residual 1 > 1e-12 * 2
+  EXPECT_EQ(ffr::preproc::detail::count_converged_ritz_pairs(theta, coupling, 5, 1e-12), 1);
+  EXPECT_EQ(ffr::preproc::detail::count_converged_ritz_pairs(theta, coupling, 1, 1e-12), 1);
 }

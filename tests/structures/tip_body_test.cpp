@@ -1,5 +1,5 @@
 // A free-free beam (2-node Timoshenko beam elements from a gmsh line mesh) carrying a rigid
-// body at its tip, with an offset centre of mass and its own inertia: seed 002's case.
+// body at its tip, with an offset centre of mass and its own inertia: the case of Wagner & Pfeiffer, 'On the Dynamics of Washing Machines'.
 //  - m, first moment and inertia about O equal the beam's plus the body's by the
 //    parallel-axis theorem, exactly;
 //  - the invariants are consistent with the mass matrix the modes were computed with: free-free

@@ -23,7 +23,9 @@ An entry differs when |a - b| > atol + rtol * scale, scale = the dataset's large
   --no-align     compare the modes as they are
   --help, --version
 
-Exit status: 0 equivalent, 1 different, 2 bad input (named on stderr).
+Exit status: 0 equivalent, 1 different, 2 bad input (named on stderr), including a damaged
+file (values that differ from its content checksums). A file of format_version 1 (no content
+checksums) is compared with a warning on stderr.
 )",
     "ffr-diff A.h5 B.h5 [--rtol R] [--atol A]"};
 
@@ -38,8 +40,10 @@ int run(ffr::cli::Args& args) {
   opt.group_rtol = std::max(opt.group_rtol, opt.rtol);
   const auto files = args.positionals();
   if (files.size() != 2) throw UsageError("expected two files A and B");
-  const auto a = ffr::formats::read_sid(files[0]);
-  const auto b = ffr::formats::read_sid(files[1]);
+  std::vector<std::string> warnings;
+  const auto a = ffr::formats::read_sid(files[0], &warnings);
+  const auto b = ffr::formats::read_sid(files[1], &warnings);
+  for (const auto& w : warnings) std::fprintf(stderr, "ffr-diff: warning: %s\n", w.c_str());
   const auto rep = ffr::formats::diff(a, b, opt);
 
   std::printf("%s vs %s: %s (%d datasets compared, %d differ; rtol %g, atol %g)\n", files[0].c_str(), files[1].c_str(),

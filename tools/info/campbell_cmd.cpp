@@ -34,7 +34,7 @@ int run_campbell(const std::filesystem::path& file, const std::string& axis_name
 
   if (json) {
     const nlohmann::ordered_json out = {{"speeds_rad_s", c.speeds_rad_s}, {"frequency_hz", c.frequency_hz}};
-    std::cout << out.dump() << "\n";
+    std::cout << out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     return 0;
   }
   std::cout << file.string() << ": frequencies [Hz] spinning about " << axis_name << " through O (rotating frame)\n";

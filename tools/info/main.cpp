@@ -24,8 +24,12 @@ an ffr-sim results file (time span, statistics, output channels with their final
                           channels (all components, or component i from 0) into --png OUT.png
   --help, --version
 
-Exit status: 0 ok, 2 bad input (named on stderr), 1 other failure. A readable SID that
-fails some identity checks is summarised with the failures listed (status 0).
+Exit status: 0 ok, 2 bad input (named on stderr), 1 other failure. Bad input includes a
+damaged file (a content checksum that does not match) and a readable SID that fails any
+validation check: its summary is printed with the failures listed, one line on stderr names
+the file and the first failed check, and the status is 2. A file of format_version 1 (no
+content checksums) is read with a warning on stderr. In --json output, bytes of a string that
+are not valid UTF-8 are replaced by U+FFFD.
 )",
     "ffr-info FILE.h5 [--json] | ffr-info FILE.sid.h5 --campbell x|y|z --speeds 0,50,100 [--json] [--png OUT.png] | ffr-info RESULTS.h5 --plot CH1,CH2 --png OUT.png"};
 
@@ -49,19 +53,30 @@ int run(ffr::cli::Args& a) {
   }
 
   nlohmann::json summary;
+  std::vector<std::string> warnings;
   {
     const ffr::formats::h5::Reader r(files[0]);
     if (ffr::formats::is_results_file(r)) {
-      summary = ffr::info::summarize_results(ffr::formats::read_results(files[0]), files[0]);
+      summary = ffr::info::summarize_results(ffr::formats::read_results(files[0], &warnings), files[0]);
     } else {
       const auto version = r.has_attr("/", "format_version") ? r.attr_int("/", "format_version") : 0;
-      summary = ffr::info::summarize_sid(ffr::formats::read_sid(files[0]), files[0], version);
+      summary = ffr::info::summarize_sid(ffr::formats::read_sid(files[0], &warnings), files[0], version);
     }
   }
+  summary["warnings"] = warnings;
+  for (const auto& w : warnings) std::cerr << "ffr-info: warning: " << w << "\n";
   if (json)
-    std::cout << summary.dump(2) << "\n";
+    std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   else
     std::cout << ffr::info::render_text(summary);
+  // A SID that fails validation is bad input (documented above), after its full summary.
+  if (summary.contains("validation") && !summary["validation"]["ok"].get<bool>()) {
+    const auto& first = summary["validation"]["failed"][0];
+    std::cerr << "ffr-info: " << files[0] << ": fails " << summary["validation"]["failures"].get<int>()
+              << " validation check(s), first " << first["name"].get<std::string>() << " ("
+              << first["where"].get<std::string>() << ")\n";
+    return 2;
+  }
   return 0;
 }
 

@@ -49,7 +49,7 @@ json summarize_sid(const formats::Sid& s, const std::string& file, std::int64_t 
   for (const auto& i : s.interfaces)
     interfaces.push_back({{"name", i.name}, {"node", s.nodes[static_cast<std::size_t>(i.node)].name},
                           {"coupling", i.coupling}, {"group", i.group}});
-  json stiff = {{"present", s.stiffening.has_value()}};
+  json stiff = {{"present", s.stiffening.has_value()}, {"Ke_M1", !s.KeM1.empty()}};
   if (s.stiffening) {
     json names = json::array();
     for (const auto& i : s.stiffening->interfaces) names.push_back(i.name);

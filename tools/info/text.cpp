@@ -67,6 +67,7 @@ void sid_text(std::ostringstream& o, const json& s) {
     }
     st += ")";
   }
+  if (s["stiffening"].value("Ke_M1", false)) st += ", second-order stiffness Ke/M1";
   line(o, "stiffening", st);
   line(o, "visual", s["visual"].is_null() ? "no" : num(s["visual"]["vertices"]) + " vertices, " + num(s["visual"]["triangles"]) + " triangles");
   o << "  provenance\n";

@@ -24,7 +24,7 @@ void add_section_inertia(ffr::formats::Sid& sid, double b, double h) {
   const double m = sid.refmod.mass;
   sid.integrals.rrdm(1, 1) += m * h * h / 12;
   sid.integrals.rrdm(2, 2) += m * b * b / 12;
-  // The member built from rrdm follows (invariants.md: J.M0 = tr(rrdm) I - rrdm + rotary.I), so
+  // The member built from rrdm follows (formats/SPEC.md section 8: J.M0 = tr(rrdm) I - rrdm + rotary.I), so
   // the SID stays consistent (the runtime reads rrdm; the SID's validation checks both).
   const auto& rr = sid.integrals.rrdm;
   sid.J.M0 = rr.trace() * Eigen::Matrix3d::Identity() - rr + sid.rotary.I;

@@ -58,6 +58,7 @@ std::vector<Flat> flatten(const Sid& s, const std::vector<std::string>& node_ord
   F.add_stack("/sid/Cr/M1", s.Cr.M1, {nq, nq, 3}, q2);
   F.add("/sid/Me/M0", s.Me, {nq, nq}, q2);
   F.add("/sid/Ke/M0", s.Ke, {nq, nq}, 0);
+  if (!s.KeM1.empty()) F.add_stack("/sid/Ke/M1", s.KeM1, {nq, nq, nq}, 0);
   F.add("/sid/De/M0", s.De, {nq, nq}, 0);
   F.add_stack("/sid/Gr/M0", s.Gr, {nq, 3, 3}, r1);
   F.add_stack("/sid/Ge/M0", s.Ge, {nq, nq, 3}, q2);
@@ -126,6 +127,7 @@ void structural(const Sid& a, const Sid& b, std::vector<std::string>& out) {
   for (const auto& [name, v] : ia) differ("/interfaces '" + name + "'", v, ib.count(name) ? ib[name] : "(absent)");
   for (const auto& [name, v] : ib)
     if (!ia.count(name)) differ("/interfaces '" + name + "'", "(absent)", v);
+  differ("/sid/Ke/M1", a.KeM1.empty() ? "absent" : "present", b.KeM1.empty() ? "absent" : "present");
   differ("/stiffening", a.stiffening ? "present" : "absent", b.stiffening ? "present" : "absent");
   if (a.stiffening && b.stiffening) {
     std::string sa, sb;

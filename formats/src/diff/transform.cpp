@@ -65,6 +65,11 @@ Sid transform_modes(const Sid& s, const MatrixXd& T) {
   o.Cr.M1 = second_order_stack(s.Cr.M1, T);
   o.Ge = second_order_stack(s.Ge, T);
   o.Oe.M1 = second_order_stack(s.Oe.M1, T);
+  // Three mode indices: KeM1'[k] = sum_j T(j,k) T^T KeM1[j] T.
+  if (!s.KeM1.empty()) {
+    o.KeM1 = first_order_stack(s.KeM1, T);
+    for (auto& m : o.KeM1) m = bilinear(m, T);
+  }
   if (s.stiffening) {
     auto& st = *o.stiffening;
     st.K0t = second_order_stack(s.stiffening->K0t, T);

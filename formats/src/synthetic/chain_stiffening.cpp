@@ -105,6 +105,12 @@ Sid add_chain_stiffening(Sid sid, const ChainModel& model) {
     st.interfaces.push_back(std::move(si));
   }
   sid.stiffening = std::move(st);
+  // Ke.M1[k] = Phi^T K_G(N(Phi_k)) Phi: the segments' forces from mode k's own stretch.
+  sid.KeM1.assign(static_cast<std::size_t>(nq), MatrixXd::Zero(nq, nq));
+  for (Eigen::Index k = 0; k < nq; ++k) {
+    const MatrixXd P = Phi.transpose() * model.geometric_stiffness(model.axial_forces(Phi.col(k))) * Phi;
+    sid.KeM1[static_cast<std::size_t>(k)] = 0.5 * (P + P.transpose());
+  }
   sid.provenance.mass_model["stiffening"] = "lumped point masses; string geometric stiffness of the segments";
   return sid;
 }

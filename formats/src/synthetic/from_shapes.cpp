@@ -1,5 +1,5 @@
 // from_shapes(): every SID member of a point-mass body by direct sums over the points.
-// Each formula is the definition in invariants.md sections 2-3 with the integral over the body
+// Each formula is the definition in SPEC.md sections 6-8 with the integral over the body
 // replaced by a sum over points; see formats/SPEC.md for the sign conventions.
 #include "ffr/formats/synthetic.hpp"
 

@@ -114,6 +114,7 @@ class Context {
     c.name = name;
     c.where = where;
     c.pass = false;
+    c.kind = Check::Kind::Property;  // members that cannot be read together
     c.abs = c.rel = 1;
     c.note = why;
     report_.checks.push_back(c);

@@ -1,4 +1,4 @@
-// validate: the cross-member identities of invariants.md section 5 (SPEC.md 9).
+// validate: the cross-member identities of SPEC.md section 9.
 #include "context.hpp"
 
 namespace ffr::formats::validation {

@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <cstdio>
 #include <set>
 
 namespace ffr::formats::validation {
@@ -30,14 +31,16 @@ void definite(Context& cx, const std::string& name, const std::string& where, co
   const double lmin = e.minCoeff();
   const double abs = std::isnan(lmin) ? INFINITY : std::max(0.0, -lmin);
   const bool pass = strict ? lmin > 0 : abs <= cx.opt.identity_rtol * scale;
-  cx.record_value(name, where, abs, scale, pass, "smallest eigenvalue " + std::to_string(lmin), Check::Kind::Property);
+  char note[64];
+  std::snprintf(note, sizeof note, "smallest eigenvalue %.6g", lmin);
+  cx.record_value(name, where, abs, scale, pass, note, Check::Kind::Property);
 }
 
 // Principal moments of a physical inertia tensor: I3 <= I1 + I2.
 void triangle(Context& cx, const std::string& name, const std::string& where, const Eigen::Matrix3d& J, double scale) {
   const Eigen::VectorXd e = eigenvalues(J);
   const double abs = std::isnan(e[0]) ? INFINITY : std::max(0.0, e[2] - e[0] - e[1]);
-  cx.record_value(name, where, abs, scale, abs <= cx.opt.identity_rtol * scale);
+  cx.record_value(name, where, abs, scale, abs <= cx.opt.identity_rtol * scale, {}, Check::Kind::Property);
 }
 
 }  // namespace
@@ -81,7 +84,18 @@ void check_properties(Context& cx) {
     Worst w;
     for (Eigen::Index k = 0; k < s.nq(); ++k)
       if (!(s.refmod.frequency_hz[k] >= 0)) w.add(std::isfinite(s.refmod.frequency_hz[k]) ? s.refmod.frequency_hz[k] : NAN, index({k}));
-    cx.record_value("frequency_hz >= 0", "/refmod/frequency_hz", w.abs, 1.0, w.abs == 0, w.at.empty() ? "" : "at " + w.at);
+    cx.record_value("frequency_hz >= 0", "/refmod/frequency_hz", w.abs, 1.0, w.abs == 0, w.at.empty() ? "" : "at " + w.at,
+                    Check::Kind::Property);
+  }
+  {
+    // A normal mode is an elastic eigenmode (rigid-body modes are never stored): its
+    // frequency is positive. Zeros here are what a dataset read back as fill values gives.
+    std::string at;
+    for (Eigen::Index k = 0; k < s.nq() && at.empty(); ++k)
+      if (s.refmod.mode_type[static_cast<std::size_t>(k)] == ModeType::Normal && !(s.refmod.frequency_hz[k] > 0))
+        at = "at " + index({k});
+    cx.record_value("normal modes: frequency_hz > 0", "/refmod/frequency_hz /refmod/mode_type", at.empty() ? 0 : 1, 1.0,
+                    at.empty(), at, Check::Kind::Property);
   }
 
   // Node and interface tables.
@@ -90,19 +104,35 @@ void check_properties(Context& cx) {
     std::string dup;
     for (const auto& n : s.nodes)
       if (!names.insert(n.name).second || n.name.empty()) dup = n.name.empty() ? "(empty name)" : n.name;
-    cx.record_value("node names unique and non-empty", "/nodes/name", dup.empty() ? 0 : 1, 1, dup.empty(), dup);
+    cx.record_value("node names unique and non-empty", "/nodes/name", dup.empty() ? 0 : 1, 1, dup.empty(), dup,
+                    Check::Kind::Property);
     std::set<std::string> inames;
     dup.clear();
     for (const auto& i : s.interfaces)
       if (!inames.insert(i.name).second || i.name.empty()) dup = i.name.empty() ? "(empty name)" : i.name;
-    cx.record_value("interface names unique and non-empty", "/interfaces/name", dup.empty() ? 0 : 1, 1, dup.empty(), dup);
+    cx.record_value("interface names unique and non-empty", "/interfaces/name", dup.empty() ? 0 : 1, 1, dup.empty(), dup,
+                    Check::Kind::Property);
     Worst w;
     for (std::size_t p = 0; p < s.nodes.size(); ++p) {
       const Eigen::Matrix3d& A = s.nodes[p].AP0;
       w.add_matrix(A.transpose() * A - Eigen::Matrix3d::Identity(), s.nodes[p].name + "[");
       w.add(A.determinant() - 1, s.nodes[p].name + " det");
     }
-    cx.record("AP0 are rotation matrices", "/nodes/AP0", w, 1.0, cx.opt.identity_rtol);
+    cx.record("AP0 are rotation matrices", "/nodes/AP0", w, 1.0, cx.opt.identity_rtol, Check::Kind::Property);
+  }
+
+  // Ke.M1[k] is a projected geometric stiffness: symmetric in (i,j) like K_G, but not in k.
+  if (s.KeM1.empty()) {
+    cx.skip("Ke.M1 symmetric in (i,j)", "/sid/Ke/M1", "no /sid/Ke/M1 in this file");
+  } else {
+    Worst w;
+    double big = 0;
+    for (std::size_t k = 0; k < s.KeM1.size(); ++k) {
+      w.add_matrix(s.KeM1[k] - s.KeM1[k].transpose(), open_index({Eigen::Index(k)}));
+      if (s.KeM1[k].size()) big = std::max(big, s.KeM1[k].cwiseAbs().maxCoeff());
+    }
+    cx.record("Ke.M1 symmetric in (i,j)", "/sid/Ke/M1", w, big > 0 && std::isfinite(big) ? big : 1.0,
+              cx.opt.identity_rtol, Check::Kind::Property);
   }
 
   if (!s.stiffening) {

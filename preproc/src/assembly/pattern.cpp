@@ -1,6 +1,5 @@
 #include "pattern.hpp"
 
-#include "../populate.hpp"
 #include "../run_parts.hpp"
 
 #include <algorithm>
@@ -137,19 +136,6 @@ void Pattern::make_matrix(SparseMatrix& A, unsigned threads, double value) const
             [&](unsigned, Index e0, Index e1) {
     Index* inner = A.innerIndexPtr();
     double* val = A.valuePtr();
-    // The part's columns faulted in by one call (populate.hpp): from its first entity's to its
-    // last one's, those with DOFs.
-    Index c_first = -1, c_end = -1;
-    for (Index e = e0; e < e1; ++e)
-      if (ent_ndof[static_cast<std::size_t>(e)] > 0) {
-        if (c_first < 0) c_first = ent_dof0[static_cast<std::size_t>(e)];
-        c_end = ent_dof0[static_cast<std::size_t>(e)] + ent_ndof[static_cast<std::size_t>(e)];
-      }
-    if (c_first >= 0 && c_end > c_first) {
-      const Index b = col_ptr[static_cast<std::size_t>(c_first)], e = col_ptr[static_cast<std::size_t>(c_end)];
-      populate_for_writing(inner + b, static_cast<std::size_t>(e - b) * sizeof(Index));
-      populate_for_writing(val + b, static_cast<std::size_t>(e - b) * sizeof(double));
-    }
     for (Index e = e0; e < e1; ++e) {
       const int nd = ent_ndof[static_cast<std::size_t>(e)];
       if (nd == 0) continue;

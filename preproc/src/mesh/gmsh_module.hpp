@@ -4,8 +4,8 @@
 // gmsh (msh41_reader.hpp), OpenCASCADE's mass properties.
 //
 // Why: gmsh 4.8 brings OpenCASCADE and some 130 shared libraries, and linking them at the start
-// of every ffr-reduce run took 0.12-0.14 s (a program linked to gmsh alone, doing nothing, on the
-// Zen 5 VM of tools/bench/reduce), also for a .msh the own reader reads, for --help, and for
+// of every ffr-reduce run took 0.12-0.14 s (measured on a program linked to gmsh alone, doing
+// nothing), also for a .msh the own reader reads, for --help, and for
 // a part file refused at once. The module and the program are built from one source tree with
 // one compiler, so the interface is plain C++ behind one C symbol.
 #include "ffr/preproc/mesh/gmsh_import.hpp"

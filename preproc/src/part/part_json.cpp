@@ -152,7 +152,7 @@ InterfaceSpec read_interface(const JsonNode& n) {
 }
 
 ReductionSpec read_reduction(const JsonNode& n) {
-  n.allow_only({"method", "interface", "interfaces", "frame", "modes", "max_frequency_hz", "orthonormalize", "backend"});
+  n.allow_only({"method", "interface", "interfaces", "frame", "modes", "max_frequency_hz", "orthonormalize", "backend", "factorization"});
   ReductionSpec r;
   const std::string m = n.at("method").string();
   if (m == "free") r.method = ReductionSpec::Method::Free;
@@ -171,6 +171,9 @@ ReductionSpec read_reduction(const JsonNode& n) {
   r.backend = n.string_or("backend", "block");
   if (r.backend != "spectra" && r.backend != "arpack" && r.backend != "block")
     n.at("backend").fail("backend must be \"block\", \"spectra\" or \"arpack\"");
+  r.factorization = n.string_or("factorization", "supernodal");
+  if (r.factorization != "supernodal" && r.factorization != "cholmod")
+    n.at("factorization").fail("factorization must be \"supernodal\" or \"cholmod\"");
   if (r.method == ReductionSpec::Method::Clamped) r.interface = n.at("interface").string();
   if (r.method == ReductionSpec::Method::CraigBampton) {
     for (const auto& i : n.at("interfaces").items()) r.interfaces.push_back(i.string());

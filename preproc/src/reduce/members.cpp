@@ -1,4 +1,4 @@
-// SID members from the primitive integrals: invariants.md section 3, with
+// SID members from the primitive integrals: formats/SPEC.md sections 6 and 8, with
 //   R_k(a,b)   = rPdm[a](b,k)  = int c_a Phi_{k,b} dm
 //   P[a][b](i,k) = PPdm[a][b](i,k) = int Phi_{i,a} Phi_{k,b} dm.
 #include "ffr/preproc/reduce/invariants.hpp"

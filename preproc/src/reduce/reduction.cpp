@@ -157,201 +157,256 @@ void use_node_mass(EigenOptions& o, const FeModel& model, const Assembled& fe, c
     o.mass_product = [product](const Eigen::MatrixXd& X, Eigen::MatrixXd& Y) { product->apply(X, Y); };
 }
 
-// fe_owned: the same object as fe, when its K and M may be freed after use.
-ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled* fe_owned, const ReductionSpec& spec,
-                            const ReductionLog& log, EarlyAnalysis* early) {
-  const PartSpec& part = *model.part;
-  auto say = [&](const std::string& s) { if (log.message) log.message(s); };
-
+// A body in several pieces has more rigid-body modes than the six a free reduction removes,
+// and held at one interface its other pieces are mechanisms: refused naming a node of each.
+void require_one_piece(const FeModel& model) {
   const auto pieces = connected_pieces(model);
-  if (pieces.size() > 1) {
-    std::ostringstream o;
-    o << "the body is not one connected piece: " << pieces.size() << " pieces (containing nodes";
-    for (std::size_t i = 0; i < std::min<std::size_t>(pieces.size(), 5); ++i) o << ' ' << model.mesh->node_tag(pieces[i]);
-    o << (pieces.size() > 5 ? " ...)" : ")");
-    throw FormatError(part.file.string(), "geometry", o.str());
-  }
+  if (pieces.size() <= 1) return;
+  std::ostringstream o;
+  o << "the body is not one connected piece: " << pieces.size() << " pieces (containing nodes";
+  for (std::size_t i = 0; i < std::min<std::size_t>(pieces.size(), 5); ++i) o << ' ' << model.mesh->node_tag(pieces[i]);
+  o << (pieces.size() > 5 ? " ...)" : ")");
+  throw FormatError(model.part->file.string(), "geometry", o.str());
+}
 
-  auto clock = std::chrono::steady_clock::now();
-  const DofTransform t = build_transform(model, detail::states_for(model, spec));
-  // The eigen-solves need only the upper triangles (half the memory, and the products with
-  // them read half the bytes); Craig-Bampton partitions K into blocks and keeps full storage.
+// K and M on the independent DOFs (T^T K T, T^T M T). The eigen-solves need only the upper
+// triangles (half the memory, and the products with them read half the bytes); Craig-Bampton
+// partitions K into blocks and keeps full storage. Where M has K's structure (one pattern and
+// one transform) only M's values are kept, read on K's index arrays: M's own indices are half
+// of it (31 MB of the 100k plate of tools/bench/reduce at both of its memory peaks).
+struct ConstrainedPencil {
+  SparseMatrix K;
+  SparseMatrix M;                 ///< empty when M lives on K's structure (m_values)
+  std::vector<double> m_values;   ///< M's values on K's structure, when shared
+  bool shared = false;
+  SymmetricStorage storage = SymmetricStorage::UpperOnly;
+
+  /// M as the solvers read it; `on_K` must outlive the result (it is the view of m_values).
+  SparseRef mass(const Eigen::Map<const SparseMatrix>& on_K) const { return shared ? SparseRef(on_K) : SparseRef(M); }
+  Eigen::Map<const SparseMatrix> mass_on_K() const {
+    return {K.rows(), K.cols(), K.nonZeros(), K.outerIndexPtr(), K.innerIndexPtr(), m_values.data()};
+  }
+};
+
+// fe_owned: the same object as fe, when its K and M may be freed once constrained.
+ConstrainedPencil constrain_pencil(const FeModel& model, const Assembled& fe, Assembled* fe_owned,
+                                   const ReductionSpec& spec, const DofTransform& t) {
+  ConstrainedPencil p;
   const bool cb = spec.method == ReductionSpec::Method::CraigBampton;
-  const SymmetricStorage storage = cb ? SymmetricStorage::Full : SymmetricStorage::UpperOnly;
-  SparseMatrix K = detail::constrained(t, fe.K, cb);
+  p.storage = cb ? SymmetricStorage::Full : SymmetricStorage::UpperOnly;
+  p.K = detail::constrained(t, fe.K, cb);
   if (fe_owned) detail::release(fe_owned->K);
   // Without an assembled M (AssemblyOptions::node_mass_only) its values on K's structure come
   // from Ms; the caller asks for that only where it can be done.
   const bool assembled_M = fe.M.rows() > 0;
-  std::vector<double> m_values;
   if (!assembled_M) {
-    m_values = cb ? std::vector<double>{} : detail::node_mass_values(model, fe.Ms, K, detail::factorized_rows(model, t, spec));
-    if (m_values.size() != static_cast<std::size_t>(K.nonZeros()))
+    if (!cb) p.m_values = detail::node_mass_values(model, fe.Ms, p.K, detail::factorized_rows(model, t, spec));
+    if (p.m_values.size() != static_cast<std::size_t>(p.K.nonZeros()))
       throw std::logic_error("reduction: M was not assembled, and this reduction cannot form it from the node mass");
+    p.shared = true;
+    return p;
   }
-  SparseMatrix M = assembled_M ? detail::constrained(t, fe.M, cb) : SparseMatrix();
+  p.M = detail::constrained(t, fe.M, cb);
   if (fe_owned) detail::release(fe_owned->M);
-  // The eigen-solves read M on K's index arrays when the two have one structure (they come
-  // from one pattern and one transform): M's own indices, half of it, are freed, 31 MB of the
-  // 100k plate of tools/bench/reduce at both of its memory peaks (factorization, Lanczos).
-  const bool shared = !assembled_M || (!cb && detail::same_structure(K, M));
-  if (shared && assembled_M) {
-    m_values.assign(M.valuePtr(), M.valuePtr() + M.nonZeros());
-    detail::release(M);
+  p.shared = !cb && detail::same_structure(p.K, p.M);
+  if (p.shared) {
+    p.m_values.assign(p.M.valuePtr(), p.M.valuePtr() + p.M.nonZeros());
+    detail::release(p.M);
   }
-  const Eigen::Map<const SparseMatrix> M_on_K(K.rows(), K.cols(), K.nonZeros(), K.outerIndexPtr(), K.innerIndexPtr(),
-                                              m_values.data());
-  const SparseRef Mr = shared ? SparseRef(M_on_K) : SparseRef(M);
+  return p;
+}
 
-  // Where densities are 0 (point masses on a massless structure), M is singular, and the
-  // eigen-solvers fail on it (the block Lanczos, Spectra and ARPACK alike: garbage or zero
-  // eigenvalues and a failed residual check, exit 1, naming no input).
+// Where densities are 0 (point masses on a massless structure), M is singular, and the
+// eigen-solvers fail on it (the block Lanczos, Spectra and ARPACK alike: garbage or zero
+// eigenvalues and a failed residual check, exit 1, naming no input): refused as bad input.
+void require_mass_at_every_dof(const SparseRef& M, const PartSpec& part) {
+  Index massless = 0;
+  const auto* outer = M.outerIndexPtr();
+  const auto* inner = M.innerIndexPtr();
+  for (Index j = 0; j < M.outerSize(); ++j) {
+    const auto* d = std::lower_bound(inner + outer[j], inner + outer[j + 1], j);  // rows are sorted
+    massless += d != inner + outer[j + 1] && *d == j && M.valuePtr()[d - inner] != 0.0 ? 0 : 1;
+  }
+  if (massless > 0)
+    throw FormatError(part.file.string(), "materials",
+                      std::to_string(massless) + " of " + std::to_string(M.cols()) +
+                          " degrees of freedom carry no mass (a density of 0): the eigen-solve needs mass at every "
+                          "one; give each material a density (a small one for a nearly massless part)");
+}
+
+// The shifted stiffness C = K - sigma M (upper triangle), a matrix of its own: K stays as
+// assembled for the eigen-solver's products and checks. On M's shared structure only the
+// values are combined.
+SparseMatrix shifted_stiffness(const ConstrainedPencil& p, const SparseRef& M, double sigma) {
+  if (!p.shared) return shifted_upper(p.K, M, sigma);
+  SparseMatrix C = p.K;
+  detail::add_scaled_values(C, M, -sigma);
+  return C;
+}
+
+// Free or clamped: the lowest eigenpairs (lambda, x) of K x = lambda M x above the shift sigma
+// (below every wanted eigenvalue, so that K - sigma M is definite), with the rigid-body modes
+// deflated for a free body. The modes are the basis; Ke = X^T K X, Me = X^T M X.
+void eigenmode_basis(const FeModel& model, const Assembled& fe, const ConstrainedPencil& p, const DofTransform& t,
+                     const ReductionSpec& spec, const ReductionLog& log, EarlyAnalysis* early,
+                     std::chrono::steady_clock::time_point& clock, ReductionResult& r, Eigen::MatrixXd& basis,
+                     nlohmann::json& params) {
+  const PartSpec& part = *model.part;
+  const auto M_on_K = p.mass_on_K();
+  const SparseRef M = p.mass(M_on_K);
+  const bool free = spec.method == ReductionSpec::Method::Free;
+  // Free: a negative shift keeps K - sigma M definite while the rigid-body modes are deflated.
+  const double sigma = free ? -lambda_of_hz(1.0, part) : -lambda_of_hz(0.1, part);
+  EigenOptions o = eigen_options(spec, part, sigma);
+  if (free) o.deflation = rigid_body_modes(model, t);
+  use_node_mass(o, model, fe, t, spec);
+  if (log.message)
+    log.message(std::string(free ? "free-free" : "clamped") + " eigen-solve: " + std::to_string(t.num_ind()) + " DOF, " +
+                (spec.max_frequency_hz ? "up to " + std::to_string(*spec.max_frequency_hz) + " Hz"
+                                       : std::to_string(o.nev) + " modes") +
+                ", " + spec.backend + ", " + spec.factorization + " factorization");
+  const double t_constraints = lap(clock);
+  SparseMatrix C = shifted_stiffness(p, M, sigma);
+  // Analysed first and the factor's size reported, so a factor that will not fit is refused
+  // (by factorize, with the numbers) after the user has seen what it would need.
+  CholmodFactor factor = analysed_factor(C, model, t, spec, early, log);
+  const double t_analyze = lap(clock);
+  double t_factorize = 0;
+  EigenSolver solver(o);
+  attach_progress(solver, log);
+  // What the assembly, the constraints and the analysis freed (METIS's and CHOLMOD's work
+  // arrays at one thread, where the analysis runs here) would otherwise stay resident under
+  // the factorization: 58 MB on the 100k plate.
+  release_free_heap();
+  try {
+    factor.factorize_shifted_upper(C, sigma);
+    detail::release(C);  // the factor holds what the solves need
+    // The factorization's workspace, freed now, sits in the middle of the heap: given back
+    // before the Lanczos vectors are allocated on top of it.
+    release_free_heap();
+    t_factorize = lap(clock);
+    solver.compute(p.K, M, factor);
+  } catch (const NotPositiveDefiniteError& e) {
+    mechanism(model, "the stiffness is singular at " + node_text(model, t, e.column));
+  }
+  if (log.message) log.message(timing_line(t_constraints, t_analyze, t_factorize, &solver.info()));
+  record(r, solver);
+  r.factor = factor.info().stats;
+  check_no_zero_modes(model, solver.result().lambda, part, free ? "beyond the six rigid-body modes" : "with the interface held");
+  basis = solver.result().X;
+  // Ke and Me of exactly these vectors, from the eigen-solver's checks.
+  r.Ke = solver.result().XtKX;
+  r.Me = solver.result().XtMX;
+  r.lambda = solver.result().lambda;
+  r.types.assign(static_cast<std::size_t>(basis.cols()), formats::ModeType::Normal);
+  r.reference = free ? "free" : "clamped:" + spec.interface;
+  params = {{"method", free ? "free" : "clamped"}, {"shift", sigma}, {"backend", r.backend}};
+  if (!free) params["interface"] = spec.interface;
+}
+
+// Craig-Bampton: with the frame interface held, the boundary b = the six DOFs of every other
+// interface node, the interior i the rest. The basis is [I 0; Psi_i Phi_i]: the static
+// constraint modes Psi_i = -K_ii^{-1} K_ib (the interior's response to a unit motion of each
+// boundary DOF) and the fixed-interface modes Phi_i of (K_ii, M_ii), both with one factor of
+// K_ii. A constraint mode's frequency is its Rayleigh quotient.
+void craig_bampton_basis(const FeModel& model, const Assembled& fe, const ConstrainedPencil& p, const DofTransform& t,
+                         const ReductionSpec& spec, const ReductionLog& log, EarlyAnalysis* early,
+                         std::chrono::steady_clock::time_point& clock, ReductionResult& r, Eigen::MatrixXd& basis,
+                         nlohmann::json& params) {
+  const PartSpec& part = *model.part;
+  const SparseMatrix& K = p.K;
+  const SparseMatrix& M = p.M;
+  const std::vector<Index> boundary = detail::boundary_dofs(model, t, spec);
+  const auto split = detail::split(K, M, boundary);
+  if (log.message)
+    log.message("craig-bampton: " + std::to_string(boundary.size()) + " boundary DOF, " +
+                std::to_string(split.interior.size()) + " interior DOF, " + spec.factorization + " factorization");
+  const double t_constraints = lap(clock);
+  CholmodFactor factor = analysed_factor(split.Kii, model, t, spec, early, log);
+  const double t_analyze = lap(clock);
+  try {
+    factor.factorize(split.Kii);
+  } catch (const NotPositiveDefiniteError& e) {
+    mechanism(model, "with the frame interface '" + spec.frame + "' held, the stiffness is singular at " +
+                         node_text(model, t, split.interior[static_cast<std::size_t>(e.column)]));
+  }
+  const double t_factorize = lap(clock);
+  r.factor = factor.info().stats;
+  const Eigen::MatrixXd Psi_i = -factor.solve(Eigen::MatrixXd(split.Kib));
+  Eigen::MatrixXd modes_i;
+  Eigen::VectorXd lambda_n;
+  if (spec.modes > 0 || spec.max_frequency_hz) {
+    EigenOptions o = eigen_options(spec, part, 0.0);
+    use_node_mass(o, model, fe, t, spec);
+    EigenSolver solver(o);
+    attach_progress(solver, log);
+    solver.compute(split.Kii, split.Mii, factor);
+    if (log.message) log.message(timing_line(t_constraints, t_analyze, t_factorize, &solver.info()));
+    record(r, solver);
+    check_no_zero_modes(model, solver.result().lambda, part, "with the frame interface held");
+    modes_i = solver.result().X;
+    lambda_n = solver.result().lambda;
+  } else if (log.message) {
+    log.message(timing_line(t_constraints, t_analyze, t_factorize, nullptr));
+  }
+  const Index nb = static_cast<Index>(boundary.size());
+  const Index nn = modes_i.cols();
+  basis = Eigen::MatrixXd::Zero(t.num_ind(), nb + nn);
+  for (Index j = 0; j < nb; ++j) {
+    basis(boundary[static_cast<std::size_t>(j)], j) = 1.0;
+    for (std::size_t i = 0; i < split.interior.size(); ++i) basis(split.interior[i], j) = Psi_i(static_cast<Index>(i), j);
+  }
+  for (Index j = 0; j < nn; ++j)
+    for (std::size_t i = 0; i < split.interior.size(); ++i) basis(split.interior[i], nb + j) = modes_i(static_cast<Index>(i), j);
+  r.types.assign(static_cast<std::size_t>(nb), formats::ModeType::Constraint);
+  r.types.resize(static_cast<std::size_t>(nb + nn), formats::ModeType::Normal);
+  r.lambda.resize(nb + nn);
+  for (Index j = 0; j < nb; ++j) {
+    const Eigen::VectorXd kb = K * basis.col(j), mb = M * basis.col(j);
+    r.lambda(j) = basis.col(j).dot(kb) / basis.col(j).dot(mb);  // Rayleigh quotient
+  }
+  r.lambda.tail(nn) = lambda_n;
+  r.reference = "craig-bampton";
+  params = {{"method", "craig-bampton"}, {"interfaces", spec.interfaces}, {"frame", spec.frame},
+            {"orthonormalized", spec.orthonormalize}};
+  if (spec.orthonormalize) {
+    // The whole basis replaced by the eigenvectors of the reduced pencil (all normal modes).
+    const Eigen::MatrixXd Kr = basis.transpose() * sym_multiply(K, p.storage, basis);
+    const Eigen::MatrixXd Mr = basis.transpose() * sym_multiply(M, p.storage, basis);
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(Kr, Mr);
+    if (ges.info() != Eigen::Success) throw std::runtime_error("orthonormalization of the Craig-Bampton basis failed");
+    basis = basis * ges.eigenvectors();
+    r.lambda = ges.eigenvalues();
+    r.types.assign(static_cast<std::size_t>(basis.cols()), formats::ModeType::Normal);
+  }
+  r.Ke = basis.transpose() * sym_multiply(K, p.storage, basis);
+  r.Me = basis.transpose() * sym_multiply(M, p.storage, basis);
+}
+
+// The reduction: the constrained pencil (K, M) on the independent DOFs, a basis of it (modes,
+// or Craig-Bampton's constraint and fixed-interface modes), and the basis over the full DOFs
+// Phi = T basis. fe_owned: the same object as fe, when its K and M may be freed after use.
+ReductionResult reduce_impl(const FeModel& model, const Assembled& fe, Assembled* fe_owned, const ReductionSpec& spec,
+                            const ReductionLog& log, EarlyAnalysis* early) {
+  require_one_piece(model);
+  auto clock = std::chrono::steady_clock::now();
+  const DofTransform t = build_transform(model, detail::states_for(model, spec));
+  const ConstrainedPencil pencil = constrain_pencil(model, fe, fe_owned, spec, t);
   {
-    Index massless = 0;
-    const auto* outer = Mr.outerIndexPtr();
-    const auto* inner = Mr.innerIndexPtr();
-    for (Index j = 0; j < Mr.outerSize(); ++j) {
-      const auto* d = std::lower_bound(inner + outer[j], inner + outer[j + 1], j);  // rows are sorted
-      massless += d != inner + outer[j + 1] && *d == j && Mr.valuePtr()[d - inner] != 0.0 ? 0 : 1;
-    }
-    if (massless > 0)
-      throw FormatError(part.file.string(), "materials",
-                        std::to_string(massless) + " of " + std::to_string(Mr.cols()) +
-                            " degrees of freedom carry no mass (a density of 0): the eigen-solve needs mass at every "
-                            "one; give each material a density (a small one for a nearly massless part)");
+    const auto M_on_K = pencil.mass_on_K();
+    require_mass_at_every_dof(pencil.mass(M_on_K), *model.part);
   }
   ReductionResult r;
   nlohmann::json params;
   Eigen::MatrixXd basis;  // over the independent DOFs
-
-  if (spec.method != ReductionSpec::Method::CraigBampton) {
-    const bool free = spec.method == ReductionSpec::Method::Free;
-    // Free: a negative shift keeps K - sigma M definite while the rigid-body modes are deflated.
-    const double sigma = free ? -lambda_of_hz(1.0, part) : -lambda_of_hz(0.1, part);
-    EigenOptions o = eigen_options(spec, part, sigma);
-    if (free) o.deflation = rigid_body_modes(model, t);
-    use_node_mass(o, model, fe, t, spec);
-    say(std::string(free ? "free-free" : "clamped") + " eigen-solve: " + std::to_string(t.num_ind()) + " DOF, " +
-        (spec.max_frequency_hz ? "up to " + std::to_string(*spec.max_frequency_hz) + " Hz" : std::to_string(o.nev) + " modes") +
-        ", " + spec.backend);
-    // Analyse first and report the factor's size, so a factor that will not fit is refused
-    // (by factorize, with the numbers) after the user has seen what it would need.
-    const double t_constraints = lap(clock);
-    // K - sigma M is built in K's own storage when the two have one structure, so it takes no
-    // memory of its own at the factorization, a memory peak of the run (60 MiB on the 100k
-    // plate); K is restored right after, to the rounding of one subtraction and one addition
-    // per entry.
-    SparseMatrix shifted;
-    if (shared) detail::add_scaled_values(K, Mr, -sigma);
-    else shifted = shifted_upper(K, Mr, sigma);
-    const SparseMatrix& C = shared ? K : shifted;
-    CholmodFactor factor = analysed_factor(C, model, t, spec, early, log);
-    const double t_analyze = lap(clock);
-    double t_factorize = 0;
-    EigenSolver solver(o);
-    attach_progress(solver, log);
-    // What the assembly, the constraints and the analysis freed (METIS's and CHOLMOD's work
-    // arrays at one thread, where the analysis runs here) would otherwise stay resident under
-    // the factorization: 58 MB on the 100k plate.
-    release_free_heap();
-    try {
-      factor.factorize_shifted_upper(C, sigma);
-      // The factor holds what is needed from here on.
-      if (shared) detail::add_scaled_values(K, Mr, sigma);
-      else detail::release(shifted);
-      // The factorization's workspace, freed now, sits in the middle of the heap: 42 MiB of
-      // the 100k plate's peak at 1 thread (with CHOLMOD's factorization), reached at the end
-      // of Lanczos on top of it.
-      release_free_heap();
-      t_factorize = lap(clock);
-      solver.compute(K, Mr, factor);
-    } catch (const NotPositiveDefiniteError& e) {
-      mechanism(model, "the stiffness is singular at " + node_text(model, t, e.column));
-    }
-    say(timing_line(t_constraints, t_analyze, t_factorize, &solver.info()));
-    record(r, solver);
-    r.factor = factor.info().stats;
-    check_no_zero_modes(model, solver.result().lambda, part, free ? "beyond the six rigid-body modes" : "with the interface held");
-    basis = solver.result().X;
-    // Ke and Me of exactly these vectors, from the eigen-solver's checks.
-    r.Ke = solver.result().XtKX;
-    r.Me = solver.result().XtMX;
-    r.lambda = solver.result().lambda;
-    r.types.assign(static_cast<std::size_t>(basis.cols()), formats::ModeType::Normal);
-    r.reference = free ? "free" : "clamped:" + spec.interface;
-    params = {{"method", free ? "free" : "clamped"}, {"shift", sigma}, {"backend", r.backend}};
-    if (!free) params["interface"] = spec.interface;
-  } else {
-    // Craig–Bampton: boundary = the six DOFs of every non-frame interface node.
-    const std::vector<Index> boundary = detail::boundary_dofs(model, t, spec);
-    const auto split = detail::split(K, M, boundary);
-    say("craig-bampton: " + std::to_string(boundary.size()) + " boundary DOF, " +
-        std::to_string(split.interior.size()) + " interior DOF");
-    const double t_constraints = lap(clock);
-    CholmodFactor factor = analysed_factor(split.Kii, model, t, spec, early, log);
-    const double t_analyze = lap(clock);
-    try {
-      factor.factorize(split.Kii);
-    } catch (const NotPositiveDefiniteError& e) {
-      mechanism(model, "with the frame interface '" + spec.frame + "' held, the stiffness is singular at " +
-                           node_text(model, t, split.interior[static_cast<std::size_t>(e.column)]));
-    }
-    const double t_factorize = lap(clock);
-    r.factor = factor.info().stats;
-    // Static constraint modes: interior response to a unit motion of each boundary DOF.
-    const Eigen::MatrixXd Psi_i = -factor.solve(Eigen::MatrixXd(split.Kib));
-    Eigen::MatrixXd modes_i;
-    Eigen::VectorXd lambda_n;
-    if (spec.modes > 0 || spec.max_frequency_hz) {
-      EigenOptions o = eigen_options(spec, part, 0.0);
-      use_node_mass(o, model, fe, t, spec);
-      EigenSolver solver(o);
-      attach_progress(solver, log);
-      solver.compute(split.Kii, split.Mii, factor);
-      say(timing_line(t_constraints, t_analyze, t_factorize, &solver.info()));
-      record(r, solver);
-      check_no_zero_modes(model, solver.result().lambda, part, "with the frame interface held");
-      modes_i = solver.result().X;
-      lambda_n = solver.result().lambda;
-    } else {
-      say(timing_line(t_constraints, t_analyze, t_factorize, nullptr));
-    }
-    const Index nb = static_cast<Index>(boundary.size());
-    const Index nn = modes_i.cols();
-    basis = Eigen::MatrixXd::Zero(t.num_ind(), nb + nn);
-    for (Index j = 0; j < nb; ++j) {
-      basis(boundary[static_cast<std::size_t>(j)], j) = 1.0;
-      for (std::size_t i = 0; i < split.interior.size(); ++i) basis(split.interior[i], j) = Psi_i(static_cast<Index>(i), j);
-    }
-    for (Index j = 0; j < nn; ++j)
-      for (std::size_t i = 0; i < split.interior.size(); ++i) basis(split.interior[i], nb + j) = modes_i(static_cast<Index>(i), j);
-    r.types.assign(static_cast<std::size_t>(nb), formats::ModeType::Constraint);
-    r.types.resize(static_cast<std::size_t>(nb + nn), formats::ModeType::Normal);
-    r.lambda.resize(nb + nn);
-    for (Index j = 0; j < nb; ++j) {
-      const Eigen::VectorXd kb = K * basis.col(j), mb = M * basis.col(j);
-      r.lambda(j) = basis.col(j).dot(kb) / basis.col(j).dot(mb);  // Rayleigh quotient
-    }
-    r.lambda.tail(nn) = lambda_n;
-    r.reference = "craig-bampton";
-    params = {{"method", "craig-bampton"}, {"interfaces", spec.interfaces}, {"frame", spec.frame},
-              {"orthonormalized", spec.orthonormalize}};
-    if (spec.orthonormalize) {
-      const Eigen::MatrixXd Kr = basis.transpose() * sym_multiply(K, storage, basis);
-      const Eigen::MatrixXd Mr = basis.transpose() * sym_multiply(M, storage, basis);
-      Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(Kr, Mr);
-      if (ges.info() != Eigen::Success) throw std::runtime_error("orthonormalization of the Craig-Bampton basis failed");
-      basis = basis * ges.eigenvectors();
-      r.lambda = ges.eigenvalues();
-      r.types.assign(static_cast<std::size_t>(basis.cols()), formats::ModeType::Normal);
-    }
-    r.Ke = basis.transpose() * sym_multiply(K, storage, basis);
-    r.Me = basis.transpose() * sym_multiply(M, storage, basis);
-  }
+  if (spec.method == ReductionSpec::Method::CraigBampton)
+    craig_bampton_basis(model, fe, pencil, t, spec, log, early, clock, r, basis, params);
+  else
+    eigenmode_basis(model, fe, pencil, t, spec, log, early, clock, r, basis, params);
   params["modes"] = spec.modes;
   if (spec.max_frequency_hz) params["max_frequency_hz"] = *spec.max_frequency_hz;
+  params["factorization"] = spec.factorization;
   r.parameters_json = params.dump();
-
   r.Phi = t.identity ? basis : Eigen::MatrixXd(t.T * basis);
   return r;
 }

@@ -25,6 +25,7 @@ SparseMatrix constrained(const DofTransform& t, const SparseMatrix& A, bool full
 FactorOptions eigen_factor_options(const ReductionSpec& spec) {
   FactorOptions f;
   f.memory_limit_bytes = spec.memory_limit_bytes;
+  f.backend = spec.factorization == "cholmod" ? FactorizationBackend::Cholmod : FactorizationBackend::Supernodal;
   // Free: definite by construction (negative shift); tiny pivots only in the deflated space.
   if (spec.method == ReductionSpec::Method::Free) f.min_pivot_ratio = 0;
   return f;

@@ -2,7 +2,6 @@
 // Small sparse helpers of the reductions.
 #include "ffr/preproc/model/sparse.hpp"
 #include "ffr/preproc/solver/sparse_types.hpp"
-#include "../populate.hpp"
 #include "../run_parts.hpp"
 
 #include <algorithm>
@@ -62,9 +61,6 @@ inline SparseMatrix principal_submatrix(const SparseMatrix& A, const std::vector
   auto* inner = S.innerIndexPtr();
   double* val = S.valuePtr();
   run_parts(parts, split, [&](unsigned, std::int64_t j0, std::int64_t j1) {
-    // The first touch of S (K's 120 MB on the 100k-DOF plate): one call a part (populate.hpp).
-    populate_for_writing(inner + outer[j0], static_cast<std::size_t>(outer[j1] - outer[j0]) * sizeof(*inner));
-    populate_for_writing(val + outer[j0], static_cast<std::size_t>(outer[j1] - outer[j0]) * sizeof(double));
     for (std::int64_t j = j0; j < j1; ++j) {
       std::int64_t k = outer[j];
       kept(j, [&](std::int64_t i, double v) {

@@ -7,10 +7,8 @@
 // (family 6, model 207), which has AVX-512: the 100k-DOF plate of tools/bench/reduce then
 // factorized in 5.2-5.5 s at 1 thread against 1.7-2.2 s with the SkylakeX kernels
 // (OPENBLAS_CORETYPE=SkylakeX, same machine, alternating runs). The features, not the model
-// number, say which kernels the CPU can run.
-//
-// Header-only: the start-up hook of the executables (preproc/startup) also links into programs
-// without the library.
+// number, say which kernels the CPU can run. The library only reports this (the factorization's
+// statistics, and the reducer's log advises OPENBLAS_CORETYPE); it never changes the kernels.
 
 #include <strings.h>
 

@@ -77,6 +77,16 @@ MatrixXd project_out(const Eigen::Ref<const MatrixXd>& Q, const MatrixXd& MW, Ma
 
 }  // namespace
 
+int count_converged_ritz_pairs(const Eigen::VectorXd& theta, const Eigen::MatrixXd& coupling, int nev, double tol) {
+  // The basis holds k = theta.size() Ritz pairs, fewer than nev while it is still small (k
+  // starts at one block, and a block may be narrower than nev): only those exist to test.
+  const Index pairs = std::min<Index>({Index{nev}, theta.size(), coupling.cols()});
+  int converged = 0;
+  for (Index i = 0; i < pairs; ++i)
+    if (theta[i] > 0 && coupling.col(i).norm() <= tol * theta[i]) ++converged;
+  return converged;
+}
+
 BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseRef& M, SymmetricStorage sM,
                                  const Deflation& deflation, const BlockRequest& req) {
   BackendOutcome out;
@@ -150,9 +160,7 @@ BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseRef& M, Symmetri
     const VectorXd theta = es.eigenvalues().reverse();
     const MatrixXd S = es.eigenvectors().rowwise().reverse();
     const MatrixXd coupling = B * S.bottomRows(p);  // residual of Ritz pair i: column i, M-norm
-    int converged = 0;
-    for (int i = 0; i < nev; ++i)
-      if (theta[i] > 0 && coupling.col(i).norm() <= req.tol * theta[i]) ++converged;
+    const int converged = count_converged_ritz_pairs(theta, coupling, nev, req.tol);
     out.converged = converged;
     if (converged == nev) {
       rotate_columns_in_place(Q, k, S.leftCols(nev));

@@ -1,7 +1,5 @@
 #include "cholmod_bridge.hpp"
 
-#include "library_threads.hpp"
-
 #include <sstream>
 #include <utility>
 
@@ -28,8 +26,6 @@ CholmodCommon::CholmodCommon() {
   c_.final_ll = 1;  // supernodal factors are LL^T anyway; keep it so if converted
   // Stop at the first non-positive pivot: the factor is useless then, and we report it.
   c_.quick_return_if_not_posdef = 1;
-  // CHOLMOD's OpenMP loops would take 4 threads whatever the user asked for (library_threads.hpp).
-  keep_openmp_on_this_thread();
 }
 
 CholmodCommon::~CholmodCommon() { cholmod_l_finish(&c_); }

@@ -74,6 +74,11 @@ struct PivotRatio {
   std::int64_t permuted_column;  ///< j
   std::int64_t column;           ///< Perm[j], the input numbering
 };
-PivotRatio min_pivot_ratio(const cholmod_factor& L, const SparseMatrix& A);
+/// x: the factor's numeric values in CHOLMOD's supernodal layout (L.x for CHOLMOD's own factor).
+PivotRatio min_pivot_ratio(const cholmod_factor& L, const double* x, const SparseMatrix& A);
+
+/// (min_j |L_jj| / max_j |L_jj|)^2 of a supernodal LL^T factor with values x in CHOLMOD's layout:
+/// what cholmod_l_rcond reports for it.
+double reciprocal_condition(const cholmod_factor& L, const double* x);
 
 }  // namespace ffr::preproc::detail

@@ -2,12 +2,11 @@
 
 #include "blas_kernels.hpp"
 #include "cholmod_bridge.hpp"
-#include "factor_packing.hpp"
-#include "library_threads.hpp"
 #include "grouped_symbolic.hpp"
+#include "library_threads.hpp"
 #include "nodal_ordering.hpp"
+#include "numeric_backends.hpp"
 #include "pattern_hash.hpp"
-#include "supernodal_solve.hpp"
 #include "tree_cholesky.hpp"
 #include "ffr/preproc/solver/memory.hpp"
 #include "ffr/preproc/threads.hpp"
@@ -17,8 +16,25 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <variant>
 
 namespace ffr::preproc {
+
+static_assert(SymmetricFactorization<CholmodFactor>);
+
+const char* to_string(FactorizationBackend b) {
+  switch (b) {
+    case FactorizationBackend::Supernodal: return "supernodal";
+    case FactorizationBackend::Cholmod: return "cholmod";
+  }
+  return "?";
+}
+
+std::optional<FactorizationBackend> factorization_backend_from_string(const std::string& name) {
+  if (name == "supernodal") return FactorizationBackend::Supernodal;
+  if (name == "cholmod") return FactorizationBackend::Cholmod;
+  return std::nullopt;
+}
 
 const char* to_string(Ordering o) {
   switch (o) {
@@ -67,24 +83,25 @@ const char* ordering_name(int cholmod_ordering) {
 struct CholmodFactor::Impl {
   FactorOptions opt;
   detail::CholmodCommon common;  // declared before L: L is freed in ~Impl while common lives
-  cholmod_factor* L = nullptr;
-  bool numeric = false;  // L holds numeric values (possibly of a failed factorization)
-  // L's values packed for the substitutions (factor_packing.hpp), CHOLMOD's layout having
-  // full_xsize of them: only `solver` may read them then.
-  bool packed = false;
-  std::size_t full_xsize = 0;
+  cholmod_factor* L = nullptr;   // CHOLMOD's analysis (and CHOLMOD's numeric factor for its backend)
   std::uint64_t pattern = 0;
   int analyses = 0;  // symbolic analyses done by this factor
   FactorInfo info;
-  // The substitutions on L's numeric values (and their workspace, reused across calls so the
-  // Lanczos loop does not allocate); set by each successful factorization.
-  std::unique_ptr<detail::SupernodalSolver> solver;
+  // The numeric factor and its solves, by the backend of opt.backend; set by each successful
+  // factorization, cleared by a new analysis.
+  std::variant<detail::SupernodalNumeric, detail::CholmodNumeric> numeric;
 
-  explicit Impl(FactorOptions o) : opt(o) {}
+  explicit Impl(FactorOptions o) : opt(o) {
+    if (opt.backend == FactorizationBackend::Cholmod) numeric.emplace<detail::CholmodNumeric>();
+  }
   ~Impl() {
-    solver.reset();
+    clear_numeric();
     if (L) cholmod_l_free_factor(&L, common.get());
   }
+  void clear_numeric() {
+    std::visit([](auto& b) { b.clear(); }, numeric);
+  }
+  bool supernodal() const { return opt.backend == FactorizationBackend::Supernodal; }
   [[noreturn]] void fail(const std::string& msg) {
     info.status = FactorStatus::Failed;
     info.message = msg;
@@ -121,10 +138,8 @@ void CholmodFactor::Impl::analyze(const SparseMatrix& A, const detail::NodalOrde
     case Ordering::Amd: c->nmethods = 1; c->method[0].ordering = CHOLMOD_AMD; break;
     case Ordering::Natural: c->nmethods = 1; c->method[0].ordering = CHOLMOD_NATURAL; break;
   }
-  solver.reset();
+  clear_numeric();
   if (L) cholmod_l_free_factor(&L, c);
-  numeric = false;
-  packed = false;
   info = FactorInfo{};
 
   std::int64_t upper_nnz = 0;
@@ -157,10 +172,8 @@ void CholmodFactor::Impl::analyze(const SparseMatrix& A, const detail::NodalOrde
 void CholmodFactor::Impl::analyze_groups(const detail::QuotientGraph& q, const std::vector<std::int64_t>& perm,
                                          std::int64_t vertices, std::uint64_t hash, std::int64_t upper_nnz) {
   cholmod_common* c = common.get();
-  solver.reset();
+  clear_numeric();
   if (L) cholmod_l_free_factor(&L, c);
-  numeric = false;
-  packed = false;
   info = FactorInfo{};
   const auto t0 = Clock::now();
   const std::vector<std::int64_t> order = detail::group_order(q, perm);
@@ -199,15 +212,14 @@ void CholmodFactor::Impl::record_analysis(std::int64_t n_cols, std::int64_t uppe
   // Estimates in bytes (8-byte doubles and SuiteSparse_long):
   //  factor   = values (xsize) + supernode row indices (ssize) + super/pi/px arrays +
   //             Perm, ColCount, IPerm and per-column bookkeeping (~4n);
-  //  workspace of the own factorization on one thread (tree_cholesky_workspace_bytes; more
+  //  workspace of the supernodal backend on one thread (tree_cholesky_workspace_bytes; more
   //             threads add theirs in factorize), or of cholmod_l_factorize = the update matrix
   //             C (maxcsize) + the permuted copy of A's upper triangle (values + indices + column
   //             pointers) + Common's Iwork, Xwork and the supernodal Map/RelativeMap (~8n).
   const std::uint64_t n = static_cast<std::uint64_t>(s.n);
   s.factor_bytes = 8u * (L->xsize + L->ssize + 3u * (L->nsuper + 1u) + 4u * n);
   const std::uint64_t workspace =
-      opt.own_factorization && detail::tree_cholesky_available(*L)
-          ? detail::tree_cholesky_workspace_bytes(*L, 1)
+      supernodal() ? detail::tree_cholesky_workspace_bytes(*L, 1)
           : 8u * L->maxcsize + 16u * static_cast<std::uint64_t>(upper_nnz) + 8u * (n + 1u) + 64u * n;
   s.peak_bytes = s.factor_bytes + workspace;
   info.status = FactorStatus::Analyzed;
@@ -262,59 +274,48 @@ void CholmodFactor::Impl::factorize(const SparseMatrix& A, double shift) {
   } else if (opt.check_symmetry) {
     validate_symmetric(A, "matrix to factorize");
   }
-  // A numeric factor already owns its values: only the workspace is new then. Subtrees on
-  // threads (tree_cholesky.hpp) take an update matrix and a row map each.
+  // The supernodal backend runs independent subtrees on threads (tree_cholesky.hpp), each
+  // with an update matrix and a row map of its own; CHOLMOD's factor is numeric in L already
+  // after a first factorization, so only its workspace is new then.
   const unsigned threads = max_threads();
-  const bool own = opt.own_factorization && detail::tree_cholesky_available(*L);
-  const double share = own ? detail::tree_cholesky_share(*L, threads) : 0.0;
+  const double share = supernodal() ? detail::tree_cholesky_share(*L, threads) : 0.0;
   const FactorStatistics& s = info.stats;
   const std::uint64_t per_thread =
       share > 0 ? detail::tree_cholesky_workspace_bytes(*L, threads) - detail::tree_cholesky_workspace_bytes(*L, 1) : 0u;
-  const std::uint64_t regrow = packed ? 8u * static_cast<std::uint64_t>(full_xsize - L->xsize) : 0u;
-  check_memory((numeric ? s.peak_bytes - s.factor_bytes + regrow : s.peak_bytes) + per_thread);
+  const bool cholmod_numeric = !supernodal() && L->xtype != CHOLMOD_PATTERN;
+  check_memory((cholmod_numeric ? s.peak_bytes - s.factor_bytes : s.peak_bytes) + per_thread);
 
   cholmod_common* c = common.get();
-  cholmod_sparse view = detail::view_upper(A);
-  // Set where the factor's Common was made, but the ICV belongs to each thread, and the
-  // factor may have been analysed on another one (EarlyAnalysis).
-  detail::keep_openmp_on_this_thread();
+  const cholmod_sparse view = detail::view_upper(A);
   const auto t0 = Clock::now();
-  solver.reset();
-  if (packed) {
-    if (!detail::unpack_storage(*L, full_xsize, c)) fail(cholmod_error("reallocation of the factor's values"));
-    packed = false;
-  }
+  clear_numeric();
+  info.status = FactorStatus::Analyzed;
   info.stats.factor_parallel_fraction = share;
-  info.stats.own_factorization = own;
-  // A factor too small for subtrees on threads is factorized by the own code in order.
-  const int ok = own ? detail::tree_cholesky(view, *L, share > 0 ? threads : 1u, c) : cholmod_l_factorize(&view, L, c);
-  numeric = true;
+  info.stats.backend = opt.backend;
+  const detail::NumericResult r = std::visit(
+      [&](auto& b) { return b.factorize(view, A, *L, c, share > 0 ? threads : 1u); }, numeric);
   info.stats.factorize_seconds = seconds_since(t0);
   info.stats.cholmod_peak_bytes = c->memory_usage;
   info.shift = shift;
-  if (!ok || c->status < CHOLMOD_OK) fail(cholmod_error("numeric factorization (cholmod_l_factorize)"));
-  if (c->status == CHOLMOD_NOT_POSDEF || L->minor < L->n)
-    throw_not_posdef(static_cast<std::int64_t>(L->minor), false, 0.0);
-
-  info.stats.rcond = cholmod_l_rcond(L, c);
-  const detail::PivotRatio pr = detail::min_pivot_ratio(*L, A);
-  const std::int64_t jmin = pr.permuted_column;
-  const double rmin = pr.ratio;
-  info.stats.min_pivot_ratio = rmin;
-  info.stats.min_pivot_column = pr.column;
-  if (opt.min_pivot_ratio > 0 && !(rmin >= opt.min_pivot_ratio)) throw_not_posdef(jmin, true, rmin);
-  // At most 8 threads, as the other threaded vector work (run_parts.hpp): every sweep starts
-  // and joins them.
-  // Only the substitutions read L from here on: its values packed, 13 % of the 100k plate's
-  // factor given back for the eigen-solve (factor_packing.hpp).
-  std::vector<SuiteSparse_long> offsets = detail::packed_offsets(*L);
-  full_xsize = L->xsize;
-  detail::pack_values(*L, offsets, c);
-  packed = true;
-  info.stats.packed_entries = static_cast<std::int64_t>(offsets.back());
-  solver = std::make_unique<detail::SupernodalSolver>(*L, std::move(offsets), std::min(max_threads(), 8u));
-  info.stats.solve_threads = static_cast<int>(solver->threads());
-  info.stats.solve_parallel_fraction = solver->parallel_fraction();
+  if (!r.ok) fail(cholmod_error(supernodal() ? "numeric factorization (allocation of the factor)"
+                                             : "numeric factorization (cholmod_l_factorize)"));
+  if (r.minor < static_cast<std::int64_t>(L->n)) throw_not_posdef(r.minor, false, 0.0);
+  info.stats.rcond = r.rcond;
+  info.stats.min_pivot_ratio = r.pivots.ratio;
+  info.stats.min_pivot_column = r.pivots.column;
+  if (opt.min_pivot_ratio > 0 && !(r.pivots.ratio >= opt.min_pivot_ratio)) {
+    clear_numeric();
+    throw_not_posdef(r.pivots.permuted_column, true, r.pivots.ratio);
+  }
+  if (const auto* sn = std::get_if<detail::SupernodalNumeric>(&numeric)) {
+    info.stats.packed_entries = sn->packed_entries();
+    info.stats.solve_threads = static_cast<int>(sn->solve_threads());
+    info.stats.solve_parallel_fraction = sn->solve_parallel_fraction();
+  } else {
+    info.stats.packed_entries = static_cast<std::int64_t>(L->xsize);
+    info.stats.solve_threads = 1;
+    info.stats.solve_parallel_fraction = 0;
+  }
   info.status = FactorStatus::Factorized;
   info.message.clear();
 }
@@ -397,14 +398,15 @@ void CholmodFactor::solve(const Eigen::Ref<const Eigen::MatrixXd>& B, Eigen::Ref
        << " x " << X.cols() << " for a matrix of " << m.info.stats.n << " rows";
     throw std::invalid_argument(os.str());
   }
-  m.solver->solve(B.data(), B.outerStride(), B.cols(), X.data(), X.outerStride());
+  std::visit([&](const auto& b) { b.solve(B.data(), B.outerStride(), B.cols(), X.data(), X.outerStride()); },
+             m.numeric);
 }
 
 void CholmodFactor::solve(const double* b, double* x) const {
   Impl& m = *impl_;
   if (!factorized()) throw std::logic_error("CholmodFactor::solve: no valid factorization");
   const auto n = m.info.stats.n;
-  m.solver->solve(b, n, 1, x, n);
+  std::visit([&](const auto& be) { be.solve(b, n, 1, x, n); }, m.numeric);
 }
 
 std::int64_t CholmodFactor::rows() const { return impl_->info.stats.n; }

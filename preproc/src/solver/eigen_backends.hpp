@@ -45,6 +45,10 @@ struct BlockRequest {
 BackendOutcome run_block_lanczos(ShiftInvertOp& op, const SparseRef& M, SymmetricStorage sM,
                                  const Deflation& deflation, const BlockRequest& req);
 
+/// How many of the leading min(nev, theta.size()) Ritz pairs (theta descending) have residual
+/// ||coupling.col(i)|| <= tol * theta_i. Never looks beyond the pairs the basis holds.
+int count_converged_ritz_pairs(const Eigen::VectorXd& theta, const Eigen::MatrixXd& coupling, int nev, double tol);
+
 /// Spectra 1.0 SymGEigsShiftSolver<ShiftInvertOp, MassOp, GEigsMode::ShiftInvert>.
 BackendOutcome run_spectra(ShiftInvertOp& op, MassOp& bop, const LanczosRequest& req);
 

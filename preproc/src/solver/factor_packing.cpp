@@ -12,6 +12,14 @@ using Index = std::int64_t;
 
 constexpr Index kRowBlock = 64;
 
+inline void prefetch(const double* p) {
+#if defined(__GNUC__)
+  __builtin_prefetch(p);
+#else
+  (void)p;
+#endif
+}
+
 // Packed values of a supernode of nscol columns and nsrow rows.
 Index packed_size(Index nscol, Index nsrow) {
   const Index stripes = (nscol + kStripe - 1) / kStripe, last = stripes - 1;
@@ -31,11 +39,10 @@ std::vector<SuiteSparse_long> packed_offsets(const cholmod_factor& L) {
   return offsets;
 }
 
-void pack_values(cholmod_factor& L, const std::vector<SuiteSparse_long>& offsets, cholmod_common* c) {
+void pack_values(const cholmod_factor& L, double* x, const std::vector<SuiteSparse_long>& offsets) {
   const auto* super = static_cast<const SuiteSparse_long*>(L.super);
   const auto* pi = static_cast<const SuiteSparse_long*>(L.pi);
   const auto* px = static_cast<const SuiteSparse_long*>(L.px);
-  auto* x = static_cast<double*>(L.x);
   // Stripes in order: a stripe's packed place is never after its place in CHOLMOD's layout
   // (the packed offsets are prefix sums of smaller blocks), and its packed end never after
   // where the next stripe starts there, so nothing is overwritten before it is read. A stripe
@@ -59,32 +66,13 @@ void pack_values(cholmod_factor& L, const std::vector<SuiteSparse_long>& offsets
       for (Index i0 = 0; i0 < ld; i0 += kRowBlock) {
         const Index i1 = std::min(ld, i0 + kRowBlock);
         for (Index q = 0; q < w; ++q)
-          for (Index i = i0; i < i1; i += 8) __builtin_prefetch(first + q * nsrow + std::min(i + 512, ld - 1));
+          for (Index i = i0; i < i1; i += 8) prefetch(first + q * nsrow + std::min(i + 512, ld - 1));
         for (Index i = i0; i < i1; ++i)
           for (Index q = 0; q < w; ++q) out[i * w + q] = first[q * nsrow + i];
       }
       if (out != packed) std::memcpy(packed, out, static_cast<std::size_t>(w * ld) * sizeof(double));
     }
   }
-  // Shrinking in place cannot fail for want of memory; if the allocator declines, the values
-  // stay where they are, packed, in the larger block.
-  size_t size = L.xsize;
-  const auto packed = static_cast<size_t>(offsets.back());
-  void* shrunk = cholmod_l_realloc(std::max<size_t>(packed, 1), sizeof(double), L.x, &size, c);
-  if (shrunk) {
-    L.x = shrunk;
-    L.xsize = size;
-  }
-}
-
-bool unpack_storage(cholmod_factor& L, std::size_t full_size, cholmod_common* c) {
-  if (L.xsize >= full_size) return true;
-  size_t size = L.xsize;
-  void* grown = cholmod_l_realloc(full_size, sizeof(double), L.x, &size, c);
-  if (!grown || size != full_size) return false;
-  L.x = grown;
-  L.xsize = size;
-  return true;
 }
 
 }  // namespace ffr::preproc::detail

@@ -20,12 +20,15 @@
 // instead of eight streams of one column each, restarted at every panel. On the 100k-DOF plate of
 // tools/bench/reduce (one thread, 23 block solves of four right-hand sides, the sweeps timed in
 // the solver) the forward sweeps took 0.49-0.51 s against 0.64-0.72 s by columns, the back sweeps
-// 0.51-0.54 s against 0.74-0.82 s: 20 GB/s over the 430 MB of the factor, where a plain read loop
-// reaches 22-25 GB/s on that machine. Packing by rows costs 0.05-0.06 s there, by columns 0.04-0.05.
+// 0.51-0.54 s against 0.74-0.82 s: 20 GB/s over the 430 MB of the factor, close to what a plain
+// read loop reaches on one core (22-25 GB/s). Packing by rows costs 0.05-0.06 s, by columns
+// 0.04-0.05.
 
 #include <cholmod.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <vector>
 
 namespace ffr::preproc::detail {
@@ -42,14 +45,47 @@ inline std::int64_t stripe_offset(std::int64_t nsrow, std::int64_t t) {
 /// size) of a supernodal factor.
 std::vector<SuiteSparse_long> packed_offsets(const cholmod_factor& L);
 
-/// Moves the numeric values of L (CHOLMOD's layout) into the packed layout of `offsets`, in
-/// place (a stripe at a time through a buffer of kStripe rows' height), and hands the freed tail back to the allocator (L->xsize becomes the packed size).
-/// From then on only code that knows the packed layout may read L's values: not CHOLMOD
-/// (its solve, rcond, or factorization on top of them; see unpack_storage).
-void pack_values(cholmod_factor& L, const std::vector<SuiteSparse_long>& offsets, cholmod_common* c);
+/// Moves the numeric values x of the factor analysed as L (CHOLMOD's supernodal layout, L's
+/// structure only read) into the packed layout of `offsets`, in place in x (a stripe at a time
+/// through a buffer of kStripe rows' height). The first offsets.back() values of x are then the
+/// packed factor; the rest is free to give back (FactorValues::shrink).
+void pack_values(const cholmod_factor& L, double* x, const std::vector<SuiteSparse_long>& offsets);
 
-/// Gives a packed L the storage of CHOLMOD's layout again (full_size values, their contents
-/// undefined), for a new factorization. False when the allocation fails (c->status says so).
-bool unpack_storage(cholmod_factor& L, std::size_t full_size, cholmod_common* c);
+/// The numeric values of a factor, owned by the supernodal backend (never by CHOLMOD's
+/// structures): allocated with malloc so that packing can hand the freed tail back in place
+/// (realloc to a smaller size does not copy).
+class FactorValues {
+ public:
+  FactorValues() = default;
+  ~FactorValues() { std::free(p_); }
+  FactorValues(const FactorValues&) = delete;
+  FactorValues& operator=(const FactorValues&) = delete;
+  /// n values, contents undefined; false (nothing held) when the allocation fails.
+  bool allocate(std::size_t n) {
+    std::free(p_);
+    size_ = 0;
+    p_ = static_cast<double*>(std::malloc(std::max<std::size_t>(n, 1) * sizeof(double)));
+    if (p_) size_ = n;
+    return p_ != nullptr;
+  }
+  void release() {
+    std::free(p_);
+    p_ = nullptr;
+    size_ = 0;
+  }
+  /// Keeps the first n values and gives the rest back to the allocator.
+  void shrink(std::size_t n) {
+    if (n >= size_) return;
+    if (void* q = std::realloc(p_, std::max<std::size_t>(n, 1) * sizeof(double))) p_ = static_cast<double*>(q);
+    size_ = n;
+  }
+  double* data() { return p_; }
+  const double* data() const { return p_; }
+  std::size_t size() const { return size_; }
+
+ private:
+  double* p_ = nullptr;
+  std::size_t size_ = 0;
+};
 
 }  // namespace ffr::preproc::detail

@@ -5,17 +5,18 @@
 
 #include "cholmod_bridge.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace ffr::preproc::detail {
 
-PivotRatio min_pivot_ratio(const cholmod_factor& L, const SparseMatrix& A) {
+PivotRatio min_pivot_ratio(const cholmod_factor& L, const double* x, const SparseMatrix& A) {
   const Eigen::VectorXd diag = A.diagonal();
   const auto* super = static_cast<const SuiteSparse_long*>(L.super);
   const auto* pi = static_cast<const SuiteSparse_long*>(L.pi);
   const auto* px = static_cast<const SuiteSparse_long*>(L.px);
   const auto* perm = static_cast<const SuiteSparse_long*>(L.Perm);
-  const auto* x = static_cast<const double*>(L.x);
   PivotRatio r{std::numeric_limits<double>::infinity(), 0, 0};
   for (size_t sn = 0; sn < L.nsuper; ++sn) {
     const SuiteSparse_long nsrow = pi[sn + 1] - pi[sn];
@@ -26,6 +27,26 @@ PivotRatio min_pivot_ratio(const cholmod_factor& L, const SparseMatrix& A) {
     }
   }
   return r;
+}
+
+}  // namespace ffr::preproc::detail
+
+namespace ffr::preproc::detail {
+
+double reciprocal_condition(const cholmod_factor& L, const double* x) {
+  const auto* super = static_cast<const SuiteSparse_long*>(L.super);
+  const auto* pi = static_cast<const SuiteSparse_long*>(L.pi);
+  const auto* px = static_cast<const SuiteSparse_long*>(L.px);
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  for (size_t sn = 0; sn < L.nsuper; ++sn) {
+    const SuiteSparse_long nsrow = pi[sn + 1] - pi[sn];
+    for (SuiteSparse_long j = super[sn]; j < super[sn + 1]; ++j) {
+      const double l = std::abs(x[px[sn] + (j - super[sn]) * (nsrow + 1)]);
+      lo = std::min(lo, l);
+      hi = std::max(hi, l);
+    }
+  }
+  return hi > 0 ? (lo / hi) * (lo / hi) : 0.0;
 }
 
 }  // namespace ffr::preproc::detail

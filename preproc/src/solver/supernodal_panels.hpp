@@ -24,7 +24,8 @@ using Index = std::int64_t;
 // 8 on two threads 0.062-0.075 s against 0.073-0.086 s).
 inline constexpr int kPanel = 8;
 
-// Four doubles (simd::v4, kernel_clones.hpp): GCC's vector extension, not auto-vectorisation: left to itself, GCC vectorised the interleaved loops across rows with
+// Four doubles (simd::v4, kernel_clones.hpp): the compilers' vector extension, not
+// auto-vectorisation: left to itself, GCC vectorised the interleaved loops across rows with
 // permutations and stack spills, slower than CHOLMOD's solve.
 // supernodal_solve.cpp is compiled at -O3 in every optimised build (preproc/CMakeLists.txt):
 // at -O2 GCC kept the short loops over a panel's columns as loops over arrays in memory, and
@@ -34,11 +35,10 @@ using simd::v4;
 // Software prefetch in the direction of the sweep (factor_packing.hpp: a forward sweep reads
 // the packed values as one ascending stream, a back sweep as one descending stream), 1 KB ahead
 // into L1 and 8 KB ahead into L2, at every row. Why both: one core keeps few misses in flight,
-// and its compute does not hide the wait for memory by itself. In a throwaway kernel benchmark of
-// 400 MB of panels of eight columns by rows (four right-hand sides, the AMD EPYC VM of
-// tools/bench/reduce, where a plain read loop reaches 22-25 GB/s), one prefetch 4 KB ahead swept
-// 14-21 GB/s, 1 KB ahead 17-24, and 1 KB plus 8 KB ahead 24-25 GB/s for panels of 100, 600 and
-// 2000 rows. The addresses may lie past either end of the factor's values: prefetches do not
+// and its compute does not hide the wait for memory by itself. Over 400 MB of panels of eight
+// columns by rows (four right-hand sides; a plain read loop reaches 22-25 GB/s on one core), one
+// prefetch 4 KB ahead swept 14-21 GB/s, 1 KB ahead 17-24, and 1 KB plus 8 KB ahead 24-25 GB/s for
+// panels of 100, 600 and 2000 rows. The addresses may lie past either end of the factor's values: prefetches do not
 // fault, and the address is formed as an integer, not as an out-of-range pointer.
 inline constexpr Index kNear = 128, kFar = 1024;  // entries
 
@@ -48,8 +48,8 @@ inline void prefetch_from(const double* row) {
     return reinterpret_cast<const void*>(reinterpret_cast<std::uintptr_t>(row) +
                                          static_cast<std::uintptr_t>(Down ? -entries : entries) * sizeof(double));
   };
-  __builtin_prefetch(at(kNear), 0, 3);
-  __builtin_prefetch(at(kFar), 0, 1);
+  simd::prefetch(at(kNear), 3);
+  simd::prefetch(at(kFar), 1);
 }
 
 // T[i] -= sum_q L(i, q) Y[q] for i < m, q < P: a panel of P columns, L(i, q) = L[i rs + q],

@@ -152,17 +152,16 @@ FFR_KERNEL_CLONES void sweep(const View& v, int width, const Sweep& w, double* y
 
 }  // namespace
 
-SupernodalSolver::SupernodalSolver(const cholmod_factor& L, std::vector<SuiteSparse_long> packed_offsets,
-                                   unsigned threads)
+SupernodalSolver::SupernodalSolver(const cholmod_factor& L, const double* values,
+                                   std::vector<SuiteSparse_long> packed_offsets, unsigned threads)
     : n_(static_cast<std::int64_t>(L.n)),
       perm_(static_cast<const SuiteSparse_long*>(L.Perm)),
       px_(std::move(packed_offsets)),
       view_{static_cast<std::int64_t>(L.nsuper), static_cast<const SuiteSparse_long*>(L.super),
             static_cast<const SuiteSparse_long*>(L.pi), px_.data(),
-            static_cast<const SuiteSparse_long*>(L.s), static_cast<const double*>(L.x)},
+            static_cast<const SuiteSparse_long*>(L.s), values},
       schedule_(make_solve_schedule(L, threads, kMinParallelEntries)) {
-  assert(L.is_super && L.is_ll && L.xtype == CHOLMOD_REAL);
-  assert(px_.size() == L.nsuper + 1 && static_cast<size_t>(px_.back()) <= L.xsize);
+  assert(L.is_super && px_.size() == L.nsuper + 1);
   for (Index s = 0; s < view_.nsuper; ++s) {
     const Index nsrow = view_.pi[s + 1] - view_.pi[s], nscol = view_.super[s + 1] - view_.super[s];
     max_update_rows_ = std::max(max_update_rows_, nsrow - nscol);

@@ -21,7 +21,7 @@
 namespace ffr::preproc::detail {
 
 /// The arrays of a numeric supernodal factor the sweeps read: CHOLMOD's structure, the values
-/// packed (factor_packing.hpp; see supernodal_solve.cpp).
+/// (owned by the supernodal backend) packed (factor_packing.hpp; see supernodal_solve.cpp).
 struct SupernodalView {
   std::int64_t nsuper = 0;
   const SuiteSparse_long* super = nullptr;
@@ -33,11 +33,13 @@ struct SupernodalView {
 
 class SupernodalSolver {
  public:
-  /// Keeps pointers into L (not a copy): L must stay numeric, packed with pack_values by these
-  /// offsets (packed_offsets, factor_packing.hpp), and alive while solve() is used.
+  /// Keeps pointers into L's structure and into `values` (not copies): L is CHOLMOD's supernodal
+  /// analysis, only read; `values` the numeric factor packed by pack_values with these offsets
+  /// (packed_offsets, factor_packing.hpp). Both must stay alive while solve() is used.
   /// With threads > 1 and a factor of at least kMinParallelEntries values, the sweeps run on
   /// up to that many threads (solve_schedule.hpp).
-  SupernodalSolver(const cholmod_factor& L, std::vector<SuiteSparse_long> packed_offsets, unsigned threads = 1);
+  SupernodalSolver(const cholmod_factor& L, const double* values, std::vector<SuiteSparse_long> packed_offsets,
+                   unsigned threads = 1);
 
   /// Smaller factors are solved on one thread: a sweep over a 2^20-entry (8 MB) factor
   /// takes about a millisecond, where starting and joining threads starts to show.

@@ -25,8 +25,6 @@
 // supernode without a lock; the top reads them all.
 #include "tree_cholesky.hpp"
 
-#include "library_threads.hpp"
-#include "../populate.hpp"
 #include "solve_schedule.hpp"
 #include "../run_parts.hpp"
 
@@ -34,34 +32,22 @@
 #include <memory>
 #include <vector>
 
+// The Fortran BLAS and LAPACK routines CHOLMOD itself calls, linked from the same libraries.
+extern "C" {
+void dsyrk_(const char*, const char*, const int*, const int*, const double*, const double*, const int*, const double*,
+            double*, const int*);
+void dgemm_(const char*, const char*, const int*, const int*, const int*, const double*, const double*, const int*,
+            const double*, const int*, const double*, double*, const int*);
+void dtrsm_(const char*, const char*, const char*, const char*, const int*, const int*, const double*, const double*,
+            const int*, double*, const int*);
+void dpotrf_(const char*, const int*, double*, const int*, int*);
+}
+
 namespace ffr::preproc::detail {
 namespace {
 
 using Index = std::int64_t;
 using Long = SuiteSparse_long;
-
-// The Fortran BLAS/LAPACK routines CHOLMOD itself calls, found as the thread-count controls
-// are (library_threads.hpp).
-using syrk_t = void(const char*, const char*, const int*, const int*, const double*, const double*, const int*,
-                    const double*, double*, const int*);
-using gemm_t = void(const char*, const char*, const int*, const int*, const int*, const double*, const double*,
-                    const int*, const double*, const int*, const double*, double*, const int*);
-using trsm_t = void(const char*, const char*, const char*, const char*, const int*, const int*, const double*,
-                    const double*, const int*, double*, const int*);
-using potrf_t = void(const char*, const int*, double*, const int*, int*);
-
-struct Lapack {
-  syrk_t* syrk;
-  gemm_t* gemm;
-  trsm_t* trsm;
-  potrf_t* potrf;
-};
-
-const Lapack* lapack() {
-  static const Lapack f{find_symbol<syrk_t>("dsyrk_"), find_symbol<gemm_t>("dgemm_"), find_symbol<trsm_t>("dtrsm_"),
-                        find_symbol<potrf_t>("dpotrf_")};
-  return f.syrk && f.gemm && f.trsm && f.potrf ? &f : nullptr;
-}
 
 // Below this many stored entries a factor is factorized on one thread: threads cost more than
 // they give.
@@ -98,14 +84,13 @@ inline void subtract_run(double* __restrict d, const double* __restrict s, Index
 
 class TreeCholesky {
  public:
-  TreeCholesky(cholmod_factor& L, const Lapack& f, unsigned lists)
-      : f_(f),
-        super_(static_cast<const Long*>(L.super)),
+  TreeCholesky(const cholmod_factor& L, double* values, unsigned lists)
+      : super_(static_cast<const Long*>(L.super)),
         pi_(static_cast<const Long*>(L.pi)),
         px_(static_cast<const Long*>(L.px)),
         rows_(static_cast<const Long*>(L.s)),
-        x_(static_cast<double*>(L.x)),
-        xsize_(static_cast<Index>(L.xsize)),
+        x_(values),
+        xsize_(tree_cholesky_values(L)),
         n_(static_cast<Index>(L.n)),
         nsuper_(static_cast<Index>(L.nsuper)),
         owner_(static_cast<std::size_t>(n_)),
@@ -151,10 +136,7 @@ class TreeCholesky {
     }
   }
 
-  void zero(Index begin, Index end) {
-    populate_for_writing(x_ + begin, static_cast<std::size_t>(end - begin) * sizeof(double));
-    std::fill(x_ + begin, x_ + end, 0.0);
-  }
+  void zero(Index begin, Index end) { std::fill(x_ + begin, x_ + end, 0.0); }
   Index stored() const { return xsize_; }
 
   /// Supernode s (its entries of P A P' already in place, the rest zero), with the lists it
@@ -177,12 +159,12 @@ class TreeCholesky {
     }
     const int nc = static_cast<int>(nscol), nr = static_cast<int>(nsrow);
     int info = 0;
-    f_.potrf("L", &nc, Ls, &nr, &info);
+    dpotrf_("L", &nc, Ls, &nr, &info);
     if (info != 0) return k1 + (info > 0 ? info - 1 : 0);
     if (nsrow > nscol) {
       const int below = nr - nc;
       const double one = 1.0;
-      f_.trsm("R", "L", "T", "N", &below, &nc, &one, Ls, &nr, Ls + nscol, &nr);
+      dtrsm_("R", "L", "T", "N", &below, &nc, &one, Ls, &nr, Ls + nscol, &nr);
       lpos_[static_cast<std::size_t>(s)] = nscol;
       link(s, rows_[psi + nscol], list);
     }
@@ -226,8 +208,8 @@ class TreeCholesky {
     for (Index j0 = 0; j0 < ndrow1; j0 += width) {
       const Index b = std::min(width, ndrow1 - j0), m = ndrow2 - j0;
       const int nb = static_cast<int>(b), nm = static_cast<int>(m), nbelow = static_cast<int>(m - b);
-      f_.syrk("L", "N", &nb, &kc, &one, Ld + j0, &ld, &zero, C, &nm);
-      if (nbelow > 0) f_.gemm("N", "T", &nbelow, &nb, &kc, &one, Ld + j0 + b, &ld, Ld + j0, &ld, &zero, C + b, &nm);
+      dsyrk_("L", "N", &nb, &kc, &one, Ld + j0, &ld, &zero, C, &nm);
+      if (nbelow > 0) dgemm_("N", "T", &nbelow, &nb, &kc, &one, Ld + j0 + b, &ld, Ld + j0, &ld, &zero, C + b, &nm);
       // Rows of d in s's columns sit at positions 0..nscol-1 of R_s, so rel[j] is a column.
       for (Index jj = 0; jj < b; ++jj) {
         const Index j = j0 + jj;
@@ -243,7 +225,6 @@ class TreeCholesky {
     if (ndrow3 > 0) link(d, r[ndrow1], list);
   }
 
-  const Lapack& f_;
   const Long *super_, *pi_, *px_, *rows_;
   double* x_;
   Index xsize_, n_, nsuper_;
@@ -255,7 +236,10 @@ class TreeCholesky {
 
 }  // namespace
 
-bool tree_cholesky_available(const cholmod_factor& L) { return L.is_super && lapack(); }
+std::int64_t tree_cholesky_values(const cholmod_factor& L) {
+  const auto* px = static_cast<const Long*>(L.px);
+  return L.is_super && L.nsuper > 0 && px ? static_cast<std::int64_t>(px[L.nsuper]) : 0;
+}
 
 std::uint64_t tree_cholesky_workspace_bytes(const cholmod_factor& L, unsigned threads) {
   const auto* pi = static_cast<const Long*>(L.pi);
@@ -271,21 +255,16 @@ std::uint64_t tree_cholesky_workspace_bytes(const cholmod_factor& L, unsigned th
 }
 
 double tree_cholesky_share(const cholmod_factor& L, unsigned threads) {
-  if (threads < 2 || !tree_cholesky_available(L)) return 0.0;
+  if (threads < 2 || !L.is_super) return 0.0;
   return make_solve_schedule(L, threads, kMinEntries, TreeWork::Flops).parallel_fraction;
 }
 
-bool tree_cholesky(const cholmod_sparse& A, cholmod_factor& L, unsigned threads, cholmod_common* c) {
-  const Lapack* f = lapack();
-  if (!f || !L.is_super || A.stype <= 0) return false;
-  if (L.xtype == CHOLMOD_PATTERN && !cholmod_l_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, &L, c)) return false;
-  L.is_ll = 1;
-
+Index tree_cholesky(const cholmod_sparse& A, const cholmod_factor& L, double* values, unsigned threads) {
   SolveSchedule plan = make_solve_schedule(L, threads, 0, TreeWork::Flops);
   // No cut (a caller on one thread): every supernode is the top's.
   if (plan.parts.empty()) plan.top = {{0, static_cast<Index>(L.nsuper) - 1}};
   const unsigned parts = static_cast<unsigned>(std::max<std::size_t>(1, plan.parts.size()));
-  TreeCholesky chol(L, *f, parts);
+  TreeCholesky chol(L, values, parts);
   {
     // L <- P A P' in its layout, zero elsewhere (the first touch of the factor's memory too).
     const Index n = static_cast<Index>(L.n), stored = chol.stored();
@@ -299,23 +278,18 @@ bool tree_cholesky(const cholmod_sparse& A, cholmod_factor& L, unsigned threads,
   }
   Index minor = static_cast<Index>(L.n);
   if (!plan.parts.empty()) {
-    // The subtrees: one list of them per thread, each with a one-thread BLAS. A thread stops
+    // The subtrees: one list of them per thread. A thread stops
     // at its first failing supernode; the lowest failing column over the threads is the one
     // CHOLMOD, which goes in order, would report.
     std::vector<Index> failed(parts, minor);
-    {
-      // Back to `threads` at the end of the scope, also when a thread throws.
-      struct OneThreadBlas {
-        unsigned after;
-        OneThreadBlas(unsigned n) : after(n) { set_blas_threads(1); }
-        ~OneThreadBlas() { set_blas_threads(after); }
-      } blas(threads);
-      run_parts(parts, [](unsigned p) { return p; }, [&](unsigned t, unsigned, unsigned) {
-        Workspace w = chol.workspace();
-        for (const SupernodeRange& range : plan.parts[t])
-          for (Index s = range.first; s <= range.last && failed[t] == minor; ++s) failed[t] = chol.node(s, t, false, w);
-      });
-    }
+    // The BLAS calls of the subtrees are mostly small (low in the tree), which OpenBLAS runs on
+    // the calling thread; larger ones share the BLAS's threads. No thread count is changed here:
+    // it is the host program's (the executables set it in main()).
+    run_parts(parts, [](unsigned p) { return p; }, [&](unsigned t, unsigned, unsigned) {
+      Workspace w = chol.workspace();
+      for (const SupernodeRange& range : plan.parts[t])
+        for (Index s = range.first; s <= range.last && failed[t] == minor; ++s) failed[t] = chol.node(s, t, false, w);
+    });
     minor = *std::min_element(failed.begin(), failed.end());
   }
   if (minor == static_cast<Index>(L.n)) {
@@ -324,9 +298,7 @@ bool tree_cholesky(const cholmod_sparse& A, cholmod_factor& L, unsigned threads,
       for (Index s = range.first; s <= range.last && minor == static_cast<Index>(L.n); ++s)
         minor = chol.node(s, 0, true, w);
   }
-  L.minor = static_cast<size_t>(minor);
-  c->status = minor < static_cast<Index>(L.n) ? CHOLMOD_NOT_POSDEF : CHOLMOD_OK;
-  return true;
+  return minor;
 }
 
 }  // namespace ffr::preproc::detail

@@ -8,8 +8,9 @@
 
 namespace ffr::preproc::detail {
 
-/// Whether tree_cholesky can factorize L: supernodal, and the BLAS and LAPACK routines found.
-bool tree_cholesky_available(const cholmod_factor& L);
+/// How many values the numeric factor of the supernodal symbolic factor L has, in CHOLMOD's
+/// layout (px[nsuper]): the size of the array tree_cholesky fills.
+std::int64_t tree_cholesky_values(const cholmod_factor& L);
 
 /// Bytes of work arrays tree_cholesky takes beside L on `threads` threads, an upper bound: per
 /// thread the update buffer (capped, see tree_cholesky.cpp) and the row maps, once the
@@ -18,18 +19,15 @@ std::uint64_t tree_cholesky_workspace_bytes(const cholmod_factor& L, unsigned th
 
 /// The share of the factorization's flops that tree_cholesky would run in the subtrees, on
 /// `threads` threads; 0 when it would not pay (one thread, a small factor, a tree whose top
-/// dominates) or cannot run (the BLAS and LAPACK routines not found in the process).
+/// dominates).
 double tree_cholesky_share(const cholmod_factor& L, unsigned threads);
 
-/// Computes the numeric values of L = chol(P A P') into L's own supernodal layout, as
-/// cholmod_l_factorize would: A upper-stored (stype > 0), L analysed by CHOLMOD for it
-/// (supernodal, symbolic or numeric). Sets L->minor to the first permuted column whose pivot is
-/// not positive (L->n when A is positive definite; the columns from there on are then not
-/// valid). Returns false, with nothing computed, when it cannot run (not
-/// tree_cholesky_available; A not upper-stored) or when CHOLMOD's
-/// allocation of L's values fails (c->status tells why). BLAS runs
-/// single-threaded inside the subtrees and on `threads` threads for the top, and is left at
-/// `threads` threads.
-bool tree_cholesky(const cholmod_sparse& A, cholmod_factor& L, unsigned threads, cholmod_common* c);
+/// Computes the numeric values of L = chol(P A P') into `values` (tree_cholesky_values(L) of
+/// them) in CHOLMOD's supernodal layout, as cholmod_l_factorize would put them into L->x: A
+/// upper-stored (stype > 0), L a supernodal analysis of A by CHOLMOD, only read (its structure:
+/// super, pi, px, s, Perm). Returns the first permuted column whose pivot is not positive, or
+/// L.n when A is positive definite (the columns from there on are then not valid).
+/// The subtrees of the elimination tree run on up to `threads` threads.
+std::int64_t tree_cholesky(const cholmod_sparse& A, const cholmod_factor& L, double* values, unsigned threads);
 
 }  // namespace ffr::preproc::detail

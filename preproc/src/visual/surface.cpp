@@ -33,8 +33,8 @@ formats::Visual surface_with_modes(const FeModel& model, const Eigen::MatrixXd& 
   // Faces seen once among solid elements are on the boundary; shell faces are all visible.
   // The faces are keyed by their sorted node tags, not node indices, so the surface's order
   // (faces, then vertices in order of first use) follows the mesh file and not the internal
-  // node numbering (a space-filling curve since the sixth session; with the indices, a SID of
-  // an unchanged part had its surface renumbered).
+  // node numbering (a space-filling curve, which may change with the ordering code; keyed by
+  // the indices, a SID of an unchanged part would have its surface renumbered).
   // One record per solid element face, sorted by key; a key seen once is a boundary face.
   // (An std::map of vector keys took 2 s for the 900k faces of a 1M-DOF TET10 part: an
   // allocation and a pointer chase per face.) Corner faces have 3 or 4 nodes; a triangle's

@@ -1,4 +1,4 @@
-// The co-rotational way of seed 000's comparison: the body's mass matrix and velocity-dependent
+// The co-rotational way of the shape-integral paper's comparison (docs/references.md): the body's mass matrix and velocity-dependent
 // inertia forces from the full FE mass matrix at every evaluation,
 //   B_p = [I, xbar_p0 I, xbar_p1 I, xbar_p2 I, A Phi_p],  M = B^T M_FE B,
 //   Q_v = -B^T M_FE w,  w_p = 2 A_dot Phi_p y_dot,

@@ -1,5 +1,5 @@
-// Body mass matrix M = int B^T B dm from the primitive integrals (seed 000 eq. 5-7), plus the
-// rotary coupling Gbar^T PsiI^T (FORMULATION.md section 3). Coordinates z = [r0, u, v, w, y].
+// Body mass matrix M = int B^T B dm from the primitive integrals (FORMULATION.md section 3), plus the
+// rotary coupling Gbar^T PsiI^T. Coordinates z = [r0, u, v, w, y].
 #include "ffr/runtime/dynamics.hpp"
 #include "ffr/runtime/kinematics.hpp"
 

@@ -15,6 +15,8 @@ struct ffr_sim {
   ffr::runtime::Model model;
   std::unique_ptr<ffr::runtime::Data> data;
   Eigen::VectorXd q, qd, qdd, lambda;  ///< the last accepted state, restored if a step fails
+  /// "step": "auto": one ffr_step is one output interval of adaptive steps (step_control.hpp).
+  std::unique_ptr<ffr::runtime::StepControl> control;
 };
 
 namespace {
@@ -75,6 +77,7 @@ int ffr_open(const char* path, ffr_sim** sim) {
     s->qd = s->data->qd;
     s->qdd = s->data->qdd;
     s->lambda = s->data->lambda;
+    if (s->model.settings.adaptive) s->control = std::make_unique<ffr::runtime::StepControl>(s->model, *s->data);
     *sim = s.release();
     return FFR_OK;
   });
@@ -90,7 +93,7 @@ int ffr_time(const ffr_sim* sim, double* t) {
 
 int ffr_step_size(const ffr_sim* sim, double* h) {
   if (!sim || !h) return fail(FFR_ERROR_ARGUMENT, "ffr_step_size: NULL argument");
-  *h = sim->model.settings.step;
+  *h = sim->model.settings.adaptive ? sim->model.settings.output_interval : sim->model.settings.step;
   return FFR_OK;
 }
 
@@ -107,7 +110,9 @@ int ffr_step(ffr_sim* sim, int n) {
       sim->lambda = d.lambda;
       const double t = d.t;
       try {
-        ffr::runtime::step(sim->model, d);
+        // (advance_to leaves the last accepted state itself when it gives up.)
+        if (sim->control) ffr::runtime::advance_to(sim->model, d, *sim->control, d.t + sim->model.settings.output_interval);
+        else ffr::runtime::step(sim->model, d);
       } catch (...) {
         d.q = sim->q;
         d.qd = sim->qd;

@@ -29,6 +29,8 @@ Data::Data(const Model& model) {
   lambda = lambda_eff = lambda0 = VectorXd::Zero(m);
   Q = f = dq = r = tmp = vstar = qdd_prev = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);
   sigma = c = alpha = VectorXd::Zero(m);
+  scheme.a = VectorXd::Zero(n);
+  scheme.k = trapezoidal_coefficients(model.settings.step);
   K = C = W = T = MatrixXd::Zero(n, n);
   Phiq = MatrixXd::Zero(m, n);
   lu.resize(n);
@@ -56,6 +58,10 @@ Data::Data(const Model& model) {
     bd.M = MatrixXd::Zero(nb, nb);
     bd.omega = bd.alpha = bd.acc = Vector3d::Zero();
     bd.KG = MatrixXd::Zero(nq, nq);
+    const int nm = b.modal_stress ? nq : 0;
+    bd.G1 = MatrixXd::Zero(nm, nm);
+    bd.X1 = MatrixXd::Zero(nm, nm);
+    bd.iface_load = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, b.stiffening ? static_cast<Eigen::Index>(b.stiffening->interfaces.size()) : 0);
     bd.wq = VectorXd::Zero(nq);
     if (nq == 0) body_mass_matrix(b, bd);  // constant for a rigid body
     if (b.full_mass) {

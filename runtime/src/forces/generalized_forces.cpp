@@ -8,6 +8,7 @@ namespace ffr::runtime {
 
 void generalized_forces(const Model& model, Data& data, double t) {
   data.Q.setZero();
+  interface_loads(model, data);  // before the bodies: their stiffening reads them
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     if (!data.integrated[i]) continue;
     const Body& b = model.bodies[i];

@@ -86,8 +86,8 @@ std::string newton_failure(const Model& model, const Data& data, double t, int i
          ": the largest remaining correction is in " + coord + " (" + fmt(dq) +
          " of the model length; scaled increment " + fmt(inc) + ", tolerance " + fmt(model.settings.newton_tolerance) +
          "), the largest constraint violation in " + row + " (" + fmt(phi) + " of the model length, tolerance " +
-         fmt(model.settings.policy.newton.violation_factor * model.settings.tolerance) + "). Try a smaller step (solver.step = " +
-         fmt(0.5 * model.settings.step) + "), more iterations (solver.max_iterations), or check that body's mass and " +
+         fmt(model.settings.policy.newton.violation_factor * model.settings.tolerance) + "). Try a smaller step (" + (model.settings.adaptive ? "solver.max_step = " : "solver.step = ") +
+         fmt(0.5 * data.scheme.k.h) + "), more iterations (solver.max_iterations), or check that body's mass and " +
          "that joint's axes and points";
 }
 
@@ -110,8 +110,8 @@ std::string newton_failure(const Model& model, const Data& data, double t, int i
 // iteration; on the benchmark's slider-crank it takes Newton from 7.0 to 4.5 iterations per
 // step (more passes gained nothing more then; see NewtonPolicy::multiplier_passes for the second). At most
 // `passes` passes. Returns the linearised violation left at q - dq, in model lengths.
-double newton_direction(const Model& model, Data& data, double h, int passes) {
-  const double h4 = 0.25 * h * h;
+double newton_direction(const Model& model, Data& data, int passes) {
+  const double h4 = data.scheme.k.kq;
   solve_tangent(data, data.f, data.dq);
   data.sigma.setZero();
   double left = 0;
@@ -154,15 +154,20 @@ void check_drives(const Model& model, const Data& data, double t) {
 
 }  // namespace
 
-void step(const Model& model, Data& data) {
+void step(const Model& model, Data& data) { step(model, data, model.settings.step); }
+
+void step(const Model& model, Data& data, double h) {
   const SolverSettings& s = model.settings;
   const NewtonPolicy& p = s.policy.newton;
-  const double h = s.step, h2 = h * h, t1 = data.t + h;
+  // The scheme (scheme.hpp): q_dot = c1 q + qd_hat, q_ddot = c2 q + qdd_hat; the trapezoidal rule
+  // has c1 = 2/h, c2 = 4/h^2, kq = 1/c2 = h^2/4.
+  set_step_coefficients(model, data, h);
+  const StepCoefficients& k = data.scheme.k;
+  const double h2 = h * h, t1 = data.t + h;
   data.q0 = data.q;
   data.qd0 = data.qd;
   data.qdd0 = data.qdd;
-  data.qd_hat = -(2.0 / h) * data.q0 - data.qd0;
-  data.qdd_hat = -(4.0 / h2) * data.q0 - (4.0 / h) * data.qd0 - data.qdd0;
+  set_step_predictors(model, data);
   // Predictor of the trapezoidal solution q + h qd + h^2/4 (qdd + qdd_next) with qdd_next
   // extrapolated from the last two accelerations (O(h^4) error instead of O(h^3): for a frame
   // turning by omega h per step the first iterate violates the constraints ~(omega h)^4, not
@@ -171,8 +176,10 @@ void step(const Model& model, Data& data) {
   // with redundant constraints, whose multipliers are free in the null space of Phi_q^T (each
   // step's round-off there was doubled by 2 lambda_n - lambda_n-1 and grew without bound: the
   // benchmark's planar slider-crank failed after 0.62 s, SliderCrank.RedundantMultipliersStayBounded).
+  // (With a step r times the last, qdd_next = qdd + r (qdd - qdd_prev).)
   if (data.have_previous) {
-    data.q.noalias() += h * data.qd0 + (0.75 * h2) * data.qdd0 - (0.25 * h2) * data.qdd_prev;
+    const double r = h / k.h_prev;
+    data.q.noalias() += h * data.qd0 + (0.25 * (2 + r) * h2) * data.qdd0 - (0.25 * r * h2) * data.qdd_prev;
   } else {
     data.q.noalias() += h * data.qd0 + (0.5 * h2) * data.qdd0;
   }
@@ -181,7 +188,7 @@ void step(const Model& model, Data& data) {
   data.lambda0 = data.lambda;
   // The step's penalties, before the first iterate's lambda + alpha Phi uses them: whoever
   // factorised last (the initial conditions, a projection) may have left other ones.
-  penalty_weights(model, data, data.W, s.penalty * 4.0 / h2, data.alpha);
+  penalty_weights(model, data, data.W, s.penalty * k.c2, data.alpha);
 
   // Tangent policy. Without reuse, the tangent is rebuilt at the first iteration of every step;
   // with reuse, only when the last step needed many iterations. In both cases an iteration that
@@ -198,8 +205,8 @@ void step(const Model& model, Data& data) {
   int it = 0;
   bool converged = false;
   for (it = 1; it <= s.max_iterations; ++it) {
-    data.qd = (2.0 / h) * data.q + data.qd_hat;
-    data.qdd = (4.0 / h2) * data.q + data.qdd_hat;
+    data.qd = k.c1 * data.q + data.qd_hat;
+    data.qdd = k.c2 * data.q + data.qdd_hat;
     drive_bodies(model, data, t1);
     // After the first iterate the driven bodies, their markers and the rows among them are
     // those of t1 already (drive_bodies gives them the same values at every iterate).
@@ -214,7 +221,7 @@ void step(const Model& model, Data& data) {
     mass_times(model, data, data.qdd, data.f);
     data.f -= data.Q;
     add_constraint_forces(model, data, data.lambda_eff, data.f);
-    data.f *= 0.25 * h2;
+    data.f *= k.kq;
     bool refreshed_now = refactor;
     if (refactor) {
       if (constraints_only) {
@@ -233,7 +240,7 @@ void step(const Model& model, Data& data) {
       ++refreshes;
     }
     const int passes = it == 1 ? 1 : p.multiplier_passes;
-    double left = newton_direction(model, data, h, passes);
+    double left = newton_direction(model, data, passes);
     double next_inc = scaled_norm(model, data.dq);
     // A tangent built at an earlier iterate under which the increment more than doubles is not
     // used: its update is discarded and the direction recomputed with a tangent built here.
@@ -253,7 +260,7 @@ void step(const Model& model, Data& data) {
       data.tangent_fresh_step = true;
       refreshed_now = true;
       ++refreshes;
-      left = newton_direction(model, data, h, passes);
+      left = newton_direction(model, data, passes);
       next_inc = scaled_norm(model, data.dq);
     }
     data.q -= data.dq;
@@ -314,8 +321,8 @@ void step(const Model& model, Data& data) {
   if (!converged) throw SolverError(t1, std::max(inc, viol), newton_failure(model, data, t1, s.max_iterations, inc, viol, ""));
 
   // Final state and projections.
-  data.qd = (2.0 / h) * data.q + data.qd_hat;
-  data.qdd = (4.0 / h2) * data.q + data.qdd_hat;
+  data.qd = k.c1 * data.q + data.qd_hat;
+  data.qdd = k.c2 * data.q + data.qdd_hat;
   drive_bodies(model, data, t1);
   update_bodies(model, data, Scope::Unknowns);
   update_markers(model, data, Scope::Unknowns);
@@ -324,6 +331,7 @@ void step(const Model& model, Data& data) {
   data.stats.last_violation = data.Phi.cwiseAbs().maxCoeff() / model.length;
   data.stats.last_velocity_violation = project_velocities(model, data, t1);
   data.stats.last_acceleration_violation = project_accelerations(model, data, t1);
+  finish_step_scheme(model, data);
   data.t = t1;
   data.have_previous = true;
   ++data.stats.steps;

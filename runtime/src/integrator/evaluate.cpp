@@ -19,11 +19,11 @@ void evaluate(const Model& model, Data& data, double t, Scope scope) {
 
 // W, T and the factorisation cover the unknowns only: the leading nf x nf blocks.
 void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& lam, bool modal_acceleration) {
-  const double h = model.settings.step;
+  const StepCoefficients& k = data.scheme.k;  // kv = h/2, kq = h^2/4 for the trapezoidal rule
   const int nf = data.nf;
   force_tangents(model, data, t);
   auto W = data.W.topLeftCorner(nf, nf);
-  W = (0.5 * h) * data.C.topLeftCorner(nf, nf) + (0.25 * h * h) * data.K.topLeftCorner(nf, nf);  // one pass
+  W = k.kv * data.C.topLeftCorner(nf, nf) + k.kq * data.K.topLeftCorner(nf, nf);  // one pass
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
     if (data.integrated[i]) W.block(b.offset, b.offset, b.ncoord(), b.ncoord()) += data.bodies[i].M;
@@ -32,15 +32,15 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
 }
 
 void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& lam, bool modal_acceleration) {
-  const double h = model.settings.step;
+  const double kq = data.scheme.k.kq;
   // The rows' penalties data.alpha were set by step() at its start.
   data.T.topLeftCorner(data.nf, data.nf) = data.W.topLeftCorner(data.nf, data.nf);
-  add_penalty_tangent(model, data, data.alpha, 0.25 * h * h, data.T);
+  add_penalty_tangent(model, data, data.alpha, kq, data.T);
   // The constraint forces' own derivative, with the multipliers of the current iterate.
-  add_constraint_hessian(model, data, lam, 0.25 * h * h, data.T);
+  add_constraint_hessian(model, data, lam, kq, data.T);
   // The inertia forces' derivative through the modal masses at the iterate's accelerations: like
   // the constraint Hessian it depends on the iterate, so it is rebuilt here, not kept in W.
-  if (modal_acceleration) add_modal_acceleration_tangent(model, data, 0.25 * h * h, data.T);
+  if (modal_acceleration) add_modal_acceleration_tangent(model, data, kq, data.T);
   factorize_tangent(data);
   data.tangent_valid = true;
   data.tangent_metric_only = false;
@@ -48,9 +48,8 @@ void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& 
 }
 
 void factorize_metric(const Model& model, Data& data) {
-  const double h = model.settings.step;
   data.T.topLeftCorner(data.nf, data.nf) = data.W.topLeftCorner(data.nf, data.nf);
-  add_penalty_tangent(model, data, data.alpha, 0.25 * h * h, data.T);
+  add_penalty_tangent(model, data, data.alpha, data.scheme.k.kq, data.T);
   factorize_tangent(data);
   // Not Newton's tangent: a step that would keep it (reuse_jacobian) builds its own.
   data.tangent_valid = false;

@@ -139,6 +139,7 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
   const double h = model.settings.step;
   const double t0 = model.settings.start;
   data.t = t0;
+  data.scheme.k = trapezoidal_coefficients(h);  // the projections' metric below (scheme.hpp)
   data.qdd.setZero();
   data.have_previous = false;
   data.stats = Stats{};

@@ -23,7 +23,8 @@ Eigen::Map<const Matrix3d> frame(const VectorXd& z, int offset) { return Eigen::
 }  // namespace
 
 void predict_frames(const Model& model, Data& data) {
-  const double h = model.settings.step;
+  const double h = data.scheme.k.h;
+  const double r = h / data.scheme.k.h_prev;  // this step over the last (adaptive steps)
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     if (!data.integrated[i]) continue;  // a driven body is placed by drive_bodies
     const int o = model.bodies[i].offset;
@@ -36,7 +37,7 @@ void predict_frames(const Model& model, Data& data) {
     if (data.have_previous) {  // a step before this one: step_alpha is its start's
       // Rotation vector of the step to third order, the rate of alpha from the last step (the
       // commutator terms vanish for a fixed axis and are of the order of the error otherwise).
-      const Vector3d turn = h * omega + 0.5 * h * h * alpha + (h * h / 6) * (alpha - bd.step_alpha);
+      const Vector3d turn = h * omega + 0.5 * h * h * alpha + (r * h * h / 6) * (alpha - bd.step_alpha);
       const double angle = turn.norm();
       if (angle > 0) {
         const Matrix3d A_next = Eigen::AngleAxisd(angle, turn / angle).toRotationMatrix() * A;

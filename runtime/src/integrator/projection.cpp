@@ -46,7 +46,7 @@ struct Projected {
 Projected project_once(const Model& model, Data& data, VectorXd& x, const VectorXd& bias, double time_scale) {
   const SolverSettings& s = model.settings;
   const ProjectionPolicy& p = s.policy.projection;
-  const double h4 = 0.25 * s.step * s.step;
+  const double h4 = data.scheme.k.kq;  // h^2/4 for the trapezoidal rule
   const double unit = time_scale / model.length;
   const double target = p.residual_fraction * s.tolerance;
   const double inf = std::numeric_limits<double>::infinity();
@@ -125,12 +125,12 @@ double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias
 }  // namespace
 
 double project_velocities(const Model& model, Data& data, double t) {
-  const double h = model.settings.step;
+  const double h = data.scheme.k.h;
   return project(model, data, data.qd, data.Phit, h, t, "velocity");
 }
 
 double project_accelerations(const Model& model, Data& data, double t) {
-  const double h = model.settings.step;
+  const double h = data.scheme.k.h;
   // gamma depends on the (projected) velocities; q, and with it the Jacobian, has not changed
   // since the final evaluation of the step.
   update_body_rates(model, data);

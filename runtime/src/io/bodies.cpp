@@ -16,6 +16,92 @@ std::string num(double v) {
   return b;
 }
 
+// /sid/Ke/M1, checked: nq slices of nq x nq, finite, each symmetric (Phi_i^T K_G Phi_j).
+struct ModalStress {
+  std::vector<MatrixXd> M1;
+};
+
+ModalStress modal_stress(const formats::Sid& sid, const std::string& file) {
+  ModalStress out;
+  if (sid.KeM1.empty()) return out;
+  const auto nq = sid.nq();
+  if (static_cast<formats::Index>(sid.KeM1.size()) != nq)
+    throw ModelError(file, "/sid/Ke/M1", "wrong shape: expected [" + std::to_string(nq) + "," + std::to_string(nq) + "," +
+                                             std::to_string(nq) + "], found " + std::to_string(sid.KeM1.size()) + " slices");
+  double scale = 0;
+  for (const auto& M : sid.KeM1) {
+    if (M.rows() != nq || M.cols() != nq)
+      throw ModelError(file, "/sid/Ke/M1", "wrong shape: expected slices [" + std::to_string(nq) + "," + std::to_string(nq) +
+                                               "], found [" + std::to_string(M.rows()) + "," + std::to_string(M.cols()) + "]");
+    if (!M.allFinite()) throw ModelError(file, "/sid/Ke/M1", "not finite");
+    scale = std::max(scale, M.cwiseAbs().maxCoeff());
+  }
+  for (std::size_t k = 0; k < sid.KeM1.size(); ++k) {
+    const double asym = (sid.KeM1[k] - sid.KeM1[k].transpose()).cwiseAbs().maxCoeff();
+    if (asym > 1e-9 * scale)
+      throw ModelError(file, "/sid/Ke/M1",
+                       "slice " + std::to_string(k) + " is not symmetric in (i, j) (|M1 - M1^T| = " + num(asym) + " of " +
+                           num(scale) + "): M1[k](i,j) = Phi_i^T K_G(sigma_k) Phi_j is");
+    out.M1.push_back(0.5 * (sid.KeM1[k] + sid.KeM1[k].transpose()));
+  }
+  return out;
+}
+
+// Ke^+ restricted to the modes in `use` (a pseudo-inverse: rigid or null directions get none).
+MatrixXd static_flexibility(const MatrixXd& Ke, const std::vector<int>& use) {
+  const int n = static_cast<int>(use.size()), nq = static_cast<int>(Ke.rows());
+  MatrixXd K(n, n);
+  for (int a = 0; a < n; ++a)
+    for (int c = 0; c < n; ++c) K(a, c) = Ke(use[a], use[c]);
+  Eigen::SelfAdjointEigenSolver<MatrixXd> es(0.5 * (K + K.transpose()));
+  const VectorXd& ev = es.eigenvalues();
+  const double tol = 1e-10 * std::max(1e-300, ev.cwiseAbs().maxCoeff());
+  VectorXd inv = VectorXd::Zero(n);
+  for (int a = 0; a < n; ++a)
+    if (ev(a) > tol) inv(a) = 1.0 / ev(a);
+  const MatrixXd Kp = es.eigenvectors() * inv.asDiagonal() * es.eigenvectors().transpose();
+  MatrixXd F = MatrixXd::Zero(nq, nq);
+  for (int a = 0; a < n; ++a)
+    for (int c = 0; c < n; ++c) F(use[a], use[c]) = Kp(a, c);
+  return F;
+}
+
+// Each load-case matrix less the part that the body's own modal stress (Ke/M1) gives at the
+// load's quasi-static modal response q_L (FORMULATION.md 7): K0_L - sum_k q_L,k M1[k]. q_L
+// solves Ke q = Phi^T f_L under the conditions the reducer solved the case under: the inertial
+// cases with the Craig-Bampton interfaces held (constraint-mode coordinates zero), the
+// interface forces with only the frame held (every mode).
+void remove_modal_part(const formats::Sid& sid, const ModalStress& ms, StiffeningTerms& s) {
+  const int nq = static_cast<int>(sid.nq());
+  std::vector<int> all, normal;
+  for (int k = 0; k < nq; ++k) {
+    all.push_back(k);
+    if (static_cast<std::size_t>(k) >= sid.refmod.mode_type.size() || sid.refmod.mode_type[static_cast<std::size_t>(k)] != formats::ModeType::Constraint)
+      normal.push_back(k);
+  }
+  const MatrixXd F_all = static_flexibility(sid.Ke, all), F_held = static_flexibility(sid.Ke, normal);
+  auto modal = [&](const MatrixXd& F, const VectorXd& g) {
+    const VectorXd q = F * g;
+    MatrixXd C = MatrixXd::Zero(nq, nq);
+    for (int k = 0; k < nq; ++k) C += q(k) * ms.M1[static_cast<std::size_t>(k)];
+    return C;
+  };
+  // Modal loads of the inertial cases: -int Phi^T (e_c, e_c x c, C_j c) dm.
+  for (int c = 0; c < 3; ++c) {
+    if (sid.Ct.M0.rows() == nq) s.Kt[c] -= modal(F_held, -sid.Ct.M0.col(c));
+    if (sid.Cr.M0.rows() == nq) s.Kr[c] -= modal(F_held, -sid.Cr.M0.col(c));
+  }
+  if (sid.Oe.M0.rows() == nq)
+    for (int j = 0; j < 6; ++j) s.Kw[j] -= modal(F_held, -sid.Oe.M0.col(j));
+  for (auto& is : s.interfaces) {
+    const auto& n = sid.nodes[static_cast<std::size_t>(is.node)];
+    for (int c = 0; c < 3; ++c) {
+      is.KF[c] -= modal(F_all, n.phi.row(c).transpose());
+      is.KM[c] -= modal(F_all, n.psi.row(c).transpose());
+    }
+  }
+}
+
 }  // namespace
 
 Body make_rigid_body(const std::string& name, double mass, const Vector3d& com, const Matrix3d& inertia,
@@ -102,6 +188,24 @@ Body make_flexible_body(const std::string& name, const formats::Sid& sid, const 
     const MatrixXd MX = b.Myy * ge.eigenvectors();
     b.De += MX * (2.0 * *ratio * w).asDiagonal() * MX.transpose();
   }
+  const ModalStress ms = modal_stress(sid, file);
+  if (stiffening && !ms.M1.empty()) {
+    ModalStressStiffness m;
+    m.by_mode.resize(nq * nq, nq);
+    m.by_coeff.resize(nq * nq, nq);
+    for (int k = 0; k < nq; ++k) {
+      m.by_mode.block(k * nq, 0, nq, nq) = ms.M1[static_cast<std::size_t>(k)];
+      m.by_coeff.col(k) = ms.M1[static_cast<std::size_t>(k)].reshaped();
+    }
+    b.modal_stress = std::move(m);
+  }
+  if (stiffening && nq > 0 && sid.ksigma.M0.size() == nq && sid.ksigma.M1.rows() == nq && sid.ksigma.M1.cols() == nq &&
+      (sid.ksigma.M0.cwiseAbs().maxCoeff() > 0 || sid.ksigma.M1.cwiseAbs().maxCoeff() > 0)) {
+    const double scale = std::max(1e-300, sid.ksigma.M1.cwiseAbs().maxCoeff());
+    if ((sid.ksigma.M1 - sid.ksigma.M1.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale)
+      throw ModelError(file, "/sid/ksigma/M1", "not symmetric (a geometric stiffness is; referenced by " + field + ")");
+    b.prestress = Prestress{sid.ksigma.M0, 0.5 * (sid.ksigma.M1 + sid.ksigma.M1.transpose())};
+  }
   if (stiffening && sid.stiffening && nq > 0) {
     StiffeningTerms s;
     for (int c = 0; c < 3; ++c) {
@@ -117,6 +221,26 @@ Body make_flexible_body(const std::string& name, const formats::Sid& sid, const 
         }
         for (int j = 0; j < 6; ++j) s.Kw[j](i, k) = sid.stiffening->K0om[k](i, j);
       }
+    for (const auto& itf : sid.stiffening->interfaces) {
+      InterfaceStiffening is;
+      is.name = itf.name;
+      for (const auto& si : sid.interfaces)
+        if (si.name == itf.name) is.node = static_cast<int>(si.node);
+      if (is.node < 0) is.node = static_cast<int>(sid.find_node(itf.name));
+      if (is.node < 0 || is.node >= static_cast<int>(sid.nodes.size()))
+        throw ModelError(file, "/stiffening/interfaces/" + itf.name, "names no interface or node of the SID");
+      for (int c = 0; c < 3; ++c) {
+        is.KF[c] = MatrixXd::Zero(nq, nq);
+        is.KM[c] = MatrixXd::Zero(nq, nq);
+        for (int k = 0; k < nq; ++k)
+          for (int i = 0; i < nq; ++i) {
+            is.KF[c](i, k) = itf.K0F[static_cast<std::size_t>(k)](i, c);
+            is.KM[c](i, k) = itf.K0M[static_cast<std::size_t>(k)](i, c);
+          }
+      }
+      s.interfaces.push_back(std::move(is));
+    }
+    if (!ms.M1.empty()) remove_modal_part(sid, ms, s);
     b.stiffening = std::move(s);
   }
   for (const auto& n : sid.nodes) b.nodes.push_back({n.name, n.origin, n.phi, n.psi});

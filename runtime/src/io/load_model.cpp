@@ -3,6 +3,7 @@
 
 #include "parse.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ffr::runtime {
@@ -52,21 +53,64 @@ Table parse_table(const Field& f, int ncomp) {
   return Table(t, v);
 }
 
+// The integrator (FORMULATION.md section 9) and "step": a fixed step, or "auto" with its own
+// keys, each refused with the other (a key that would be silently ignored is a wrong answer).
+void parse_scheme(const Field& s, SolverSettings& st) {
+  if (auto f = s.find("integrator")) {
+    const std::string v = f->string();
+    if (v == "trapezoidal") st.integrator = Integrator::Trapezoidal;
+    else if (v == "generalized_alpha") st.integrator = Integrator::GeneralizedAlpha;
+    else f->fail("unknown integrator '" + v + "' (trapezoidal, generalized_alpha)");
+  }
+  if (auto f = s.find("spectral_radius")) {
+    if (st.integrator != Integrator::GeneralizedAlpha) f->fail("is a setting of \"integrator\": \"generalized_alpha\"");
+    st.spectral_radius = f->number();
+    if (!(st.spectral_radius >= 0 && st.spectral_radius <= 1)) f->fail("must be in [0, 1] (1: no numerical damping)");
+  } else if (st.integrator == Integrator::GeneralizedAlpha) {
+    s.fail("\"integrator\": \"generalized_alpha\" needs \"spectral_radius\" in [0, 1]");
+  }
+  const Field step = s.at("step");
+  st.adaptive = step.is_string();
+  if (st.adaptive && step.string() != "auto") step.fail("must be a step in seconds or \"auto\"");
+  const double run = st.end - st.start;
+  if (!st.adaptive) {
+    for (const char* k : {"rtol", "atol", "output_interval", "max_step"})
+      if (auto f = s.find(k)) f->fail(std::string("is a setting of \"step\": \"auto\" (a fixed step was given)"));
+    st.step = step.positive();
+    return;
+  }
+  if (auto f = s.find("output_every")) f->fail("is a setting of a fixed step; with \"step\": \"auto\" use \"output_interval\" [s]");
+  if (auto f = s.find("rtol")) st.rtol = f->positive();
+  if (auto f = s.find("atol")) st.atol = f->positive();
+  if (st.rtol < 1e-14) s.at("rtol").fail("is below what double precision can reach (1e-14)");
+  st.output_interval = run / 100;
+  if (auto f = s.find("output_interval")) {
+    st.output_interval = f->positive();
+    if (st.output_interval > run) f->fail("is longer than the run (end - start)");
+    if (run / st.output_interval > 1e9) f->fail("gives more than 1e9 samples");
+  }
+  if (auto f = s.find("max_step")) st.max_step = f->positive();
+  // The first step tried: a guess the error estimate corrects within the first steps.
+  st.step = 1e-2 * (st.max_step > 0 ? std::min(st.max_step, st.output_interval) : st.output_interval);
+}
+
 void parse_solver(const Field& root, ParseContext& ctx) {
   const Field s = root.at("solver");
   s.allow_only({"start", "end", "step", "output_every", "tolerance", "newton_tolerance", "max_iterations", "penalty", "reuse_jacobian",
-                "eliminate_driven_bodies"});
+                "eliminate_driven_bodies", "integrator", "spectral_radius", "rtol", "atol", "output_interval", "max_step"});
   SolverSettings& st = ctx.model.settings;
   if (auto f = s.find("start")) st.start = f->number();
   st.end = s.at("end").number();
-  st.step = s.at("step").positive();
   if (!(st.end > st.start)) s.at("end").fail("must be after the start time");
-  const double n = (st.end - st.start) / st.step;
-  if (n > 1e9) s.at("step").fail("gives more than 1e9 steps");
-  // A step longer than the run rounded to no step at all below (n ~ 0 is "whole").
-  if (n < 0.5) s.at("step").fail("is longer than the run (end - start)");
-  if (std::abs(n - std::round(n)) > 1e-6 * std::max(1.0, n))
-    s.at("step").fail("the run (end - start) is not a whole number of steps");
+  parse_scheme(s, st);
+  if (!st.adaptive) {
+    const double n = (st.end - st.start) / st.step;
+    if (n > 1e9) s.at("step").fail("gives more than 1e9 steps");
+    // A step longer than the run rounded to no step at all below (n ~ 0 is "whole").
+    if (n < 0.5) s.at("step").fail("is longer than the run (end - start)");
+    if (std::abs(n - std::round(n)) > 1e-6 * std::max(1.0, n))
+      s.at("step").fail("the run (end - start) is not a whole number of steps");
+  }
   if (auto f = s.find("output_every")) {
     st.output_every = f->small_integer();
     if (st.output_every < 1) f->fail("must be at least 1");
@@ -117,6 +161,7 @@ Model parse_document(const formats::JsonDocument& doc, const std::filesystem::pa
   detail::parse_bodies(root, ctx);
   detail::parse_joints(root, ctx);
   detail::parse_forces(root, ctx);
+  detail::check_bodies_can_turn(root, ctx);
   detail::parse_motions(root, ctx);
   detail::parse_outputs(root, ctx);
   finalize(m);

@@ -25,6 +25,9 @@ void parse_forces(const Field& root, ParseContext& ctx);
 void parse_motions(const Field& root, ParseContext& ctx);
 void parse_outputs(const Field& root, ParseContext& ctx);
 void parse_solver(const Field& root, ParseContext& ctx);
+/// Refuses a flexible body with no inertia about an axis whose rotation no joint holds
+/// (check_inertia.cpp); runs after the joints and forces are parsed.
+void check_bodies_can_turn(const Field& root, ParseContext& ctx);
 
 /// Body index by name (kGround for "ground"); fails naming `f` if unknown.
 int body_ref(const Field& f, const Model& m);

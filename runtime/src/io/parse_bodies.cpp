@@ -28,7 +28,7 @@ formats::Sid read_sid_for(const Field& f, const std::filesystem::path& base, std
   const std::string referred = " (" + f.file() + ": " + f.path() + ")";
   formats::Sid sid;
   try {
-    sid = formats::read_sid(p);
+    sid = formats::read_sid(p, &notes);  // a version 1 SID is read with a note: no content checksums
   } catch (const formats::FormatError& e) {
     // Keep the SID's own file and dataset, say where the model refers to it.
     throw ModelError(e.file(), e.object(), e.detail() + referred);

@@ -66,7 +66,7 @@ JointType joint_type(const Field& f) {
 }  // namespace
 
 /// Resolves the common point of a two-body connection: `at`, else the first node given, else the
-/// frame origin of a flexible body (contract: "a flexible body without either is joined at its
+/// frame origin of a flexible body (docs/contract.md: "a flexible body without either is joined at its
 /// frame origin"). Each side without a node is attached rigidly to its frame at that point.
 void connection_points(const Field& j, const Model& m, Attachment& a1, Attachment& a2) {
   a1.body = body_ref(j.at("body1"), m);

@@ -2,6 +2,7 @@
 // written to temporary names and renamed only when both are complete, so a failure leaves
 // neither file (nor half of one).
 #include "ffr/formats/h5.hpp"
+#include "ffr/formats/results_io.hpp"
 #include "ffr/runtime/outputs.hpp"
 #include "ffr/version.hpp"
 
@@ -21,7 +22,7 @@ void write_h5(const std::filesystem::path& temp, const std::filesystem::path& pa
     h5::Writer w(temp, path.string());
     const auto nt = static_cast<std::uint64_t>(rec.rows());
     w.attr("/", "format", std::string("ffr-results"));
-    w.attr("/", "format_version", std::int64_t{1});
+    w.attr("/", "format_version", std::int64_t{ffr::formats::kResultsFormatVersion});
     w.attr("/", "generator", std::string(ffr::kGenerator));
     w.attr("/", "model", model.source);
     w.attr("/", "steps", static_cast<std::int64_t>(info.steps));

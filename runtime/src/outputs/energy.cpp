@@ -21,6 +21,18 @@ Energy energy(const Model& model, Data& data) {
     if (b.nq) {
       const auto y = data.q.segment(b.offset + 12, b.nq);
       e.potential += 0.5 * y.dot(b.Ke * y);
+      // The cubic strain energy of Ke/M1, 1/2 y^T (sum_k y_k M1[k]) y, and the prestress's
+      // y^T f0 + 1/2 y^T K1 y (FORMULATION.md 7, 11).
+      BodyData& bdw = data.bodies[i];  // work vectors: energy() allocates nothing
+      if (b.modal_stress) {
+        modal_stress_terms(b, bdw, y);
+        bdw.wq.noalias() = bdw.G1 * y;
+        e.potential += 0.5 * y.dot(bdw.wq);
+      }
+      if (b.prestress) {
+        bdw.wq.noalias() = b.prestress->K1 * y;
+        e.potential += y.dot(b.prestress->f0) + 0.5 * y.dot(bdw.wq);
+      }
     }
   }
   for (const SpringDamper& s : model.springs) e.potential += detail::spring_energy(model, s, data);

@@ -16,6 +16,9 @@ struct Options {
   std::string ccx = "ccx";
   std::vector<std::int64_t> sizes;                       ///< target DOF per row
   std::vector<int> threads{1};                           ///< thread counts, every size is run with each
+  /// solid benchmark: ffr-reduce's --factorization backends, each run at every size and thread
+  /// count beside the one CalculiX run ("" : the default, no option given)
+  std::vector<std::string> factorizations{""};
   int modes = 0;                                         ///< 0: the benchmark's default
   double thickness = 0.003;                              ///< shell benchmark: wall thickness [m]
   double ccx_timeout_s = 2700;                           ///< CalculiX wall-time cap
@@ -38,9 +41,13 @@ std::string env_text(const std::vector<std::pair<std::string, std::string>>& env
 /// RSS cap of a run: --mem-cap-mib, else MemAvailable minus 1 GiB.
 std::int64_t memory_cap_kib(const Options& o);
 
-/// The ffr-reduce run of `json` into dir/stem.sid.h5 with t threads (stdout and stderr in dir),
-/// and its command line appended to `commands` for the report.
+/// The ffr-reduce run of `json` into dir/stem[-factorization].sid.h5 with t threads (stdout and
+/// stderr in dir), with --factorization when one is given, and its command line appended to
+/// `commands` for the report.
 ChildSpec ffr_reduce_run(const Options& o, const std::filesystem::path& json, const std::filesystem::path& dir,
-                         const std::string& stem, int t, std::string& commands);
+                         const std::string& stem, int t, std::string& commands, const std::string& factorization = "");
+
+/// The SID file ffr_reduce_run writes.
+std::filesystem::path ffr_sid(const std::filesystem::path& dir, const std::string& stem, const std::string& factorization);
 
 }  // namespace ffr::bench

@@ -1,9 +1,10 @@
 // reduce_bench: performance benchmarks of ffr-reduce (they measure; they are not tests).
 //
 //   reduce_bench solid [--sizes 100000,265000,500000,1000000] [--modes 20] [--threads 1[,2]]
-//                      [--ccx-timeout 2700] [--ccx-max-dof N] [--mem-cap-mib M]
+//                      [--factorizations default,cholmod] [--ccx-timeout 2700] [--ccx-max-dof N] [--mem-cap-mib M]
 //       TET10 plate with holes, clamped, side by side with CalculiX *FREQUENCY on the identical
-//       mesh: wall/CPU time, peak RSS, ratios, and the largest relative frequency difference.
+//       mesh: wall/CPU time, peak RSS, ratios, and the largest relative frequency difference;
+//       ffr-reduce once per --factorization backend listed (default: its default only).
 //   reduce_bench shell [--sizes 1000000] [--modes 30] [--thickness 0.003] [--threads 2] [--goal-s 120]
 //       QUAD4 tube of ~1M DOF, clamped: stage times and peak memory against the goal.
 //
@@ -28,6 +29,7 @@ namespace {
   std::fprintf(stderr,
                "reduce_bench: %s\n"
                "usage: reduce_bench solid|shell [--sizes N1,N2,..] [--modes K] [--threads 1,2] [--thickness T]\n"
+               "       [--factorizations default,supernodal,cholmod]\n"
                "       [--workdir DIR] [--ffr PATH] [--ccx PATH] [--ccx-timeout S] [--ccx-max-dof N]\n"
                "       [--mem-cap-mib M] [--wait-load L] [--wait-max S] [--goal-s S] [--md FILE] [--title TEXT]\n",
                msg.c_str());
@@ -90,6 +92,15 @@ int main(int argc, char** argv) {
         o.threads.push_back(static_cast<int>(n));
       }
       if (o.threads.empty()) usage("empty --threads");
+    } else if (k == "--factorizations") {
+      o.factorizations.clear();
+      std::istringstream in(v);
+      std::string f;
+      while (std::getline(in, f, ','))
+        if (f == "default") o.factorizations.push_back("");
+        else if (f == "supernodal" || f == "cholmod") o.factorizations.push_back(f);
+        else usage("--factorizations takes default, supernodal or cholmod, comma-separated");
+      if (o.factorizations.empty()) usage("empty --factorizations");
     } else if (k == "--thickness") o.thickness = number(v, k);
     else if (k == "--workdir") o.workdir = v;
     else if (k == "--ffr") o.ffr = v;

@@ -46,17 +46,28 @@ std::int64_t memory_cap_kib(const Options& o) {
   return std::max<std::int64_t>(mem_available_kib() - (1 << 20), 1 << 20);
 }
 
+fs::path ffr_sid(const fs::path& dir, const std::string& stem, const std::string& factorization) {
+  return dir / (stem + (factorization.empty() ? "" : "-" + factorization) + ".sid.h5");
+}
+
 ChildSpec ffr_reduce_run(const Options& o, const fs::path& json, const fs::path& dir, const std::string& stem, int t,
-                         std::string& commands) {
+                         std::string& commands, const std::string& factorization) {
   ChildSpec f;
-  f.argv = {o.ffr.string(), json.string(), "-o", (dir / (stem + ".sid.h5")).string(), "--threads", std::to_string(t)};
+  const fs::path sid = ffr_sid(dir, stem, factorization);
+  f.argv = {o.ffr.string(), json.string(), "-o", sid.string(), "--threads", std::to_string(t)};
+  if (!factorization.empty()) {
+    f.argv.push_back("--factorization");
+    f.argv.push_back(factorization);
+  }
   f.env = thread_env(t, false);
   f.cwd = dir;
-  f.out = dir / "ffr.out";
-  f.err = dir / "ffr.err";
+  const std::string tag = factorization.empty() ? "ffr" : "ffr-" + factorization;
+  f.out = dir / (tag + ".out");
+  f.err = dir / (tag + ".err");
   f.max_rss_kib = memory_cap_kib(o);
   commands += "    " + env_text(f.env) + "ffr-reduce " + json.filename().string() + " -o " +
-              (dir.filename() / (stem + ".sid.h5")).string() + " --threads " + std::to_string(t) + "\n";
+              (dir.filename() / sid.filename()).string() + " --threads " + std::to_string(t) +
+              (factorization.empty() ? "" : " --factorization " + factorization) + "\n";
   return f;
 }
 
@@ -68,6 +79,7 @@ double mib(std::int64_t kib) { return static_cast<double>(kib) / 1024.0; }
 struct Row {
   MeshCase mesh;
   int threads = 1;
+  std::string factorization;  ///< ffr-reduce's --factorization ("": its default)
   ChildResult ffr;
   std::string ffr_note;
   std::vector<std::pair<std::string, double>> stages;
@@ -100,9 +112,10 @@ int ccx_cpus_used(const fs::path& out) {
 // Power law through the last two successful CalculiX rows with these threads (or a default
 // exponent through the last one) to skip runs that would exceed a cap anyway.
 bool predict_ccx(const std::vector<Row>& rows, int threads, std::int64_t dof, double& t_pred, double& m_pred) {
-  std::vector<const Row*> done;
+  std::vector<const Row*> done;  // one a size: the rows of the backends share its CalculiX run
   for (const auto& r : rows)
-    if (r.threads == threads && r.ccx_ran && r.ccx.ok()) done.push_back(&r);
+    if (r.threads == threads && r.ccx_ran && r.ccx.ok() && (done.empty() || done.back()->mesh.dof != r.mesh.dof))
+      done.push_back(&r);
   if (done.empty()) return false;
   const Row& b = *done.back();
   double pt = 1.5, pm = 1.3;
@@ -159,20 +172,26 @@ void run_size(const Options& o, std::int64_t target, int modes, const IsoMateria
   for (std::size_t i = 0; i < o.threads.size(); ++i) {
     const int t = o.threads[i];
     const fs::path dir = rundirs[i];
-    Row r;
-    r.mesh = mesh;
-    r.threads = t;
-
-    const ChildSpec f = ffr_reduce_run(o, json, dir, stem, t, commands);
-    wait_for_quiet(o.wait_load, o.wait_max_s, true);
-    r.ffr = run_child(f);
-    r.ffr_note = outcome(r.ffr, f.err);
-    r.stages = read_stage_times(f.err);
-    if (r.ffr.ok()) r.f_ffr = read_sid_frequencies(dir / (stem + ".sid.h5"));
-    std::fprintf(stderr, "  ffr-reduce, %s: %s s wall, %s s CPU, %.0f MiB %s(load %.1f)\n", plural(t).c_str(),
-                 secs(r.ffr.wall_s).c_str(), secs(r.ffr.cpu_s()).c_str(), mib(r.ffr.peak_rss_kib), r.ffr_note.c_str(),
-                 r.ffr.load_before);
-
+    // ffr-reduce once per factorization backend, one after the other, then CalculiX once; the
+    // rows of this size and thread count share that CalculiX run.
+    const std::size_t first = rows.size();
+    for (const std::string& fact : o.factorizations) {
+      Row fr;
+      fr.mesh = mesh;
+      fr.threads = t;
+      fr.factorization = fact;
+      const ChildSpec f = ffr_reduce_run(o, json, dir, stem, t, commands, fact);
+      wait_for_quiet(o.wait_load, o.wait_max_s, true);
+      fr.ffr = run_child(f);
+      fr.ffr_note = outcome(fr.ffr, f.err);
+      fr.stages = read_stage_times(f.err);
+      if (fr.ffr.ok()) fr.f_ffr = read_sid_frequencies(ffr_sid(dir, stem, fact));
+      std::fprintf(stderr, "  ffr-reduce%s, %s: %s s wall, %s s CPU, %.0f MiB %s(load %.1f)\n",
+                   fact.empty() ? "" : (" --factorization " + fact).c_str(), plural(t).c_str(), secs(fr.ffr.wall_s).c_str(),
+                   secs(fr.ffr.cpu_s()).c_str(), mib(fr.ffr.peak_rss_kib), fr.ffr_note.c_str(), fr.ffr.load_before);
+      rows.push_back(std::move(fr));
+    }
+    Row r = rows[first];
     double tp = 0, mp = 0;
     const std::int64_t cap = memory_cap_kib(o);
     if (!want_ccx[i]) {
@@ -206,10 +225,18 @@ void run_size(const Options& o, std::int64_t target, int modes, const IsoMateria
                    secs(r.ccx.wall_s).c_str(), secs(r.ccx.cpu_s()).c_str(), mib(r.ccx.peak_rss_kib),
                    r.ccx_note.c_str(), r.ccx.load_before);
     }
-    if (!r.f_ffr.empty() && !r.f_ccx.empty())
-      std::fprintf(stderr, "  max |f_ffr / f_ccx - 1| over %zu modes: %.2e\n", std::min(r.f_ffr.size(), r.f_ccx.size()),
-                   max_relative_difference(r.f_ffr, r.f_ccx));
-    rows.push_back(std::move(r));
+    for (std::size_t k = first; k < rows.size(); ++k) {
+      Row& fr = rows[k];
+      fr.ccx_ran = r.ccx_ran;
+      fr.ccx = r.ccx;
+      fr.ccx_note = k == first ? r.ccx_note : "";
+      fr.f_ccx = r.f_ccx;
+      fr.ccx_cpus = r.ccx_cpus;
+      if (!fr.f_ffr.empty() && !fr.f_ccx.empty())
+        std::fprintf(stderr, "  %s: max |f_ffr / f_ccx - 1| over %zu modes: %.2e\n",
+                     fr.factorization.empty() ? "default" : fr.factorization.c_str(),
+                     std::min(fr.f_ffr.size(), fr.f_ccx.size()), max_relative_difference(fr.f_ffr, fr.f_ccx));
+    }
   }
 }
 
@@ -228,9 +255,9 @@ int run_solid(const Options& o) {
   std::string commands;
   for (auto target : sizes) run_size(o, target, modes, mat, rows, commands);
 
-  Table head({"DOF", "thr", "ffr wall s", "ffr CPU s", "ffr MiB", "ccx wall s", "ccx CPU s", "ccx MiB", "ccx/ffr wall",
+  Table head({"DOF", "thr", "factorization", "ffr wall s", "ffr CPU s", "ffr MiB", "ccx wall s", "ccx CPU s", "ccx MiB", "ccx/ffr wall",
               "ccx/ffr CPU", "ffr/ccx mem", "max df/f", "load"});
-  Table stages({"DOF", "thr", "mesh", "assembly", "constraints", "analyze", "factorize", "lanczos", "solves", "checks", "invariants",
+  Table stages({"DOF", "thr", "factorization", "mesh", "assembly", "constraints", "analyze", "factorize", "lanczos", "solves", "checks", "invariants",
                 "visual", "other", "total"});
   Table growth({"DOF from", "DOF to", "thr", "ffr wall", "ffr CPU", "ffr mem", "ccx wall", "ccx CPU", "ccx mem"});
   std::string notes;
@@ -242,7 +269,8 @@ int run_solid(const Options& o) {
     const double cw = pick(co, r.ccx.wall_s), cc = pick(co, r.ccx.cpu_s()), cm = pick(co, mib(r.ccx.peak_rss_kib));
     std::string load = fixed(r.ffr.load_before, 1);
     if (r.ccx_ran) load += " / " + fixed(r.ccx.load_before, 1);
-    head.add({grouped(r.mesh.dof), std::to_string(r.threads), secs(fw), secs(fc), fixed(fm, 0), secs(cw), secs(cc),
+    const std::string fact = r.factorization.empty() ? "default" : r.factorization;
+    head.add({grouped(r.mesh.dof), std::to_string(r.threads), fact, secs(fw), secs(fc), fixed(fm, 0), secs(cw), secs(cc),
               fixed(cm, 0), fixed(cw / fw, 2), fixed(cc / fc, 2), fixed(fm / cm, 2),
               sig3(max_relative_difference(r.f_ffr, r.f_ccx)), load});
     if (fo) {
@@ -250,18 +278,19 @@ int run_solid(const Options& o) {
       for (const char* k : {"mesh", "model", "assembly", "modes", "invariants", "stiffening", "visual"})
         if (!std::isnan(stage(r, k))) sum += stage(r, k);
       const double solves = stage(r, "solves");
-      stages.add({grouped(r.mesh.dof), std::to_string(r.threads), secs(stage(r, "mesh")), secs(stage(r, "assembly")),
+      stages.add({grouped(r.mesh.dof), std::to_string(r.threads), fact, secs(stage(r, "mesh")), secs(stage(r, "assembly")),
                   secs(stage(r, "constraints")), secs(stage(r, "analyze")), secs(stage(r, "factorize")), secs(stage(r, "lanczos")),
                   std::isnan(solves) ? "—" : std::to_string(static_cast<long>(solves)), secs(stage(r, "checks")),
                   secs(stage(r, "invariants")), secs(stage(r, "visual")), secs(r.ffr.wall_s - sum), secs(r.ffr.wall_s)});
     }
-    if (!r.ffr_note.empty()) notes += "- " + grouped(r.mesh.dof) + " DOF, " + plural(r.threads) + ": ffr-reduce " + r.ffr_note + "\n";
+    if (!r.ffr_note.empty())
+      notes += "- " + grouped(r.mesh.dof) + " DOF, " + plural(r.threads) + ": ffr-reduce (" + fact + ") " + r.ffr_note + "\n";
     if (!r.ccx_note.empty()) notes += "- " + grouped(r.mesh.dof) + " DOF, " + plural(r.threads) + ": CalculiX " + r.ccx_note + "\n";
-    if (r.ccx_ran && r.ccx_cpus != r.threads)
+    if (r.ccx_ran && r.ccx_cpus != r.threads && !r.ccx_note.empty())
       notes += "- " + grouped(r.mesh.dof) + " DOF: CalculiX reported using up to " + std::to_string(r.ccx_cpus) + " cpu(s)\n";
     for (std::size_t j = i; j-- > 0;) {
       const Row& a = rows[j];
-      if (a.threads != r.threads) continue;
+      if (a.threads != r.threads || a.factorization != r.factorization || a.mesh.dof == r.mesh.dof) continue;
       const double na = static_cast<double>(a.mesh.dof), nb = static_cast<double>(r.mesh.dof);
       const bool ca = a.ccx_ran && a.ccx.ok();
       growth.add({grouped(a.mesh.dof), grouped(r.mesh.dof), std::to_string(r.threads),

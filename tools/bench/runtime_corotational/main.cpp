@@ -1,5 +1,5 @@
-// ffr-bench-runtime-corotational: seed 000 ("Improved efficiency in FFR methods ... by means of
-// shape integrals preprocessing") compares, in the absolute natural-coordinate formulation, the
+// ffr-bench-runtime-corotational: the paper "Improved efficiency in FFR methods for flexible
+// multibody dynamics by means of shape integrals preprocessing" (docs/references.md) compares, in the absolute natural-coordinate formulation, the
 // same simulation with the flexible bodies' mass matrix and velocity-dependent inertia forces
 // obtained every step from the FE mass matrix (the co-rotational way) or from shape integrals
 // computed once. It reports ~2.75x ("about 175%") for bodies of 10 elements (33 DOF) with 6 modes.
@@ -71,7 +71,7 @@ int run(ffr::cli::Args& args) {
   const auto dir = bench::temp_dir("corot");
   const int repeats = quick ? 2 : 5;
   const double end = quick ? 0.05 : 0.2;
-  std::printf("# seed 000 comparison: flexible slider-crank, rod with 6 modes, h = 1 ms, %g s, best of %d\n", end, repeats);
+  std::printf("# co-rotational vs shape integrals: flexible slider-crank, rod with 6 modes, h = 1 ms, %g s, best of %d\n", end, repeats);
   std::printf("%8s %6s | %12s %12s %8s | %12s %12s %8s | %10s\n", "points", "DOF", "step corot", "step invar", "speedup",
               "inertia corot", "inertia inv", "speedup", "|dq| end");
   const std::vector<int> sizes = quick ? std::vector<int>{11, 101} : std::vector<int>{11, 21, 51, 101, 201, 501, 1001};

@@ -3,7 +3,7 @@
 // SID alone (the Campbell diagram).
 //
 // With O fixed (a = 0), constant angular velocity w = Omega e_axis (alpha = 0), the modal row
-// of the equations of invariants.md section 3 / SPEC.md section 6,
+// of the equations of SPEC.md section 6,
 //   Ct(q) a + Cr(q) alpha + Me q'' = -Ge(q') w - Oe(q) w_bar - Ke q - De q',
 // becomes the linear, constant-coefficient system
 //   Me q'' + (G + De) q' + (Ke + K_w) q = -Oe.M0 w_bar            (a constant: static offset)

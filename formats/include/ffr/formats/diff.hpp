@@ -2,7 +2,7 @@
 // Comparing two SIDs member by member, after aligning B's modes to A's.
 //
 // A mode's sign and a rotation of modes inside a repeated eigenvalue are not differences
-// (contract.md). So B's modal basis is first changed, Phi_B' = Phi_B T, with T block-diagonal
+// (docs/contract.md). So B's modal basis is first changed, Phi_B' = Phi_B T, with T block-diagonal
 // over the groups of (nearly) equal frequencies of A, each block the orthogonal matrix that
 // best maps B's modes onto A's (orthogonal Procrustes: T_g = U V^T from the SVD of
 // S_B,g^T S_A,g). S is a matrix of *linear* data of every mode, each block scaled to its
@@ -17,7 +17,8 @@
 // first-order members (one mode index: mdCM.M1, J.M1, Ct.M0, Cr.M0, Gr, Oe.M0, Pdm, rPdm,
 // rotary.PsiI, ksigma.M0, node phi/psi, visual modes) linearly, X'_k = sum_j T_jk X_j;
 // second-order members (two mode indices: Me, Ke, De, PPdm, rotary.PsiIPsi, Cr.M1, Ge,
-// Oe.M1, ksigma.M1, every /stiffening member) bilinearly, X'_ki = sum_jl T_jk T_li X_jl.
+// Oe.M1, ksigma.M1, every /stiffening member) bilinearly, X'_ki = sum_jl T_jk T_li X_jl;
+// Ke.M1 (three mode indices) trilinearly, X'_kij = sum_jlm T_jk T_li T_mj X_jlm.
 // Frequencies and mode types are per-mode labels and are compared as they are.
 
 #include "ffr/formats/sid.hpp"

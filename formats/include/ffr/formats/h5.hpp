@@ -3,8 +3,10 @@
 //
 // Writing: every array dataset is chunked and carries HDF5's Fletcher-32 checksum filter;
 // scalars and short strings are stored compact, inside their object header, which the
-// latest file-format version protects with its own checksum. So a byte damaged anywhere in
-// the data is refused on read instead of read as a wrong number.
+// latest file-format version protects with its own checksum. On top of these, every dataset
+// gets a SHA-256 of its values (content_checksum.hpp) and the root one of the list of all
+// datasets: what HDF5 does not check (a chunk index, which can make a chunk read back as fill
+// values) is caught by comparing the values read with those written.
 //
 // Reading: every access checks existence, type class, rank and every dimension against
 // what the caller expects *before* allocating, and all failures throw FormatError naming the
@@ -12,6 +14,9 @@
 // never prints.
 
 #include <hdf5.h>
+
+#include <set>
+#include <utility>
 
 #include <cstdint>
 #include <cmath>
@@ -83,14 +88,18 @@ class Writer {
   void attr(const std::string& object, const std::string& name, std::int64_t v);
 
   void ensure_group(const std::string& path);
-  /// Flushes and closes; after this the writer is unusable. Called by the destructor too.
+  /// Writes the root's checksum of the list of datasets, flushes and closes; after this the
+  /// writer is unusable. Called by the destructor too.
   void close();
 
  private:
   hid_t open_object(const std::string& object);
+  /// Stores `checksum` as the dataset's content checksum and adds it to the root's list.
+  void seal(const std::string& path, std::string checksum);
   [[noreturn]] void fail(const std::string& object, const std::string& what) const;
   Handle file_;
   std::string name_;
+  std::vector<std::pair<std::string, std::string>> sealed_;
 };
 
 /// Reads an existing HDF5 file strictly.
@@ -135,13 +144,32 @@ class Reader {
 
   [[noreturn]] void fail(const std::string& object, const std::string& what) const;
 
+  /// Content checksums (content_checksum.hpp). Every read compares the values it read with
+  /// the dataset's checksum when it has one and refuses a mismatch at once. After
+  /// require_checksums() (a file whose version promises them) a dataset without one is
+  /// refused by verify_content(), which also checks every dataset not read so far and the
+  /// root's checksum of the list of datasets. Called last, so that a file edited by hand
+  /// keeps the more specific refusal of its content (a wrong shape, a NaN, ...).
+  void require_checksums() { require_checksums_ = true; }
+  void verify_content() const;
+
  private:
   Handle open_dataset(const std::string& path) const;
   void check_shape(const std::string& path, hid_t space, const Shape& expected) const;
+  /// Compares the checksum of the values read from `path` with the one stored.
+  void check_content(const std::string& path, hid_t ds, const std::string& checksum) const;
+  /// The paths of every dataset below `group`, depth first (refuses link cycles).
+  void collect_datasets(const std::string& group, int depth, std::set<haddr_t>& seen,
+                        std::vector<std::string>& out) const;
+  /// Reads a dataset of any supported type and returns the checksum of its values.
+  std::string content_checksum(const std::string& path) const;
   Handle file_;
   std::string name_;
   std::uint64_t file_bytes_ = 0;
   double max_magnitude_ = HUGE_VAL;
+  bool require_checksums_ = false;
+  mutable std::set<std::string> verified_;
+  mutable std::vector<std::string> unsealed_;
 };
 
 /// Temporary file next to `target`, renamed over it by commit(); removed if never committed.

@@ -15,7 +15,8 @@
 namespace ffr::formats {
 
 inline constexpr const char* kResultsFormatName = "ffr-results";
-inline constexpr int kResultsFormatVersion = 1;
+/// 2: content checksums, as the SID's (SPEC.md section 4).
+inline constexpr int kResultsFormatVersion = 2;
 
 struct Results {
   struct Output {
@@ -40,7 +41,9 @@ void write_results(const Results& r, const std::filesystem::path& path);
 /// Reads strictly; outputs are returned sorted by name. Throws FormatError naming the file and
 /// dataset. A file is accepted if `format` is "ffr-results", or if it has no `format` attribute
 /// but has /time and /outputs.
-Results read_results(const std::filesystem::path& path);
+/// Version 1 files (and files without `format`) have no content checksums: read with a warning
+/// appended to `warnings`.
+Results read_results(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr);
 
 /// True if the open file looks like a results file (see read_results).
 bool is_results_file(const h5::Reader& r);

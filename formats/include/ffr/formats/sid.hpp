@@ -1,8 +1,7 @@
 #pragma once
 // The in-memory form of a SID ("standard input data") file: the reduced flexible body that
-// ffr-reduce writes and the runtime reads. Names, shapes and meaning follow
-// formats/SPEC.md (which extends ../shared/contract.md) and the mathematics of
-// ../shared/design/invariants.md.
+// ffr-reduce writes and the runtime reads. Names, shapes, meaning and mathematics follow
+// formats/SPEC.md (docs/contract.md lists the names outside scripts rely on).
 //
 // Conventions used throughout:
 //  - nq = number of modes, N = number of exported nodes.
@@ -26,7 +25,8 @@ using Index = std::int64_t;
 using MatX3 = Eigen::Matrix<double, Eigen::Dynamic, 3>;
 using MatX6 = Eigen::Matrix<double, Eigen::Dynamic, 6>;
 
-inline constexpr int kFormatVersion = 1;
+/// 2: content checksums (SPEC.md section 4). Version 1 files are still read, with a warning.
+inline constexpr int kFormatVersion = 2;
 inline constexpr const char* kFormatName = "ffr-sid";
 
 enum class ModeType { Normal, Constraint };
@@ -46,7 +46,7 @@ struct RefMod {
   std::string reference = "free";    ///< "free", "clamped:<interface>" or "craig-bampton"
 };
 
-/// /integrals: the minimal generating set (invariants.md section 2). These cover the
+/// /integrals: the minimal generating set (SPEC.md section 8). These cover the
 /// distributed (translational) mass only; point rotary inertia is in Rotary.
 struct Integrals {
   Eigen::Vector3d rdm = Eigen::Vector3d::Zero();   ///< int c dm                 [3]
@@ -56,7 +56,7 @@ struct Integrals {
   std::array<std::array<Eigen::MatrixXd, 3>, 3> PPdm;  ///< PPdm[a][b] = int Phi_a^T Phi_b dm [3,3,nq,nq]
 };
 
-/// /integrals/rotary: the rotary parts of nodes with rotational DOFs (invariants.md section 2),
+/// /integrals/rotary: the rotary parts of nodes with rotational DOFs (SPEC.md section 7),
 /// kept apart from the distributed-mass integrals. Zero for a body without them.
 struct Rotary {
   Eigen::Matrix3d I = Eigen::Matrix3d::Zero();  ///< sum I_p                 [3,3]
@@ -64,7 +64,7 @@ struct Rotary {
   Eigen::MatrixXd PsiIPsi;                      ///< sum Psi_p^T I_p Psi_p   [nq,nq]
 };
 
-/// Geometric stiffening (invariants.md section 4), stored apart from the pure-inertia terms
+/// Geometric stiffening (SPEC.md section 10), stored apart from the pure-inertia terms
 /// so the runtime can switch it off. Present only when the part asked for it.
 struct Stiffening {
   std::vector<MatX3> K0t;   ///< [nq][nq,3]: K0t[k](i,c), scales frame acceleration a_c
@@ -79,7 +79,7 @@ struct Stiffening {
   std::vector<Interface> interfaces;
 };
 
-/// Prestress from a static preload (invariants.md: ksigma). Zero without prestress.
+/// Prestress from a static preload (SPEC.md section 6: ksigma). Zero without prestress.
 struct KSigma {
   Eigen::VectorXd M0;  ///< [nq]
   Eigen::MatrixXd M1;  ///< [nq,nq]
@@ -132,12 +132,16 @@ struct Sid {
 
   RefMod refmod;
 
-  // SID members (invariants.md section 3).
+  // SID members (SPEC.md section 6).
   struct { Eigen::Vector3d M0 = Eigen::Vector3d::Zero(); MatX3 M1; } mdCM;  ///< M1: [nq,3]
   struct { Eigen::Matrix3d M0 = Eigen::Matrix3d::Zero(); std::vector<Eigen::Matrix3d> M1; } J;
   struct { MatX3 M0; } Ct;                                   ///< [nq,3]; M1 is Stiffening::K0t
   struct { MatX3 M0; std::vector<MatX3> M1; } Cr;            ///< M0 [nq,3]; M1[k](i,c) = Kr
   Eigen::MatrixXd Me, Ke, De;                                ///< [nq,nq]
+  /// Optional /sid/Ke/M1 [nq][nq,nq] (SPEC.md section 10): KeM1[k](i,j) = Phi_i^T K_G(sigma_k) Phi_j,
+  /// sigma_k the linear stress of mode k's displacement; symmetric in (i,j), not in k. The
+  /// cubic strain energy is 1/2 sum_k q_k q^T KeM1[k] q. Empty when the file has none.
+  std::vector<Eigen::MatrixXd> KeM1;
   std::vector<Eigen::Matrix3d> Gr;                           ///< [nq][3,3]
   std::vector<MatX3> Ge;                                     ///< [nq][nq,3]: Ge[k](i,c)
   struct { MatX6 M0; std::vector<MatX6> M1; } Oe;            ///< M0 [nq,6]; M1[k] [nq,6]

@@ -5,13 +5,20 @@
 #include "ffr/formats/sid.hpp"
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace ffr::formats {
 
 /// Reads a SID file strictly: format and version checked, every required dataset present with
 /// the right type and shape, every value finite, sizes checked before allocation. Throws
-/// FormatError naming the file and the dataset on any problem.
-Sid read_sid(const std::filesystem::path& path);
+/// FormatError naming the file and the dataset on any problem, including values that differ
+/// from the content checksums written with them. Things the caller should show but that do
+/// not stop the read (a version 1 file has no content checksums) are appended to `warnings`.
+Sid read_sid(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr);
+
+/// The warning for a file of a version without content checksums.
+std::string no_checksums_warning(const std::string& file, std::int64_t version);
 
 /// Writes a SID file atomically (temporary name, flush, fsync, rename): on any failure the
 /// target is left untouched. Checks the in-memory sizes first (std::invalid_argument).

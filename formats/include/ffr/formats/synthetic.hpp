@@ -2,8 +2,7 @@
 // Synthetic SID bodies for tests: an independent oracle for everything that reads a SID.
 //
 // from_shapes() builds every SID member of a body made of point masses by *direct sums over
-// the points*, written straight from the definitions of /work/shared/design/invariants.md
-// (sections 2-3) and formats/SPEC.md; it does not go through the integral -> member formulas
+// the points*, written straight from the definitions of formats/SPEC.md (sections 6-8); it does not go through the integral -> member formulas
 // the preprocessor uses, so the two can check each other.
 //
 // spring_chain() is a physically meaningful flexible body: a straight chain of lumped masses
@@ -76,6 +75,8 @@ Sid from_shapes(const std::vector<PointMass>& masses, const Eigen::MatrixXd& Phi
 /// the axial force N_e = EA (u_b - u_a).e_x / h of each segment, whose geometric stiffness on
 /// the translations is the string form N_e/h (I - e_x e_x^T) [[1,-1],[-1,1]]; then
 /// K0[k](i) = Phi_i^T K_G Phi_k. A moment about the chain axis loads nothing (no torsion).
+/// It also adds /sid/Ke/M1 with the same string K_G, for the forces of each mode's own
+/// stretch: Ke.M1[k] = Phi^T K_G(N(Phi_k)) Phi.
 struct ChainParams {
   int points = 11;
   double length = 1.0;

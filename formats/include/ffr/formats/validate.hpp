@@ -1,5 +1,5 @@
 #pragma once
-// Checks a SID against the identities of invariants.md section 5 and formats/SPEC.md section
+// Checks a SID against the identities of formats/SPEC.md section
 // 9: members consistent with the primitive integrals, the cross-member identities, symmetry
 // and definiteness, and the identities that hold only for some references or mode types.
 // Returns a report; never prints and never throws on a bad body (only sizes that make the

@@ -2,9 +2,9 @@
 // How many worker threads the preprocessor's own thread pools use (element assembly, the
 // shell/beam invariant pass, the geometric-stiffness projection). Process-wide, like
 // Eigen::setNbThreads: a command line sets it once (ffr-reduce --threads) so that a benchmark
-// or a shared machine can hold the whole run to N cores. set_max_threads also sets OpenBLAS's
-// thread count (CHOLMOD's supernodes run in the BLAS); without it, the BLAS follows its own
-// variable, e.g. OPENBLAS_NUM_THREADS.
+// or a shared machine can hold the whole run to N cores. It counts only the library's own
+// threads: the BLAS's and OpenMP's counts belong to the host program (ffr-reduce sets them in
+// main(), tools/common/include/ffr/cli/process_threads.hpp), never to the library.
 
 namespace ffr::preproc {
 

@@ -1,5 +1,5 @@
 // Stress resultants of a linear shell solution and the geometric stiffness of its membrane
-// forces (for the stiffening terms of invariants.md section 4). The membrane forces are those
+// forces (for the stiffening terms of formats/SPEC.md section 10). The membrane forces are those
 // of the element's own strain field (incompatible modes condensed, OPT's higher-order strains
 // included), at the element's in-plane integration points.
 

@@ -3,6 +3,7 @@
 // (and initialize()), a time step allocates nothing: all work goes into these members.
 
 #include "ffr/runtime/model.hpp"
+#include "ffr/runtime/scheme.hpp"
 #include "ffr/runtime/small_lu.hpp"
 
 #include <Eigen/Core>
@@ -29,6 +30,8 @@ struct BodyData {
   Vector3d alpha;               ///< body-frame angular acceleration
   Vector3d acc;                 ///< body-frame acceleration of O minus gravity
   MatrixXd KG;                  ///< geometric stiffness [nq, nq] (stiffening)
+  MatrixXd G1, X1;              ///< Ke/M1: sum_k y_k M1[k], and column k = M1[k] y [nq, nq]
+  Eigen::Matrix<double, 6, Eigen::Dynamic> iface_load;  ///< per stiffening interface: F, M in K
   MatrixXd feB, feG, feD;       ///< co-rotational path only: B, M_FE B, dw/dz_dot [3N, nb]
   VectorXd few;                 ///< co-rotational path only: 2 A_dot Phi y_dot [3N]
   VectorXd wq;                  ///< work [nq]
@@ -73,6 +76,8 @@ struct Data {
   explicit Data(const Model& model);
 
   double t = 0;
+  /// The integration scheme's coefficients and state (scheme.hpp).
+  SchemeState scheme;
   VectorXd q, qd, qdd, lambda;  ///< state: coordinates, rates, accelerations, multipliers
 
   // The unknowns of the step: the first nf coordinates, the first na constraint rows (in
@@ -105,8 +110,8 @@ struct Data {
   VectorXd Phi, Phit, gamma;    ///< constraint value, partial time derivative, acceleration bias
   VectorXd lambda_eff;          ///< lambda + alpha Phi
   VectorXd lambda0;             ///< multipliers at the start of the step
-  MatrixXd W;                   ///< M + h/2 C + h^2/4 K at the last factorisation (projection metric)
-  MatrixXd T;                   ///< tangent W + h^2/4 Phi_q^T alpha Phi_q
+  MatrixXd W;                   ///< M + kv C + kq K at the last factorisation (projection metric; scheme.hpp)
+  MatrixXd T;                   ///< tangent W + kq Phi_q^T alpha Phi_q
   SmallLU lu;                   ///< of the scaled tangent S T S (see factorize_tangent)
   VectorXd scale;               ///< S = diag(|T_ii|^-1/2): equilibration of masses vs stiffnesses
   bool tangent_valid = false;
@@ -115,7 +120,7 @@ struct Data {
 
   // Integrator work.
   VectorXd q0, qd0, qdd0;       ///< state at the start of the step
-  VectorXd qd_hat, qdd_hat;     ///< trapezoidal predictors
+  VectorXd qd_hat, qdd_hat;     ///< the scheme's affine terms (scheme.hpp)
   VectorXd qdd_prev;            ///< accelerations of the step before (predictor)
   bool have_previous = false;
   VectorXd f, dq, r, sigma, c, tmp, vstar;

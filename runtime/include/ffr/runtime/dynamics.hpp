@@ -46,6 +46,12 @@ void body_inertia_forces(const Body& b, const BodyData& bd, const Eigen::Ref<con
 /// Their tangents -dQ/dz, -dQ/dzd added to Kb, Cb ([nb, nb]).
 void body_inertia_tangents(const Body& b, const BodyData& bd, const Eigen::Ref<const VectorXd>& zd,
                            Eigen::Ref<MatrixXd> Kb, Eigen::Ref<MatrixXd> Cb);
+/// The forces and moments (body frame K, about the node) that the joints and motions apply at
+/// each stiffening interface of each integrated flexible body, into bd.iface_load, from the
+/// current multipliers and the last evaluated constraint Jacobian (FORMULATION.md 7).
+void interface_loads(const Model& model, Data& data);
+/// bd.G1 = sum_k y_k M1[k] and bd.X1 (column k = M1[k] y) of a body with Ke/M1.
+void modal_stress_terms(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& y);
 /// Gravity, elastic, damping and stiffening forces of one body.
 void body_applied_forces(const Body& b, BodyData& bd, const Vector3d& gravity, const Eigen::Ref<const VectorXd>& z,
                          const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<VectorXd> Qb);

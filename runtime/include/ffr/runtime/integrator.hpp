@@ -1,7 +1,8 @@
 #pragma once
 // Time integration: the index-3 augmented Lagrangian formulation with mass-orthogonal
-// projections of velocities and accelerations (ALI3-P), trapezoidal rule, fixed step
-// (Bayo & Ledesma 1996; Cuadrado, Cardenal, Morer & Bayo 2000). FORMULATION.md section 9.
+// projections of velocities and accelerations (ALI3-P) (Bayo & Ledesma 1996; Cuadrado, Cardenal,
+// Morer & Bayo 2000), with the trapezoidal rule or generalized-alpha (scheme.hpp), fixed or
+// adaptive steps (step_control.hpp). FORMULATION.md section 9.
 
 #include "ffr/runtime/data.hpp"
 #include "ffr/runtime/model.hpp"
@@ -25,6 +26,8 @@ std::vector<std::string> initialize(const Model& model, Data& data);
 /// One step of settings.step from data.t. Throws SolverError when Newton does not converge.
 /// Allocation-free.
 void step(const Model& model, Data& data);
+/// One step of h from data.t (adaptive steps, step_control.cpp); the same otherwise.
+void step(const Model& model, Data& data, double h);
 
 /// Which coordinates are the step's unknowns: every body's (eliminate = false: what the
 /// initial conditions need, every body being moved into place) or, with the model's driven
@@ -50,8 +53,8 @@ void predict_frames(const Model& model, Data& data);
 double project_velocities(const Model& model, Data& data, double t);
 double project_accelerations(const Model& model, Data& data, double t);
 
-/// Factorises T = W + h^2/4 (alpha Phi_q^T Phi_q + sum lam_i Phi_i,qq) with W = M + h/2 C + h^2/4 K
-/// at the current state (lam: the multipliers to use in the constraints' second derivatives;
+/// Factorises T = W + kq (alpha Phi_q^T Phi_q + sum lam_i Phi_i,qq) with W = M + kv C + kq K
+/// (the scheme's coefficients, scheme.hpp: h/2 and h^2/4 for the trapezoidal rule) at the current state (lam: the multipliers to use in the constraints' second derivatives;
 /// alpha: the step's penalties, which step() sets). Without modal_acceleration, the inertia
 /// forces' derivative through the modal masses at the current accelerations is left out.
 void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& lam, bool modal_acceleration = true);

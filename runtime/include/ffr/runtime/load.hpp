@@ -1,5 +1,5 @@
 #pragma once
-// Building a Model from the model file (contract: "Model file") and the SID files it names.
+// Building a Model from the model file (runtime/MODEL_FILE.md) and the SID files it names.
 
 #include "ffr/formats/sid.hpp"
 #include "ffr/runtime/model.hpp"

@@ -2,7 +2,7 @@
 // The Model: everything about a multibody system that does not change while it moves.
 // Built once (load_model or by hand + finalize), then only read by the algorithms, which take
 // (const Model&, Data&) like Pinocchio. Every quantity here is reduced: a flexible body keeps
-// its primitive shape integrals (design/invariants.md section 2) and the slices of its exported
+// its primitive shape integrals (formats/SPEC.md sections 7-8) and the slices of its exported
 // nodes, never a mesh.
 //
 // Coordinates (FORMULATION.md): each body owns z = [r0, u, v, w, y] (12 + nq numbers): the
@@ -43,15 +43,45 @@ struct NodeSlice {
   Matrix3Xd psi;  ///< [3, nq] small rotation
 };
 
-/// Geometric stiffening (design/invariants.md section 4), regrouped per load component so the
+/// The interface-load members of one interface (SID /stiffening/interfaces/<name>): the
+/// geometric stiffness of a unit force and moment at its node, resolved in K (FORMULATION.md 7).
+struct InterfaceStiffening {
+  std::string name;
+  int node = -1;               ///< index into Body::nodes
+  std::array<MatrixXd, 3> KF;  ///< KF[c](i,k) = K0F[k](i,c), less its modal part (below)
+  std::array<MatrixXd, 3> KM;  ///< KM[c](i,k) = K0M[k](i,c), less its modal part
+};
+
+/// Geometric stiffening (formats/SPEC.md section 10), regrouped per load component so the
 /// per-step geometric stiffness is a sum of nq x nq matrices: KG = sum_c a_c Kt[c] + ...
+/// When the body also has the stiffness of its own modal stress (ModalStressStiffness), each
+/// load case's matrix is stored less the part of it that its quasi-static modal response
+/// already gives through Ke/M1 (FORMULATION.md 7: no double counting).
 struct StiffeningTerms {
   std::array<MatrixXd, 3> Kt;  ///< Kt[c](i,k) = K0t[k](i,c)
   std::array<MatrixXd, 3> Kr;  ///< Kr[c](i,k) = K0r[k](i,c)
   std::array<MatrixXd, 6> Kw;  ///< Kw[j](i,k) = K0om[k](i,j), j in omega_bar order
+  std::vector<InterfaceStiffening> interfaces;  ///< interfaces not held (loads from joints there)
 };
 
-/// The unreduced mass data of a flexible body, for seed 000's comparison only (benchmarks):
+/// The geometric stiffness of the body's own modal stress (SID /sid/Ke/M1, M1[k](i,j) =
+/// Phi_i^T K_G(sigma_k) Phi_j): the cubic strain energy U3 = 1/2 sum_k y_k y^T M1[k] y. Stored
+/// twice, so each per-step quantity is one product with y:
+///   by_mode  [nq*nq, nq], rows k*nq .. k*nq+nq-1 = M1[k]:  by_mode y = [M1[0] y; M1[1] y; ...]
+///   by_coeff [nq*nq, nq], column k = vec(M1[k]):           by_coeff y = vec(sum_k y_k M1[k])
+struct ModalStressStiffness {
+  MatrixXd by_mode, by_coeff;
+};
+
+/// Prestress (SID /sid/ksigma): the modal force of the preloaded state and its geometric
+/// stiffness, Q_y -= f0 + K1 y.
+struct Prestress {
+  VectorXd f0;
+  MatrixXd K1;
+};
+
+/// The unreduced mass data of a flexible body, for the co-rotational comparison only (benchmarks,
+/// docs/references.md "Shape integrals"):
 /// when a body has it, its mass matrix and inertia forces are computed each step the
 /// co-rotational way, B^T M_FE B and -B^T M_FE (2 A_dot Phi y_dot) with B the [3N, 12+nq]
 /// velocity map of all N nodes, instead of from the shape integrals. Translational mass only.
@@ -104,6 +134,8 @@ struct Body {
   MatrixXd Ke, De;                   ///< modal stiffness and total modal damping
   bool has_rotary_coupling = false;
   std::optional<StiffeningTerms> stiffening;  ///< only when the SID has it and it is enabled
+  std::optional<ModalStressStiffness> modal_stress;  ///< /sid/Ke/M1, when present and enabled
+  std::optional<Prestress> prestress;                 ///< /sid/ksigma, when nonzero and enabled
   std::shared_ptr<const FullMass> full_mass;  ///< benchmarks only (see FullMass)
   std::vector<NodeSlice> nodes;
 
@@ -208,10 +240,21 @@ struct ConstraintBlock {
   bool held_by_lock = false;
 };
 
+/// The step's integration scheme (FORMULATION.md section 9, scheme.hpp).
+enum class Integrator { Trapezoidal, GeneralizedAlpha };
+
 struct SolverSettings {
   double start = 0.0;
   double end = 1.0;
-  double step = 1e-3;
+  double step = 1e-3;            ///< fixed step; with `adaptive`, the first step tried
+  // Scheme and step control (scheme.hpp, step_control.cpp).
+  Integrator integrator = Integrator::Trapezoidal;
+  double spectral_radius = 1.0;  ///< generalized-alpha rho_inf in [0, 1] (1: no numerical damping)
+  bool adaptive = false;         ///< "step": "auto": steps chosen by the local error estimate
+  double rtol = 1e-6;            ///< adaptive: relative tolerance of the local error
+  double atol = -1;              ///< adaptive: absolute tolerance [m]; < 0: rtol times the model length
+  double output_interval = 0;    ///< adaptive: time between recorded samples (the steps land on them)
+  double max_step = 0;           ///< adaptive: largest step (0: the output interval)
   int output_every = 1;          ///< record every n-th step
   double tolerance = 1e-12;      ///< constraint violation left by Newton and the projections (model lengths)
   /// Newton: estimated error of the accepted coordinates (scaled: lengths / model length, frame

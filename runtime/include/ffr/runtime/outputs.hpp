@@ -47,7 +47,8 @@ struct RunOptions {
   double progress_seconds = 1.0;
 };
 
-/// Number of steps of the run (end - start) / step, rounded.
+/// Number of steps of the run (end - start) / step, rounded; with "step": "auto", the number of
+/// output intervals (one record each).
 std::int64_t step_count(const Model& model);
 
 /// Runs from data's (initialised) state to settings.end, recording every output_every steps.

@@ -17,6 +17,8 @@
 #include "ffr/runtime/load.hpp"
 #include "ffr/runtime/model.hpp"
 #include "ffr/runtime/outputs.hpp"
+#include "ffr/runtime/scheme.hpp"
+#include "ffr/runtime/step_control.hpp"
 
 namespace ffr::runtime {
 const char* version();

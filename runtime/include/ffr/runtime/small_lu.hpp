@@ -7,14 +7,12 @@
 // only the columns that have a nonzero in the pivot row, over the rows down to the pivot
 // column's last nonzero; the solves likewise run each column of L and U only over its nonzero
 // span. Pivoting is partial pivoting over the column (its rows below the last nonzero are
-// zero). On the runtime benchmark's 46 x 46 tangent a factorisation took about 6.3 us of the
-// step (perf) against 10.3 us for equilibration and PartialPivLU timed alone before; with raw
-// loops compiled for AVX2 and (then) AVX-512 (small_lu.cpp) about 3.9 us, and a solve 0.37 us (0.67 us
-// with one AXPY a column through Eigen segments). Blocked in panels of four columns, with a
-// pivot search of four independent maxima: 60.6 thousand instructions a factorisation of a
-// tangent saved from that benchmark instead of 77 thousand (callgrind), best times 4.9-5.1 us
-// against 5.8-6.0 us (the Xeon VM of tools/bench/runtime_step/RESULTS.md, slower than the
-// machine of the figures above).
+// zero). On the 46 x 46 tangent of the runtime benchmark (tools/bench/runtime_step) an unblocked
+// factorisation takes about 3.9 us of the step against 10.3 us for equilibration and
+// PartialPivLU (perf), and a solve 0.37 us (0.67 us with one AXPY a column through Eigen
+// segments); the raw loops are compiled per instruction set (small_lu.cpp). Blocking in panels
+// of four columns, with a pivot search of four independent maxima, takes a factorisation of
+// that tangent from 77 to 60.6 thousand instructions (callgrind) and about 15 % off its time.
 
 #include <Eigen/Core>
 

@@ -31,9 +31,10 @@ std::vector<ElementRef> all_elements(const FeModel& model);
 struct AssemblyOptions {
   int threads = 0;                                   ///< 0: hardware concurrency
   /// Threads that write K's and M's structure before the elements (0: as `threads`). That
-  /// pass is the first touch of their memory, which some VMs back slowly (tools/bench/reduce/
-  /// RESULTS.md), so it pays to run it on every core even where the element loop leaves one
-  /// to another task (the pipeline's early analysis).
+  /// pass is the first touch of their memory, and where the kernel backs fresh pages slowly
+  /// (a page fault costing microseconds) that touch bounds the pass, so it pays to run it on
+  /// every core even where the element loop leaves one to another task (the pipeline's early
+  /// analysis).
   int fill_threads = 0;
   /// Asked before each colour class: true once one more core than `threads` is free for the
   /// element loop (the pipeline's early analysis has finished), which then takes it. Empty:

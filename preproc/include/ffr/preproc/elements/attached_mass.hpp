@@ -1,5 +1,5 @@
 #pragma once
-// A rigid body hung on one 6-DOF node (seed 002, Wagner–Pfeiffer): every point P of the body,
+// A rigid body hung on one 6-DOF node (Wagner & Pfeiffer, 'On the Dynamics of Washing Machines'): every point P of the body,
 // at p_node + e + s (e the offset of its centre of mass, s the position about the centre),
 // moves with the node, u_P = u_p + theta_p x (e + s). No stiffness.
 //

@@ -2,7 +2,7 @@
 // Two-node 3D Timoshenko beam, six DOFs per node (ux, uy, uz, rx, ry, rz) in body axes.
 //
 // Local axes: x from node 1 to node 2, y = the component of `y_axis` normal to x, z = x × y.
-// Section (contract.md, beams[].section): Iy = int z^2 dA (bending about y, the x–z plane),
+// Section (preproc/PART_FILE.md, beams[].section): Iy = int z^2 dA (bending about y, the x–z plane),
 // Iz = int y^2 dA (bending about z, the x–y plane), J torsion constant; y and z are principal.
 // Shear factors ky, kz give the shear areas ky A (shear along y) and kz A (along z); 0 means
 // shear-rigid (Euler–Bernoulli limit).

@@ -11,7 +11,7 @@
 //    material point (weight w = dm, undeformed position c, and N, the 3 x ndof map from d_e to
 //    the point's displacement u = N d_e, including fibre offsets: u = u_node + theta x e).
 //    Then  M = sum_g w N_g^T N_g + M_rotary  exactly, and every inertia invariant of
-//    invariants.md section 2 is an exact sum over samples (no nodal lumping).
+//    formats/SPEC.md section 8 is an exact sum over samples (no nodal lumping).
 //  - M_rotary: mass that no material point carries (e.g. the drilling inertia a shell adds
 //    so that M stays definite); it enters the SID's "rotary part". Empty when there is none.
 

@@ -1,6 +1,6 @@
 #pragma once
-// The part file (input of ffr-reduce), validated. Field names follow ../shared/contract.md;
-// extensions are documented in preproc/PART_FILE.md.
+// The part file (input of ffr-reduce), validated. Every field is documented in
+// preproc/PART_FILE.md; docs/contract.md lists those outside scripts rely on.
 
 #include "ffr/preproc/elements/element.hpp"
 
@@ -79,6 +79,7 @@ struct ReductionSpec {
   std::optional<double> max_frequency_hz;
   bool orthonormalize = false;          ///< craig-bampton: orthonormalize the whole basis
   std::string backend = "block";        ///< "block", "spectra" or "arpack"
+  std::string factorization = "supernodal";  ///< "supernodal" or "cholmod" (FactorizationBackend)
   std::uint64_t memory_limit_bytes = 0; ///< refuse factors above this (0: the machine's available memory)
 };
 

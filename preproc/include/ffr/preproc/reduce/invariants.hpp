@@ -1,12 +1,12 @@
 #pragma once
-// Shape-integral invariants of a reduced body (../shared/design/invariants.md):
+// Shape-integral invariants of a reduced body (formats/SPEC.md sections 6-8):
 //  1. compute_integrals(): the primitive integrals (m, rdm, rrdm, Pdm, rPdm, PPdm) and the
 //     rotary part, exact for the consistent mass: solids through the scalar mass matrix Ms
 //     (their mass is Ms (x) I3 and positions are interpolated isoparametrically), shells,
 //     beams and attached masses through their exact mass samples (fibres off the node move
-//     with u + psi x e: seed 002's correction), and mass that no material point carries
+//     with u + psi x e: Wagner & Pfeiffer's correction, docs/references.md), and mass that no material point carries
 //     (a shell's drilling inertia) through its rotary part.
-//  2. members_from_integrals(): every SID member of section 3 from those integrals.
+//  2. members_from_integrals(): every SID member of SPEC.md section 6 from those integrals.
 
 #include "ffr/formats/sid.hpp"
 #include "ffr/preproc/assembly/assembly.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// The three reductions of the part file (contract: reduction.method):
+// The three reductions of the part file (preproc/PART_FILE.md, reduction.method):
 //  - free: free-free eigenmodes; rigid-body modes deflated exactly (negative shift, so
 //    nothing singular is factorized); elastic modes M-orthonormal and M-orthogonal to the
 //    rigid-body motion, hence Ct.M0 = Cr.M0 = 0.

@@ -1,5 +1,6 @@
 #pragma once
-// Geometric stiffening of a reduced body (invariants.md section 4, seed 001's stiffness change).
+// Geometric stiffening of a reduced body (formats/SPEC.md section 10; the stiffness change of a
+// finite element in a moving frame, docs/references.md).
 //
 // Unit load cases, each solved statically under the body's reference conditions:
 //  - translational acceleration e_c of the frame: inertial body force -rho e_c      -> K0t[:, :, c]
@@ -13,7 +14,7 @@
 // to the rigid-body modes).
 // Projection: K0_L[k](i, .) = Phi_i^T K_G(sigma_L) Phi_k, K_G the element geometric stiffness.
 // Sign: with these loads, the terms add to the modal stiffness as written in the modal
-// equation of invariants.md section 3 (Ct(q) a, Cr(q) alpha on the left, -Oe(q) omega_bar on
+// equation of formats/SPEC.md section 6 (Ct(q) a, Cr(q) alpha on the left, -Oe(q) omega_bar on
 // the right): a spinning cantilever stiffens (Southwell).
 //
 // Prestress (ksigma): a static preload (gravity and forces at interfaces) solved the same way;

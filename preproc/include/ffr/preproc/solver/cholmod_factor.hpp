@@ -1,6 +1,7 @@
 #pragma once
-// Sparse Cholesky factorization A = P^T L L^T P through CHOLMOD (SuiteSparse 5.12, 64-bit
-// cholmod_l_* API, supernodal, fill-reducing ordering METIS by default, BLAS = OpenBLAS).
+// Sparse Cholesky factorization A = P^T L L^T P on CHOLMOD's analysis (SuiteSparse 5.12, 64-bit
+// cholmod_l_* API, supernodal, fill-reducing ordering METIS by default), its numeric part by one
+// of two backends (FactorizationBackend): the own supernodal code or CHOLMOD's own.
 //
 //   CholmodFactor f;                       // options: ordering, memory limit, singularity floor
 //   auto stats = f.analyze(K);             // symbolic: nnz(L), flops, memory estimate
@@ -16,7 +17,9 @@
 #include "ffr/preproc/solver/sparse_types.hpp"
 
 #include <cstdint>
+#include <concepts>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +37,22 @@ enum class Ordering {
   Auto,     ///< CHOLMOD's default strategy: AMD, then METIS if AMD fills badly
 };
 const char* to_string(Ordering o);
+
+/// The numeric side of the sparse Cholesky factorization. Both backends share CHOLMOD's symbolic
+/// analysis (ordering, elimination tree, supernodes) and the checks after it (memory, pivots).
+enum class FactorizationBackend {
+  /// The own supernodal code (tree_cholesky.hpp, supernodal_solve.hpp): the numeric factor in
+  /// arrays of its own, computed with the independent subtrees of the elimination tree on
+  /// threads, packed for the substitutions, which apply each factor entry to a whole block of
+  /// right-hand sides at once. CHOLMOD's structures are only read. The default: the faster one
+  /// for the eigen-solver's blocks of solves (tools/bench/reduce/RESULTS.md).
+  Supernodal,
+  /// CHOLMOD's own cholmod_l_factorize and cholmod_l_solve2, untouched: the reference.
+  Cholmod,
+};
+const char* to_string(FactorizationBackend b);
+/// "supernodal" or "cholmod" (the part file's reduction.factorization); nullopt for anything else.
+std::optional<FactorizationBackend> factorization_backend_from_string(const std::string& name);
 
 struct FactorOptions {
   Ordering ordering = Ordering::Metis;
@@ -54,14 +73,9 @@ struct FactorOptions {
   /// Validate every input (square, finite, accepted storage, symmetry probe; O(nnz)). Off
   /// only when the caller has validated the matrices already.
   bool check_symmetry = true;
-  /// Compute the numeric factor with the own supernodal code (tree_cholesky.hpp) on
-  /// CHOLMOD's analysis and layout instead of cholmod_l_factorize. With two threads or more
-  /// (ffr::preproc::max_threads()) and a factor large enough it runs the independent subtrees
-  /// of the elimination tree on separate threads, where CHOLMOD's only parallelism is in the
-  /// BLAS; on one thread it still avoids CHOLMOD's permuted copy of A and its transpose (the
-  /// 100k-DOF plate of tools/bench/reduce: 60-77 MB less at the factorization).
-  /// The factor differs from CHOLMOD's by rounding only.
-  bool own_factorization = true;
+  /// Which numeric factorization and substitutions run on CHOLMOD's analysis (both give the
+  /// same factor up to rounding): see FactorizationBackend.
+  FactorizationBackend backend = FactorizationBackend::Supernodal;
 };
 
 struct FactorStatistics {
@@ -69,8 +83,8 @@ struct FactorStatistics {
   std::int64_t nnz_A = 0;          ///< entries of the upper triangle given to CHOLMOD
   double nnz_L = 0;                ///< nnz(L) of the "pure" factor (Common->lnz)
   std::int64_t factor_entries = 0; ///< stored values incl. supernodal amalgamation zeros (L->xsize)
-  std::int64_t packed_entries = 0; ///< values kept after factorize, for the substitutions (most of
-                                   ///< the diagonal blocks' upper triangles dropped)
+  std::int64_t packed_entries = 0; ///< values kept after factorize, for the substitutions (supernodal
+                                   ///< backend: most of the diagonal blocks' upper triangles dropped)
   double flops = 0;                ///< flop count of the LL^T factorization (Common->fl)
   std::int64_t supernodes = 0;
   std::uint64_t factor_bytes = 0;  ///< estimated size of the numeric factor
@@ -87,7 +101,7 @@ struct FactorStatistics {
   int solve_threads = 0;           ///< threads of the substitutions after factorize (max_threads() at most)
   double solve_parallel_fraction = 0;  ///< share of the factor's entries they sweep in parallel
   double factor_parallel_fraction = 0;  ///< share of the flops factorized in parallel subtrees
-  bool own_factorization = false;  ///< computed by the own supernodal code, not cholmod_l_factorize
+  FactorizationBackend backend = FactorizationBackend::Supernodal;  ///< which one factorized
   std::string blas_kernels;        ///< OpenBLAS's kernels in use (openblas_get_corename), empty for another BLAS
   std::string blas_kernels_suited; ///< kernels this CPU would run, when those in use are older; else empty
 };
@@ -102,6 +116,8 @@ struct FactorInfo {
   FactorStatistics stats;
 };
 
+/// The sparse Cholesky factorization: CHOLMOD's analysis, then the numeric backend of
+/// FactorOptions::backend.
 class CholmodFactor {
  public:
   explicit CholmodFactor(FactorOptions options = {});
@@ -164,6 +180,19 @@ class CholmodFactor {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+};
+
+/// What the eigen-solver's operators and the reductions need of a sparse symmetric factorization
+/// A = P^T L L^T P: a symbolic analysis of A's structure, a numeric factorization, solves of
+/// blocks of right-hand sides, and a status. CholmodFactor meets it whichever backend it runs.
+template <class F>
+concept SymmetricFactorization = requires(F& f, const F& cf, const SparseMatrix& A,
+                                          const Eigen::Ref<const Eigen::MatrixXd>& B, Eigen::Ref<Eigen::MatrixXd> X) {
+  f.analyze(A);
+  f.factorize(A);
+  cf.solve(B, X);
+  { cf.info() } -> std::convertible_to<const FactorInfo&>;
+  { cf.rows() } -> std::convertible_to<std::int64_t>;
 };
 
 /// C = A - sigma*B, upper triangle only (row <= col), both inputs full or upper-only.

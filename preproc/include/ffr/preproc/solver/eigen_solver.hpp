@@ -42,11 +42,11 @@
 namespace ffr::preproc {
 
 enum class EigenBackend {
-  Spectra,  ///< Spectra 1.0 SymGEigsShiftSolver, shift-invert mode (default)
+  Spectra,  ///< Spectra 1.0 SymGEigsShiftSolver, shift-invert mode
   Arpack,   ///< ARPACK-ng dsaupd/dseupd, reverse communication, mode 3
   Dense,    ///< Eigen's dense GeneralizedSelfAdjointEigenSolver; small problems only
-  Block,    ///< block shift-invert Lanczos (blocks of solves with the factor); falls back to
-            ///< Spectra if it does not converge or the problem is too small for its basis
+  Block,    ///< block shift-invert Lanczos (blocks of solves with the factor; the default); falls
+            ///< back to Spectra if it does not converge or the problem is too small for its basis
 };
 const char* to_string(EigenBackend b);
 
@@ -62,7 +62,8 @@ struct EigenOptions {
   /// Upper bound on modes for a lambda_max query; exceeding it is an error, not truncation.
   int max_modes = 5000;
   double sigma = 0.0;
-  EigenBackend backend = EigenBackend::Spectra;
+  /// Block (the default, as in the part file): fastest on the reducer's benchmark parts.
+  EigenBackend backend = EigenBackend::Block;
   /// Basis to exclude exactly (ndof x r), e.g. rigid-body modes; need not be orthonormal.
   Eigen::MatrixXd deflation;
   /// Lanczos basis size; 0 = max(2 nev + 1, nev + 20), capped by the problem size.
@@ -152,6 +153,7 @@ class EigenSolver {
                                   const CholmodFactor* given);
   const EigenResult& run(const SparseRef& K, const SparseRef& M,
                          const CholmodFactor* given);
+  struct Run;  // the steps of run() (eigen_solver.cpp)
   EigenOptions options_;
   EigenProgressCallback progress_;
   EigenResult result_;

@@ -1,6 +1,6 @@
 #pragma once
 // Shared by every ffr executable: a small argument parser, --help/--version, and run_main(),
-// which maps exceptions to the exit codes of the contract:
+// which maps exceptions to the exit codes of docs/contract.md:
 //   bad input (ffr::formats::FormatError, std::invalid_argument, ffr::cli::UsageError) -> 2,
 //   anything else -> 1; each with one line "<tool>: error: <message>" on stderr.
 

@@ -1,0 +1,55 @@
+#pragma once
+// Adaptive steps ("step": "auto", FORMULATION.md section 9): each step's local error is
+// estimated (local_error in scheme.hpp), a step above the tolerances or one whose Newton fails is
+// taken again from the saved state with a smaller step, and the steps land on the requested
+// output times.
+
+#include "ffr/runtime/data.hpp"
+#include "ffr/runtime/model.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace ffr::runtime {
+
+/// The controller's constants (why each value: step_control.cpp).
+struct StepControlLimits {
+  double safety = 0.9;        ///< factor on the step the error estimate asks for
+  double grow_max = 2.0;      ///< largest growth from one step to the next
+  double shrink_min = 0.2;    ///< smallest factor after a rejected step
+  double first_shrink = 1e-2; ///< smallest factor while no step has been accepted (h0 a guess)
+  double min_step_fraction = 1e-10;  ///< minimum step, relative to end - start
+};
+
+/// The controller's state and the saved start of the step being tried, sized once.
+struct StepControl {
+  explicit StepControl(const Model& model, const Data& data);
+  StepControlLimits limits;
+  double h_next = 0;             ///< the next step to try
+  bool accepted_any = false;
+  std::int64_t accepted = 0, rejected = 0, newton_failures = 0;
+  // The state a rejected step is restored to (everything step() changes that the next step reads).
+  double t = 0;
+  VectorXd q, qd, qdd, lambda, qdd_prev, a;
+  StepCoefficients k;
+  bool have_previous = false, predictor_far = false, tangent_valid = false;
+  double newton_kappa = 0;
+  int kappa_age = 0;
+  std::vector<Vector3d> step_alpha;
+  std::vector<double> angle_ref;
+};
+
+/// The first step tried: settings.step, which the model file's "step": "auto" sets to a hundredth
+/// of the output interval (a guess the first steps correct).
+double initial_step(const Model& model);
+
+/// The requested output times after the start: start + k output_interval, the last one `end`.
+std::int64_t output_count(const Model& model);
+double output_time(const Model& model, std::int64_t k);
+
+/// Advances data from data.t to exactly t_target with steps whose estimated local error is within
+/// the tolerances. Throws SolverError (naming the time) when the step falls below the minimum.
+/// Allocation-free.
+void advance_to(const Model& model, Data& data, StepControl& control, double t_target);
+
+}  // namespace ffr::runtime

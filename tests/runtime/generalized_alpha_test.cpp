@@ -1,0 +1,202 @@
+// The generalized-alpha step ("integrator": "generalized_alpha", scheme_coefficients.cpp):
+// - second-order convergence for rho_inf = 0, 0.5, 0.9, 1 on a compound pendulum against an
+//   independent oracle written here (the pendulum's one-degree-of-freedom equation
+//   I_O theta'' = m g d cos(theta) integrated by classical Runge-Kutta at a far smaller step);
+// - rho_inf = 1 gives the trapezoidal rule's states (the benchmark's flexible slider-crank);
+// - the numerical damping of a single linear mode (a spring-mass) per step against the
+//   amplification matrix of Chung & Hulbert ("A time integration algorithm for structural
+//   dynamics with improved numerical dissipation: the generalized-alpha method", J. Appl. Mech.
+//   60, 1993), built here from their equations: Newmark's two relations and the balance
+//   (1 - alpha_m) a_{n+1} + alpha_m a_n + omega^2 ((1 - alpha_f) d_{n+1} + alpha_f d_n) = 0,
+//   with alpha_m, alpha_f, beta, gamma from rho_inf (their eq. 25 and 17-19).
+#include "support.hpp"
+
+#include "models.hpp"  // tools/models: the benchmark's slider-crank
+
+#include "ffr/formats/synthetic.hpp"
+#include "synthetic_bodies.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <string>
+
+using namespace ffr::runtime;
+
+namespace {
+
+std::string scheme_keys(double rho) {
+  if (rho < 0) return "";
+  char buf[96];
+  std::snprintf(buf, sizeof buf, R"(, "integrator": "generalized_alpha", "spectral_radius": %.17g)", rho);
+  return buf;
+}
+
+// A 1 m bar of 20 x 20 mm section, 1 kg, hinged at one end about y, released horizontally
+// (tests/runtime/pendulum_test.cpp).
+constexpr double kIyy = 0.08336666666666667, kMass = 1.0, kD = 0.5, kG = 9.81;
+
+std::string pendulum(double h, double end, double rho) {
+  char buf[1024];
+  std::snprintf(buf, sizeof buf, R"({
+  "gravity": [0, 0, -9.81],
+  "bodies": [{"name": "bar", "type": "rigid", "mass": 1.0, "com": [0.5, 0, 0],
+              "inertia": [[6.6666666666666667e-5, 0, 0], [0, 0.08336666666666667, 0], [0, 0, 0.08336666666666667]],
+              "position": [0, 0, 0]}],
+  "joints": [{"name": "hinge", "type": "revolute", "body1": "ground", "body2": "bar", "at": [0, 0, 0], "axis": [0, 1, 0]}],
+  "solver": {"end": %.17g, "step": %.17g, "newton_tolerance": 1e-14%s},
+  "outputs": [{"name": "angle", "type": "joint_coordinate", "joint": "hinge"}]
+})",
+                end, h, scheme_keys(rho).c_str());
+  return buf;
+}
+
+// The oracle: theta'' = m g d cos(theta) / I_O from rest at theta = 0 (the angle about +y
+// turns the bar's x axis towards -z, down), classical RK4.
+double pendulum_oracle(double end) {
+  const double w2 = kMass * kG * kD / (kIyy + kMass * kD * kD);
+  const int n = 200000;
+  const double h = end / n;
+  double th = 0, om = 0;
+  const auto f = [&](double t) { return w2 * std::cos(t); };
+  for (int i = 0; i < n; ++i) {
+    const double k1t = om, k1o = f(th);
+    const double k2t = om + 0.5 * h * k1o, k2o = f(th + 0.5 * h * k1t);
+    const double k3t = om + 0.5 * h * k2o, k3o = f(th + 0.5 * h * k2t);
+    const double k4t = om + h * k3o, k4o = f(th + h * k3t);
+    th += h / 6 * (k1t + 2 * k2t + 2 * k3t + k4t);
+    om += h / 6 * (k1o + 2 * k2o + 2 * k3o + k4o);
+  }
+  return th;
+}
+
+double pendulum_angle(double h, double end, double rho) {
+  const Model model = test::model_from(pendulum(h, end, rho));
+  Data data(model);
+  initialize(model, data);
+  const auto n = step_count(model);
+  for (std::int64_t i = 0; i < n; ++i) step(model, data);
+  return joint_coordinate(model, data, 0, JointCoordinate::Angle);
+}
+
+// Chung & Hulbert's amplification matrix of (d, v, a) for d'' + omega^2 d = 0, one step of h.
+Eigen::Matrix3d amplification(double rho, double omega, double h) {
+  const double am = (2 * rho - 1) / (rho + 1), af = rho / (rho + 1);
+  const double g = 0.5 - am + af, b = 0.25 * (1 - am + af) * (1 - am + af), w2 = omega * omega;
+  Eigen::Matrix3d L, R;
+  L << 1, 0, -b * h * h, 0, 1, -g * h, (1 - af) * w2, 0, 1 - am;
+  R << 1, h, h * h * (0.5 - b), 0, 1, h * (1 - g), -af * w2, 0, -am;
+  return L.partialPivLu().solve(R);
+}
+
+}  // namespace
+
+TEST(GeneralizedAlpha, SecondOrderForEverySpectralRadius) {
+  const double end = 1.0;
+  const double ref = pendulum_oracle(end);
+  for (const double rho : {0.0, 0.5, 0.9, 1.0}) {
+    double e[3];
+    // (At rho_inf = 0 the errors reach their h^2 asymptote from h = 1 ms on: 3.5e-5, 2.3e-5, 7.6e-6
+    // at 4, 2, 1 ms. The start a_0 = q_ddot_0 leaves an O(h) transient in the pseudo-acceleration,
+    // which the spurious root damps, scheme_coefficients.cpp.)
+    const double hs[3] = {5e-4, 2.5e-4, 1.25e-4};
+    for (int k = 0; k < 3; ++k) e[k] = std::abs(pendulum_angle(hs[k], end, rho) - ref);
+    const double p1 = std::log2(e[0] / e[1]), p2 = std::log2(e[1] / e[2]);
+    std::printf("rho_inf %.1f: angle errors %.3e %.3e %.3e at h = 0.5, 0.25, 0.125 ms: orders %.3f %.3f\n", rho, e[0], e[1], e[2], p1, p2);
+    EXPECT_NEAR(p1, 2.0, 0.1) << "rho_inf " << rho;
+    EXPECT_NEAR(p2, 2.0, 0.1) << "rho_inf " << rho;
+    EXPECT_LT(e[2], 2e-7);
+  }
+}
+
+TEST(GeneralizedAlpha, SpectralRadiusOneIsTheTrapezoidalRule) {
+  test::TempDir dir("galpha_crank");
+  auto chain = ffr::formats::synthetic::spring_chain(bench::rod_params(11, 10));
+  bench::add_section_inertia(chain.sid, 0.008, 0.008);
+  test::write_sid_file(chain.sid, dir / "rod.sid.h5");
+  const std::string json = bench::slider_crank_json("rod.sid.h5", 1e-3, 0.1, 150.0);
+  Model trap = test::model_from(json, dir.path);
+  trap.settings.newton_tolerance = 1e-15;
+  Model alpha = trap;
+  alpha.settings.integrator = Integrator::GeneralizedAlpha;
+  alpha.settings.spectral_radius = 1.0;
+  Data a(trap), b(alpha);
+  initialize(trap, a);
+  initialize(alpha, b);
+  double worst = 0, motion = 0;
+  const VectorXd q_start = a.q;
+  for (std::int64_t i = 0; i < step_count(trap); ++i) {
+    step(trap, a);
+    step(alpha, b);
+    worst = std::max(worst, scaled_norm(trap, a.q - b.q));
+    motion = std::max(motion, scaled_norm(trap, a.q - q_start));
+  }
+  std::printf("rho_inf = 1 against the trapezoidal rule: states apart by %.2e at most (scaled; the motion %.2e)\n", worst, motion);
+  EXPECT_GT(motion, 0.1);
+  EXPECT_LT(worst, 1e-10);
+}
+
+// A 1 kg body on a spring (k = 1e4 N/m along x, through its centre of mass: omega = 100 rad/s),
+// released 0.1 m from its rest length. The spring's ground end is 1 km away, so that even the
+// first steps' overshoot at omega h = 100 keeps it along +x (linear). Its state after each step, written in the eigenvectors
+// of Chung & Hulbert's amplification matrix, must shrink by the matrix's eigenvalues: the
+// principal pair by the per-step damping |lambda_1| (the spectral radius for omega h >= 1),
+// checked at every step.
+TEST(GeneralizedAlpha, DampingOfOneModePerStepIsTheAnalyticAmplification) {
+  const double omega = 100.0, x_rest = 1.0;
+  for (const double rho : {0.0, 0.5, 0.9}) {
+    for (const double Omega : {0.5, 2.0, 100.0}) {
+      const double h = Omega / omega;
+      char buf[1024];
+      std::snprintf(buf, sizeof buf, R"({
+  "bodies": [{"name": "mass", "type": "rigid", "mass": 1.0, "inertia": [[0.1, 0, 0], [0, 0.1, 0], [0, 0, 0.1]], "position": [1.1, 0, 0]}],
+  "forces": [{"type": "spring_damper", "body1": "ground", "at1": [-1000, 0, 0], "body2": "mass", "at2": [1.1, 0, 0], "k": 1e4, "length0": 1001.0}],
+  "solver": {"end": %.17g, "step": %.17g, "newton_tolerance": 1e-15%s},
+  "outputs": [{"name": "e", "type": "energy"}]
+})",
+                    40 * h, h, scheme_keys(rho).c_str());
+      const Model model = test::model_from(buf);
+      Data data(model);
+      initialize(model, data);
+      const Eigen::Matrix3d A = amplification(rho, omega, h);
+      Eigen::EigenSolver<Eigen::Matrix3d> es(A);
+      const Eigen::Matrix3cd V = es.eigenvectors(), Vinv = V.inverse();
+      const Eigen::Vector3cd lam = es.eigenvalues();
+      // The component that decays slowest, at the spectral radius (for omega h below about 1 the
+      // principal pair, a complex-conjugate one of which either will do).
+      int p = 0;
+      for (int k = 1; k < 3; ++k)
+        if (std::abs(lam(k)) > std::abs(lam(p)) + 1e-14) p = k;
+      const double spectral = std::abs(lam(p));
+      const auto state = [&] {
+        // d, v, a of the x coordinate: a is the scheme's pseudo-acceleration (Chung & Hulbert's a).
+        // (Before the first step the scheme starts from a_0 = q_ddot_0.)
+        return Eigen::Vector3cd(data.q(0) - x_rest, data.qd(0), data.have_previous ? data.scheme.a(0) : data.qdd(0));
+      };
+      const std::complex<double> c0 = (Vinv * state())(p);
+      std::complex<double> c_prev = c0;
+      double worst = 0;
+      int checked = 0;
+      for (std::int64_t i = 0; i < step_count(model); ++i) {
+        step(model, data);
+        const std::complex<double> c = (Vinv * state())(p);
+        // (Until the component has decayed to the round-off of the state.)
+        if (std::abs(c_prev) > 1e-8 * std::abs(c0)) {
+          worst = std::max(worst, std::abs(std::abs(c / c_prev) - spectral));
+          ++checked;
+        }
+        c_prev = c;
+      }
+      std::printf("rho_inf %.1f, omega h %4.1f: spectral radius %.6f; the state's component decays by it to %.1e in each of %d steps\n",
+                  rho, Omega, spectral, worst, checked);
+      EXPECT_GE(checked, 3);
+      EXPECT_LT(worst, 1e-6) << "rho_inf " << rho << ", omega h " << Omega;
+      // The damping is there: far above 1/h the spectral radius tends to rho_inf (0.048, 0.537 and
+      // 0.928 at omega h = 100).
+      if (Omega == 100.0) EXPECT_NEAR(spectral, rho, 0.06);
+    }
+  }
+}

@@ -1,0 +1,239 @@
+// The stiffness of a body's own modal stress (/sid/Ke/M1), prestress (/sid/ksigma) and the
+// interface-load stiffening (FORMULATION.md 7): analytic tangents against central finite
+// differences, the force against the gradient of the energy the runtime reports, energy
+// conservation to the trapezoidal rule's order at large amplitude, the joint load that reaches an
+// interface against statics, and refusal of a malformed Ke/M1.
+#include "ffr/formats/h5.hpp"
+#include "support.hpp"
+#include "synthetic_bodies.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <sys/wait.h>
+
+using namespace ffr::runtime;
+
+namespace {
+
+// A Ke/M1 of the stated convention (M1[k] symmetric, not symmetric in k), of size `scale`.
+std::vector<Eigen::MatrixXd> random_ke_m1(int nq, double scale, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Eigen::MatrixXd> M1;
+  for (int k = 0; k < nq; ++k) {
+    Eigen::MatrixXd A = Eigen::MatrixXd::NullaryExpr(nq, nq, [&](Eigen::Index, Eigen::Index) { return u(rng); });
+    M1.push_back(scale * (A + A.transpose()));
+  }
+  return M1;
+}
+
+ffr::formats::Sid stressed_body(bool prestress) {
+  ffr::formats::Sid sid = test::lumpy_body(3);
+  const double k = sid.Ke.cwiseAbs().maxCoeff();
+  sid.KeM1 = random_ke_m1(3, 5 * k, 11);
+  if (prestress) {
+    sid.ksigma.M0 = Eigen::Vector3d(0.3, -0.2, 0.1) * k * 0.01;
+    Eigen::Matrix3d S = Eigen::Matrix3d::Random();
+    sid.ksigma.M1 = 0.1 * k * (S + S.transpose());
+  }
+  return sid;
+}
+
+const char* kFree = R"({
+  "bodies": [{"name": "flex", "type": "flexible", "sid": "body.sid.h5", "position": [0.1, 0.2, 0.3],
+              "orientation": [[0.36, 0.48, -0.8], [-0.8, 0.6, 0], [0.48, 0.64, 0.6]],
+              "modal_coordinates": [0.05, -0.04, 0.03], "velocity": [0.1, 0, 0], "angular_velocity": [0, 0.5, 1]}],
+  "solver": {"end": 0.2, "step": 1e-3}
+})";
+
+template <class F>
+Eigen::MatrixXd central_differences(const F& f, const Eigen::VectorXd& x, double eps) {
+  Eigen::MatrixXd D;
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    Eigen::VectorXd a = x, b = x;
+    a(i) += eps;
+    b(i) -= eps;
+    const Eigen::VectorXd col = (f(a) - f(b)) / (2 * eps);
+    if (i == 0) D.resize(col.size(), x.size());
+    D.col(i) = col;
+  }
+  return D;
+}
+
+}  // namespace
+
+// K = -dQ/dq of the Ke/M1 and ksigma terms: G1 + X1 + X1^T + K1 against central differences of Q,
+// and Q_y against the gradient of the potential energy (the cubic strain energy and the
+// prestress energy): the force is conservative and the tangent symmetric.
+TEST(ModalStress, ForceTangentAndEnergyGradientMatchFiniteDifferences) {
+  test::TempDir dir("modal_stress_fd");
+  test::write_sid_file(stressed_body(true), dir / "body.sid.h5");
+  const Model model = test::model_from(kFree, dir.path);
+  ASSERT_TRUE(model.bodies[0].modal_stress.has_value());
+  ASSERT_TRUE(model.bodies[0].prestress.has_value());
+  Data data(model);
+  const Eigen::VectorXd q = data.q, qd = Eigen::VectorXd::Zero(q.size());
+  auto forces = [&](const Eigen::VectorXd& z) {
+    data.q = z;
+    data.qd = qd;
+    update_bodies(model, data);
+    update_markers(model, data);
+    generalized_forces(model, data, 0);
+    return Eigen::VectorXd(data.Q);
+  };
+  forces(q);
+  force_tangents(model, data, 0);
+  const Eigen::MatrixXd K = data.K;
+  const Eigen::MatrixXd Kfd = -central_differences(forces, q, 1e-7);
+  const double err = (K - Kfd).cwiseAbs().maxCoeff() / K.cwiseAbs().maxCoeff();
+  const int o = model.bodies[0].offset;
+  const auto Kyy = K.block(o + 12, o + 12, 3, 3);
+  std::printf("Ke/M1 + ksigma tangent vs finite differences: %.2e of max |K| %.3e; asymmetry of K_yy %.2e\n", err,
+              K.cwiseAbs().maxCoeff(), (Kyy - Kyy.transpose()).cwiseAbs().maxCoeff() / Kyy.cwiseAbs().maxCoeff());
+  EXPECT_LT(err, 1e-7);
+  EXPECT_LT((Kyy - Kyy.transpose()).cwiseAbs().maxCoeff(), 1e-12 * Kyy.cwiseAbs().maxCoeff());
+  // Q_y = -dV/dy (no gravity, at rest: the inertia forces vanish).
+  const Eigen::VectorXd Q = forces(q);
+  Eigen::VectorXd y = q.segment(o + 12, 3);
+  auto potential = [&](const Eigen::VectorXd& yy) {
+    data.q = q;
+    data.q.segment(o + 12, 3) = yy;
+    Eigen::VectorXd v(1);
+    v(0) = energy(model, data).potential;
+    return v;
+  };
+  const Eigen::MatrixXd grad = central_differences(potential, y, 1e-7);
+  const double gerr = (grad.transpose() + Q.segment(o + 12, 3)).cwiseAbs().maxCoeff() / Q.segment(o + 12, 3).cwiseAbs().maxCoeff();
+  std::printf("Q_y vs -dV/dy: %.2e\n", gerr);
+  EXPECT_LT(gerr, 1e-7);
+}
+
+// A free body about its mean axes vibrating at large amplitude (the cubic energy a sizeable part
+// of the quadratic one) while it tumbles: the trapezoidal rule conserves the energy only to its
+// O(h^2) error on a nonlinear system (FORMULATION.md 11), so the worst energy drift over the run
+// must fall fourfold when h is halved.
+TEST(ModalStress, FreeBodyWithKeM1ConservesEnergyToSecondOrder) {
+  test::TempDir dir("modal_stress_energy");
+  ffr::formats::Sid sid = test::mean_axis_body(3);
+  sid.De.setZero();
+  const double k = sid.Ke.cwiseAbs().maxCoeff();
+  // The cubic energy is unbounded below: this size keeps the motion (energy) well inside its
+  // well (twice as large, the body ran over the saddle and away).
+  sid.KeM1 = random_ke_m1(3, 0.3 * k, 5);
+  test::write_sid_file(sid, dir / "body.sid.h5");
+  const double w_max = std::sqrt(sid.Ke.diagonal().maxCoeff() / sid.Me.diagonal().minCoeff());
+  std::vector<double> drift;
+  double cubic_share = 0;
+  for (const double h : {0.04 / w_max, 0.02 / w_max, 0.01 / w_max}) {
+    char json[1024];
+    std::snprintf(json, sizeof json, R"({
+  "bodies": [{"name": "flex", "type": "flexible", "sid": "body.sid.h5", "modal_coordinates": [0.05, -0.04, 0.03],
+              "angular_velocity": [0, 0.2, 0.4]}],
+  "solver": {"end": %.17g, "step": %.17g}
+})", 400 * 0.04 / w_max, h);
+    const Model model = test::model_from(json, dir.path);
+    Data data(model);
+    initialize(model, data);
+    const int o = model.bodies[0].offset;
+    {
+      const Eigen::VectorXd y = data.q.segment(o + 12, 3);
+      double cubic = 0;
+      for (int m = 0; m < 3; ++m) cubic += 0.5 * y(m) * y.dot(sid.KeM1[static_cast<std::size_t>(m)] * y);
+      cubic_share = std::abs(cubic) / (0.5 * y.dot(sid.Ke * y));
+    }
+    const Energy e0 = energy(model, data);
+    const double E0 = e0.kinetic + e0.potential;
+    double worst = 0;
+    for (std::int64_t i = 0; i < step_count(model); ++i) {
+      step(model, data);
+      const Energy e = energy(model, data);
+      worst = std::max(worst, std::abs(e.kinetic + e.potential - E0));
+    }
+    drift.push_back(worst / std::abs(E0));
+  }
+  std::printf("cubic / quadratic strain energy at the start %.2f; energy drift %.3e, %.3e, %.3e (ratios %.2f, %.2f)\n",
+              cubic_share, drift[0], drift[1], drift[2], drift[0] / drift[1], drift[1] / drift[2]);
+  EXPECT_GT(cubic_share, 0.1);
+  EXPECT_NEAR(drift[0] / drift[1], 4, 0.8);
+  EXPECT_NEAR(drift[1] / drift[2], 4, 0.8);
+}
+
+// A flexible body held at its interface node by a fixed joint, in gravity, its vibration damped
+// out: by statics the joint carries the weight, so the load that reaches the interface is
+// F = -m g and the moment about the node M = -(r_G - r_node) x m g (resolved in K).
+TEST(ModalStress, InterfaceLoadIsTheStaticJointReaction) {
+  test::TempDir dir("iface_load");
+  ffr::formats::Sid sid = test::lumpy_body(3);
+  sid.stiffening.emplace();
+  sid.stiffening->K0t.assign(3, ffr::formats::MatX3::Zero(3, 3));
+  sid.stiffening->K0r.assign(3, ffr::formats::MatX3::Zero(3, 3));
+  sid.stiffening->K0om.assign(3, ffr::formats::MatX6::Zero(3, 6));
+  ffr::formats::Stiffening::Interface itf;
+  itf.name = "A";
+  itf.K0F.assign(3, ffr::formats::MatX3::Zero(3, 3));
+  itf.K0M.assign(3, ffr::formats::MatX3::Zero(3, 3));
+  sid.stiffening->interfaces.push_back(itf);
+  test::write_sid_file(sid, dir / "body.sid.h5");
+  const Model model = test::model_from(R"({
+  "gravity": [0, 0, -9.81],
+  "bodies": [{"name": "flex", "type": "flexible", "sid": "body.sid.h5", "damping": {"ratio": 0.7},
+              "orientation": [[0.36, 0.48, -0.8], [-0.8, 0.6, 0], [0.48, 0.64, 0.6]]}],
+  "joints": [{"name": "clamp", "type": "fixed", "body1": "ground", "body2": "flex", "node2": "A", "axis": [0, 0, 1]}],
+  "solver": {"end": 4.0, "step": 1e-3}
+})", dir.path);
+  ASSERT_EQ(model.bodies[0].stiffening->interfaces.size(), 1u);
+  Data data(model);
+  initialize(model, data);
+  for (std::int64_t i = 0; i < step_count(model); ++i) step(model, data);
+  generalized_forces(model, data, data.t);
+  const Body& b = model.bodies[0];
+  const BodyData& bd = data.bodies[0];
+  const Eigen::Vector3d g(0, 0, -9.81);
+  const Eigen::Vector3d r0 = data.q.segment<3>(b.offset);
+  const int node = b.find_node("A");
+  const NodeSlice& n = b.nodes[static_cast<std::size_t>(node)];
+  const Eigen::Vector3d r_node = r0 + bd.A * (n.origin + n.phi * data.q.segment(b.offset + 12, b.nq));
+  const Eigen::Vector3d r_G = r0 + bd.A * bd.md / b.mass;
+  const Eigen::Vector3d F = bd.A.transpose() * (-b.mass * g);
+  const Eigen::Vector3d M = bd.A.transpose() * (-(r_G - r_node).cross(b.mass * g));
+  const Eigen::Vector3d FK = bd.iface_load.col(0).head<3>(), MK = bd.iface_load.col(0).tail<3>();
+  std::printf("interface force in K (%.6f, %.6f, %.6f), statics (%.6f, %.6f, %.6f); moment (%.6f, %.6f, %.6f), statics (%.6f, %.6f, %.6f); modal velocity %.1e\n",
+              FK(0), FK(1), FK(2), F(0), F(1), F(2), MK(0), MK(1), MK(2), M(0), M(1), M(2),
+              data.qd.segment(b.offset + 12, b.nq).norm());
+  EXPECT_LT((FK - F).norm(), 1e-6 * F.norm());
+  EXPECT_LT((MK - M).norm(), 1e-6 * F.norm() * (r_G - r_node).norm());
+}
+
+// A Ke/M1 slice that is not symmetric in (i, j) is refused when the model is loaded, naming the
+// SID file and the dataset; ffr-sim exits with status 2.
+TEST(ModalStress, AsymmetricKeM1IsRefused) {
+  test::TempDir dir("modal_stress_bad");
+  ffr::formats::Sid sid = stressed_body(false);
+  sid.KeM1[1](0, 2) += 0.1 * sid.KeM1[1].cwiseAbs().maxCoeff();
+  test::write_sid_file(sid, dir / "body.sid.h5");
+  try {
+    test::model_from(kFree, dir.path);
+    FAIL() << "accepted an asymmetric Ke/M1";
+  } catch (const ModelError& e) {
+    const std::string what = e.what();
+    std::printf("%s\n", what.c_str());
+    EXPECT_NE(what.find("body.sid.h5"), std::string::npos);
+    EXPECT_NE(what.find("/sid/Ke/M1"), std::string::npos);
+    EXPECT_NE(what.find("symmetric"), std::string::npos);
+  }
+  test::write_text(dir / "model.json", kFree);
+  const std::string cmd = std::string(FFR_BINARY_DIR) + "/bin/ffr-sim " + (dir / "model.json").string() + " -o " +
+                          (dir / "out.h5").string() + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 512> buf{};
+  while (fgets(buf.data(), buf.size(), p)) out += buf.data();
+  const int st = pclose(p);
+  EXPECT_EQ(WIFEXITED(st) ? WEXITSTATUS(st) : -1, 2) << out;
+  EXPECT_NE(out.find("/sid/Ke/M1"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
+}
