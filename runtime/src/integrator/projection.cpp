@@ -97,7 +97,7 @@ Projected project_once(const Model& model, Data& data, VectorXd& x, const Vector
 // rebuilt at the current state (when it was built at an earlier one), then replaced by the
 // metric alone, with which the passes are the exact augmented-Lagrangian iteration.
 double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias, double time_scale, double t,
-               const char* what) {
+               const char* what, bool must_converge) {
   data.vstar = x;
   Projected r = project_once(model, data, x, bias, time_scale);
   if (!r.converged && !data.tangent_fresh_step) {
@@ -111,6 +111,7 @@ double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias
     factorize_metric(model, data);
     r = project_once(model, data, x, bias, time_scale);
   }
+  if (!r.converged && !must_converge) return std::numeric_limits<double>::infinity();
   if (!r.converged) {
     char buf[320];
     std::snprintf(buf, sizeof buf,
@@ -124,9 +125,9 @@ double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias
 
 }  // namespace
 
-double project_velocities(const Model& model, Data& data, double t) {
+double project_velocities(const Model& model, Data& data, double t, bool must_converge) {
   const double h = data.scheme.k.h;
-  return project(model, data, data.qd, data.Phit, h, t, "velocity");
+  return project(model, data, data.qd, data.Phit, h, t, "velocity", must_converge);
 }
 
 double project_accelerations(const Model& model, Data& data, double t) {
@@ -136,7 +137,7 @@ double project_accelerations(const Model& model, Data& data, double t) {
   update_body_rates(model, data);
   update_marker_rates(model, data);
   evaluate_constraint_biases(model, data, t);
-  return project(model, data, data.qdd, data.gamma, h * h, t, "acceleration");
+  return project(model, data, data.qdd, data.gamma, h * h, t, "acceleration", true);
 }
 
 }  // namespace ffr::runtime

@@ -50,7 +50,9 @@ void predict_frames(const Model& model, Data& data);
 
 /// Projects data.qd (then data.qdd) onto the velocity (acceleration) constraints in the metric
 /// of the last factorised tangent. Needs evaluate() at the current q. Returns the scaled residual.
-double project_velocities(const Model& model, Data& data, double t);
+/// A projection that does not converge (after a fresh tangent and the metric alone) throws a
+/// SolverError, or, for the velocities with must_converge = false, returns infinity.
+double project_velocities(const Model& model, Data& data, double t, bool must_converge = true);
 double project_accelerations(const Model& model, Data& data, double t);
 
 /// Factorises T = W + kq (alpha Phi_q^T Phi_q + sum lam_i Phi_i,qq) with W = M + kv C + kq K
