@@ -195,6 +195,15 @@ TEST(BadInput, MissingModelFile) {
   }
 }
 
+TEST(BadInput, ReusedTangentIsRefused) {
+  // A tangent kept over steps does not keep the integrator's accuracy (andrews_options_test.cpp):
+  // refused, not silently less accurate. The default spelled out is fine.
+  const std::string reuse = R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"end": 1, "step": 0.001, "reuse_jacobian": true}})";
+  expect_error(reuse, "solver.reuse_jacobian", "does not keep the integrator's accuracy");
+  const std::string plain = R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"end": 1, "step": 0.001, "reuse_jacobian": false}})";
+  EXPECT_EQ(error_of(plain), "");
+}
+
 TEST(BadInput, SidWhoseNormalModesHaveNoFrequencyIsRefused) {
   // Frequencies read as zeros were summarised as "validation FAILED" yet run (issue 40): a
   // normal mode without a positive frequency is now a failed property, refused at load.

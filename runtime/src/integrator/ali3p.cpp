@@ -19,51 +19,86 @@
 namespace ffr::runtime {
 namespace {
 
-std::string newton_failure(double t, int it, double inc, double viol) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf,
-                "Newton did not converge at t = %.9g s after %d iterations (scaled increment %.3g, "
-                "constraint violation %.3g of the model length)",
-                t, it, inc, viol);
-  return buf;
+std::string fmt(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", v);
+  return b;
 }
 
-// Tangents built in one step at most (a step that needs more is a hard one: a body started at
-// speed; the usual step needs one or two).
-constexpr int kMaxRefreshes = 5;
+// The coordinate with the largest weighted increment dq (scaled_norm), as "body 'name',
+// coordinate", and that size.
+std::string worst_coordinate(const Model& model, const Data& data, double& size) {
+  size = -1;
+  std::string out = "none";
+  for (int j = 0; j < data.nf; ++j) {
+    const double v = std::abs(data.dq(j)) * model.increment_weight(j);
+    if (!(v > size) && !std::isnan(v)) continue;
+    size = v;
+    for (const Body& b : model.bodies) {
+      if (j < b.offset || j >= b.offset + b.ncoord()) continue;
+      const int k = j - b.offset;
+      const char* axis = "xyz";
+      std::string c = k < 3    ? std::string("position ") + axis[k]
+                      : k < 12 ? std::string("frame vector ") + "uvw"[(k - 3) / 3] + " component " + axis[(k - 3) % 3]
+                               : "modal coordinate " + std::to_string(k - 12);
+      out = "body '" + b.name + "', " + c;
+    }
+    if (std::isnan(v)) break;
+  }
+  return out;
+}
 
-// Number of multiplier passes inside one Newton iteration (see newton_direction). From the
-// second iteration on, a second runs when the first leaves the linearised violation above the
-// tolerance; it takes it to round-off (on the benchmark's crank from ~1e-12 to ~1e-15 of the
-// model length), which lets an iterate be accepted right after a fresh tangent (kKappaLife).
-// The first iteration's update is never the last on a step of any speed, and its second pass
-// changed nothing after it (the second iterate's increment stayed 6.4e-9 on the trace of
-// FORMULATION.md 9): one pass there.
-constexpr int kMultiplierPasses = 2;
+// The constraint row with the largest violation among the unknowns' rows, named by what it
+// belongs to (a joint, a motion, a body's frame), and that violation in model lengths.
+std::string worst_row(const Model& model, const Data& data, double& size) {
+  size = -1;
+  int row = -1;
+  for (int i = 0; i < data.na; ++i) {
+    const double v = std::abs(data.Phi(i)) / model.length;
+    if (v > size || std::isnan(v)) {
+      size = v;
+      row = i;
+      if (std::isnan(v)) break;
+    }
+  }
+  if (row < 0) return "none";
+  for (const ConstraintBlock& b : model.blocks) {
+    if (row < b.row0 || row >= b.row0 + b.rows) continue;
+    const std::string r = " (its row " + std::to_string(row - b.row0 + b.first) + ")";
+    switch (b.kind) {
+      case BlockKind::RigidBody: return "the frame of body '" + model.bodies[static_cast<std::size_t>(b.index)].name + "'" + r;
+      case BlockKind::Joint: return "joint '" + model.joints[static_cast<std::size_t>(b.index)].name + "'" + r;
+      case BlockKind::Motion:
+        return "the motion of joint '" + model.joints[static_cast<std::size_t>(model.motions[static_cast<std::size_t>(b.index)].joint)].name + "'";
+    }
+  }
+  return "row " + std::to_string(row);
+}
 
-// An update made with a tangent built at its own iterate (a rebuild after the first iteration:
-// the predictor's tangent, whose iterate is far off, behaves otherwise) leaves an error of about
-// kappa * inc^2 (Newton's quadratic convergence), with kappa = inc_next / inc^2 as last measured
-// (an iteration that followed such an update). The iterate is accepted on that estimate, with a
-// factor 2 of margin, for up to kKappaLife steps after the measurement; then one step goes on
-// to the next iteration, which measures kappa again. Why: on the benchmark's crank the tangent is
-// rebuilt at the second iterate (kStaleTangent), where inc ~ 2e-8 to 6e-8 and kappa ~ 2.4e3 to
-// 6.2e3 (from one step to the next), so the error left is ~1e-12 to 1e-11; the linear estimate
-// inc theta / (1 - theta) needs two updates from one tangent, i.e. a third iteration. Accepting
-// at the second saves an evaluation and a Newton direction a step.
-constexpr int kKappaLife = 8;
+// What a Newton failure says: when, after how many iterations, which coordinate still moved
+// most and which constraint is violated most (the equations to look at), and what to try.
+std::string newton_failure(const Model& model, const Data& data, double t, int it, double inc, double viol,
+                           const std::string& why) {
+  double dq = 0, phi = 0;
+  const std::string coord = worst_coordinate(model, data, dq);
+  const std::string row = worst_row(model, data, phi);
+  return "Newton did not converge at t = " + fmt(t) + " s after " + std::to_string(it) + " iterations" + why +
+         ": the largest remaining correction is in " + coord + " (" + fmt(dq) +
+         " of the model length; scaled increment " + fmt(inc) + ", tolerance " + fmt(model.settings.newton_tolerance) +
+         "), the largest constraint violation in " + row + " (" + fmt(phi) + " of the model length, tolerance " +
+         fmt(model.settings.policy.newton.violation_factor * model.settings.tolerance) + "). Try a smaller step (" + (model.settings.adaptive ? "solver.max_step = " : "solver.step = ") +
+         fmt(0.5 * data.scheme.k.h) + "), more iterations (solver.max_iterations), or check that body's mass and " +
+         "that joint's axes and points";
+}
 
-// A tangent built at the predictor is rebuilt at the second iterate when penalty * (first
-// scaled increment) exceeds this. Why: the penalty term alpha Phi_q^T Phi_q dominates the
-// tangent, and built with the predictor's Phi_q it misses alpha (Phi_q' - Phi_q)^T Phi_q, which
-// turns the constraint violation of each later iterate into an error of ~ penalty * increment
-// times that violation in the free directions. On the benchmark's crank (0.15 rad a step,
-// first increments ~1e-3) the iterations 2 to 4 then contracted by only 0.1 to 0.5 (4.45
-// iterations and 1.50 tangents a step), and the velocity and acceleration projections, which
-// reuse the last tangent, needed 5 to 11 passes; rebuilt at the second iterate, Newton
-// converges at the third and each projection takes 4 passes. Slow motions (first increments
-// below 1e-4 at the default penalty) keep the predictor's tangent.
-constexpr double kStaleTangent = 1.0;
+// The acceptance and tangent-refresh rules are the settings' StepPolicy (step_policy.hpp). The
+// measurements behind their defaults, on the benchmark's slider-crank (a crank at 150 rad/s,
+// h = 1 ms): the second multiplier pass takes the linearised violation from ~1e-12 to ~1e-15
+// of the model length; rebuilding the predictor's tangent at the second iterate (stale_tangent)
+// took iterations 2 to 4 from contracting by only 0.1 to 0.5 (4.45 iterations and 1.50 tangents
+// a step, projections of 5 to 11 passes) to convergence at the third; there kappa ~ 2.4e3 to
+// 6.2e3 and inc ~ 2e-8 to 6e-8, so the error left after the second iterate is ~1e-12 to 1e-11
+// and kappa_life accepts it there instead of at a third iteration.
 
 // The Newton direction dq at the current iterate, with the multipliers driven towards the
 // linearised constraints Phi - Phi_q dq = 0 by augmented-Lagrangian passes that reuse the
@@ -73,7 +108,7 @@ constexpr double kStaleTangent = 1.0;
 // only linearly where the penalty is weak against the tangent (a loop closed through an
 // elastic body). One pass costs a solve and two products with Phi_q, far less than an
 // iteration; on the benchmark's slider-crank it takes Newton from 7.0 to 4.5 iterations per
-// step (more passes gained nothing more then; see kMultiplierPasses for the second). At most
+// step (more passes gained nothing more then; see NewtonPolicy::multiplier_passes for the second). At most
 // `passes` passes. Returns the linearised violation left at q - dq, in model lengths.
 double newton_direction(const Model& model, Data& data, int passes) {
   const double h4 = data.scheme.k.kq;
@@ -102,7 +137,7 @@ double newton_direction(const Model& model, Data& data, int passes) {
 void check_drives(const Model& model, const Data& data, double t) {
   int block = -1;
   const double v = driven_violation(model, data, block);
-  if (!(v < 1e3 * model.settings.tolerance)) {
+  if (!(v < model.settings.policy.newton.violation_factor * model.settings.tolerance)) {
     const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(block)];
     const auto name = [&](int body) { return body == kGround ? std::string("ground") : model.bodies[static_cast<std::size_t>(body)].name; };
     std::string what = b.kind == BlockKind::Joint    ? "joint '" + model.joints[static_cast<std::size_t>(b.index)].name + "'"
@@ -123,6 +158,7 @@ void step(const Model& model, Data& data) { step(model, data, model.settings.ste
 
 void step(const Model& model, Data& data, double h) {
   const SolverSettings& s = model.settings;
+  const NewtonPolicy& p = s.policy.newton;
   // The scheme (scheme.hpp): q_dot = c1 q + qd_hat, q_ddot = c2 q + qdd_hat; the trapezoidal rule
   // has c1 = 2/h, c2 = 4/h^2, kq = 1/c2 = h^2/4.
   set_step_coefficients(model, data, h);
@@ -156,17 +192,17 @@ void step(const Model& model, Data& data, double h) {
 
   // Tangent policy. Without reuse, the tangent is rebuilt at the first iteration of every step;
   // with reuse, only when the last step needed many iterations. In both cases an iteration that
-  // contracts slowly gets a fresh tangent (at most kMaxRefreshes a step). The constraints' second
+  // contracts slowly gets a fresh tangent (at most max_refreshes a step). The constraints' second
   // derivatives use the multipliers lambda, not lambda + alpha Phi: at the predictor the
   // constraints are violated by O(h^3) and the penalised multipliers swing far off.
-  bool refactor = !data.tangent_valid || !s.reuse_jacobian || data.stats.last_iterations > 5;
+  bool refactor = !data.tangent_valid || !s.reuse_jacobian || data.stats.last_iterations > p.reuse_max_iterations;
   ++data.kappa_age;
   bool fresh_before = false;  // the last update was made with a tangent built at its iterate
-  bool constraints_only = false;  // the next refresh keeps W (see kStaleTangent)
+  bool constraints_only = false;  // the next refresh keeps W (see stale_tangent)
   int refreshes = 0;
   data.tangent_fresh_step = false;
   double inc = 0, prev_inc = 0, viol = 0;
-  int it = 0, stalled = 0;
+  int it = 0;
   bool converged = false;
   for (it = 1; it <= s.max_iterations; ++it) {
     data.qd = k.c1 * data.q + data.qd_hat;
@@ -176,7 +212,7 @@ void step(const Model& model, Data& data, double h) {
     // those of t1 already (drive_bodies gives them the same values at every iterate).
     evaluate(model, data, t1, it == 1 ? Scope::All : Scope::Unknowns);
     viol = data.Phi.cwiseAbs().maxCoeff() / model.length;
-    if (!std::isfinite(viol)) throw SolverError(t1, viol, newton_failure(t1, it, inc, viol) + ": the state is not finite");
+    if (!std::isfinite(viol)) throw SolverError(t1, viol, newton_failure(model, data, t1, it, inc, viol, " (the state is not finite)"));
     if (it == 1) check_drives(model, data, t1);
     // Augmented-Lagrangian update with the new iterate (from the second pass on: the first uses
     // the previous step's multipliers), then the penalised force lambda + alpha Phi.
@@ -203,7 +239,7 @@ void step(const Model& model, Data& data, double h) {
       refactor = constraints_only = false;
       ++refreshes;
     }
-    const int passes = it == 1 ? 1 : kMultiplierPasses;
+    const int passes = it == 1 ? 1 : p.multiplier_passes;
     double left = newton_direction(model, data, passes);
     double next_inc = scaled_norm(model, data.dq);
     // A tangent built at an earlier iterate under which the increment more than doubles is not
@@ -212,11 +248,11 @@ void step(const Model& model, Data& data, double h) {
     // rod started at 1500 rpm with h = 1 ms went from a scaled increment of 0.017 to 11, then
     // diverged.) At the first iterate the tangent can only be one kept from an earlier step
     // (reuse_jacobian); it is dropped when its increment is one that would have made the
-    // predictor's own tangent stale (kStaleTangent): with the benchmark's crank at 150 rad/s,
+    // predictor's own tangent stale (stale_tangent): with the benchmark's crank at 150 rad/s,
     // applying it threw the second iterate 7 scaled units off, from which Newton diverged to a
     // non-finite state (SliderCrank.ReusedTangentFallsBackWhenTheCrankTurnsFast).
-    const bool stale = it >= 2 ? !(next_inc < 2 * inc) : s.penalty * next_inc > kStaleTangent;
-    if (!refreshed_now && refreshes < kMaxRefreshes && stale) {
+    const bool stale = it >= 2 ? !(next_inc < p.rejected_growth * inc) : s.penalty * next_inc > p.stale_tangent;
+    if (!refreshed_now && refreshes < p.max_refreshes && stale) {
       data.lambda -= data.sigma;
       // (At the first iterate as the usual refresh there: without the modal acceleration
       // block after a step that found its predictor far off.)
@@ -230,49 +266,44 @@ void step(const Model& model, Data& data, double h) {
     data.q -= data.dq;
     prev_inc = inc;
     inc = next_inc;
-    if (!std::isfinite(inc)) throw SolverError(t1, inc, newton_failure(t1, it, inc, viol) + ": singular tangent");
+    if (!std::isfinite(inc)) throw SolverError(t1, inc, newton_failure(model, data, t1, it, inc, viol, " (the tangent is singular)"));
     // Converged when the error left after this update is below newton_tolerance: for a contracting
     // iteration (rate theta = inc / prev_inc < 1) it is at most inc theta / (1 - theta)
     // (Hairer & Wanner, Solving ODEs II, IV.8), and the constraints left by the update are
     // the linearised violation (plus O(inc^2)).
     // theta only measures the rate when both increments came from the same tangent.
     const double theta = it >= 2 && prev_inc > 0 && !refreshed_now ? inc / prev_inc : 1.0;
-    const double error_left = it == 1 ? inc : (theta < 1 ? inc * theta / (1 - theta) : std::numeric_limits<double>::infinity());
+    // A tangent kept from an earlier step (reuse_jacobian) gives no such bound from one update:
+    // built where the constraints' Jacobian was another, its penalty term stiffens directions
+    // that are free now, and the increments there understate the error by as much. Its iterates
+    // are accepted on the measured contraction alone.
+    const double inf = std::numeric_limits<double>::infinity();
+    const bool own_tangent = data.tangent_fresh_step;
+    const double error_left = it == 1 ? (own_tangent ? inc : inf) : (theta < 1 ? inc * theta / (1 - theta) : inf);
     if (fresh_before && !refreshed_now && prev_inc > 0) {
       data.newton_kappa = inc / (prev_inc * prev_inc);
       data.kappa_age = 0;
     }
     fresh_before = refreshed_now && it >= 2;
-    if ((error_left < s.newton_tolerance || inc < s.newton_tolerance) && left < s.tolerance && viol < 1e3 * s.tolerance) {
+    if ((error_left < s.newton_tolerance || (own_tangent && inc < s.newton_tolerance)) && left < s.tolerance &&
+        viol < p.violation_factor * s.tolerance) {
       converged = true;
       break;
     }
-    // Right after a fresh tangent (kKappaLife): the violation the update leaves is the
+    // Right after a fresh tangent (kappa_life): the violation the update leaves is the
     // linearised one plus O(inc^2), which stands for the check on viol (the violation before it).
-    if (fresh_before && data.kappa_age <= kKappaLife && 2 * data.newton_kappa * inc * inc < s.newton_tolerance &&
+    if (fresh_before && data.kappa_age <= p.kappa_life && 2 * data.newton_kappa * inc * inc < s.newton_tolerance &&
         left < s.tolerance && inc * inc < s.tolerance) {
       converged = true;
       break;
     }
-    // Round-off floor. Rounding of the penalty forces alpha Phi moves coordinates of tiny inertia
-    // (a slender bar's spin about its own axis) by ~ eps alpha h^2/4 / m_small, which no iteration
-    // removes. Accept when the iteration has stopped contracting with a violation far below any
-    // physical length (1e-8 of the model length) and increments below 1e-6.
-    if (it >= 3 && inc > 0.5 * prev_inc && inc < 1e-6 && viol < 1e-8) {
-      if (++stalled >= 2) {
-        converged = true;
-        break;
-      }
-    } else {
-      stalled = 0;
-    }
     // The predictor's tangent, far from this iterate: rebuild its constraint terms here (W, the
     // masses and force tangents, moved by O(increment) only).
     if (it == 1 && refreshed_now) {
-      data.predictor_far = s.penalty * inc > kStaleTangent;
+      data.predictor_far = s.penalty * inc > p.stale_tangent;
       if (data.predictor_far) refactor = constraints_only = true;
     }
-    if (it >= 2 && inc > 0.5 * prev_inc && refreshes < kMaxRefreshes) {
+    if (it >= 2 && inc > p.slow_contraction * prev_inc && refreshes < p.max_refreshes) {
       refactor = true;
       // A stale tangent (reused from an earlier step) may already have thrown the iterate and
       // the multipliers far off: start the step again from the predictor.
@@ -287,7 +318,7 @@ void step(const Model& model, Data& data, double h) {
   data.stats.newton_iterations += it > s.max_iterations ? s.max_iterations : it;
   data.stats.last_iterations = it;
   data.stats.last_increment = inc;
-  if (!converged) throw SolverError(t1, std::max(inc, viol), newton_failure(t1, s.max_iterations, inc, viol));
+  if (!converged) throw SolverError(t1, std::max(inc, viol), newton_failure(model, data, t1, s.max_iterations, inc, viol, ""));
 
   // Final state and projections.
   data.qd = k.c1 * data.q + data.qd_hat;

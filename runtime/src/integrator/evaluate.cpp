@@ -43,6 +43,17 @@ void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& 
   if (modal_acceleration) add_modal_acceleration_tangent(model, data, kq, data.T);
   factorize_tangent(data);
   data.tangent_valid = true;
+  data.tangent_metric_only = false;
+  ++data.stats.factorizations;
+}
+
+void factorize_metric(const Model& model, Data& data) {
+  data.T.topLeftCorner(data.nf, data.nf) = data.W.topLeftCorner(data.nf, data.nf);
+  add_penalty_tangent(model, data, data.alpha, data.scheme.k.kq, data.T);
+  factorize_tangent(data);
+  // Not Newton's tangent: a step that would keep it (reuse_jacobian) builds its own.
+  data.tangent_valid = false;
+  data.tangent_metric_only = true;
   ++data.stats.factorizations;
 }
 
@@ -100,14 +111,7 @@ void solve_tangent(Data& data, const VectorXd& rhs, VectorXd& out) {
 }
 
 double scaled_norm(const Model& model, const VectorXd& dq) {
-  double s = 0;
-  for (const Body& b : model.bodies) {
-    const int o = b.offset;
-    s = std::max(s, dq.segment<3>(o).cwiseAbs().maxCoeff() / model.length);
-    s = std::max(s, dq.segment<9>(o + 3).cwiseAbs().maxCoeff());
-    for (int k = 0; k < b.nq; ++k) s = std::max(s, std::abs(dq(o + 12 + k)) / b.y_scale(k));
-  }
-  return s;
+  return dq.size() == 0 ? 0.0 : dq.cwiseAbs().cwiseProduct(model.increment_weight).maxCoeff();
 }
 
 }  // namespace ffr::runtime

@@ -41,6 +41,7 @@ void factor_metric(const Model& model, Data& data, double alpha_factor, double t
   data.T = data.W;
   add_penalty_tangent(model, data, data.alpha, t_factor, data.T);
   factorize_tangent(data);
+  data.tangent_metric_only = true;
 }
 
 std::string fmt(double v) {
@@ -162,7 +163,8 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
   // velocities if the frames alone could not satisfy the joints and motions).
   factor_metric(model, data, model.settings.penalty * 4.0 / (h * h), 0.25 * h * h, kElasticWeight);
   data.tangent_fresh_step = true;  // the metric is M here: no refresh with C and K
-  double vres = project_velocities(model, data, t0);
+  // (Not converging here is no error: the plain metric below is the fallback.)
+  double vres = project_velocities(model, data, t0, false);
   if (vres > 1e-2 * model.settings.tolerance) {
     if (!(vres < 1e-6)) data.qd = given;
     factor_metric(model, data, model.settings.penalty * 4.0 / (h * h), 0.25 * h * h);

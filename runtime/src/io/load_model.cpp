@@ -122,7 +122,15 @@ void parse_solver(const Field& root, ParseContext& ctx) {
     if (st.max_iterations < 1) f->fail("must be at least 1");
   }
   if (auto f = s.find("penalty")) st.penalty = f->positive();
-  if (auto f = s.find("reuse_jacobian")) st.reuse_jacobian = f->boolean();
+  // Refused: a tangent kept over steps converges to the same tolerance only with honest
+  // (contraction-measured) acceptance, and even then it does not keep the integrator's accuracy
+  // (Andrews' squeezing mechanism ends 1e-5 rad away from the default, far above its Richardson-
+  // extrapolated error), nor does it pay (tools/bench/runtime_step/RESULTS.md). `false` is kept
+  // for files that spell the default out.
+  if (auto f = s.find("reuse_jacobian"))
+    if (f->boolean())
+      f->fail("true is not supported: a tangent kept over steps does not keep the integrator's accuracy; "
+              "remove the key (a fresh tangent every step is the default)");
   if (auto f = s.find("eliminate_driven_bodies")) st.eliminate_driven = f->boolean();
 }
 

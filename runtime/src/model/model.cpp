@@ -190,7 +190,7 @@ void finalize(Model& m) {
   // Coordinates: the integrated bodies first, the driven ones after them.
   find_drives(m);
   int off = 0;
-  double gyration = 0, mass_sum = 0;
+  double size = 0, mass_sum = 0;
   m.nfree = 0;
   for (int pass = 0; pass < 2; ++pass)
     for (auto& b : m.bodies)
@@ -199,16 +199,26 @@ void finalize(Model& m) {
         off += b.ncoord();
         if (pass == 0) m.nfree = off;
       }
+  // The model length: the largest of the bodies' sizes, each the larger of its radius of
+  // gyration and the distance of its farthest marker from its centre of mass. Why both: the
+  // radius of gyration alone makes a point mass on an arm (the IFToMM pendulum's bob, 1e-9 kg m^2
+  // of its own) a body 5e-5 m large, and the tolerances, relative to it, then ask for violations
+  // below round-off of its 1 m arm; the arm's length is where its markers are.
   for (auto& b : m.bodies) {
     const Matrix3d Jg = b.J0 - b.rdm * b.rdm.transpose() / b.mass;
-    gyration = std::max(gyration, std::sqrt(std::max(0.0, Jg.trace() / b.mass)));
+    size = std::max(size, std::sqrt(std::max(0.0, Jg.trace() / b.mass)));
     mass_sum += b.mass;
   }
+  for (const Marker& mk : m.markers)
+    if (mk.body != kGround) {
+      const Body& b = m.bodies[static_cast<std::size_t>(mk.body)];
+      size = std::max(size, (mk.c - b.rdm / b.mass).norm());
+    }
   m.ncoord = off;
   m.nunknown = m.nfree;
   for (const auto& b : m.bodies)
     if (b.frame_locked) m.nunknown -= 9;
-  m.length = gyration > 0 ? gyration : 1.0;
+  m.length = size > 0 ? size : 1.0;
   m.mass = m.bodies.empty() ? 1.0 : mass_sum / static_cast<double>(m.bodies.size());
   for (auto& b : m.bodies) {
     b.PPdm_stack.resize(9 * b.nq, b.nq);
@@ -217,6 +227,21 @@ void finalize(Model& m) {
     b.y_scale.resize(b.nq);
     for (int k = 0; k < b.nq; ++k)
       b.y_scale(k) = b.Myy(k, k) > 0 ? m.length * std::sqrt(b.mass / b.Myy(k, k)) : m.length;
+  }
+  // Increment weights (FORMULATION.md 9). A frame vector's diagonal mass is J0_aa, the body's
+  // mass spread along axis a: sqrt(J0_aa / m) is how far its mass moves when the vector does.
+  // Why not one weight for all frame vectors: a point mass's or a slender bar's frame vectors
+  // across it carry no mass, and their round-off-sized increments (the penalty forces' rounding
+  // over a mass of 1e-9) would then stall convergence tests that nothing physical depends on.
+  m.increment_weight.resize(m.ncoord);
+  for (std::size_t i = 0; i < m.bodies.size(); ++i) {
+    const Body& b = m.bodies[i];
+    Vector3d extent = (b.J0.diagonal() / b.mass).cwiseMax(0.0).cwiseSqrt();
+    for (const Marker& mk : m.markers)
+      if (mk.body == static_cast<int>(i)) extent = extent.cwiseMax(mk.c.cwiseAbs());
+    m.increment_weight.segment<3>(b.offset).setConstant(1.0 / m.length);
+    for (int a = 0; a < 3; ++a) m.increment_weight.segment<3>(b.offset + 3 + 3 * a).setConstant(extent(a) / m.length);
+    for (int k = 0; k < b.nq; ++k) m.increment_weight(b.offset + 12 + k) = 1.0 / b.y_scale(k);
   }
 
   // Markers on a node need their axes' mode slices.

@@ -116,6 +116,7 @@ struct Data {
   VectorXd scale;               ///< S = diag(|T_ii|^-1/2): equilibration of masses vs stiffnesses
   bool tangent_valid = false;
   bool tangent_fresh_step = false; ///< factorised during the current step (or set-up)
+  bool tangent_metric_only = false; ///< T = W + h^2/4 alpha Phi_q^T Phi_q exactly (the projections' own)
 
   // Integrator work.
   VectorXd q0, qd0, qdd0;       ///< state at the start of the step

@@ -50,7 +50,9 @@ void predict_frames(const Model& model, Data& data);
 
 /// Projects data.qd (then data.qdd) onto the velocity (acceleration) constraints in the metric
 /// of the last factorised tangent. Needs evaluate() at the current q. Returns the scaled residual.
-double project_velocities(const Model& model, Data& data, double t);
+/// A projection that does not converge (after a fresh tangent and the metric alone) throws a
+/// SolverError, or, for the velocities with must_converge = false, returns infinity.
+double project_velocities(const Model& model, Data& data, double t, bool must_converge = true);
 double project_accelerations(const Model& model, Data& data, double t);
 
 /// Factorises T = W + kq (alpha Phi_q^T Phi_q + sum lam_i Phi_i,qq) with W = M + kv C + kq K
@@ -62,6 +64,11 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
 /// current state (what a tangent built a little way off misses most, see step()).
 void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& lam, bool modal_acceleration = true);
 
+/// Factorises the projections' own matrix T = W + h^2/4 alpha Phi_q^T Phi_q with the W of the
+/// last refresh (without the constraints' second derivatives, with which the projection passes
+/// are a modified Newton iteration that need not converge).
+void factorize_metric(const Model& model, Data& data);
+
 /// Factorises data.T after symmetric diagonal scaling S T S, S = diag(|T_ii|^-1/2). The tangent
 /// mixes masses (down to ~1e-6 for a bar's section inertia) with h^2/4 K of stiff modes and the
 /// penalty (~1e5): unscaled, partial pivoting loses most digits and Newton converges slowly.
@@ -69,8 +76,8 @@ void factorize_tangent(Data& data);
 /// out = T^-1 rhs with the scaled factorisation (out and rhs distinct).
 void solve_tangent(Data& data, const VectorXd& rhs, VectorXd& out);
 
-/// Scaled infinity norm of a coordinate increment (lengths / model length, frame vectors, modes
-/// by their scale).
+/// Scaled infinity norm of a coordinate increment: each coordinate by its inertia weight
+/// (Model::increment_weight), i.e. in model lengths of the displacement of its body's mass.
 double scaled_norm(const Model& model, const VectorXd& dq);
 
 }  // namespace ffr::runtime

@@ -9,6 +9,7 @@
 // position of its frame origin, the three frame vectors (A = [u v w]) and its modal amplitudes.
 // The ground has none.
 
+#include "ffr/runtime/step_policy.hpp"
 #include "ffr/runtime/table.hpp"
 
 #include <Eigen/Core>
@@ -266,12 +267,15 @@ struct SolverSettings {
   /// Keep the factorised tangent over steps while Newton converges fast (it is refreshed as
   /// soon as an iteration contracts slowly). Off (default): a fresh tangent every step. The
   /// penalty dominates the tangent, so a tangent older than a step is only good when no body
-  /// turns by more than ~1/penalty radians per step.
+  /// turns by more than ~1/penalty radians per step. Not accuracy-preserving in general (the
+  /// model file refuses it, MODEL_FILE.md); kept for the step benchmark's comparison.
   bool reuse_jacobian = false;
   /// Take the coordinates of driven bodies (see Drive) out of the unknowns of the step: they
   /// follow their joint and motion exactly, and the constraints among the ground and driven
   /// bodies alone drop out. Off: every body is integrated (the reference the tests compare with).
   bool eliminate_driven = true;
+  /// Acceptance and tangent-refresh rules of the step (step_policy.hpp); not in the model file.
+  StepPolicy policy;
 };
 
 struct Model {
@@ -302,6 +306,11 @@ struct Model {
   int ncoord = 0;
   int nconstraints = 0;
   double length = 1.0;           ///< characteristic length (constraint and convergence scaling)
+  /// Per coordinate, the weight of its Newton increment in the convergence tests (scaled_norm):
+  /// sqrt(M_jj / m) / length from its own diagonal mass M_jj in its body of mass m, so an
+  /// increment counts by the displacement of the body's mass it causes; a frame vector's at
+  /// least by the farthest marker along its axis (where joints and forces act).
+  VectorXd increment_weight;
   double mass = 1.0;             ///< mean body mass (penalty scaling)
   std::vector<std::string> notes;  ///< things the set-up changed or assumed, for the caller to show
 
