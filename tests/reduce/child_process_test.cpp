@@ -251,3 +251,43 @@ TEST(ReduceChild, StaleTemporaryFilesAreRemovedByTheNextRun) {
   write_previous_output(dir);
   EXPECT_FALSE(std::filesystem::exists(dir / reused)) << "a file older than its writer's process";
 }
+
+// kill -9 at the moment of writing: the temporary file is watched for and the run killed as soon
+// as it appears. The previous output stays byte for byte, the temporary file is left (what the
+// issue found accumulating), and the next run removes it.
+TEST(ReduceChild, KillNineWhileWritingLeavesTheOldOutputAndTheNextRunCleansUp) {
+  test::TempDir dir("kill-write");
+  write_previous_output(dir);
+  std::string before = slurp(dir / "out.sid.h5");
+  const auto temporary = [&] {
+    for (const auto& f : std::filesystem::directory_iterator(dir.path()))
+      if (f.path().filename().string().find(".tmp-") != std::string::npos) return f.path();
+    return std::filesystem::path();
+  };
+  bool caught = false;
+  for (int attempt = 0; attempt < 5 && !caught; ++attempt) {
+    const pid_t pid = start_reduce(dir / "bar.json", dir / "out.sid.h5");
+    ASSERT_GT(pid, 0);
+    int status = 0;
+    for (;;) {
+      if (!temporary().empty()) {
+        ::kill(pid, SIGKILL);
+        caught = true;
+        break;
+      }
+      if (::waitpid(pid, &status, WNOHANG) == pid) break;  // finished before it was seen: again
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    if (caught) ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    if (caught && !WIFSIGNALED(status)) caught = false;  // it had finished meanwhile
+    if (!caught) before = slurp(dir / "out.sid.h5");     // a finished run: its output is the previous one
+  }
+  ASSERT_TRUE(caught) << "the write moment was never caught in 5 runs";
+  EXPECT_TRUE(wait_gone(dir.path().string(), 5.0).empty());
+  EXPECT_EQ(slurp(dir / "out.sid.h5"), before) << "the previous output changed";
+  const auto left = temporary();
+  EXPECT_FALSE(left.empty()) << "no temporary file after a kill while writing";
+  write_previous_output(dir);
+  EXPECT_TRUE(temporary().empty()) << "the next run left " << temporary();
+  EXPECT_EQ(slurp(dir / "out.sid.h5").size(), before.size());
+}
