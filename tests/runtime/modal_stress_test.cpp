@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <vector>
 #include <sys/wait.h>
 
 using namespace ffr::runtime;
@@ -234,6 +235,39 @@ TEST(ModalStress, AsymmetricKeM1IsRefused) {
   while (fgets(buf.data(), buf.size(), p)) out += buf.data();
   const int st = pclose(p);
   EXPECT_EQ(WIFEXITED(st) ? WEXITSTATUS(st) : -1, 2) << out;
+  EXPECT_NE(out.find("/sid/Ke/M1"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
+}
+
+// A Ke/M1 of the wrong shape ([3,3,2] for nq = 3, written past the formats writer, which refuses
+// it) is refused by ffr-sim with exit status 2, naming the SID file and the dataset.
+TEST(ModalStress, WrongShapeKeM1IsRefused) {
+  test::TempDir dir("modal_stress_shape");
+  test::write_sid_file(stressed_body(false), dir / "body.sid.h5");
+  {
+    const hid_t f = H5Fopen((dir / "body.sid.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    ASSERT_GE(H5Ldelete(f, "/sid/Ke/M1", H5P_DEFAULT), 0);
+    const hsize_t dims[3] = {3, 3, 2};
+    const hid_t space = H5Screate_simple(3, dims, nullptr);
+    const hid_t ds = H5Dcreate2(f, "/sid/Ke/M1", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const std::vector<double> zeros(18, 0.0);
+    H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, zeros.data());
+    H5Dclose(ds);
+    H5Sclose(space);
+    H5Fclose(f);
+  }
+  test::write_text(dir / "model.json", kFree);
+  const std::string cmd = std::string(FFR_BINARY_DIR) + "/bin/ffr-sim " + (dir / "model.json").string() + " -o " +
+                          (dir / "out.h5").string() + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 512> buf{};
+  while (fgets(buf.data(), buf.size(), p)) out += buf.data();
+  const int st = pclose(p);
+  std::printf("%s", out.c_str());
+  EXPECT_EQ(WIFEXITED(st) ? WEXITSTATUS(st) : -1, 2) << out;
+  EXPECT_NE(out.find("body.sid.h5"), std::string::npos) << out;
   EXPECT_NE(out.find("/sid/Ke/M1"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
 }
