@@ -34,9 +34,12 @@ export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:check_initialization_order=1
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 export LSAN_OPTIONS="suppressions=$san/lsan.supp:print_suppressions=0"
 
+# The pass covers the formats, the runtime and the tools (their tests and the executables they
+# start). The reducer (preproc/, its tests) is not in it yet: it has not been run clean under the
+# sanitizers (scripts/sanitize/README.md).
 cmake -S "$here" -B "$here/build-asan" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
   -DCMAKE_C_FLAGS_DEBUG=-g1 -DCMAKE_CXX_FLAGS_DEBUG=-g1 \
-  -DFFR_SANITIZE=ON -DFFR_BUILD_BENCH=OFF >/dev/null
+  -DFFR_SANITIZE=ON -DFFR_BUILD_BENCH=OFF -DFFR_BUILD_PREPROC=OFF "-DFFR_TEST_AREAS=formats;runtime" >/dev/null
 cmake --build "$here/build-asan" -j "$jobs"
 # Left out under the sanitizers: the installed-package check (label install), which compiles
 # an outside project against an install of this tree with that project's own flags, so it
