@@ -6,7 +6,7 @@
 #     (cmake -DFFR_SANITIZE=ON, Debug at -O1, benchmarks off) in build-asan/ and runs it there,
 #     stopping at the first report (scripts/sanitize/README.md: options, suppressions, subset).
 # Arguments go to both ctest runs (e.g. -R formats). FFR_FUZZ_SECONDS=30 runs stage 2,
-# FFR_SANITIZE=0 stage 3.
+# FFR_SANITIZE=0 skips stage 3.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 jobs=$(nproc)
