@@ -17,25 +17,37 @@ std::int64_t step_count(const Model& model) {
 
 namespace {
 
+using clock = std::chrono::steady_clock;
+
+// Calls the caller's progress function at most once every opt.progress_seconds of wall time.
+class ProgressReport {
+ public:
+  ProgressReport(const RunOptions& opt, clock::time_point start) : opt_(opt), last_(start) {}
+  void operator()(double t, double end) {
+    if (!opt_.progress) return;
+    const auto now = clock::now();
+    if (std::chrono::duration<double>(now - last_).count() < opt_.progress_seconds) return;
+    opt_.progress(t, end);
+    last_ = now;
+  }
+
+ private:
+  const RunOptions& opt_;
+  clock::time_point last_;
+};
+
 // "step": "auto": adaptive steps that land on each output time (step_control.cpp).
 RunInfo simulate_adaptive(const Model& model, Data& data, Recorder& rec, const RunOptions& opt) {
-  using clock = std::chrono::steady_clock;
   const std::int64_t n = output_count(model);
   const std::int64_t iterations0 = data.stats.newton_iterations;
   StepControl control(model, data);
   const auto start = clock::now();
-  auto last_report = start;
+  ProgressReport progress(opt, start);
   rec.record(model, data);
   for (std::int64_t i = 1; i <= n; ++i) {
     advance_to(model, data, control, output_time(model, i));
     rec.record(model, data);
-    if (opt.progress) {
-      const auto now = clock::now();
-      if (std::chrono::duration<double>(now - last_report).count() >= opt.progress_seconds) {
-        opt.progress(data.t, model.settings.end);
-        last_report = now;
-      }
-    }
+    progress(data.t, model.settings.end);
   }
   RunInfo info;
   info.steps = control.accepted;
@@ -48,23 +60,16 @@ RunInfo simulate_adaptive(const Model& model, Data& data, Recorder& rec, const R
 
 RunInfo simulate(const Model& model, Data& data, Recorder& rec, const RunOptions& opt) {
   if (model.settings.adaptive) return simulate_adaptive(model, data, rec, opt);
-  using clock = std::chrono::steady_clock;
   const std::int64_t n = step_count(model);
   const int every = std::max(1, model.settings.output_every);
   const std::int64_t iterations0 = data.stats.newton_iterations;
   const auto start = clock::now();
-  auto last_report = start;
+  ProgressReport progress(opt, start);
   rec.record(model, data);
   for (std::int64_t i = 1; i <= n; ++i) {
     step(model, data);
     if (i % every == 0 || i == n) rec.record(model, data);
-    if (opt.progress) {
-      const auto now = clock::now();
-      if (std::chrono::duration<double>(now - last_report).count() >= opt.progress_seconds) {
-        opt.progress(data.t, model.settings.end);
-        last_report = now;
-      }
-    }
+    progress(data.t, model.settings.end);
   }
   RunInfo info;
   info.steps = n;
