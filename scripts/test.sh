@@ -17,9 +17,9 @@ bash "$here/scripts/setup.sh"
 # ---- fuzzing (tools/fuzz/README.md) ------------------------------------------------------------
 # A short run of every libFuzzer target (clang build in build-fuzz/, ASan + UBSan): a crash, a
 # sanitizer report or a hang on any input fails the test command. FFR_FUZZ_SECONDS per target
-# (e.g. 30). Off by default until the clang build of the targets has run end to end on a clean
-# machine; the Release suite replays the seeds and regressions through the same entry points
-# (ctest -L fuzz).
+# (e.g. 30). Off by default: the targets have run end to end once, clean, but not yet from a
+# fresh clone in CI; the Release suite replays the seeds and regressions through the same entry
+# points (ctest -L fuzz).
 fuzz_seconds=${FFR_FUZZ_SECONDS:-0}
 if [ "$fuzz_seconds" != 0 ]; then
   bash "$here/tools/fuzz/run.sh" --seconds "$fuzz_seconds"
