@@ -271,3 +271,64 @@ TEST(ModalStress, WrongShapeKeM1IsRefused) {
   EXPECT_NE(out.find("/sid/Ke/M1"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
 }
+
+// The load-case stiffening -KG y depends on the frame's acceleration, angular acceleration and
+// spin (FORMULATION.md 7); the step's tangent carries -dQ_y/dq_dd and -dQ_y/dq_d
+// (body_stiffening_rate_tangents) against central differences of Q over q_dd and q_d.
+TEST(ModalStress, StiffeningRateTangentsMatchFiniteDifferences) {
+  test::TempDir dir("stiffening_rates_fd");
+  ffr::formats::synthetic::ChainParams p;
+  p.points = 6;
+  p.length = 1.0;
+  p.mass = 1.0;
+  p.EA = 1e4;
+  p.EIy = p.EIz = 20.0;
+  p.modes = 5;
+  p.clamped = true;  // a free chain's inertial cases vanish (all inertia relief)
+  p.stiffening = true;
+  test::write_sid_file(ffr::formats::synthetic::spring_chain(p).sid, dir / "body.sid.h5");
+  const Model model = test::model_from(R"({
+  "bodies": [{"name": "flex", "type": "flexible", "sid": "body.sid.h5", "stiffening": true, "position": [0.1, 0.2, 0.3],
+              "orientation": [[0.36, 0.48, -0.8], [-0.8, 0.6, 0], [0.48, 0.64, 0.6]],
+              "modal_coordinates": [0.05, -0.04, 0.03, 0.02, -0.01], "angular_velocity": [0, 0.5, 1]}],
+  "joints": [{"name": "hinge", "type": "revolute", "body1": "ground", "body2": "flex", "node2": "A", "axis": [0, 0, 1]}],
+  "gravity": [0, 0, -9.81], "solver": {"end": 0.2, "step": 1e-3}
+})",
+                                       dir.path);
+  const Body& b = model.bodies[0];
+  ASSERT_TRUE(b.stiffening.has_value());
+  Data data(model);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Eigen::VectorXd q = data.q;
+  const Eigen::VectorXd qd = Eigen::VectorXd::NullaryExpr(q.size(), [&](Eigen::Index) { return u(rng); });
+  const Eigen::VectorXd qdd = Eigen::VectorXd::NullaryExpr(q.size(), [&](Eigen::Index) { return 30 * u(rng); });
+  const int o = b.offset, nq = b.nq, nb = b.ncoord();
+  auto forces = [&](const Eigen::VectorXd& v, const Eigen::VectorXd& a) {
+    data.q = q;
+    data.qd = v;
+    data.qdd = a;
+    update_bodies(model, data);
+    update_markers(model, data);
+    generalized_forces(model, data, 0);
+    return Eigen::VectorXd(data.Q.segment(o + 12, nq));
+  };
+  forces(qd, qdd);
+  force_tangents(model, data, 0);
+  Eigen::MatrixXd Wm = Eigen::MatrixXd::Zero(nb, nb), Wc = Eigen::MatrixXd::Zero(nb, nb);
+  body_stiffening_rate_tangents(b, data.bodies[0], q.segment(o + 12, nq), 0.0, Wm);  // the q_dd part alone
+  body_stiffening_rate_tangents(b, data.bodies[0], q.segment(o + 12, nq), 1.0, Wc);
+  Wc -= Wm;  // the q_d part
+  const Eigen::MatrixXd C = data.C.block(o + 12, o, nq, nb) + Wc.bottomRows(nq);
+  // Q is linear in q_dd and quadratic in q_d: central differences are exact up to round-off for
+  // any step, so a large one keeps the round-off of Q (its large Ke y) out.
+  const Eigen::MatrixXd Mfd = -central_differences([&](const Eigen::VectorXd& a) { return forces(qd, a); }, qdd, 0.1);
+  const Eigen::MatrixXd Cfd = -central_differences([&](const Eigen::VectorXd& v) { return forces(v, qdd); }, qd, 0.1);
+  const double em = (Wm.bottomRows(nq) - Mfd.middleCols(o, nb)).cwiseAbs().maxCoeff() / Mfd.cwiseAbs().maxCoeff();
+  const double ec = (C - Cfd.middleCols(o, nb)).cwiseAbs().maxCoeff() / Cfd.cwiseAbs().maxCoeff();
+  std::printf("stiffening: -dQ_y/dq_dd %.2e of max %.3e, -dQ_y/dq_d (with the inertia forces') %.2e of max %.3e\n", em,
+              Mfd.cwiseAbs().maxCoeff(), ec, Cfd.cwiseAbs().maxCoeff());
+  EXPECT_GT(Mfd.cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_LT(em, 1e-9);
+  EXPECT_LT(ec, 1e-9);
+}

@@ -1,5 +1,6 @@
 // Gravity, modal elasticity and damping, and geometric stiffening of one body.
 #include "ffr/runtime/dynamics.hpp"
+#include "ffr/runtime/kinematics.hpp"
 
 #include "../integrator/dense_products.hpp"
 
@@ -98,6 +99,38 @@ void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& g,
   // body_applied_forces (the tangent's state).
   if (b.modal_stress) Kyy += bd.G1;
   if (b.prestress) Kyy += b.prestress->K1;
+}
+
+// The load-case stiffening -KG y depends on the frame's accelerations and spin (FORMULATION.md
+// 7): a = A^T (r0_dd - g), alpha = Gbar(A) vec(A_dd), omega = Gbar(A) vec(A_d). Inside the
+// implicit scheme the accelerations are c2 q + qdd_hat, so this dependence weighs as much as
+// the mass matrix itself: left out of the tangent, a Craig-Bampton rod under its inertial
+// stress (Simeon's slider-crank with a massless slider) made Newton stall. At frozen A and y,
+//   Wb(y, r0) += sum_c (Kt[c] y) A_c^T,   Wb(y, A) += sum_c (Kr[c] y) Gbar_c
+//   Wb(y, A) += kv sum_j (Kw[j] y) (d omega_bar_j / d omega)^T Gbar
+// (Gbar_c its row c). bd.Py column 0 is work (as in modal_stress_terms).
+void body_stiffening_rate_tangents(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& y, double kv,
+                                   Eigen::Ref<MatrixXd> Wb) {
+  if (!b.stiffening || b.nq == 0) return;
+  const StiffeningTerms& s = *b.stiffening;
+  const int nq = b.nq;
+  auto v = bd.Py.col(0);
+  const Eigen::Matrix<double, 3, 9> G = gbar(bd.A);
+  for (int c = 0; c < 3; ++c) {
+    v.noalias() = s.Kt[c] * y;
+    Wb.block(12, 0, nq, 3).noalias() += v * bd.A.col(c).transpose();
+    v.noalias() = s.Kr[c] * y;
+    Wb.block(12, 3, nq, 9).noalias() += v * G.row(c);
+  }
+  const Vector3d& w = bd.omega;
+  const Vector3d dw[6] = {{2 * w(0), 0, 0}, {0, 2 * w(1), 0}, {0, 0, 2 * w(2)},
+                          {w(1), w(0), 0},  {0, w(2), w(1)}, {w(2), 0, w(0)}};
+  for (int j = 0; j < 6; ++j) {
+    v.noalias() = s.Kw[j] * y;
+    v *= kv;
+    const Eigen::Matrix<double, 1, 9> r = dw[j].transpose() * G;
+    Wb.block(12, 3, nq, 9).noalias() += v * r;
+  }
 }
 
 }  // namespace ffr::runtime

@@ -1,5 +1,5 @@
-// The loads that joints apply at the interface nodes of flexible bodies, for the interface-load
-// stiffening (SID /stiffening/interfaces, FORMULATION.md 7).
+// The loads that joints and force elements apply at the interface nodes of flexible bodies, for
+// the interface-load stiffening (SID /stiffening/interfaces, FORMULATION.md 7).
 #include "ffr/runtime/dynamics.hpp"
 
 namespace ffr::runtime {
@@ -12,14 +12,47 @@ int interface_at(const StiffeningTerms& s, int node) {
   return -1;
 }
 
+// Adds to interface `slot` of body i the load whose generalized force over the body's frame
+// columns is QF (r0) and QA (the nine columns of A): the force F = QF (global: a point's Jacobian
+// has I there), the moment about the origin sum_a A_a x QA_a, about the node that less
+// (A xbar_p) x F; both resolved in K.
+void add_node_load(const Body& b, BodyData& bd, const Data& data, int slot, int node, const Vector3d& F,
+                   const Eigen::Ref<const Eigen::Matrix<double, 9, 1>>& QA) {
+  Vector3d M = Vector3d::Zero();
+  for (int a = 0; a < 3; ++a) M += Vector3d(bd.A.col(a)).cross(Vector3d(QA.segment<3>(3 * a)));
+  const NodeSlice& n = b.nodes[static_cast<std::size_t>(node)];
+  Vector3d xbar = n.origin;
+  xbar.noalias() += n.phi * data.q.segment(b.offset + 12, b.nq);
+  M -= (bd.A * xbar).cross(F);
+  bd.iface_load.col(slot).head<3>() += bd.A.transpose() * F;
+  bd.iface_load.col(slot).tail<3>() += bd.A.transpose() * M;
+}
+
+// The stiffening interface that marker `m` sits on (body integrated, stiffened), or slot -1.
+struct InterfaceSite {
+  int body = -1, node = -1, slot = -1;
+};
+
+InterfaceSite site_of(const Model& model, const Data& data, const Marker* marker) {
+  InterfaceSite s;
+  if (!marker) return s;
+  const Marker& mk = *marker;
+  if (mk.body == kGround || mk.node < 0 || !data.integrated[static_cast<std::size_t>(mk.body)]) return s;
+  const Body& b = model.bodies[static_cast<std::size_t>(mk.body)];
+  if (!b.stiffening || b.stiffening->interfaces.empty()) return s;
+  s.slot = interface_at(*b.stiffening, mk.node);
+  if (s.slot >= 0) {
+    s.body = mk.body;
+    s.node = mk.node;
+  }
+  return s;
+}
+
 }  // namespace
 
-// A joint's force on body i is -Phi_q^T lambda over the body's columns. Its r0 columns give the
-// force F (global: a point's Jacobian has I there, an axis's none), its frame columns
-// Q_A = [xbar_a F + 1/2 tau x A_a]_a, from which the moment about the origin is
-// sum_a A_a x Q_A,a; about the node it is that less (A xbar_p) x F. Both are then resolved in K.
-// The multipliers are the current ones and the Jacobian the last evaluated (frozen within the
-// iterate, like the accelerations of the inertial load cases).
+// A joint's force on body i is -Phi_q^T lambda over the body's columns. The multipliers are the
+// current ones and the Jacobian the last evaluated (frozen within the iterate, like the
+// accelerations of the inertial load cases).
 void interface_loads(const Model& model, Data& data) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
@@ -40,15 +73,36 @@ void interface_loads(const Model& model, Data& data) {
       const auto lam = data.lambda.segment(blk.row0, blk.rows);
       const Vector3d F = -(data.Phiq.middleRows(blk.row0, blk.rows).middleCols<3>(o).transpose() * lam);
       const Eigen::Matrix<double, 9, 1> QA = -(data.Phiq.middleRows(blk.row0, blk.rows).middleCols<9>(o + 3).transpose() * lam);
-      Vector3d M = Vector3d::Zero();
-      for (int a = 0; a < 3; ++a) M += Vector3d(bd.A.col(a)).cross(Vector3d(QA.segment<3>(3 * a)));
-      const NodeSlice& n = b.nodes[static_cast<std::size_t>(mk.node)];
-      Vector3d xbar = n.origin;
-      xbar.noalias() += n.phi * data.q.segment(o + 12, b.nq);
-      M -= (bd.A * xbar).cross(F);
-      bd.iface_load.col(s).head<3>() += bd.A.transpose() * F;
-      bd.iface_load.col(s).tail<3>() += bd.A.transpose() * M;
+      add_node_load(b, bd, data, s, mk.node, F, QA);
     }
+  }
+}
+
+InterfaceLoadCapture::InterfaceLoadCapture(const Model& model, const Data& data, int m1, int m2)
+    : InterfaceLoadCapture(model, data, m1 >= 0 ? &model.markers[static_cast<std::size_t>(m1)] : nullptr,
+                           m2 >= 0 ? &model.markers[static_cast<std::size_t>(m2)] : nullptr) {}
+
+InterfaceLoadCapture::InterfaceLoadCapture(const Model& model, const Data& data, const Marker* m1, const Marker* m2) {
+  // An element between two points of one body: its frame columns hold the sum of both ends'
+  // loads, which cannot be told apart there; it is left out (FORMULATION.md 12).
+  if (m1 && m2 && m1->body == m2->body) return;
+  int n = 0;
+  for (const InterfaceSite& s : {site_of(model, data, m1), site_of(model, data, m2)}) {
+    if (s.slot < 0) continue;
+    Side& d = side_[n++];
+    d.body = s.body;
+    d.node = s.node;
+    d.slot = s.slot;
+    d.Q0 = data.Q.segment<12>(model.bodies[static_cast<std::size_t>(s.body)].offset);
+  }
+}
+
+void InterfaceLoadCapture::add_to_interfaces(const Model& model, Data& data) const {
+  for (const Side& d : side_) {
+    if (d.slot < 0) continue;
+    const Body& b = model.bodies[static_cast<std::size_t>(d.body)];
+    const Eigen::Matrix<double, 12, 1> dQ = data.Q.segment<12>(b.offset) - d.Q0;
+    add_node_load(b, data.bodies[static_cast<std::size_t>(d.body)], data, d.slot, d.node, dQ.head<3>(), dQ.tail<9>());
   }
 }
 

@@ -8,7 +8,21 @@ namespace ffr::runtime {
 
 void generalized_forces(const Model& model, Data& data, double t) {
   data.Q.setZero();
-  interface_loads(model, data);  // before the bodies: their stiffening reads them
+  // The interface loads before the bodies (their stiffening reads them): the joints', then each
+  // force element's, taken from what it adds to Q, so the elements come first.
+  interface_loads(model, data);
+  for (const SpringDamper& s : model.springs) {
+    const InterfaceLoadCapture at(model, data, s.m1, s.m2);
+    detail::spring_forces(model, s, data);
+    at.add_to_interfaces(model, data);
+  }
+  for (const Bushing& b : model.bushings) {
+    const InterfaceLoadCapture at(model, data, b.m1, b.m2);
+    detail::bushing_forces(model, b, data, true, false);
+    at.add_to_interfaces(model, data);
+  }
+  detail::point_loads(model, data, t, true, false);
+  detail::external_loads(model, data, true, false);
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     if (!data.integrated[i]) continue;
     const Body& b = model.bodies[i];
@@ -20,10 +34,6 @@ void generalized_forces(const Model& model, Data& data, double t) {
       body_inertia_forces(b, data.bodies[i], data.qd.segment(o, nb), Qb);
     body_applied_forces(b, data.bodies[i], model.gravity, data.q.segment(o, nb), data.qd.segment(o, nb), Qb);
   }
-  for (const SpringDamper& s : model.springs) detail::spring_forces(model, s, data);
-  for (const Bushing& b : model.bushings) detail::bushing_forces(model, b, data, true, false);
-  detail::point_loads(model, data, t, true, false);
-  detail::external_loads(model, data, true, false);
 }
 
 void force_tangents(const Model& model, Data& data, double t) {

@@ -3,6 +3,7 @@
 // A force f at a marker point does virtual work f . dp, so Q = J_p^T f. A torque tau on a body
 // does tau . dtheta with dtheta = 1/2 sum_a A_a x dA_a (exact on the constraint manifold), so
 // Q_Aa = 1/2 tau x A_a; at a node the elastic rotation A psi dy adds Q_y = psi^T A^T tau.
+#include "ffr/runtime/dynamics.hpp"
 #include "ffr/runtime/kinematics.hpp"
 #include "force_helpers.hpp"
 #include "forces.hpp"
@@ -46,7 +47,10 @@ void point_loads(const Model& model, Data& data, double t, bool add_q, bool tang
   for (const PointLoad& l : model.loads) {
     Vector3d f;
     for (int c = 0; c < 3; ++c) f(c) = l.table.value(t, c);
+    // The load at a stiffening interface (FORMULATION.md 7), only while forces are added.
+    const InterfaceLoadCapture at(model, data, add_q ? l.marker : -1, -1);
     marker_load(model, model.markers[l.marker], data.markers[l.marker], f, l.torque, data, add_q, tangents);
+    if (add_q) at.add_to_interfaces(model, data);
   }
 }
 
@@ -58,8 +62,10 @@ void external_loads(const Model& model, Data& data, bool add_q, bool tangents) {
       marker_kinematics(model, mk, data, md);
       const Vector3d f = data.ext_force[b].col(static_cast<Eigen::Index>(s));
       const Vector3d tau = data.ext_torque[b].col(static_cast<Eigen::Index>(s));
+      const InterfaceLoadCapture at(model, data, add_q ? &mk : nullptr, nullptr);
       if (!f.isZero(0)) marker_load(model, mk, md, f, false, data, add_q, tangents);
       if (!tau.isZero(0)) marker_load(model, mk, md, tau, true, data, add_q, tangents);
+      if (add_q) at.add_to_interfaces(model, data);
     }
   }
 }

@@ -26,7 +26,10 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
   W = k.kv * data.C.topLeftCorner(nf, nf) + k.kq * data.K.topLeftCorner(nf, nf);  // one pass
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
-    if (data.integrated[i]) W.block(b.offset, b.offset, b.ncoord(), b.ncoord()) += data.bodies[i].M;
+    if (!data.integrated[i]) continue;
+    auto Wb = W.block(b.offset, b.offset, b.ncoord(), b.ncoord());
+    Wb += data.bodies[i].M;
+    body_stiffening_rate_tangents(b, data.bodies[i], data.q.segment(b.offset + 12, b.nq), k.kv, Wb);
   }
   refresh_constraint_tangent(model, data, lam, modal_acceleration);
 }

@@ -50,11 +50,33 @@ void body_inertia_tangents(const Body& b, const BodyData& bd, const Eigen::Ref<c
 /// each stiffening interface of each integrated flexible body, into bd.iface_load, from the
 /// current multipliers and the last evaluated constraint Jacobian (FORMULATION.md 7).
 void interface_loads(const Model& model, Data& data);
+/// The load of one force element at the stiffening interfaces its markers m1, m2 sit on (-1: no
+/// marker), into bd.iface_load: constructed before the element adds its force to data.Q, it keeps
+/// the frame entries of Q of those bodies; add_to_interfaces() turns what the element added
+/// there into the interface's F, M (FORMULATION.md 7). Call after interface_loads.
+class InterfaceLoadCapture {
+ public:
+  InterfaceLoadCapture(const Model& model, const Data& data, int m1, int m2);
+  InterfaceLoadCapture(const Model& model, const Data& data, const Marker* m1, const Marker* m2);
+  void add_to_interfaces(const Model& model, Data& data) const;
+
+ private:
+  struct Side {
+    int body = -1, node = -1, slot = -1;
+    Eigen::Matrix<double, 12, 1> Q0 = Eigen::Matrix<double, 12, 1>::Zero();
+  };
+  Side side_[2];
+};
 /// bd.G1 = sum_k y_k M1[k] and bd.X1 (column k = M1[k] y) of a body with Ke/M1.
 void modal_stress_terms(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& y);
 /// Gravity, elastic, damping and stiffening forces of one body.
 void body_applied_forces(const Body& b, BodyData& bd, const Vector3d& gravity, const Eigen::Ref<const VectorXd>& z,
                          const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<VectorXd> Qb);
+/// The load-case stiffening's dependence on the frame's accelerations (-dQ_y/dq_dd, added as is)
+/// and spin (-dQ_y/dq_d, times kv) at frozen A and y, into the body's block Wb of the step's
+/// tangent M + kv C + kq K (FORMULATION.md 7). Needs body_applied_forces at the same state.
+void body_stiffening_rate_tangents(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& y, double kv,
+                                   Eigen::Ref<MatrixXd> Wb);
 void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& gravity, Eigen::Ref<MatrixXd> Kb,
                            Eigen::Ref<MatrixXd> Cb);
 
