@@ -9,7 +9,7 @@ using Eigen::Vector3d;
 using Eigen::VectorXd;
 
 ChainOracle::ChainOracle(const formats::synthetic::ChainModel& chain, const Vector3d& axis, const Vector3d& gravity,
-                         bool stiffening, double J, const Table* drive)
+                         Stiffening stiffening, double J, const Table* drive)
     : c_(chain), e_(axis.normalized()), g_(gravity), stiff_(stiffening), J_(J), drive_(drive) {
   const int N = static_cast<int>(3 * chain.points.size());
   u_ = v_ = VectorXd::Zero(N);
@@ -51,9 +51,11 @@ ChainOracle::Rate ChainOracle::rate(double t, double th, double w, const VectorX
   // Elastic forces; with stiffening K_G depends on the hub's angular acceleration, which for a
   // free hub depends on the elastic forces: two fixed-point passes settle it.
   VectorXd fe = c_.K * u + D_ * v;
-  for (int pass = 0; pass < (stiff_ ? 3 : 1); ++pass) {
+  const bool load_cases = stiff_ == Stiffening::LoadCases;
+  for (int pass = 0; pass < (load_cases ? 3 : 1); ++pass) {
     fe = c_.K * u + D_ * v;
-    if (stiff_) {
+    if (stiff_ == Stiffening::ExactAxial || stiff_ == Stiffening::VonKarman) add_exact_axial(u, fe);
+    if (load_cases) {
       const Vector3d acc = -gb, al = alpha * e_;
       const double wb[6] = {omega(0) * omega(0), omega(1) * omega(1), omega(2) * omega(2),
                             omega(0) * omega(1), omega(1) * omega(2), omega(0) * omega(2)};
@@ -76,6 +78,27 @@ ChainOracle::Rate ChainOracle::rate(double t, double th, double w, const VectorX
     r.v.segment<3>(3 * p) = -Vector3d(fe.segment<3>(3 * p)) / m + gb - 2 * omega.cross(ud) - al.cross(x) - omega.cross(omega.cross(x));
   }
   return r;
+}
+
+void ChainOracle::add_exact_axial(const VectorXd& u, VectorXd& fe) const {
+  const auto n = static_cast<int>(c_.points.size());
+  for (int e = 0; e + 1 < n; ++e) {
+    const Vector3d d0 = c_.points[e + 1].c - c_.points[e].c;
+    const double l0 = d0.norm(), k = c_.params.EA / l0;
+    const Vector3d e0 = d0 / l0, du = u.segment<3>(3 * (e + 1)) - u.segment<3>(3 * e);
+    Vector3d f;  // on point e + 1; minus on e
+    if (stiff_ == Stiffening::VonKarman) {
+      const Vector3d perp = du - e0 * e0.dot(du);
+      const double stretch = e0.dot(du) + 0.5 * perp.squaredNorm() / l0;  // l0 eps
+      f = k * (stretch * (e0 + perp / l0) - e0 * e0.dot(du));
+    } else {
+      const Vector3d d = d0 + du;
+      const double l = d.norm();
+      f = k * ((l - l0) / l * d - e0 * e0.dot(du));
+    }
+    fe.segment<3>(3 * (e + 1)) += f;
+    fe.segment<3>(3 * e) -= f;
+  }
 }
 
 void ChainOracle::step(double h) {

@@ -8,6 +8,15 @@
 // integrated with classical RK4. No modes, no shape integrals, no natural coordinates.
 // D is the chain's modal damping (ratio zeta on every mode). K_G is the geometric stiffness of the inertial loads (frame acceleration minus gravity,
 // angular acceleration, centrifugal), built from the chain's own static solves.
+// With Stiffening::ExactAxial there is no K_G: the segments' axial springs are geometrically
+// exact instead, each pulling along its present direction with k (l - l0) (l its present
+// length; K u keeps the bending and the linear axial part, so the springs add
+// k ((l - l0) d / l - e0 e0^T du)): the tension of any load and the foreshortening of large
+// deflections come from the deformation itself, as for a body with its own modal stress
+// (Ke/M1). With Stiffening::VonKarman the same springs carry the second-order strain
+// eps = e0 . du / l0 + |du_perp|^2 / (2 l0^2) instead (du_perp = du - e0 (e0 . du)), the energy
+// k l0^2 eps^2 / 2: the moderate-rotation theory of a body's own modal stress (formats/SPEC.md
+// 10.1), exactly, where the exact springs differ from it at fourth order in the rotations.
 
 #include "ffr/formats/synthetic.hpp"
 #include "ffr/runtime/table.hpp"
@@ -20,8 +29,9 @@ class ChainOracle {
  public:
   /// axis: unit hub axis (global = hub frame at theta = 0); gravity global; J > 0 free hub,
   /// otherwise theta(t) from `drive`.
+  enum class Stiffening { None, LoadCases, ExactAxial, VonKarman };
   ChainOracle(const formats::synthetic::ChainModel& chain, const Eigen::Vector3d& axis, const Eigen::Vector3d& gravity,
-              bool stiffening, double J, const Table* drive);
+              Stiffening stiffening, double J, const Table* drive);
 
   void step(double h);  ///< one RK4 step
   double time() const { return t_; }
@@ -38,7 +48,9 @@ class ChainOracle {
 
   const formats::synthetic::ChainModel& c_;
   Eigen::Vector3d e_, g_;
-  bool stiff_;
+  Stiffening stiff_;
+  /// The exact axial springs' forces beyond K's linear axial part, added to fe.
+  void add_exact_axial(const Eigen::VectorXd& u, Eigen::VectorXd& fe) const;
   double J_;
   const Table* drive_;
   Eigen::MatrixXd KGt_[3], KGr_[3], KGw_[6], D_;
