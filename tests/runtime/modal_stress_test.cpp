@@ -287,7 +287,7 @@ TEST(ModalStress, StiffeningRateTangentsMatchFiniteDifferences) {
   p.clamped = true;  // a free chain's inertial cases vanish (all inertia relief)
   p.stiffening = true;
   test::write_sid_file(ffr::formats::synthetic::spring_chain(p).sid, dir / "body.sid.h5");
-  const Model model = test::model_from(R"({
+  const Model clamped = test::model_from(R"({
   "bodies": [{"name": "flex", "type": "flexible", "sid": "body.sid.h5", "stiffening": true, "position": [0.1, 0.2, 0.3],
               "orientation": [[0.36, 0.48, -0.8], [-0.8, 0.6, 0], [0.48, 0.64, 0.6]],
               "modal_coordinates": [0.05, -0.04, 0.03, 0.02, -0.01], "angular_velocity": [0, 0.5, 1]}],
@@ -295,6 +295,10 @@ TEST(ModalStress, StiffeningRateTangentsMatchFiniteDifferences) {
   "gravity": [0, 0, -9.81], "solver": {"end": 0.2, "step": 1e-3}
 })",
                                        dir.path);
+  // The frame's spin (a clamped body), and the body's mean spin (what a Craig-Bampton body uses).
+  for (const bool mean_spin : {false, true}) {
+  Model model = clamped;
+  model.bodies[0].stiffening->use_mean_spin = mean_spin;
   const Body& b = model.bodies[0];
   ASSERT_TRUE(b.stiffening.has_value());
   Data data(model);
@@ -316,8 +320,8 @@ TEST(ModalStress, StiffeningRateTangentsMatchFiniteDifferences) {
   forces(qd, qdd);
   force_tangents(model, data, 0);
   Eigen::MatrixXd Wm = Eigen::MatrixXd::Zero(nb, nb), Wc = Eigen::MatrixXd::Zero(nb, nb);
-  body_stiffening_rate_tangents(b, data.bodies[0], q.segment(o + 12, nq), 0.0, Wm);  // the q_dd part alone
-  body_stiffening_rate_tangents(b, data.bodies[0], q.segment(o + 12, nq), 1.0, Wc);
+  body_stiffening_rate_tangents(b, data.bodies[0], q.segment(o + 12, nq), qd.segment(o + 12, nq), 0.0, Wm);  // the q_dd part
+  body_stiffening_rate_tangents(b, data.bodies[0], q.segment(o + 12, nq), qd.segment(o + 12, nq), 1.0, Wc);
   Wc -= Wm;  // the q_d part
   const Eigen::MatrixXd C = data.C.block(o + 12, o, nq, nb) + Wc.bottomRows(nq);
   // Q is linear in q_dd and quadratic in q_d: central differences are exact up to round-off for
@@ -326,9 +330,11 @@ TEST(ModalStress, StiffeningRateTangentsMatchFiniteDifferences) {
   const Eigen::MatrixXd Cfd = -central_differences([&](const Eigen::VectorXd& v) { return forces(v, qdd); }, qd, 0.1);
   const double em = (Wm.bottomRows(nq) - Mfd.middleCols(o, nb)).cwiseAbs().maxCoeff() / Mfd.cwiseAbs().maxCoeff();
   const double ec = (C - Cfd.middleCols(o, nb)).cwiseAbs().maxCoeff() / Cfd.cwiseAbs().maxCoeff();
-  std::printf("stiffening: -dQ_y/dq_dd %.2e of max %.3e, -dQ_y/dq_d (with the inertia forces') %.2e of max %.3e\n", em,
+  std::printf("stiffening (%s spin): -dQ_y/dq_dd %.2e of max %.3e, -dQ_y/dq_d (with the inertia forces') %.2e of max %.3e\n",
+              mean_spin ? "mean" : "frame", em,
               Mfd.cwiseAbs().maxCoeff(), ec, Cfd.cwiseAbs().maxCoeff());
   EXPECT_GT(Mfd.cwiseAbs().maxCoeff(), 1e-6);
   EXPECT_LT(em, 1e-9);
   EXPECT_LT(ec, 1e-9);
+  }
 }

@@ -4,6 +4,8 @@
 
 #include "../integrator/dense_products.hpp"
 
+#include <Eigen/Eigenvalues>
+
 namespace ffr::runtime {
 namespace {
 
@@ -12,8 +14,35 @@ namespace {
 // inertial load a body feels), alpha the angular acceleration, omega_bar = (wx^2, wy^2, wz^2,
 // wx wy, wy wz, wx wz), and F, M the loads of the joints at each interface node (bd.iface_load,
 // set by interface_loads), all in the body frame.
-void geometric_stiffness(const StiffeningTerms& s, const BodyData& bd, MatrixXd& KG) {
-  const Vector3d& w = bd.omega;
+// The spin the centrifugal cases see. A Craig-Bampton body's frame is a node's, which its joints
+// may leave free to turn with the bending there: its rate then carries every bending vibration at
+// that node, and squared into the centrifugal stress that fluctuation pumped the highest modes
+// of Simeon's rod with a massless slider until Newton stalled; such a body uses its mean spin,
+// the frame's plus I^-1 (spin_h y_dot) (I = tr(Jc) 1 - Jc about O). A clamped body's frame is its
+// clamp, whose spin is the one its inertial loads have in it (its vibration's rotation is not
+// centrifugal: with the mean spin the spring chain on a driven hub diverged); a free body's modes
+// carry no angular momentum about its mean axes. (FORMULATION.md 7.)
+Vector3d mean_spin(const StiffeningTerms& s, const BodyData& bd, const Eigen::Ref<const VectorXd>& yd, Matrix3d* Iinv) {
+  if (!s.use_mean_spin) {
+    if (Iinv) Iinv->setZero();
+    return bd.omega;
+  }
+  // A pseudo-inverse: a body of points on a line (a lumped chain) has no inertia about it, and
+  // its modal rates no angular momentum about it either.
+  const Matrix3d I = bd.Jc.trace() * Matrix3d::Identity() - bd.Jc;
+  Eigen::SelfAdjointEigenSolver<Matrix3d> es;
+  es.computeDirect(0.5 * (I + I.transpose()));
+  const Vector3d ev = es.eigenvalues();
+  const double tol = 1e-12 * ev.cwiseAbs().maxCoeff();
+  Vector3d ie = Vector3d::Zero();
+  for (int a = 0; a < 3; ++a)
+    if (ev(a) > tol) ie(a) = 1.0 / ev(a);
+  const Matrix3d inv = es.eigenvectors() * ie.asDiagonal() * es.eigenvectors().transpose();
+  if (Iinv) *Iinv = inv;
+  return bd.omega + inv * (s.spin_h * yd);
+}
+
+void geometric_stiffness(const StiffeningTerms& s, const BodyData& bd, const Vector3d& w, MatrixXd& KG) {
   const double wbar[6] = {w(0) * w(0), w(1) * w(1), w(2) * w(2), w(0) * w(1), w(1) * w(2), w(0) * w(2)};
   KG.setZero();
   for (int c = 0; c < 3; ++c) KG += bd.acc(c) * s.Kt[c] + bd.alpha(c) * s.Kr[c];
@@ -67,7 +96,7 @@ void body_applied_forces(const Body& b, BodyData& bd, const Vector3d& g, const E
   Qy.noalias() -= b.Ke * y;
   Qy.noalias() -= b.De * yd;
   if (b.stiffening) {
-    geometric_stiffness(*b.stiffening, bd, bd.KG);
+    geometric_stiffness(*b.stiffening, bd, mean_spin(*b.stiffening, bd, yd, nullptr), bd.KG);
     Qy.noalias() -= bd.KG * y;
   }
   // -dU/dy beyond -Ke y: -(g + X1 s) (modal_stress_terms).
@@ -108,9 +137,10 @@ void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& g,
 // stress (Simeon's slider-crank with a massless slider) made Newton stall. At frozen A and y,
 //   Wb(y, r0) += sum_c (Kt[c] y) A_c^T,   Wb(y, A) += sum_c (Kr[c] y) Gbar_c
 //   Wb(y, A) += kv sum_j (Kw[j] y) (d omega_bar_j / d omega)^T Gbar
-// (Gbar_c its row c). bd.Py column 0 is work (as in modal_stress_terms).
-void body_stiffening_rate_tangents(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& y, double kv,
-                                   Eigen::Ref<MatrixXd> Wb) {
+//   Wb(y, y) += kv sum_j (Kw[j] y) (d omega_bar_j / d omega)^T I^-1 spin_h
+// (Gbar_c its row c; omega the mean spin, see mean_spin). bd.Py column 0 is work (as in modal_stress_terms).
+void body_stiffening_rate_tangents(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& y,
+                                   const Eigen::Ref<const VectorXd>& yd, double kv, Eigen::Ref<MatrixXd> Wb) {
   if (!b.stiffening || b.nq == 0) return;
   const StiffeningTerms& s = *b.stiffening;
   const int nq = b.nq;
@@ -122,14 +152,19 @@ void body_stiffening_rate_tangents(const Body& b, BodyData& bd, const Eigen::Ref
     v.noalias() = s.Kr[c] * y;
     Wb.block(12, 3, nq, 9).noalias() += v * G.row(c);
   }
-  const Vector3d& w = bd.omega;
+  Matrix3d Iinv;
+  const Vector3d w = mean_spin(s, bd, yd, &Iinv);
   const Vector3d dw[6] = {{2 * w(0), 0, 0}, {0, 2 * w(1), 0}, {0, 0, 2 * w(2)},
                           {w(1), w(0), 0},  {0, w(2), w(1)}, {w(2), 0, w(0)}};
   for (int j = 0; j < 6; ++j) {
     v.noalias() = s.Kw[j] * y;
     v *= kv;
+    // d omega / d vec(A_d) = Gbar (the frame's part; the mean spin's y- and A-dependence at
+    // frozen rates is left out, as a's and alpha's), d omega / d y_dot = I^-1 spin_h.
     const Eigen::Matrix<double, 1, 9> r = dw[j].transpose() * G;
     Wb.block(12, 3, nq, 9).noalias() += v * r;
+    const Eigen::Matrix<double, 1, 3> ry = dw[j].transpose() * Iinv;
+    for (int k = 0; k < nq; ++k) Wb.col(12 + k).segment(12, nq) += ry.dot(s.spin_h.col(k)) * v;
   }
 }
 

@@ -29,7 +29,8 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
     if (!data.integrated[i]) continue;
     auto Wb = W.block(b.offset, b.offset, b.ncoord(), b.ncoord());
     Wb += data.bodies[i].M;
-    body_stiffening_rate_tangents(b, data.bodies[i], data.q.segment(b.offset + 12, b.nq), k.kv, Wb);
+    body_stiffening_rate_tangents(b, data.bodies[i], data.q.segment(b.offset + 12, b.nq), data.qd.segment(b.offset + 12, b.nq),
+                                  k.kv, Wb);
   }
   refresh_constraint_tangent(model, data, lam, modal_acceleration);
 }

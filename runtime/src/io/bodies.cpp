@@ -245,6 +245,12 @@ Body make_flexible_body(const std::string& name, const formats::Sid& sid, const 
       s.interfaces.push_back(std::move(is));
     }
     if (!ms.M1.empty()) remove_modal_part(sid, ms, s);
+    for (const auto t : sid.refmod.mode_type) s.use_mean_spin = s.use_mean_spin || t == formats::ModeType::Constraint;
+    const auto& rP = sid.integrals.rPdm;
+    s.spin_h.resize(3, nq);
+    for (int k = 0; k < nq; ++k)
+      s.spin_h.col(k) = Vector3d(rP[1](2, k) - rP[2](1, k), rP[2](0, k) - rP[0](2, k), rP[0](1, k) - rP[1](0, k)) +
+                        Vector3d(sid.rotary.PsiI.row(k).transpose());
     b.stiffening = std::move(s);
   }
   for (const auto& n : sid.nodes) b.nodes.push_back({n.name, n.origin, n.phi, n.psi});

@@ -75,8 +75,8 @@ void body_applied_forces(const Body& b, BodyData& bd, const Vector3d& gravity, c
 /// The load-case stiffening's dependence on the frame's accelerations (-dQ_y/dq_dd, added as is)
 /// and spin (-dQ_y/dq_d, times kv) at frozen A and y, into the body's block Wb of the step's
 /// tangent M + kv C + kq K (FORMULATION.md 7). Needs body_applied_forces at the same state.
-void body_stiffening_rate_tangents(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& y, double kv,
-                                   Eigen::Ref<MatrixXd> Wb);
+void body_stiffening_rate_tangents(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& y,
+                                   const Eigen::Ref<const VectorXd>& yd, double kv, Eigen::Ref<MatrixXd> Wb);
 void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& gravity, Eigen::Ref<MatrixXd> Kb,
                            Eigen::Ref<MatrixXd> Cb);
 

@@ -62,6 +62,12 @@ struct StiffeningTerms {
   std::array<MatrixXd, 3> Kr;  ///< Kr[c](i,k) = K0r[k](i,c)
   std::array<MatrixXd, 6> Kw;  ///< Kw[j](i,k) = K0om[k](i,j), j in omega_bar order
   std::vector<InterfaceStiffening> interfaces;  ///< interfaces not held (loads from joints there)
+  /// [3, nq]: column k = int c x Phi_k dm + (PsiI row k)^T, the angular momentum about O of the
+  /// modal rates. With use_mean_spin (a Craig-Bampton body: its frame is a node's, which the
+  /// joints may leave free to turn with the bending) the centrifugal cases see the body's mean
+  /// spin omega + I^-1 spin_h y_dot, otherwise the frame's (FORMULATION.md 7).
+  Matrix3Xd spin_h;
+  bool use_mean_spin = false;
 };
 
 /// The geometric stiffness of the body's own modal stress (SID /sid/Ke/M1, M1[k](i,j) =
