@@ -121,12 +121,15 @@ double local_error(const Model& model, const Data& data) {
   }
   const double atol = s.atol >= 0 ? s.atol : s.rtol * model.length;
   const double L = model.length;
+  // Error per unit step: the step's share of the tolerance is h / (end - start), so that the
+  // local errors of the whole run add up to at most the tolerance (FORMULATION.md section 9).
+  const double share = s.end > s.start ? h / (s.end - s.start) : 1.0;
   double worst = 0;
   const auto measure = [&](int i, double unit) {
     const double pred = data.q0(i) + h * data.qd0(i) + 0.5 * h * h * data.qdd0(i);
     const double e = ratio * std::abs(data.q(i) - pred) * unit;
     const double size = std::max(std::abs(data.q0(i)), std::abs(data.q(i))) * unit;
-    worst = std::max(worst, e / (atol + s.rtol * size));
+    worst = std::max(worst, e / ((atol + s.rtol * size) * share));
   };
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     if (!data.integrated[b]) continue;  // a driven body follows its drive exactly

@@ -1,8 +1,13 @@
-// Adaptive steps: local error control of the index-3 step (FORMULATION.md section 9).
+// Adaptive steps: error-per-unit-step control of the index-3 step (FORMULATION.md section 9).
 //
 // Each step's local error is estimated from the converged coordinates and the second-order
-// Taylor predictor (local_error, scheme_coefficients.cpp) in units of the tolerances. The next
-// step is h (safety / err)^(1/3), the local error of the positions being O(h^3):
+// Taylor predictor (local_error, scheme_coefficients.cpp) and held below the step's share
+// h / (end - start) of the tolerances: the local errors of the run then add up to at most the
+// tolerance, so the error at the end is the tolerance times the mechanism's own amplification of
+// errors, and falls in proportion to it (with a bound on each step's error alone, a
+// second-order scheme's end error is the tolerance times the number of steps, ~rtol^(2/3)).
+// The local error of the positions being O(h^3), the error per unit step is O(h^2) and the next
+// step is h (safety / err)^(1/2):
 //   safety 0.9: the usual margin (Hairer, Norsett & Wanner, Solving ODEs I, II.4) so that the
 //     next step does not land just above the tolerance and get rejected;
 //   growth at most 2 a step: the estimate comes from one step of a second-order scheme, and the
@@ -129,7 +134,7 @@ void advance_to(const Model& model, Data& data, StepControl& c, double t_target)
       continue;
     }
     const double err = local_error(model, data);
-    const double fac = err > 0 ? lim.safety * std::pow(err, -1.0 / 3.0) : lim.grow_max;
+    const double fac = err > 0 ? lim.safety * std::pow(err, -1.0 / 2.0) : lim.grow_max;
     if (!(err <= 1.0)) {
       restore(c, data);
       ++c.rejected;

@@ -53,11 +53,13 @@ void set_step_predictors(const Model& model, Data& data);
 /// Allocation-free.
 void finish_step_scheme(const Model& model, Data& data);
 
-/// The estimated local error of the step just taken, in units of the tolerances (accept when
-/// <= 1): the difference between the converged coordinates and the second-order Taylor
-/// predictor q0 + h qd0 + h^2/2 qdd0 times the scheme's ratio of error constants (see
-/// step_control.cpp), each coordinate measured as a displacement in metres against
-/// atol + rtol |q|. Positions, frame vectors and modal coordinates of the integrated bodies only.
+/// The estimated local error of the step just taken per unit step, in units of the tolerances
+/// (accept when <= 1): the difference between the converged coordinates and the second-order
+/// Taylor predictor q0 + h qd0 + h^2/2 qdd0 times the scheme's ratio of error constants
+/// (scheme_coefficients.cpp), each coordinate measured as a displacement in metres against the
+/// step's share h / (end - start) of atol + rtol |q|, so that the local errors of a run add up
+/// to at most atol + rtol |q|. Positions, frame vectors and modal coordinates of the integrated
+/// bodies only.
 double local_error(const Model& model, const Data& data);
 
 }  // namespace ffr::runtime

@@ -1,6 +1,7 @@
 #pragma once
 // Adaptive steps ("step": "auto", FORMULATION.md section 9): each step's local error is
-// estimated (local_error in scheme.hpp), a step above the tolerances or one whose Newton fails is
+// estimated (local_error in scheme.hpp) and held below its share h / (end - start) of the
+// tolerances (error per unit step), a step above them or one whose Newton fails is
 // taken again from the saved state with a smaller step, and the steps land on the requested
 // output times.
 
@@ -48,7 +49,7 @@ std::int64_t output_count(const Model& model);
 double output_time(const Model& model, std::int64_t k);
 
 /// Advances data from data.t to exactly t_target with steps whose estimated local error is within
-/// the tolerances. Throws SolverError (naming the time) when the step falls below the minimum.
+/// their share of the tolerances. Throws SolverError (naming the time) when the step falls below the minimum.
 /// Allocation-free.
 void advance_to(const Model& model, Data& data, StepControl& control, double t_target);
 
