@@ -33,43 +33,6 @@
 namespace ffr::runtime {
 namespace {
 
-void save(const Data& d, StepControl& c) {
-  c.t = d.t;
-  c.q = d.q;
-  c.qd = d.qd;
-  c.qdd = d.qdd;
-  c.lambda = d.lambda;
-  c.qdd_prev = d.qdd_prev;
-  c.a = d.scheme.a;
-  c.k = d.scheme.k;
-  c.have_previous = d.have_previous;
-  c.predictor_far = d.predictor_far;
-  c.tangent_valid = d.tangent_valid;
-  c.newton_kappa = d.newton_kappa;
-  c.kappa_age = d.kappa_age;
-  for (std::size_t i = 0; i < d.bodies.size(); ++i) c.step_alpha[i] = d.bodies[i].step_alpha;
-  std::copy(d.angle_ref.begin(), d.angle_ref.end(), c.angle_ref.begin());
-}
-
-void restore(const StepControl& c, Data& d) {
-  d.t = c.t;
-  d.q = c.q;
-  d.qd = c.qd;
-  d.qdd = c.qdd;
-  d.lambda = c.lambda;
-  d.qdd_prev = c.qdd_prev;
-  d.scheme.a = c.a;
-  d.scheme.k = c.k;
-  d.have_previous = c.have_previous;
-  d.predictor_far = c.predictor_far;
-  d.newton_kappa = c.newton_kappa;
-  d.kappa_age = c.kappa_age;
-  for (std::size_t i = 0; i < d.bodies.size(); ++i) d.bodies[i].step_alpha = c.step_alpha[i];
-  std::copy(c.angle_ref.begin(), c.angle_ref.end(), d.angle_ref.begin());
-  // The factorised tangent belongs to the rejected step's size and state.
-  d.tangent_valid = false;
-}
-
 double min_step(const Model& model) { return model.settings.end > model.settings.start ? StepControlLimits{}.min_step_fraction * (model.settings.end - model.settings.start) : 0; }
 
 [[noreturn]] void give_up(const Model& model, const Data& data, double h, const std::string& why) {
@@ -82,9 +45,8 @@ double min_step(const Model& model) { return model.settings.end > model.settings
 
 }  // namespace
 
-StepControl::StepControl(const Model& model, const Data& data)
-    : q(data.q), qd(data.qd), qdd(data.qdd), lambda(data.lambda), qdd_prev(data.qdd_prev), a(data.scheme.a),
-      step_alpha(data.bodies.size(), Vector3d::Zero()), angle_ref(data.angle_ref) {
+StepControl::StepControl(const Model& model, const Data& data) : saved(model) {
+  save_state(data, saved);
   h_next = initial_step(model);
 }
 
@@ -120,13 +82,13 @@ void advance_to(const Model& model, Data& data, StepControl& c, double t_target)
       h = 0.5 * left;
     }
     if (h < h_min) give_up(model, data, h, "the error estimate kept rejecting the step");
-    save(data, c);
+    save_state(data, c.saved);
     // With reuse_jacobian a tangent of another step size would be stale from its first iterate.
     if (h != data.scheme.k.h) data.tangent_valid = false;
     try {
       step(model, data, h);
     } catch (const SolverError& e) {
-      restore(c, data);
+      restore_state(c.saved, data);
       ++c.newton_failures;
       if (0.5 * h < h_min) give_up(model, data, 0.5 * h, e.what());
       c.h_next = 0.5 * h;
@@ -136,7 +98,7 @@ void advance_to(const Model& model, Data& data, StepControl& c, double t_target)
     const double err = local_error(model, data);
     const double fac = err > 0 ? lim.safety * std::pow(err, -1.0 / 2.0) : lim.grow_max;
     if (!(err <= 1.0)) {
-      restore(c, data);
+      restore_state(c.saved, data);
       ++c.rejected;
       c.h_next = h * std::max(c.accepted_any ? lim.shrink_min : lim.first_shrink, std::min(fac, lim.safety));
       after_reject = true;

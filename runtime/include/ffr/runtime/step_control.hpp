@@ -7,6 +7,7 @@
 
 #include "ffr/runtime/data.hpp"
 #include "ffr/runtime/model.hpp"
+#include "ffr/runtime/state.hpp"
 
 #include <cstdint>
 #include <vector>
@@ -29,15 +30,8 @@ struct StepControl {
   double h_next = 0;             ///< the next step to try
   bool accepted_any = false;
   std::int64_t accepted = 0, rejected = 0, newton_failures = 0;
-  // The state a rejected step is restored to (everything step() changes that the next step reads).
-  double t = 0;
-  VectorXd q, qd, qdd, lambda, qdd_prev, a;
-  StepCoefficients k;
-  bool have_previous = false, predictor_far = false, tangent_valid = false;
-  double newton_kappa = 0;
-  int kappa_age = 0;
-  std::vector<Vector3d> step_alpha;
-  std::vector<double> angle_ref;
+  /// The start of the step being tried: what a rejected step is restored to (state.hpp).
+  State saved;
 };
 
 /// The first step tried: settings.step, which the model file's "step": "auto" sets to a hundredth
