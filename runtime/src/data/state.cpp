@@ -1,6 +1,8 @@
 // The State (state.hpp): its copies to and from Data and its flat form for the C API.
 #include "ffr/runtime/state.hpp"
 
+#include "ffr/runtime/data.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>

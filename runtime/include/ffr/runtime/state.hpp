@@ -7,14 +7,16 @@
 // it did from there (tests/runtime/state_test.cpp): what a rejected adaptive step returns to,
 // and what the C API's ffr_save_state / ffr_restore_state hold.
 
-#include "ffr/runtime/data.hpp"
 #include "ffr/runtime/model.hpp"
 #include "ffr/runtime/scheme.hpp"
 
-#include <cstdint>
+#include <Eigen/Core>
+
 #include <vector>
 
 namespace ffr::runtime {
+
+struct Data;
 
 struct State {
   /// Sized for the model once (save_state and restore_state then allocate nothing).
