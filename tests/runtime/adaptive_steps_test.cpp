@@ -96,38 +96,11 @@ CrankState crank_adaptive(const test::TempDir& dir, double rtol, double atol) {
   return crank_state(model, data, control.accepted + control.rejected + control.newton_failures);
 }
 
-// The pendulum of generalized_alpha_test.cpp and its oracle.
-const char* kPendulum = R"({
-  "gravity": [0, 0, -9.81],
-  "bodies": [{"name": "bar", "type": "rigid", "mass": 1.0, "com": [0.5, 0, 0],
-              "inertia": [[6.6666666666666667e-5, 0, 0], [0, 0.08336666666666667, 0], [0, 0, 0.08336666666666667]],
-              "position": [0, 0, 0]}],
-  "joints": [{"name": "hinge", "type": "revolute", "body1": "ground", "body2": "bar", "at": [0, 0, 0], "axis": [0, 1, 0]}],
-  "solver": {"end": 1.0, "step": "auto", "rtol": 1e-6, "atol": 1e-7, "output_interval": 0.05%s},
-  "outputs": [{"name": "angle", "type": "joint_coordinate", "joint": "hinge"}]
-})";
-
-double pendulum_oracle(double end) {
-  const double w2 = 1.0 * 9.81 * 0.5 / (0.08336666666666667 + 0.25);
-  const int n = 200000;
-  const double h = end / n;
-  double th = 0, om = 0;
-  const auto f = [&](double t) { return w2 * std::cos(t); };
-  for (int i = 0; i < n; ++i) {
-    const double k1t = om, k1o = f(th);
-    const double k2t = om + 0.5 * h * k1o, k2o = f(th + 0.5 * h * k1t);
-    const double k3t = om + 0.5 * h * k2o, k3o = f(th + 0.5 * h * k2t);
-    const double k4t = om + h * k3o, k4o = f(th + h * k3t);
-    th += h / 6 * (k1t + 2 * k2t + 2 * k3t + k4t);
-    om += h / 6 * (k1o + 2 * k2o + 2 * k3o + k4o);
-  }
-  return th;
-}
+// The compound pendulum of support.hpp and its oracle.
+double pendulum_oracle(double end) { return test::compound_pendulum_oracle(end); }
 
 std::string pendulum_json(const std::string& extra) {
-  char buf[1200];
-  std::snprintf(buf, sizeof buf, kPendulum, extra.c_str());
-  return buf;
+  return test::compound_pendulum_json(R"({"end": 1.0, "step": "auto", "rtol": 1e-6, "atol": 1e-7, "output_interval": 0.05)" + extra + "}");
 }
 
 std::string model_error(const std::string& json) {

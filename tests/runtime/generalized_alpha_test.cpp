@@ -35,44 +35,16 @@ std::string scheme_keys(double rho) {
   return buf;
 }
 
-// A 1 m bar of 20 x 20 mm section, 1 kg, hinged at one end about y, released horizontally
-// (tests/runtime/pendulum_test.cpp).
-constexpr double kIyy = 0.08336666666666667, kMass = 1.0, kD = 0.5, kG = 9.81;
+// The compound pendulum of support.hpp and its oracle.
+constexpr double kIyy = test::kPendulumIyy, kMass = test::kPendulumMass, kD = test::kPendulumD, kG = test::kPendulumG;
 
 std::string pendulum(double h, double end, double rho, double w0 = 0) {
-  char buf[1024];
-  std::snprintf(buf, sizeof buf, R"({
-  "gravity": [0, 0, -9.81],
-  "bodies": [{"name": "bar", "type": "rigid", "mass": 1.0, "com": [0.5, 0, 0],
-              "inertia": [[6.6666666666666667e-5, 0, 0], [0, 0.08336666666666667, 0], [0, 0, 0.08336666666666667]],
-              "position": [0, 0, 0], "velocity": [0, 0, %.17g], "angular_velocity": [0, %.17g, 0]}],
-  "joints": [{"name": "hinge", "type": "revolute", "body1": "ground", "body2": "bar", "at": [0, 0, 0], "axis": [0, 1, 0]}],
-  "solver": {"end": %.17g, "step": %.17g, "newton_tolerance": 1e-14%s},
-  "outputs": [{"name": "angle", "type": "joint_coordinate", "joint": "hinge"}]
-})",
-                0.0, w0, end, h, scheme_keys(rho).c_str());
-  return buf;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, R"({"end": %.17g, "step": %.17g, "newton_tolerance": 1e-14%s})", end, h, scheme_keys(rho).c_str());
+  return test::compound_pendulum_json(buf, w0);
 }
 
-// The oracle: theta'' = m g d cos(theta) / I_O from rest at theta = 0 (the angle about +y
-// turns the bar's x axis towards -z, down), classical RK4. Returns theta (and theta_dot).
-double pendulum_oracle(double end, double* rate = nullptr, double w0 = 0) {
-  const double w2 = kMass * kG * kD / (kIyy + kMass * kD * kD);
-  const int n = 200000;
-  const double h = end / n;
-  double th = 0, om = w0;
-  const auto f = [&](double t) { return w2 * std::cos(t); };
-  for (int i = 0; i < n; ++i) {
-    const double k1t = om, k1o = f(th);
-    const double k2t = om + 0.5 * h * k1o, k2o = f(th + 0.5 * h * k1t);
-    const double k3t = om + 0.5 * h * k2o, k3o = f(th + 0.5 * h * k2t);
-    const double k4t = om + h * k3o, k4o = f(th + h * k3t);
-    th += h / 6 * (k1t + 2 * k2t + 2 * k3t + k4t);
-    om += h / 6 * (k1o + 2 * k2o + 2 * k3o + k4o);
-  }
-  if (rate) *rate = om;
-  return th;
-}
+double pendulum_oracle(double end, double* rate = nullptr, double w0 = 0) { return test::compound_pendulum_oracle(end, w0, rate); }
 
 double pendulum_angle(double h, double end, double rho) {
   const Model model = test::model_from(pendulum(h, end, rho));
