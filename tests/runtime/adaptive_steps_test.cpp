@@ -8,7 +8,7 @@
 // - a step whose Newton fails is halved and retried; one that cannot be taken names the time;
 // - the outputs are at the requested times;
 // - the settings' bad values are refused with the file and field.
-#include "simeon_rod.hpp"
+#include "simeon_crank.hpp"
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
 
@@ -27,28 +27,8 @@ using namespace ffr::runtime;
 
 namespace {
 
-// The Test Set's slider-crank with its initial values (slider_crank_test.cpp).
-std::string crank_json(double h) {
-  using D = test::SimeonData;
-  bench::SliderCrank s;
-  s.sid_file = "rod.sid.h5";
-  const double Izz = D::J1 - D::M1 * (D::L1 / 2) * (D::L1 / 2);
-  s.crank_mass = D::M1;
-  s.crank_com = D::L1 / 2;
-  s.crank_inertia = Eigen::Vector3d(1e-6, Izz, Izz);
-  s.rod_x = D::L1;
-  s.rod_vy = D::L1 * D::OMEGA;
-  s.rod_omega = -74.9957670;
-  s.modal_coordinates = {0, 0, 0.103339863e-4, 0.169327969e-4};
-  s.modal_velocities = {0.444896105, 0.463434311e-2, -0.178591076e-5, -0.268938672e-5};
-  s.slider_mass = D::M3;
-  s.slider_x = 0.450016933;
-  s.slider_vx = -0.268938672e-5;
-  s.omega = D::OMEGA;
-  s.step = h;
-  s.end = 0.1;
-  return bench::slider_crank_json(s);
-}
+// The Test Set's slider-crank with its initial values (simeon_crank.hpp).
+std::string crank_json(double h) { return test::simeon_crank_json(h); }
 
 struct CrankState {
   double q1, q2;  ///< the rod's lateral modal coordinates: q1 is its midpoint deflection [m]
