@@ -33,12 +33,15 @@
 namespace ffr::runtime {
 namespace {
 
-double min_step(const Model& model) { return model.settings.end > model.settings.start ? StepControlLimits{}.min_step_fraction * (model.settings.end - model.settings.start) : 0; }
+// (The control's own limits: a caller may have set them.)
+double min_step(const Model& model, const StepControlLimits& lim) {
+  return model.settings.end > model.settings.start ? lim.min_step_fraction * (model.settings.end - model.settings.start) : 0;
+}
 
-[[noreturn]] void give_up(const Model& model, const Data& data, double h, const std::string& why) {
+[[noreturn]] void give_up(const Model& model, const StepControlLimits& lim, const Data& data, double h, const std::string& why) {
   char buf[160];
   std::snprintf(buf, sizeof buf, "adaptive step: the step fell below the minimum %.3g s at t = %.9g s (last tried %.3g s): ",
-                min_step(model), data.t, h);
+                min_step(model, lim), data.t, h);
   throw SolverError(data.t, h,
                     buf + why + "; loosen rtol/atol, or look for a discontinuity or a locked mechanism at that time");
 }
@@ -66,7 +69,7 @@ double output_time(const Model& model, std::int64_t k) {
 
 void advance_to(const Model& model, Data& data, StepControl& c, double t_target) {
   const StepControlLimits& lim = c.limits;
-  const double h_min = min_step(model);
+  const double h_min = min_step(model, lim);
   const SolverSettings& s = model.settings;
   const double h_max = s.max_step > 0 ? s.max_step : s.output_interval > 0 ? s.output_interval : std::numeric_limits<double>::infinity();
   bool after_reject = false;
@@ -81,7 +84,7 @@ void advance_to(const Model& model, Data& data, StepControl& c, double t_target)
     } else if (h > 0.5 * left) {
       h = 0.5 * left;
     }
-    if (h < h_min) give_up(model, data, h, "the error estimate kept rejecting the step");
+    if (h < h_min) give_up(model, lim, data, h, "the error estimate kept rejecting the step");
     save_state(data, c.saved);
     // With reuse_jacobian a tangent of another step size would be stale from its first iterate.
     if (h != data.scheme.k.h) data.tangent_valid = false;
@@ -90,7 +93,7 @@ void advance_to(const Model& model, Data& data, StepControl& c, double t_target)
     } catch (const SolverError& e) {
       restore_state(c.saved, data);
       ++c.newton_failures;
-      if (0.5 * h < h_min) give_up(model, data, 0.5 * h, e.what());
+      if (0.5 * h < h_min) give_up(model, lim, data, 0.5 * h, e.what());
       c.h_next = 0.5 * h;
       after_reject = true;
       continue;
