@@ -71,6 +71,27 @@ int main(int argc, char** argv) {
   CHECK(ffr_release_motion(a, "hub") == FFR_OK, "release motion");
   CHECK(ffr_clear_loads(a) == FFR_OK, "clear loads");
 
+  /* State save and restore: b steps 50 more, is put back, and steps the same 50 again: the same
+   * tip and time to the last bit. (A state of the wrong size or with a NaN is refused.) */
+  {
+    int ns = 0;
+    CHECK(ffr_state_size(b, &ns) == FFR_OK && ns > 0 && ns < 100000, "state size %d", ns);
+    static double saved[100000], again[100000], after[100000];
+    double tip1[3], tip2[3], t1 = 0, t2 = 0;
+    CHECK(ffr_save_state(b, saved, ns) == FFR_OK, "save state");
+    CHECK(ffr_save_state(b, again, ns - 1) == FFR_ERROR_ARGUMENT, "short state buffer accepted");
+    CHECK(ffr_step(b, 50) == FFR_OK && ffr_get_output(b, "tip", tip1, 3) == FFR_OK && ffr_time(b, &t1) == FFR_OK, "step b on");
+    CHECK(ffr_restore_state(b, saved, ns) == FFR_OK, "restore state");
+    CHECK(ffr_step(b, 50) == FFR_OK && ffr_get_output(b, "tip", tip2, 3) == FFR_OK && ffr_time(b, &t2) == FFR_OK, "step b again");
+    CHECK(memcmp(tip1, tip2, sizeof tip1) == 0 && t1 == t2, "restored run differs: tip z %.17g vs %.17g", tip1[2], tip2[2]);
+    CHECK(ffr_save_state(b, again, ns) == FFR_OK, "save again");
+    CHECK(ffr_restore_state(b, saved, ns - 1) == FFR_ERROR_ARGUMENT && strstr(ffr_last_error(), "values"), "wrong state size accepted");
+    saved[ns / 2] = NAN;
+    CHECK(ffr_restore_state(b, saved, ns) == FFR_ERROR_ARGUMENT && strstr(ffr_last_error(), "not finite"), "NaN state accepted");
+
+    CHECK(ffr_save_state(b, after, ns) == FFR_OK && memcmp(after, again, (size_t)ns * sizeof(double)) == 0, "refused restore changed the state");
+  }
+
   /* Argument and lookup errors: codes and messages, state untouched. */
   CHECK(ffr_set_load(a, "nope", NULL, up, NULL) == FFR_ERROR_NOT_FOUND && strstr(ffr_last_error(), "nope"), "unknown body");
   CHECK(ffr_set_load(a, "beam", "Z", up, NULL) == FFR_ERROR_NOT_FOUND && strstr(ffr_last_error(), "'Z'"), "unknown node");

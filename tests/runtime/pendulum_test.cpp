@@ -7,22 +7,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 using namespace ffr::runtime;
 
 namespace {
 
-// A 1 m bar of 20 x 20 mm section, 1 kg, hinged at one end about y, released horizontally.
-const char* kPendulum = R"({
-  "gravity": [0, 0, -9.81],
-  "bodies": [{"name": "bar", "type": "rigid", "mass": 1.0, "com": [0.5, 0, 0],
-              "inertia": [[6.6666666666666667e-5, 0, 0], [0, 0.08336666666666667, 0], [0, 0, 0.08336666666666667]],
-              "position": [0, 0, 0]}],
-  "joints": [{"name": "hinge", "type": "revolute", "body1": "ground", "body2": "bar", "at": [0, 0, 0], "axis": [0, 1, 0]}],
-  "solver": {"end": 1.0, "step": 1e-3},
-  "outputs": [{"name": "angle", "type": "joint_coordinate", "joint": "hinge"}]
-})";
+// The compound pendulum of support.hpp, released horizontally.
+const std::string kPendulum = test::compound_pendulum_json(R"({"end": 1.0, "step": 1e-3})");
 
 }  // namespace
 

@@ -1,5 +1,8 @@
 #include "support.hpp"
 
+#include <cmath>
+#include <cstdio>
+
 #include <fstream>
 #include <random>
 
@@ -23,6 +26,39 @@ void write_text(const std::filesystem::path& p, const std::string& text) {
 
 Model model_from(const std::string& json, const std::filesystem::path& dir) {
   return parse_model(json, dir.empty() ? std::filesystem::current_path() : dir, "test-model.json");
+}
+
+std::string compound_pendulum_json(const std::string& solver, double rate) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, R"(, "angular_velocity": [0, %.17g, 0])", rate);
+  return std::string(R"({
+  "gravity": [0, 0, -9.81],
+  "bodies": [{"name": "bar", "type": "rigid", "mass": 1.0, "com": [0.5, 0, 0],
+              "inertia": [[6.6666666666666667e-5, 0, 0], [0, 0.08336666666666667, 0], [0, 0, 0.08336666666666667]],
+              "position": [0, 0, 0])") +
+         buf + R"(}],
+  "joints": [{"name": "hinge", "type": "revolute", "body1": "ground", "body2": "bar", "at": [0, 0, 0], "axis": [0, 1, 0]}],
+  "solver": )" + solver + R"(,
+  "outputs": [{"name": "angle", "type": "joint_coordinate", "joint": "hinge"}]
+})";
+}
+
+double compound_pendulum_oracle(double end, double rate, double* theta_dot) {
+  const double w2 = kPendulumMass * kPendulumG * kPendulumD / (kPendulumIyy + kPendulumMass * kPendulumD * kPendulumD);
+  const int n = 200000;
+  const double h = end / n;
+  double th = 0, om = rate;
+  const auto f = [&](double t) { return w2 * std::cos(t); };
+  for (int i = 0; i < n; ++i) {
+    const double k1t = om, k1o = f(th);
+    const double k2t = om + 0.5 * h * k1o, k2o = f(th + 0.5 * h * k1t);
+    const double k3t = om + 0.5 * h * k2o, k3o = f(th + 0.5 * h * k2t);
+    const double k4t = om + h * k3o, k4o = f(th + h * k3t);
+    th += h / 6 * (k1t + 2 * k2t + 2 * k3t + k4t);
+    om += h / 6 * (k1o + 2 * k2o + 2 * k3o + k4o);
+  }
+  if (theta_dot) *theta_dot = om;
+  return th;
 }
 
 }  // namespace ffr::runtime::test

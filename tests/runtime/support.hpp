@@ -19,6 +19,17 @@ struct TempDir {
 /// Writes text to a file.
 void write_text(const std::filesystem::path& p, const std::string& text);
 
+/// A compound pendulum: a 1 m bar of 20 x 20 mm section, 1 kg, hinged at one end about y,
+/// horizontal at the start (its x axis along x), turning at `rate` rad/s about +y (down). `solver`
+/// is the value of the model's "solver" key; the output "angle" is the hinge's angle.
+constexpr double kPendulumMass = 1.0, kPendulumIyy = 0.08336666666666667, kPendulumD = 0.5, kPendulumG = 9.81;
+std::string compound_pendulum_json(const std::string& solver, double rate = 0);
+
+/// An independent oracle for it: theta'' = m g d cos(theta) / I_O from theta = 0, theta' = rate
+/// (the angle about +y turns the bar's x axis towards -z), classical Runge-Kutta at 2e5 steps.
+/// Returns theta at `end` (and theta' in *theta_dot).
+double compound_pendulum_oracle(double end, double rate = 0, double* theta_dot = nullptr);
+
 /// Parses a model from JSON text with relative paths resolved in `dir`.
 Model model_from(const std::string& json, const std::filesystem::path& dir = {});
 

@@ -9,12 +9,14 @@
 #include <exception>
 #include <memory>
 #include <new>
+#include <stdexcept>
 #include <string>
 
 struct ffr_sim {
   ffr::runtime::Model model;
   std::unique_ptr<ffr::runtime::Data> data;
-  Eigen::VectorXd q, qd, qdd, lambda;  ///< the last accepted state, restored if a step fails
+  std::unique_ptr<ffr::runtime::State> last;  ///< the last accepted state, restored if a step fails
+  std::unique_ptr<ffr::runtime::State> scratch;  ///< ffr_save_state / ffr_restore_state's copy
   /// "step": "auto": one ffr_step is one output interval of adaptive steps (step_control.hpp).
   std::unique_ptr<ffr::runtime::StepControl> control;
 };
@@ -73,10 +75,8 @@ int ffr_open(const char* path, ffr_sim** sim) {
     s->model = ffr::runtime::load_model(path);
     s->data = std::make_unique<ffr::runtime::Data>(s->model);
     ffr::runtime::initialize(s->model, *s->data);
-    s->q = s->data->q;
-    s->qd = s->data->qd;
-    s->qdd = s->data->qdd;
-    s->lambda = s->data->lambda;
+    s->last = std::make_unique<ffr::runtime::State>(s->model);
+    s->scratch = std::make_unique<ffr::runtime::State>(s->model);
     if (s->model.settings.adaptive) s->control = std::make_unique<ffr::runtime::StepControl>(s->model, *s->data);
     *sim = s.release();
     return FFR_OK;
@@ -103,28 +103,59 @@ int ffr_step(ffr_sim* sim, int n) {
   return guarded([&] {
     auto& d = *sim->data;
     for (int i = 0; i < n; ++i) {
-      // Keep the last accepted state if a step fails (buffers sized at open: no allocation).
-      sim->q = d.q;
-      sim->qd = d.qd;
-      sim->qdd = d.qdd;
-      sim->lambda = d.lambda;
-      const double t = d.t;
+      // Keep the last accepted state if a step fails (sized at open: no allocation).
+      ffr::runtime::save_state(d, *sim->last);
       try {
         // (advance_to leaves the last accepted state itself when it gives up.)
         if (sim->control) ffr::runtime::advance_to(sim->model, d, *sim->control, d.t + sim->model.settings.output_interval);
         else ffr::runtime::step(sim->model, d);
       } catch (...) {
-        d.q = sim->q;
-        d.qd = sim->qd;
-        d.qdd = sim->qdd;
-        d.lambda = sim->lambda;
-        d.t = t;
-        d.tangent_valid = false;
+        ffr::runtime::restore_state(*sim->last, d);
         throw;
       }
     }
     return FFR_OK;
   });
+}
+
+// The packed State (state.hpp), then, for adaptive steps, the controller's next step and
+// whether it has accepted a step (zeros with a fixed step).
+int ffr_state_size(const ffr_sim* sim, int* size) {
+  if (!sim || !size) return fail(FFR_ERROR_ARGUMENT, "ffr_state_size: NULL argument");
+  *size = ffr::runtime::packed_state_size(sim->model) + 2;
+  return FFR_OK;
+}
+
+int ffr_save_state(const ffr_sim* sim, double* buffer, int capacity) {
+  if (!sim || !buffer) return fail(FFR_ERROR_ARGUMENT, "ffr_save_state: NULL argument");
+  const int n = ffr::runtime::packed_state_size(sim->model);
+  if (capacity < n + 2)
+    return fail(FFR_ERROR_ARGUMENT, "ffr_save_state: the state has " + std::to_string(n + 2) + " values, capacity " + std::to_string(capacity));
+  ffr::runtime::save_state(*sim->data, *sim->scratch);
+  ffr::runtime::pack_state(*sim->scratch, buffer);
+  buffer[n] = sim->control ? sim->control->h_next : 0.0;
+  buffer[n + 1] = sim->control && sim->control->accepted_any ? 1.0 : 0.0;
+  return FFR_OK;
+}
+
+int ffr_restore_state(ffr_sim* sim, const double* buffer, int size) {
+  if (!sim || !buffer) return fail(FFR_ERROR_ARGUMENT, "ffr_restore_state: NULL argument");
+  const int n = ffr::runtime::packed_state_size(sim->model);
+  if (size != n + 2)
+    return fail(FFR_ERROR_ARGUMENT, "ffr_restore_state: the state has " + std::to_string(size) + " values, this model's has " + std::to_string(n + 2));
+  if (sim->control && !(std::isfinite(buffer[n]) && buffer[n] > 0))
+    return fail(FFR_ERROR_ARGUMENT, "ffr_restore_state: the saved next step is not a positive number");
+  try {
+    ffr::runtime::unpack_state(sim->model, buffer, n, *sim->scratch);
+  } catch (const std::invalid_argument& e) {
+    return fail(FFR_ERROR_ARGUMENT, std::string("ffr_restore_state: ") + e.what());
+  }
+  ffr::runtime::restore_state(*sim->scratch, *sim->data);
+  if (sim->control) {
+    sim->control->h_next = buffer[n];
+    sim->control->accepted_any = buffer[n + 1] != 0;
+  }
+  return FFR_OK;
 }
 
 int ffr_set_load(ffr_sim* sim, const char* body, const char* node, const double force[3], const double torque[3]) {

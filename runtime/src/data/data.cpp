@@ -18,7 +18,7 @@ void size_marker(MarkerData& md, int nb) {
 
 }  // namespace
 
-Data::Data(const Model& model) {
+Data::Data(const Model& model) : start(model) {
   const int n = model.ncoord, m = model.nconstraints;
   nf = n;
   na = m;

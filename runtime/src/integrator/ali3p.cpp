@@ -159,6 +159,8 @@ void step(const Model& model, Data& data) { step(model, data, model.settings.ste
 void step(const Model& model, Data& data, double h) {
   const SolverSettings& s = model.settings;
   const NewtonPolicy& p = s.policy.newton;
+  if (s.integrator == Integrator::GeneralizedAlpha && !data.have_previous && !data.scheme.start_step)
+    start_generalized_alpha(model, data, h);
   // The scheme (scheme.hpp): q_dot = c1 q + qd_hat, q_ddot = c2 q + qdd_hat; the trapezoidal rule
   // has c1 = 2/h, c2 = 4/h^2, kq = 1/c2 = h^2/4.
   set_step_coefficients(model, data, h);

@@ -27,11 +27,20 @@
 // the trapezoidal ALI3-P step (whose next step starts from the projected rates).
 #include "ffr/runtime/integrator.hpp"
 #include "ffr/runtime/scheme.hpp"
+#include "ffr/runtime/state.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 namespace ffr::runtime {
+namespace {
+
+// The trapezoidal rule: the model's scheme, or the generalized-alpha start's step.
+bool trapezoidal(const Model& model, const Data& data) {
+  return model.settings.integrator == Integrator::Trapezoidal || data.scheme.start_step;
+}
+
+}  // namespace
 
 AlphaParameters AlphaParameters::from_spectral_radius(double rho) {
   AlphaParameters p;
@@ -55,7 +64,7 @@ StepCoefficients trapezoidal_coefficients(double h) {
 
 void set_step_coefficients(const Model& model, Data& data, double h) {
   const double h_prev = data.scheme.k.h;
-  if (model.settings.integrator == Integrator::Trapezoidal) {
+  if (trapezoidal(model, data)) {
     data.scheme.k = trapezoidal_coefficients(h);
   } else {
     const AlphaParameters p = AlphaParameters::from_spectral_radius(model.settings.spectral_radius);
@@ -73,10 +82,31 @@ void set_step_coefficients(const Model& model, Data& data, double h) {
   data.scheme.k.h_prev = h_prev > 0 ? h_prev : h;
 }
 
+void start_generalized_alpha(const Model& model, Data& data, double h) {
+  const AlphaParameters p = AlphaParameters::from_spectral_radius(model.settings.spectral_radius);
+  const double delta = p.alpha_m - p.alpha_f;
+  data.scheme.a = data.qdd;
+  if (delta == 0) return;  // rho_inf = 1: a_n = q_ddot_n, the trapezoidal rule
+  save_state(data, data.start);
+  data.scheme.start_step = true;
+  try {
+    step(model, data, h);
+  } catch (...) {
+    data.scheme.start_step = false;
+    restore_state(data.start, data);
+    throw;
+  }
+  data.scheme.start_step = false;
+  data.vstar = data.qdd;  // q_ddot_1 (vstar: the projections' work, free between steps)
+  restore_state(data.start, data);
+  data.scheme.a = data.qdd + delta * (data.vstar - data.qdd);
+  --data.stats.steps;  // not a step of the run
+}
+
 void set_step_predictors(const Model& model, Data& data) {
   const StepCoefficients& k = data.scheme.k;
   const double h = k.h;
-  if (model.settings.integrator == Integrator::Trapezoidal) {
+  if (trapezoidal(model, data)) {
     const double h2 = h * h;
     data.qd_hat = -(2.0 / h) * data.q0 - data.qd0;
     data.qdd_hat = -(4.0 / h2) * data.q0 - (4.0 / h) * data.qd0 - data.qdd0;
@@ -84,10 +114,6 @@ void set_step_predictors(const Model& model, Data& data) {
   }
   const AlphaParameters p = AlphaParameters::from_spectral_radius(model.settings.spectral_radius);
   VectorXd& a = data.scheme.a;
-  // The start: a_0 = q_ddot_0 (Arnold & Bruls). Positions and velocities are second order with
-  // it; the accelerations and multipliers carry an O(h) transient that decays with the
-  // spurious root (their perturbed start a_0 = q_ddot(t_0 + (alpha_m - alpha_f) h) removes it).
-  if (!data.have_previous) a = data.qdd0;
   // a_{n+1} = q / (beta h^2) + base, base = -(q_n + h q_dot_n + h^2 (1/2 - beta) a_n) / (beta h^2);
   // data.tmp holds base (free at this point of the step).
   const double bh2 = p.beta * h * h;
@@ -98,7 +124,7 @@ void set_step_predictors(const Model& model, Data& data) {
 }
 
 void finish_step_scheme(const Model& model, Data& data) {
-  if (model.settings.integrator == Integrator::Trapezoidal) return;
+  if (trapezoidal(model, data)) return;
   const AlphaParameters p = AlphaParameters::from_spectral_radius(model.settings.spectral_radius);
   data.scheme.a = ((1 - p.alpha_f) / (1 - p.alpha_m)) * data.qdd + (p.alpha_f / (1 - p.alpha_m)) * data.qdd0 -
                   (p.alpha_m / (1 - p.alpha_m)) * data.scheme.a;
@@ -121,12 +147,15 @@ double local_error(const Model& model, const Data& data) {
   }
   const double atol = s.atol >= 0 ? s.atol : s.rtol * model.length;
   const double L = model.length;
+  // Error per unit step: the step's share of the tolerance is h / (end - start), so that the
+  // local errors of the whole run add up to at most the tolerance (FORMULATION.md section 9).
+  const double share = s.end > s.start ? h / (s.end - s.start) : 1.0;
   double worst = 0;
   const auto measure = [&](int i, double unit) {
     const double pred = data.q0(i) + h * data.qd0(i) + 0.5 * h * h * data.qdd0(i);
     const double e = ratio * std::abs(data.q(i) - pred) * unit;
     const double size = std::max(std::abs(data.q0(i)), std::abs(data.q(i))) * unit;
-    worst = std::max(worst, e / (atol + s.rtol * size));
+    worst = std::max(worst, e / ((atol + s.rtol * size) * share));
   };
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     if (!data.integrated[b]) continue;  // a driven body follows its drive exactly

@@ -1,8 +1,13 @@
-// Adaptive steps: local error control of the index-3 step (FORMULATION.md section 9).
+// Adaptive steps: error-per-unit-step control of the index-3 step (FORMULATION.md section 9).
 //
 // Each step's local error is estimated from the converged coordinates and the second-order
-// Taylor predictor (local_error, scheme_coefficients.cpp) in units of the tolerances. The next
-// step is h (safety / err)^(1/3), the local error of the positions being O(h^3):
+// Taylor predictor (local_error, scheme_coefficients.cpp) and held below the step's share
+// h / (end - start) of the tolerances: the local errors of the run then add up to at most the
+// tolerance, so the error at the end is the tolerance times the mechanism's own amplification of
+// errors, and falls in proportion to it (with a bound on each step's error alone, a
+// second-order scheme's end error is the tolerance times the number of steps, ~rtol^(2/3)).
+// The local error of the positions being O(h^3), the error per unit step is O(h^2) and the next
+// step is h (safety / err)^(1/2):
 //   safety 0.9: the usual margin (Hairer, Norsett & Wanner, Solving ODEs I, II.4) so that the
 //     next step does not land just above the tolerance and get rejected;
 //   growth at most 2 a step: the estimate comes from one step of a second-order scheme, and the
@@ -28,58 +33,23 @@
 namespace ffr::runtime {
 namespace {
 
-void save(const Data& d, StepControl& c) {
-  c.t = d.t;
-  c.q = d.q;
-  c.qd = d.qd;
-  c.qdd = d.qdd;
-  c.lambda = d.lambda;
-  c.qdd_prev = d.qdd_prev;
-  c.a = d.scheme.a;
-  c.k = d.scheme.k;
-  c.have_previous = d.have_previous;
-  c.predictor_far = d.predictor_far;
-  c.tangent_valid = d.tangent_valid;
-  c.newton_kappa = d.newton_kappa;
-  c.kappa_age = d.kappa_age;
-  for (std::size_t i = 0; i < d.bodies.size(); ++i) c.step_alpha[i] = d.bodies[i].step_alpha;
-  std::copy(d.angle_ref.begin(), d.angle_ref.end(), c.angle_ref.begin());
+// (The control's own limits: a caller may have set them.)
+double min_step(const Model& model, const StepControlLimits& lim) {
+  return model.settings.end > model.settings.start ? lim.min_step_fraction * (model.settings.end - model.settings.start) : 0;
 }
 
-void restore(const StepControl& c, Data& d) {
-  d.t = c.t;
-  d.q = c.q;
-  d.qd = c.qd;
-  d.qdd = c.qdd;
-  d.lambda = c.lambda;
-  d.qdd_prev = c.qdd_prev;
-  d.scheme.a = c.a;
-  d.scheme.k = c.k;
-  d.have_previous = c.have_previous;
-  d.predictor_far = c.predictor_far;
-  d.newton_kappa = c.newton_kappa;
-  d.kappa_age = c.kappa_age;
-  for (std::size_t i = 0; i < d.bodies.size(); ++i) d.bodies[i].step_alpha = c.step_alpha[i];
-  std::copy(c.angle_ref.begin(), c.angle_ref.end(), d.angle_ref.begin());
-  // The factorised tangent belongs to the rejected step's size and state.
-  d.tangent_valid = false;
-}
-
-double min_step(const Model& model) { return model.settings.end > model.settings.start ? StepControlLimits{}.min_step_fraction * (model.settings.end - model.settings.start) : 0; }
-
-[[noreturn]] void give_up(const Model& model, const Data& data, double h, const std::string& why) {
+[[noreturn]] void give_up(const Model& model, const StepControlLimits& lim, const Data& data, double h, const std::string& why) {
   char buf[160];
   std::snprintf(buf, sizeof buf, "adaptive step: the step fell below the minimum %.3g s at t = %.9g s (last tried %.3g s): ",
-                min_step(model), data.t, h);
+                min_step(model, lim), data.t, h);
   throw SolverError(data.t, h,
                     buf + why + "; loosen rtol/atol, or look for a discontinuity or a locked mechanism at that time");
 }
 
 }  // namespace
 
-StepControl::StepControl(const Model& model, const Data& data)
-    : q(data.q), qd(data.qd), qdd(data.qdd), lambda(data.lambda), qdd_prev(data.qdd_prev), a(data.scheme.a),
-      step_alpha(data.bodies.size(), Vector3d::Zero()), angle_ref(data.angle_ref) {
+StepControl::StepControl(const Model& model, const Data& data) : saved(model) {
+  save_state(data, saved);
   h_next = initial_step(model);
 }
 
@@ -99,7 +69,7 @@ double output_time(const Model& model, std::int64_t k) {
 
 void advance_to(const Model& model, Data& data, StepControl& c, double t_target) {
   const StepControlLimits& lim = c.limits;
-  const double h_min = min_step(model);
+  const double h_min = min_step(model, lim);
   const SolverSettings& s = model.settings;
   const double h_max = s.max_step > 0 ? s.max_step : s.output_interval > 0 ? s.output_interval : std::numeric_limits<double>::infinity();
   bool after_reject = false;
@@ -114,24 +84,24 @@ void advance_to(const Model& model, Data& data, StepControl& c, double t_target)
     } else if (h > 0.5 * left) {
       h = 0.5 * left;
     }
-    if (h < h_min) give_up(model, data, h, "the error estimate kept rejecting the step");
-    save(data, c);
+    if (h < h_min) give_up(model, lim, data, h, "the error estimate kept rejecting the step");
+    save_state(data, c.saved);
     // With reuse_jacobian a tangent of another step size would be stale from its first iterate.
     if (h != data.scheme.k.h) data.tangent_valid = false;
     try {
       step(model, data, h);
     } catch (const SolverError& e) {
-      restore(c, data);
+      restore_state(c.saved, data);
       ++c.newton_failures;
-      if (0.5 * h < h_min) give_up(model, data, 0.5 * h, e.what());
+      if (0.5 * h < h_min) give_up(model, lim, data, 0.5 * h, e.what());
       c.h_next = 0.5 * h;
       after_reject = true;
       continue;
     }
     const double err = local_error(model, data);
-    const double fac = err > 0 ? lim.safety * std::pow(err, -1.0 / 3.0) : lim.grow_max;
+    const double fac = err > 0 ? lim.safety * std::pow(err, -1.0 / 2.0) : lim.grow_max;
     if (!(err <= 1.0)) {
-      restore(c, data);
+      restore_state(c.saved, data);
       ++c.rejected;
       c.h_next = h * std::max(c.accepted_any ? lim.shrink_min : lim.first_shrink, std::min(fac, lim.safety));
       after_reject = true;

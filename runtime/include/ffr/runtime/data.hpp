@@ -5,6 +5,7 @@
 #include "ffr/runtime/model.hpp"
 #include "ffr/runtime/scheme.hpp"
 #include "ffr/runtime/small_lu.hpp"
+#include "ffr/runtime/state.hpp"
 
 #include <Eigen/Core>
 
@@ -79,6 +80,8 @@ struct Data {
   /// The integration scheme's coefficients and state (scheme.hpp).
   SchemeState scheme;
   VectorXd q, qd, qdd, lambda;  ///< state: coordinates, rates, accelerations, multipliers
+  /// Work: the state the generalized-alpha start returns to after its trapezoidal step.
+  State start;
 
   // The unknowns of the step: the first nf coordinates, the first na constraint rows (in
   // blocks model.blocks[0 .. nblocks)). All of them while the initial conditions are made

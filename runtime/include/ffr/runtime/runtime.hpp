@@ -18,6 +18,7 @@
 #include "ffr/runtime/model.hpp"
 #include "ffr/runtime/outputs.hpp"
 #include "ffr/runtime/scheme.hpp"
+#include "ffr/runtime/state.hpp"
 #include "ffr/runtime/step_control.hpp"
 
 namespace ffr::runtime {

@@ -37,12 +37,22 @@ struct AlphaParameters {
 struct SchemeState {
   StepCoefficients k;
   Eigen::VectorXd a;  ///< pseudo-acceleration a_n (generalized-alpha)
+  /// Set while the generalized-alpha start takes its trapezoidal step (start_generalized_alpha):
+  /// the scheme's functions then act as the trapezoidal rule's.
+  bool start_step = false;
 };
 
 /// Sets data.scheme.k for a step of h from data.t (and remembers the previous step).
 void set_step_coefficients(const Model& model, Data& data, double h);
 /// The trapezoidal coefficients for h: the metric the initial conditions' projections use.
 StepCoefficients trapezoidal_coefficients(double h);
+
+/// The generalized-alpha start, before the first step of h from a consistent state (t_0, q_0,
+/// q_dot_0, q_ddot_0, lambda_0): a_0 = q_ddot(t_0 + delta h) + O(h^2), delta = alpha_m - alpha_f,
+/// as q_ddot_0 + delta (q_ddot_1 - q_ddot_0) with q_ddot_1 from one trapezoidal step of h (whose
+/// accelerations are second order), the state then restored (data.start). Throws SolverError
+/// when that step's Newton fails. Allocation-free.
+void start_generalized_alpha(const Model& model, Data& data, double h);
 
 /// data.qd_hat and data.qdd_hat from the start-of-step state (data.q0, qd0, qdd0 and, for
 /// generalized-alpha, data.scheme.a). Allocation-free.
@@ -53,11 +63,13 @@ void set_step_predictors(const Model& model, Data& data);
 /// Allocation-free.
 void finish_step_scheme(const Model& model, Data& data);
 
-/// The estimated local error of the step just taken, in units of the tolerances (accept when
-/// <= 1): the difference between the converged coordinates and the second-order Taylor
-/// predictor q0 + h qd0 + h^2/2 qdd0 times the scheme's ratio of error constants (see
-/// step_control.cpp), each coordinate measured as a displacement in metres against
-/// atol + rtol |q|. Positions, frame vectors and modal coordinates of the integrated bodies only.
+/// The estimated local error of the step just taken per unit step, in units of the tolerances
+/// (accept when <= 1): the difference between the converged coordinates and the second-order
+/// Taylor predictor q0 + h qd0 + h^2/2 qdd0 times the scheme's ratio of error constants
+/// (scheme_coefficients.cpp), each coordinate measured as a displacement in metres against the
+/// step's share h / (end - start) of atol + rtol |q|, so that the local errors of a run add up
+/// to at most atol + rtol |q|. Positions, frame vectors and modal coordinates of the integrated
+/// bodies only.
 double local_error(const Model& model, const Data& data);
 
 }  // namespace ffr::runtime

@@ -1,11 +1,13 @@
 #pragma once
 // Adaptive steps ("step": "auto", FORMULATION.md section 9): each step's local error is
-// estimated (local_error in scheme.hpp), a step above the tolerances or one whose Newton fails is
+// estimated (local_error in scheme.hpp) and held below its share h / (end - start) of the
+// tolerances (error per unit step), a step above them or one whose Newton fails is
 // taken again from the saved state with a smaller step, and the steps land on the requested
 // output times.
 
 #include "ffr/runtime/data.hpp"
 #include "ffr/runtime/model.hpp"
+#include "ffr/runtime/state.hpp"
 
 #include <cstdint>
 #include <vector>
@@ -28,15 +30,8 @@ struct StepControl {
   double h_next = 0;             ///< the next step to try
   bool accepted_any = false;
   std::int64_t accepted = 0, rejected = 0, newton_failures = 0;
-  // The state a rejected step is restored to (everything step() changes that the next step reads).
-  double t = 0;
-  VectorXd q, qd, qdd, lambda, qdd_prev, a;
-  StepCoefficients k;
-  bool have_previous = false, predictor_far = false, tangent_valid = false;
-  double newton_kappa = 0;
-  int kappa_age = 0;
-  std::vector<Vector3d> step_alpha;
-  std::vector<double> angle_ref;
+  /// The start of the step being tried: what a rejected step is restored to (state.hpp).
+  State saved;
 };
 
 /// The first step tried: settings.step, which the model file's "step": "auto" sets to a hundredth
@@ -48,7 +43,7 @@ std::int64_t output_count(const Model& model);
 double output_time(const Model& model, std::int64_t k);
 
 /// Advances data from data.t to exactly t_target with steps whose estimated local error is within
-/// the tolerances. Throws SolverError (naming the time) when the step falls below the minimum.
+/// their share of the tolerances. Throws SolverError (naming the time) when the step falls below the minimum.
 /// Allocation-free.
 void advance_to(const Model& model, Data& data, StepControl& control, double t_target);
 

@@ -1,0 +1,117 @@
+// The State (state.hpp): its copies to and from Data and its flat form for the C API.
+#include "ffr/runtime/state.hpp"
+
+#include "ffr/runtime/data.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace ffr::runtime {
+
+State::State(const Model& model)
+    : q(VectorXd::Zero(model.ncoord)),
+      qd(VectorXd::Zero(model.ncoord)),
+      qdd(VectorXd::Zero(model.ncoord)),
+      lambda(VectorXd::Zero(model.nconstraints)),
+      a(VectorXd::Zero(model.ncoord)),
+      qdd_prev(VectorXd::Zero(model.ncoord)),
+      step_alpha(model.bodies.size(), Vector3d::Zero()),
+      angle_ref(model.joints.size(), 0.0) {}
+
+void save_state(const Data& d, State& s) {
+  s.t = d.t;
+  s.q = d.q;
+  s.qd = d.qd;
+  s.qdd = d.qdd;
+  s.lambda = d.lambda;
+  s.a = d.scheme.a;
+  s.k = d.scheme.k;
+  s.qdd_prev = d.qdd_prev;
+  s.have_previous = d.have_previous;
+  for (std::size_t i = 0; i < d.bodies.size(); ++i) s.step_alpha[i] = d.bodies[i].step_alpha;
+  s.predictor_far = d.predictor_far;
+  s.newton_kappa = d.newton_kappa;
+  s.kappa_age = d.kappa_age;
+  s.last_iterations = d.stats.last_iterations;
+  std::copy(d.angle_ref.begin(), d.angle_ref.end(), s.angle_ref.begin());
+}
+
+void restore_state(const State& s, Data& d) {
+  d.t = s.t;
+  d.q = s.q;
+  d.qd = s.qd;
+  d.qdd = s.qdd;
+  d.lambda = s.lambda;
+  d.scheme.a = s.a;
+  d.scheme.k = s.k;
+  d.qdd_prev = s.qdd_prev;
+  d.have_previous = s.have_previous;
+  for (std::size_t i = 0; i < d.bodies.size(); ++i) d.bodies[i].step_alpha = s.step_alpha[i];
+  d.predictor_far = s.predictor_far;
+  d.newton_kappa = s.newton_kappa;
+  d.kappa_age = s.kappa_age;
+  d.stats.last_iterations = s.last_iterations;
+  std::copy(s.angle_ref.begin(), s.angle_ref.end(), d.angle_ref.begin());
+  // The factorised tangent belongs to another state and step (reuse_jacobian would keep it).
+  d.tangent_valid = false;
+}
+
+namespace {
+
+// t, the six step coefficients, have_previous, predictor_far, newton_kappa, kappa_age,
+// last_iterations: 12 scalars; then q, qd, qdd, a, qdd_prev (n each), lambda (m), step_alpha
+// (3 per body), angle_ref (one per joint).
+constexpr int kScalars = 12;
+
+}  // namespace
+
+int packed_state_size(const Model& model) {
+  return kScalars + 5 * model.ncoord + model.nconstraints + 3 * static_cast<int>(model.bodies.size()) +
+         static_cast<int>(model.joints.size());
+}
+
+void pack_state(const State& s, double* out) {
+  double* p = out;
+  for (double v : {s.t, s.k.h, s.k.h_prev, s.k.c1, s.k.c2, s.k.kv, s.k.kq, s.have_previous ? 1.0 : 0.0,
+                   s.predictor_far ? 1.0 : 0.0, s.newton_kappa, static_cast<double>(s.kappa_age),
+                   static_cast<double>(s.last_iterations)})
+    *p++ = v;
+  for (const VectorXd* v : {&s.q, &s.qd, &s.qdd, &s.a, &s.qdd_prev, &s.lambda}) p = std::copy(v->data(), v->data() + v->size(), p);
+  for (const Vector3d& w : s.step_alpha) p = std::copy(w.data(), w.data() + 3, p);
+  std::copy(s.angle_ref.begin(), s.angle_ref.end(), p);
+}
+
+void unpack_state(const Model& model, const double* in, int size, State& s) {
+  const int expected = packed_state_size(model);
+  if (size != expected)
+    throw std::invalid_argument("the state has " + std::to_string(size) + " values, this model's has " + std::to_string(expected));
+  // Every value but Newton's constant (infinite until first measured) must be finite.
+  for (int i = 0; i < size; ++i)
+    if (i != 9 && !std::isfinite(in[i])) throw std::invalid_argument("the state's value " + std::to_string(i) + " is not finite");
+  const double* p = in;
+  s.t = *p++;
+  s.k.h = *p++;
+  s.k.h_prev = *p++;
+  s.k.c1 = *p++;
+  s.k.c2 = *p++;
+  s.k.kv = *p++;
+  s.k.kq = *p++;
+  s.have_previous = *p++ != 0;
+  s.predictor_far = *p++ != 0;
+  s.newton_kappa = *p++;
+  s.kappa_age = static_cast<int>(*p++);
+  s.last_iterations = static_cast<int>(*p++);
+  for (VectorXd* v : {&s.q, &s.qd, &s.qdd, &s.a, &s.qdd_prev, &s.lambda}) {
+    std::copy(p, p + v->size(), v->data());
+    p += v->size();
+  }
+  for (Vector3d& w : s.step_alpha) {
+    std::copy(p, p + 3, w.data());
+    p += 3;
+  }
+  std::copy(p, p + s.angle_ref.size(), s.angle_ref.begin());
+}
+
+}  // namespace ffr::runtime
