@@ -400,9 +400,8 @@ Index tree_cholesky(const cholmod_sparse& A, const cholmod_factor& L, double* va
     // at its first failing supernode; the lowest failing column over the threads is the one
     // CHOLMOD, which goes in order, would report.
     std::vector<Index> failed(parts, minor);
-    // The BLAS calls of the subtrees are mostly small (low in the tree), which OpenBLAS runs on
-    // the calling thread; larger ones share the BLAS's threads. No thread count is changed here:
-    // it is the host program's (the executables set it in main()).
+    // Each thread calls the BLAS for its own supernodes (a one-thread BLAS, see the top of
+    // this file; no thread count is changed here: it is the host program's).
     run_parts(parts, [](unsigned p) { return p; }, [&](unsigned t, unsigned, unsigned) {
       Workspace w = chol.workspace();
       for (const SupernodeRange& range : plan.parts[t])
