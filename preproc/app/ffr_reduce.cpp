@@ -30,8 +30,9 @@ options:
   --backend NAME        eigen-solver: block (default; block Lanczos, falls back to spectra),
                         spectra or arpack (overrides the part file)
   --factorization NAME  sparse Cholesky: supernodal (default) or cholmod (overrides the part file)
-  --threads N           threads of assembly, factorization, invariants and the BLAS
-                        (default: all cores; without it the BLAS follows OPENBLAS_NUM_THREADS)
+  --threads N           threads of assembly, factorization, substitutions and invariants
+                        (default: all cores); the BLAS runs on one thread under the
+                        supernodal factorization's own threads, on N under cholmod
   --max-memory GIB      refuse (before computing it) a factorization that needs more than this
                         many GiB; default: the memory available on the machine
   --quiet               no progress output (errors are still printed)
@@ -63,7 +64,6 @@ int main(int argc, char** argv) {
       const long n = std::strtol(threads->c_str(), &end, 10);
       if (threads->empty() || *end || n < 1 || n > 1024) throw ffr::cli::UsageError("--threads must be a count >= 1");
       ffr::preproc::set_max_threads(static_cast<unsigned>(n));
-      ffr::cli::set_numerical_library_threads(static_cast<unsigned>(n));
     }
     const auto max_memory = args.number("--max-memory");
     const auto pos = args.positionals();
@@ -81,6 +81,10 @@ int main(int argc, char** argv) {
         throw ffr::cli::UsageError("--factorization must be supernodal or cholmod");
       part.reduction.factorization = *factorization;
     }
+    // The BLAS's threads by the factorization that will call it (process_threads.hpp says why);
+    // without --threads as many as the reducer's own (all cores).
+    ffr::cli::set_numerical_library_threads(
+        ffr::cli::blas_threads_for(part.reduction.factorization.c_str(), ffr::preproc::max_threads()));
     if (max_memory) {
       if (!(*max_memory > 0)) throw ffr::cli::UsageError("--max-memory must be a positive number of GiB");
       part.reduction.memory_limit_bytes = static_cast<std::uint64_t>(*max_memory * 1024.0 * 1024.0 * 1024.0);

@@ -93,16 +93,13 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   // 3. Assembly, with the eigen-solve's symbolic analysis on another thread meanwhile.
   EarlyAnalysis early = EarlyAnalysis::start(model, part.reduction);
   AssemblyOptions aopt;
-  // One core left to the analysis while it runs. Why: on the 100k-DOF plate of tools/bench/reduce
-  // at two threads the analysis, not the assembly, was what the factorization waited for
-  // (assembly 0.62-0.80 s, then 0.33-0.61 s of waiting); with the assembly on one thread the two
-  // took 0.90-1.02 s together instead of 1.12-1.23, and whole runs 3.41-3.55 s instead of
-  // 3.53-3.88 (four alternating runs each).
+  // One core left to the analysis while it runs. Why: at two threads the analysis, not the
+  // assembly, was what the factorization waited for on the 100k-DOF plate of tools/bench/reduce;
+  // with the assembly on one thread the two took about a fifth less time together.
   if (early.started()) aopt.threads = static_cast<int>(std::max(1u, max_threads() - 1));
   // The structure of K and M on every core, though: it is the first touch of their 250 MB on
-  // that plate, and on the AMD VM of RESULTS.md (memory backed at 0.35-0.7 GB/s at first
-  // touch) one thread took up to 0.4 s longer for it. Eleven alternating pairs of whole runs at
-  // two threads: 3.27-3.80 s (mean 3.54) against 3.36-4.23 s (mean 3.71).
+  // that plate, whose page faults cost more than the filling itself where the memory is
+  // backed slowly at first touch (a virtual machine's), and two threads share them.
   aopt.fill_threads = static_cast<int>(max_threads());
   // And the core back to the element loop once the analysis is done.
   if (early.started()) aopt.spare_core = [&early] { return early.finished(); };

@@ -230,6 +230,50 @@ TEST(CholmodFactor, IndefiniteMatrixNamesTheColumnOnTwoThreads) {
   EXPECT_GT(share2, 0.0);
 }
 
+// A failing pivot in the top separator, whose supernodes the two threads share (tree_cholesky's
+// top_node: the blocked Cholesky of the supernode split over the threads), is reported with
+// the column of the one-thread factorization. The column is found by probing: a large
+// negative diagonal entry makes the factorization fail exactly where its column is eliminated,
+// so the reported permuted column tells where each probed column sits; the lines through the
+// box's centre cross the separator planes.
+TEST(CholmodFactor, IndefiniteTopSeparatorNamesTheColumnOnTwoThreads) {
+  const SparseMatrix A0 = vector_laplacian();
+  const Eigen::Index n = A0.rows(), m = 15;  // 15^3 nodes, three DOFs each
+  const RestoreThreads restore;
+  struct Failure {
+    std::int64_t column = -1, permuted = -1;
+  };
+  auto fail_at = [&](Eigen::Index j, unsigned threads) {
+    SparseMatrix A = A0;
+    A.coeffRef(j, j) = -1e6;
+    set_max_threads(threads);
+    CholmodFactor f;
+    Failure out;
+    try {
+      f.factorize(A);
+    } catch (const NotPositiveDefiniteError& e) {
+      out = {e.column, e.permuted_column};
+    }
+    return out;
+  };
+  Eigen::Index chosen = -1;
+  Failure serial;
+  for (Eigen::Index step = 0; step < m && chosen < 0; ++step)
+    for (const Eigen::Index node : {step + m * (7 + m * 7), 7 + m * (step + m * 7), 7 + m * (7 + m * step)}) {
+      const Failure f = fail_at(3 * node, 1);
+      ASSERT_EQ(f.column, 3 * node);
+      if (f.permuted >= n - 200) {  // in the last columns: the root separator
+        chosen = 3 * node;
+        serial = f;
+        break;
+      }
+    }
+  ASSERT_GE(chosen, 0) << "no probed column in the top separator";
+  const Failure two = fail_at(chosen, 2);
+  EXPECT_EQ(two.column, serial.column);
+  EXPECT_EQ(two.permuted, serial.permuted);
+}
+
 // Three DOFs a node, numbered together (a vector Laplacian S (x) B3): METIS orders the node
 // graph, a third of the columns; the factor must be as sparse as CHOLMOD's own nested
 // dissection of the DOF graph makes it, and solve.

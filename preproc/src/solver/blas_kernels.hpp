@@ -4,11 +4,11 @@
 // Why: OpenBLAS (built with DYNAMIC_ARCH, as Debian ships it) picks its kernels from the CPU's
 // family and model number, and a model newer than the release falls back to the oldest x86-64
 // kernels. Debian 12's OpenBLAS 0.3.21 runs Prescott (SSE3) kernels on an Emerald Rapids Xeon
-// (family 6, model 207), which has AVX-512: the 100k-DOF plate of tools/bench/reduce then
-// factorized in 5.2-5.5 s at 1 thread against 1.7-2.2 s with the SkylakeX kernels
-// (OPENBLAS_CORETYPE=SkylakeX, same machine, alternating runs). The features, not the model
-// number, say which kernels the CPU can run. The library only reports this (the factorization's
-// statistics, and the reducer's log advises OPENBLAS_CORETYPE); it never changes the kernels.
+// (family 6, model 207), which has AVX-512, and the factorization of the 100k-DOF plate of
+// tools/bench/reduce takes about 2.5 times as long with them as with the SkylakeX kernels
+// (RESULTS.md there). The features, not the model number, say which kernels the CPU can run.
+// The library only reports this (the factorization's statistics, and the reducer's log advises
+// OPENBLAS_CORETYPE); it never changes the kernels.
 
 #include <strings.h>
 

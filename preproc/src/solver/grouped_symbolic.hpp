@@ -6,9 +6,8 @@
 // Why: the eigen-solve's matrix has three columns per mesh node, each node's DOFs coupled to
 // the same neighbours. CHOLMOD's symbolic analysis of the DOF matrix (its transpose, elimination
 // tree, column counts and supernodes over 3.9 million entries on the 100k-DOF plate of
-// tools/bench/reduce) took 0.12-0.19 s, and writing that structure from the mesh's node graph
-// another 0.2-0.4 s beside the assembly at two threads; the node graph has a ninth of the
-// entries. A group's columns have the same rows below it, so the DOF factor's structure is the
+// tools/bench/reduce), and writing that structure from the mesh's node graph beside the
+// assembly, cost time the node graph, with a ninth of the entries, mostly saves. A group's columns have the same rows below it, so the DOF factor's structure is the
 // node factor's with each node row and column replaced by its DOFs, and a node's DOFs (a dense
 // lower triangle) within the supernode of the node.
 //

@@ -3,11 +3,11 @@
 //
 // Why: an FE matrix couples the DOFs of a node to exactly the same columns, so its graph is the
 // node graph with every vertex tripled (or sextupled) and every edge multiplied by 9 (or 36).
-// CHOLMOD's own METIS call orders that expanded graph: on the 100k-DOF plate of
-// tools/bench/reduce it took most of the 1.0-1.2 s symbolic analysis. Ordering the node graph
-// (vertices weighted by their DOF count) and expanding the order gives the same kind of
-// nested-dissection order on a graph about 3x smaller in vertices and 9x in edges. Measured on
-// that plate: analysis 0.92-1.13 s -> 0.59-0.82 s, nnz(L) 4.59e7 -> 4.61e7.
+// CHOLMOD's own METIS call orders that expanded graph, most of the symbolic analysis's time.
+// Ordering the node graph (vertices weighted by their DOF count) and expanding the order gives
+// the same kind of nested-dissection order on a graph about 3x smaller in vertices and 9x in
+// edges: on the 100k-DOF plate of tools/bench/reduce the analysis took about a third less time
+// for a factor 0.4 % larger.
 
 #include "ffr/preproc/solver/sparse_types.hpp"
 

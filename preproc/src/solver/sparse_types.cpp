@@ -33,9 +33,11 @@ using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eig
 
 // Y += A X for an upper-only symmetric A and row-major X, Y: one pass over A, each stored
 // entry applied to a row of X and to its mirror (Eigen's products of a column-major sparse
-// matrix with a column-major X, and its selfadjointView products, pass over A once per column).
-// W fixes the row width at compile time where the eigen-solvers need it (a multiple of 4: rows
-// of simd::v4; 0 for any width, not vectorized).
+// matrix with a column-major X, and its selfadjointView products, pass over A once per column,
+// on one thread). W fixes the row width at compile time where the eigen-solvers need it (a
+// multiple of 4: rows of simd::v4; 0 for any width, not vectorized). Kept because it saves
+// about 5 % of the 100k-DOF plate's run of tools/bench/reduce at one thread against
+// A.selfadjointView<Upper>() * X (RESULTS.md there), and more at two, where it runs on both.
 template <int W>
 void upper_times_rows(const SparseRef& A, const RowMajorMatrix& X, Eigen::Index j0, Eigen::Index j1, double* y) {
   const auto* outer = A.outerIndexPtr();
@@ -122,9 +124,8 @@ void upper_times_rows(const SparseRef& A, const RowMajorMatrix& X, RowMajorMatri
 }
 
 // Width of the next chunk of columns: the widest compiled row width that fits (a pass over A
-// per chunk). The dynamic-width kernel is not vectorized: 20 columns of the 100k-DOF plate's K
-// took it 84-106 ms in ffr-reduce; on a 108k-DOF 3-DOF-a-node matrix, best of 15, 20 columns
-// took 53.6-56.8 ms with it and 34.3-34.8 ms in chunks of 16 and 4.
+// per chunk). The dynamic-width kernel is not vectorized, and 20 columns took it about half as
+// long again as chunks of 16 and 4.
 Eigen::Index chunk_width(Eigen::Index left) {
   for (Eigen::Index w : {16, 8, 4})
     if (left >= w) return w;

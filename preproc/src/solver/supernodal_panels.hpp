@@ -16,12 +16,9 @@ using Index = std::int64_t;
 // Columns of L per sweep step: eight, a whole stripe of the packed factor (factor_packing.hpp),
 // whose rows are 64-byte lines. The update rows of T (and, going back, the gathered rows) are
 // read and written once per panel, so wider panels halve that traffic against the same stream of
-// L; on the 100k-DOF plate (92 solves of 4 right-hand sides, the factor then stored by columns)
-// the Lanczos stage was faster with eight than with four in seven of seven alternating runs, by
-// 1-11 %. Panels of four would read every line of a stripe twice, so blocks of eight and sixteen
-// right-hand sides take panels of eight too (tools/bench/eigen, 100k grid, by rows against the
-// columns in panels of four: 16 right-hand sides 0.220-0.221 s a solve against 0.188-0.227 s,
-// 8 on two threads 0.062-0.075 s against 0.073-0.086 s).
+// L: the Lanczos stage of the 100k-DOF plate was a few per cent faster with eight than with four.
+// Panels of four would read every line of a stripe twice, so blocks of eight and sixteen
+// right-hand sides take panels of eight too (no slower on tools/bench/eigen's 100k grid).
 inline constexpr int kPanel = 8;
 
 // Four doubles (simd::v4, kernel_clones.hpp): the compilers' vector extension, not
@@ -36,10 +33,11 @@ using simd::v4;
 // the packed values as one ascending stream, a back sweep as one descending stream), 1 KB ahead
 // into L1 and 8 KB ahead into L2, at every row. Why both: one core keeps few misses in flight,
 // and its compute does not hide the wait for memory by itself. Over 400 MB of panels of eight
-// columns by rows (four right-hand sides; a plain read loop reaches 22-25 GB/s on one core), one
-// prefetch 4 KB ahead swept 14-21 GB/s, 1 KB ahead 17-24, and 1 KB plus 8 KB ahead 24-25 GB/s for
-// panels of 100, 600 and 2000 rows. The addresses may lie past either end of the factor's values: prefetches do not
-// fault, and the address is formed as an integer, not as an out-of-range pointer.
+// columns by rows (four right-hand sides), the two prefetches together swept at the speed of a
+// plain read loop for panels of 100 to 2000 rows, where a single prefetch, 1 KB or 4 KB ahead,
+// lost up to a third of it. The addresses may lie past either end of the factor's values:
+// prefetches do not fault, and the address is formed as an integer, not as an out-of-range
+// pointer.
 inline constexpr Index kNear = 128, kFar = 1024;  // entries
 
 template <bool Down>

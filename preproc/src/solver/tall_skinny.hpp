@@ -3,10 +3,14 @@
 // 4): the block Gram-Schmidt of the block Lanczos backend. Each kernel streams the rows
 // [r0, r1) of Q once, in chunks whose slice of the thin block stays in L1.
 //
-// Why not Eigen's GEMM: it packs the whole operand Q into a buffer before multiplying, so a
-// product with 4 columns reads Q, writes its copy and reads that again. On the 100k-DOF
-// plate's basis (88 columns, 72 MB) Q^T V took 10.9 ms and V -= Q C 20.8 ms that way, against
-// the 3.5 ms that one read of Q at memory speed takes.
+// Why not Eigen's GEMM or the BLAS's dgemm: they pack the operand Q into a buffer before
+// multiplying, so a product with 4 columns reads Q, writes its copy and reads that again. With
+// OpenBLAS's dgemm over the same row parts these two products took about half as long again;
+// that is under 3 % of the 100k-DOF plate's run of tools/bench/reduce (RESULTS.md there), so by
+// the project's rule (an own kernel must save 5 %) dgemm should replace them. Not yet: with
+// dgemm the rounding moved a Craig-Bampton shell's SID across the factorization backends test's
+// rtol 1e-9 (a mode's orientation; the same happens with these kernels when OpenBLAS runs on
+// one thread, RESULTS.md).
 
 #include <Eigen/Core>
 

@@ -23,6 +23,16 @@
 //   s joins the list of the supernode of its first row below the diagonal block.
 // Each thread links into lists of its own, so that two threads can add to the lists of a top
 // supernode without a lock; the top reads them all.
+//
+// The top's large supernodes are split over the same threads (top_node): the descendants'
+// updates by the columns of s they land in (disjoint writes), then L_s by a blocked right-looking
+// Cholesky whose triangular solves split the rows and whose trailing updates split the columns.
+// Every BLAS call is made by one of these threads and is meant to run on it alone: the host
+// program holds the BLAS to one thread under this factorization (ffr-reduce does, see
+// ffr/cli/process_threads.hpp). Why not leave the top to a threaded BLAS: OpenBLAS's threaded
+// calls from the subtrees' threads queue for its one pool, its idle workers spin beside them, and
+// the two-thread factorization took about twice the time of the same with OpenBLAS on one thread
+// (tools/bench/reduce/RESULTS.md).
 #include "tree_cholesky.hpp"
 
 #include "solve_schedule.hpp"
@@ -60,6 +70,30 @@ constexpr Index kMinEntries = Index{1} << 20;
 // run's peak at one thread lies.
 constexpr Index kMaxUpdate = Index{1} << 18;
 constexpr Index kMinUpdateColumns = 64;
+
+// A top supernode goes to the threads (top_node) from this much work, nscol * nsrow^2 (its own
+// Cholesky and about the updates it receives): below it, starting the threads (tens of
+// microseconds a fork) costs more than the split gives.
+constexpr double kMinSplitWork = 1 << 24;
+// Columns of the blocked Cholesky of a split supernode: wide enough for the BLAS's kernels,
+// narrow enough that the serial dpotrf of each diagonal block stays small.
+constexpr Index kDenseBlock = 128;
+
+// Split points of `count` items over `parts`, item i weighing about (total - i): the columns of a
+// trapezoid, the first the longest. cut[0] = 0, cut[parts] = count.
+std::vector<Index> trapezoid_cuts(Index count, Index total, unsigned parts) {
+  std::vector<Index> cut(parts + 1, count);
+  cut[0] = 0;
+  double all = 0;
+  for (Index i = 0; i < count; ++i) all += static_cast<double>(total - i);
+  double sum = 0;
+  unsigned p = 1;
+  for (Index i = 0; i < count && p < parts; ++i) {
+    sum += static_cast<double>(total - i);
+    while (p < parts && sum >= all * p / parts) cut[p++] = i + 1;
+  }
+  return cut;
+}
 
 // Per-thread work arrays.
 struct Workspace {
@@ -139,6 +173,73 @@ class TreeCholesky {
   void zero(Index begin, Index end) { std::fill(x_ + begin, x_ + end, 0.0); }
   Index stored() const { return xsize_; }
 
+  /// Whether top_node should split supernode s over threads.
+  bool worth_splitting(Index s) const {
+    const double nscol = static_cast<double>(super_[s + 1] - super_[s]), nsrow = static_cast<double>(pi_[s + 1] - pi_[s]);
+    return nscol >= 2 * kDenseBlock && nscol * nsrow * nsrow >= kMinSplitWork;
+  }
+
+  /// A supernode of the top, reading all lists and linking into list 0, with its work split
+  /// over ws.size() threads (one workspace each). Same result as node(s, 0, true, ws[0]) up to
+  /// rounding. Returns the first failing column, or n.
+  Index top_node(Index s, std::vector<Workspace>& ws) {
+    const auto parts = static_cast<unsigned>(ws.size());
+    const Index k1 = super_[s], k2 = super_[s + 1], nscol = k2 - k1;
+    const Index psi = pi_[s], nsrow = pi_[s + 1] - psi;
+    double* Ls = x_ + px_[s];
+    std::vector<Index> ds;
+    for (auto& head : head_) {
+      for (Index d = head[static_cast<std::size_t>(s)]; d >= 0; d = next_[static_cast<std::size_t>(d)]) ds.push_back(d);
+      head[static_cast<std::size_t>(s)] = -1;
+    }
+    // The updates: each thread takes the columns cut[t] .. cut[t+1]-1 of s from every
+    // descendant (a column of s is written by one thread only).
+    const std::vector<Index> cut = trapezoid_cuts(nscol, nsrow, parts);
+    run_parts(parts, [](unsigned p) { return p; }, [&](unsigned t, unsigned, unsigned) {
+      Workspace& w = ws[t];
+      for (Index k = 0; k < nsrow; ++k) w.map[static_cast<std::size_t>(rows_[psi + k])] = k;
+      for (const Index d : ds) update_from(d, k2, Ls, nsrow, w, cut[t], cut[t + 1]);
+    });
+    for (const Index d : ds) advance(d, k2, 0);
+    // L_s <- its Cholesky factor, blocked: per block of columns, the diagonal block by dpotrf
+    // (serial), the rows below it by dtrsm split over the threads by rows, then the trailing
+    // columns of s updated by syrk/gemm split over the threads by columns.
+    const int ld = static_cast<int>(nsrow);
+    const double one = 1.0, minus_one = -1.0;
+    for (Index k0 = 0; k0 < nscol; k0 += kDenseBlock) {
+      const Index b = std::min(kDenseBlock, nscol - k0), r0 = k0 + b;
+      double* Lk = Ls + k0 + k0 * nsrow;  // the diagonal block
+      const int nb = static_cast<int>(b);
+      int info = 0;
+      dpotrf_("L", &nb, Lk, &ld, &info);
+      if (info != 0) return k1 + k0 + (info > 0 ? info - 1 : 0);
+      if (r0 == nsrow) break;
+      const Index below = nsrow - r0;
+      run_parts(parts, [&](unsigned p) { return below * static_cast<Index>(p) / static_cast<Index>(parts); },
+                [&](unsigned, Index i0, Index i1) {
+                  const int m = static_cast<int>(i1 - i0);
+                  if (m > 0) dtrsm_("R", "L", "T", "N", &m, &nb, &one, Lk, &ld, Lk + b + i0, &ld);
+                });
+      if (r0 == nscol) continue;
+      // Trailing columns r0 .. nscol-1 of s: column j loses L(j:, k0:r0) L(j, k0:r0)^T.
+      const std::vector<Index> tcut = trapezoid_cuts(nscol - r0, nsrow - r0, parts);
+      run_parts(parts, [](unsigned p) { return p; }, [&](unsigned t, unsigned, unsigned) {
+        const Index c0 = r0 + tcut[t], c1 = r0 + tcut[t + 1];
+        if (c1 <= c0) return;
+        const int nc = static_cast<int>(c1 - c0), nbelow = static_cast<int>(nsrow - c1);
+        const double* Lc = Ls + c0 + k0 * nsrow;  // L(c0:, k0:r0)
+        double* Ac = Ls + c0 + c0 * nsrow;        // s's block (c0:, c0:c1)
+        dsyrk_("L", "N", &nc, &nb, &minus_one, Lc, &ld, &one, Ac, &ld);
+        if (nbelow > 0) dgemm_("N", "T", &nbelow, &nc, &nb, &minus_one, Lc + nc, &ld, Lc, &ld, &one, Ac + nc, &ld);
+      });
+    }
+    if (nsrow > nscol) {
+      lpos_[static_cast<std::size_t>(s)] = nscol;
+      link(s, rows_[psi + nscol], 0);
+    }
+    return n_;
+  }
+
   /// Supernode s (its entries of P A P' already in place, the rest zero), with the lists it
   /// links into and reads: the thread's own `list` (subtrees), or all of them (the top, list 0
   /// for new links). Returns the first failing column, or n.
@@ -153,7 +254,8 @@ class TreeCholesky {
       head_[l][static_cast<std::size_t>(s)] = -1;
       while (d >= 0) {
         const Index after = next_[static_cast<std::size_t>(d)];
-        update_from(d, k2, Ls, nsrow, list, w);
+        update_from(d, k2, Ls, nsrow, w, 0, k2 - k1);
+        advance(d, k2, list);
         d = after;
       }
     }
@@ -178,8 +280,20 @@ class TreeCholesky {
     head = d;
   }
 
-  // Subtracts descendant d's update from the supernode s (its columns end at k2) held in Ls.
-  void update_from(Index d, Index k2, double* Ls, Index nsrow, unsigned list, Workspace& w) {
+  // Descendant d, having updated the supernode whose columns end at k2, moves to the list of the
+  // supernode that holds its next row, if any.
+  void advance(Index d, Index k2, unsigned list) {
+    const Index pdi = pi_[d], ndrow = pi_[d + 1] - pdi;
+    Index pos = lpos_[static_cast<std::size_t>(d)];
+    while (pos < ndrow && rows_[pdi + pos] < k2) ++pos;
+    lpos_[static_cast<std::size_t>(d)] = pos;
+    if (pos < ndrow) link(d, rows_[pdi + pos], list);
+  }
+
+  // Subtracts descendant d's update from the supernode s (its columns end at k2) held in Ls:
+  // only from the columns c0 .. c1-1 of s (all of them: 0, nscol), so that threads can share
+  // the columns of one supernode. Leaves d where it is in the lists (advance() moves it on).
+  void update_from(Index d, Index k2, double* Ls, Index nsrow, Workspace& w, Index c0, Index c1) {
     const Index ndcol = super_[d + 1] - super_[d];
     const Index pdi = pi_[d], ndrow = pi_[d + 1] - pdi;
     const Index pos = lpos_[static_cast<std::size_t>(d)];
@@ -187,7 +301,6 @@ class TreeCholesky {
     const Index ndrow2 = ndrow - pos;
     Index ndrow1 = 0;
     while (ndrow1 < ndrow2 && r[ndrow1] < k2) ++ndrow1;
-    const Index ndrow3 = ndrow2 - ndrow1;
     const double* Ld = x_ + px_[d] + pos;
     const int kc = static_cast<int>(ndcol), ld = static_cast<int>(ndrow);
     const double one = 1.0, zero = 0.0;
@@ -200,13 +313,20 @@ class TreeCholesky {
     // was 55 % of this file's time on the 100k-DOF plate (tools/bench/reduce, perf).
     if (ndrow2 > 0) run[ndrow2 - 1] = 1;
     for (Index i = ndrow2 - 2; i >= 0; --i) run[i] = rel[i + 1] == rel[i] + 1 ? run[i + 1] + 1 : 1;
-    // C = L_d(R2, :) L_d(R1, :)^T, its lower part, by blocks of `width` of its columns: block
-    // [j0, j0 + b) takes the rows from j0 on, the b x b top by syrk, the rest by gemm. One
-    // block unless the whole C would exceed kMaxUpdate values.
-    const Index width = ndrow2 * ndrow1 > kMaxUpdate ? std::max(kMinUpdateColumns, kMaxUpdate / ndrow2) : ndrow1;
-    double* C = w.update(ndrow2 * std::min(width, ndrow1));
-    for (Index j0 = 0; j0 < ndrow1; j0 += width) {
-      const Index b = std::min(width, ndrow1 - j0), m = ndrow2 - j0;
+    // The rows ja .. jb-1 of R1 land in the columns c0 .. c1-1 of s (rel is ascending).
+    Index ja = 0;
+    while (ja < ndrow1 && rel[ja] < c0) ++ja;
+    Index jb = ja;
+    while (jb < ndrow1 && rel[jb] < c1) ++jb;
+    // C = L_d(R2, :) L_d(R1, :)^T, its lower part in the columns ja .. jb-1, by blocks of `width`
+    // of its columns: block [j0, j0 + b) takes the rows from j0 on, the b x b top by syrk, the
+    // rest by gemm. One block unless it would exceed kMaxUpdate values.
+    const Index cols = jb - ja;
+    if (cols == 0) return;
+    const Index width = (ndrow2 - ja) * cols > kMaxUpdate ? std::max(kMinUpdateColumns, kMaxUpdate / (ndrow2 - ja)) : cols;
+    double* C = w.update((ndrow2 - ja) * std::min(width, cols));
+    for (Index j0 = ja; j0 < jb; j0 += width) {
+      const Index b = std::min(width, jb - j0), m = ndrow2 - j0;
       const int nb = static_cast<int>(b), nm = static_cast<int>(m), nbelow = static_cast<int>(m - b);
       dsyrk_("L", "N", &nb, &kc, &one, Ld + j0, &ld, &zero, C, &nm);
       if (nbelow > 0) dgemm_("N", "T", &nbelow, &nb, &kc, &one, Ld + j0 + b, &ld, Ld + j0, &ld, &zero, C + b, &nm);
@@ -221,8 +341,6 @@ class TreeCholesky {
         }
       }
     }
-    lpos_[static_cast<std::size_t>(d)] = pos + ndrow1;
-    if (ndrow3 > 0) link(d, r[ndrow1], list);
   }
 
   const Long *super_, *pi_, *px_, *rows_;
@@ -282,9 +400,8 @@ Index tree_cholesky(const cholmod_sparse& A, const cholmod_factor& L, double* va
     // at its first failing supernode; the lowest failing column over the threads is the one
     // CHOLMOD, which goes in order, would report.
     std::vector<Index> failed(parts, minor);
-    // The BLAS calls of the subtrees are mostly small (low in the tree), which OpenBLAS runs on
-    // the calling thread; larger ones share the BLAS's threads. No thread count is changed here:
-    // it is the host program's (the executables set it in main()).
+    // Each thread calls the BLAS for its own supernodes (a one-thread BLAS, see the top of
+    // this file; no thread count is changed here: it is the host program's).
     run_parts(parts, [](unsigned p) { return p; }, [&](unsigned t, unsigned, unsigned) {
       Workspace w = chol.workspace();
       for (const SupernodeRange& range : plan.parts[t])
@@ -293,10 +410,18 @@ Index tree_cholesky(const cholmod_sparse& A, const cholmod_factor& L, double* va
     minor = *std::min_element(failed.begin(), failed.end());
   }
   if (minor == static_cast<Index>(L.n)) {
-    Workspace w = chol.workspace();
+    // The top in order; its large supernodes split over the threads (one workspace each).
+    std::vector<Workspace> ws;
+    ws.push_back(chol.workspace());
     for (const SupernodeRange& range : plan.top)
-      for (Index s = range.first; s <= range.last && minor == static_cast<Index>(L.n); ++s)
-        minor = chol.node(s, 0, true, w);
+      for (Index s = range.first; s <= range.last && minor == static_cast<Index>(L.n); ++s) {
+        if (parts > 1 && chol.worth_splitting(s)) {
+          while (ws.size() < parts) ws.push_back(chol.workspace());
+          minor = chol.top_node(s, ws);
+        } else {
+          minor = chol.node(s, 0, true, ws[0]);
+        }
+      }
   }
   return minor;
 }

@@ -6,8 +6,7 @@
 // entries. The files that use them are also compiled at -O3 (runtime/CMakeLists.txt): GCC
 // vectorises loops of run-time length at -O3 only.
 // No AVX-512 clone: on vectors of 10 to 90 entries its 8-wide loops leave longer remainders,
-// and the benchmark's step ran slower with it (AMD Zen 5 VM, six alternating pairs: faster
-// without it in five, 24.46-24.93 us against 25.04-25.32; tools/bench/runtime_step/RESULTS.md).
+// and the benchmark's step ran about 2 % slower with it (tools/bench/runtime_step/RESULTS.md).
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define FFR_RT_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
 #else

@@ -120,7 +120,8 @@ double mib(std::uint64_t b) { return static_cast<double>(b) / (1024.0 * 1024.0);
 int main(int argc, char** argv) {
   const Args args = parse(argc, argv);
   set_max_threads(args.threads);  // the library's own threads
-  ffr::cli::set_numerical_library_threads(args.threads);  // OpenBLAS's (so CHOLMOD's solve gets as many), OpenMP off
+  // The default (supernodal) factorization: OpenBLAS on one thread under its own threads, OpenMP off.
+  ffr::cli::set_numerical_library_threads(ffr::cli::blas_threads_for("supernodal", ffr::preproc::max_threads()));
   std::printf("eigen_bench: Q1 box 2x1x1 clamped at x=0, %s, nev = %d, backend %s, ordering %s\n",
               args.dpn == 3 ? "3 DOF/node (elasticity-like K (x) D)" : "scalar Laplacian",
               args.nev, to_string(args.backend), to_string(args.ordering));

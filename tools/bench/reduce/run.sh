@@ -15,12 +15,13 @@
 #                                        work folder (RESULTS-backends.md); --sizes S changes the size
 #
 # Options: --workdir DIR (meshes are cached there; default build/bench-reduce),
-#          --no-build, --wait-load L (wait, at most 10 min, for a 1-minute load average below
-#          L before each measured run; default 3 for the full run, 0 for --quick).
+#          --no-build, --wait-load L (wait, at most --wait-max S seconds (default 600), for a
+#          1-minute load average below L before each measured run; default 3 for the full run,
+#          0 for --quick).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/../../.." && pwd)
-quick=0 backends=0 sizes="" build=1 wait_load="" workdir="$root/build/bench-reduce"
+quick=0 backends=0 sizes="" build=1 wait_load="" wait_max=600 workdir="$root/build/bench-reduce"
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=1 ;;
@@ -29,7 +30,8 @@ while [ $# -gt 0 ]; do
     --no-build) build=0 ;;
     --workdir) workdir=$2; shift ;;
     --wait-load) wait_load=$2; shift ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    --wait-max) wait_max=$2; shift ;;
+    -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
     *) echo "run.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift
@@ -57,7 +59,7 @@ sections="$workdir/sections.md"
 
 load_now() { cut -d' ' -f1-3 /proc/loadavg; }
 start_load=$(load_now)
-common=(--workdir "$workdir" --wait-load "$wait_load" --wait-max 600 --md "$sections")
+common=(--workdir "$workdir" --wait-load "$wait_load" --wait-max "$wait_max" --md "$sections")
 if [ $backends = 1 ]; then
   "$bench" solid --sizes "${sizes:-100k}" --threads 1,2 --factorizations default,cholmod "${common[@]}" \
     --title "Factorization backends: ffr-reduce (default, cholmod) vs CalculiX, TET10 plate"

@@ -7,12 +7,10 @@
 // only the columns that have a nonzero in the pivot row, over the rows down to the pivot
 // column's last nonzero; the solves likewise run each column of L and U only over its nonzero
 // span. Pivoting is partial pivoting over the column (its rows below the last nonzero are
-// zero). On the 46 x 46 tangent of the runtime benchmark (tools/bench/runtime_step) an unblocked
-// factorisation takes about 3.9 us of the step against 10.3 us for equilibration and
-// PartialPivLU (perf), and a solve 0.37 us (0.67 us with one AXPY a column through Eigen
-// segments); the raw loops are compiled per instruction set (small_lu.cpp). Blocking in panels
-// of four columns, with a pivot search of four independent maxima, takes a factorisation of
-// that tangent from 77 to 60.6 thousand instructions (callgrind) and about 15 % off its time.
+// zero). The raw loops are compiled per instruction set (small_lu.cpp), blocked in panels of
+// four columns with a pivot search of four independent maxima. With Eigen::PartialPivLU in its
+// place (compute and solve on the same buffers) the step of tools/bench/runtime_step took about
+// a quarter longer (RESULTS.md there), far above the 5 % for which an own kernel is kept.
 
 #include <Eigen/Core>
 

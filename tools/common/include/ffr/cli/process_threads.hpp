@@ -14,7 +14,7 @@ namespace ffr::cli {
 /// Holds OpenBLAS to n threads (openblas_set_num_threads) and keeps OpenMP regions inactive
 /// (omp_set_max_active_levels(0)). Why OpenMP off: Debian's CHOLMOD opens its OpenMP loops with
 /// a compiled-in num_threads(4) whatever OMP_NUM_THREADS says, and those threads then compete
-/// with the BLAS threads, where the parallel work of a supernodal factorization is; the
+/// with the BLAS threads, where the parallel work of CHOLMOD's supernodal factorization is; the
 /// reducer's own threads (ffr::preproc::set_max_threads) do not use OpenMP.
 inline void set_numerical_library_threads(unsigned n) {
   if (n == 0) return;
@@ -22,6 +22,22 @@ inline void set_numerical_library_threads(unsigned n) {
     blas(static_cast<int>(n));
   if (auto* levels = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels")))
     levels(0);
+}
+
+/// The BLAS thread count that goes with `threads` threads of the reducer's own and its sparse
+/// Cholesky backend ("supernodal" or "cholmod", the part file's reduction.factorization).
+///  - supernodal: 1. That factorization runs the elimination tree's independent subtrees, and
+///    the column blocks of the supernodes above them, on the reducer's own threads, each
+///    calling the BLAS; a threaded BLAS under them has more threads than cores. With OpenBLAS
+///    (pthreads build) concurrent threaded calls also queue for its one thread pool while its
+///    idle workers spin: on the 100k-DOF plate of tools/bench/reduce at two threads the
+///    factorization took about twice as long with OpenBLAS at two threads as at one
+///    (tools/bench/reduce/RESULTS.md).
+///  - cholmod: `threads`. CHOLMOD takes the supernodes one after the other and finds its
+///    parallelism only inside the BLAS calls of each.
+inline unsigned blas_threads_for(const char* factorization, unsigned threads) {
+  const bool cholmod = factorization && factorization[0] == 'c';  // "cholmod"; anything else is refused earlier
+  return cholmod ? threads : 1u;
 }
 
 }  // namespace ffr::cli
