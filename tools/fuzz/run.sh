@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the fuzz targets (clang, libFuzzer, ASan + UBSan) in build-fuzz/ and runs each one.
-#   tools/fuzz/run.sh                       every target for 30 s
+#   tools/fuzz/run.sh                       every target for 60 s
 #   tools/fuzz/run.sh --seconds 600 sid_reader
 #   tools/fuzz/run.sh --runs 1000000 part_file    a fixed number of executions instead
 # Exit status 1 if any target found a crash, a sanitizer report, a leak, a timeout (10 s on one
@@ -9,7 +9,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 build=${FFR_FUZZ_BUILD:-$here/build-fuzz}
-seconds=30
+seconds=60
 runs=""
 targets=()
 while [ $# -gt 0 ]; do
