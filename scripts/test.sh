@@ -39,13 +39,14 @@ export LSAN_OPTIONS="suppressions=$san/lsan.supp:print_suppressions=0"
 # start (ffr-reduce, ffr-sim, ffr-info, ffr-diff, ffr-synth) and the test areas chosen by what
 # they exercise: formats, runtime; reduce (both factorization backends on solid, shell and beam
 # parts, clamped, free and Craig-Bampton; the command line's refusals; meshing through the gmsh
-# child), solver (block Lanczos, Spectra, ARPACK, dense; the factorizations), stiffening. The
+# child), solver (block Lanczos, Spectra, ARPACK, dense; the factorizations), stiffening, fuzz
+# (the fuzz targets' regressions and examples replayed). The
 # element areas (shells, beams, solid_elements) run their kernels through the reduce area's
 # parts; the tests labelled slow run only in the Release pass (scripts/sanitize/README.md).
 cmake -S "$here" -B "$here/build-asan" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
   -DCMAKE_C_FLAGS_DEBUG=-g1 -DCMAKE_CXX_FLAGS_DEBUG=-g1 \
   -DFFR_SANITIZE=ON -DFFR_BUILD_BENCH=OFF -DFFR_BUILD_PREPROC=ON \
-  "-DFFR_TEST_AREAS=formats;runtime;reduce;solver;stiffening" >/dev/null
+  "-DFFR_TEST_AREAS=formats;runtime;reduce;solver;stiffening;fuzz" >/dev/null
 cmake --build "$here/build-asan" -j "$jobs"
 # Left out under the sanitizers: the installed-package check (label install), which compiles
 # an outside project against an install of this tree with that project's own flags, so it
