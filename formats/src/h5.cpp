@@ -305,6 +305,26 @@ Reader::Reader(const std::filesystem::path& path, std::string display_name)
   }
 }
 
+Reader::Reader(const void* image, std::size_t size, std::string display_name) : name_(std::move(display_name)) {
+  silence();
+  file_bytes_ = size;
+  if (size < 8) fail("", "not an HDF5 file");
+  // The core driver without a backing store reads the image (copied into the property list,
+  // then into the driver). It refuses an image whose name exists on disk ("file already
+  // exists"), so it gets a name no file can have (below a file, not a folder), not the display name.
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS));
+  if (!fapl.valid() || H5Pset_fapl_core(fapl.get(), 1 << 16, 0) < 0 ||
+      H5Pset_file_image(fapl.get(), const_cast<void*>(image), size) < 0)
+    fail("", "cannot hold the file image (" + last_error_text() + ")");
+  file_ = Handle(H5Fopen("/dev/null/ffr-file-image", H5F_ACC_RDONLY, fapl.get()));
+  if (!file_.valid()) {
+    const std::string e = last_error_text();
+    if (e.find("truncated") != std::string::npos)
+      fail("", "file is truncated (" + e + ")");
+    fail("", "cannot open HDF5 file (" + e + ")");
+  }
+}
+
 void Reader::fail(const std::string& object, const std::string& what) const {
   throw FormatError(name_, object, what);
 }

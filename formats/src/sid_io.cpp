@@ -297,6 +297,16 @@ std::string no_checksums_warning(const std::string& file, std::int64_t version) 
 
 Sid read_sid(const std::filesystem::path& path, std::vector<std::string>* warnings) {
   h5::Reader r(path);
+  return read_sid(r, warnings);
+}
+
+Sid read_sid_image(const void* image, std::size_t size, const std::string& display_name,
+                   std::vector<std::string>* warnings) {
+  h5::Reader r(image, size, display_name);
+  return read_sid(r, warnings);
+}
+
+Sid read_sid(h5::Reader& r, std::vector<std::string>* warnings) {
   r.set_max_magnitude(kMaxInputMagnitude);
   Sid s;
 

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <limits>
 
 using namespace ffr::formats;
@@ -514,4 +515,45 @@ TEST(BadFiles, DamagedChunkSizesInTheChunkIndexAreRefusedNotACrash) {
   }
   EXPECT_GE(nodes, 40);
   EXPECT_EQ(refused, runs);
+}
+
+// The fuzzing of the SID reader opens its inputs as file images in memory (read_sid_image,
+// tools/fuzz/): the same reading as from a file. A clean image gives the file's content, and
+// damaged images are refused with the file's message (the display name in place of the path).
+TEST(BadFiles, AFileImageInMemoryReadsAndIsRefusedAsTheFile) {
+  const auto slurp = [](const fs::path& f) {
+    std::ifstream in(f, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const auto clean = clean_copy("image.sid.h5");
+  const std::string bytes = slurp(clean);
+  const Sid from_file = read_sid(clean);
+  const Sid from_image = read_sid_image(bytes.data(), bytes.size(), "image");
+  EXPECT_EQ(from_image.refmod.frequency_hz, from_file.refmod.frequency_hz);
+  EXPECT_EQ(from_image.refmod.mass, from_file.refmod.mass);
+  EXPECT_EQ(from_image.nodes.size(), from_file.nodes.size());
+
+  const auto damaged = [&](const std::string& name, const std::function<void(const fs::path&)>& damage) {
+    const auto f = clean_copy(name);
+    damage(f);
+    const std::string b = slurp(f);
+    std::string file_msg, image_msg;
+    try { read_sid(f); } catch (const FormatError& e) { file_msg = e.what(); }
+    try { read_sid_image(b.data(), b.size(), f.string()); } catch (const FormatError& e) { image_msg = e.what(); }
+    EXPECT_FALSE(file_msg.empty()) << name;
+    EXPECT_EQ(image_msg, file_msg) << name;
+  };
+  damaged("img_data.sid.h5", [](const fs::path& f) { flip_byte(f, chunk_address(f, "/sid/Gr/M0")); });
+  damaged("img_meta.sid.h5", [](const fs::path& f) { flip_byte(f, object_address(f, "/sid/Cr/M1") + 12); });
+  damaged("img_root.sid.h5", [](const fs::path& f) { flip_byte(f, object_address(f, "/") + 12); });
+  damaged("img_trunc.sid.h5", [](const fs::path& f) { fs::resize_file(f, fs::file_size(f) / 2); });
+  damaged("img_nan.sid.h5", [](const fs::path& f) {
+    edit(f, [](hid_t h) {
+      const double v = std::nan("");
+      replace(h, "/refmod/mass", H5T_IEEE_F64LE, {}, &v);
+    });
+  });
+  std::string msg;
+  try { read_sid_image("\x89HDF", 4, "tiny"); } catch (const FormatError& e) { msg = e.what(); }
+  EXPECT_NE(msg.find("tiny"), std::string::npos) << msg;
 }

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the fuzz targets (clang, libFuzzer, ASan + UBSan) in build-fuzz/ and runs each one.
-#   tools/fuzz/run.sh                       every target for 30 s
+#   tools/fuzz/run.sh                       every target for 60 s
 #   tools/fuzz/run.sh --seconds 600 sid_reader
 #   tools/fuzz/run.sh --runs 1000000 part_file    a fixed number of executions instead
 # Exit status 1 if any target found a crash, a sanitizer report, a leak, a timeout (10 s on one
@@ -9,7 +9,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 build=${FFR_FUZZ_BUILD:-$here/build-fuzz}
-seconds=30
+seconds=60
 runs=""
 targets=()
 while [ $# -gt 0 ]; do
@@ -71,6 +71,17 @@ dict_of() {
   esac
 }
 
+# libFuzzer checks for a leak after every input whose allocations outnumber its frees. HDF5
+# keeps blocks from one file open to the next (caches, error records), so for the SID target that
+# check ran after nearly every input (4 executions a second instead of hundreds). It is off for
+# that target; the sanitizer pass of scripts/test.sh replays its regressions under LeakSanitizer
+# (ctest -L fuzz).
+extra_of() {
+  case $1 in
+    sid_reader) echo "-detect_leaks=0" ;;
+  esac
+}
+
 failed=()
 for t in "${targets[@]}"; do
   seed "$t"
@@ -79,7 +90,7 @@ for t in "${targets[@]}"; do
   echo "fuzz: $t (${runs:+$runs runs}${runs:-$seconds s})"
   set +e
   "$build/bin/fuzz_$t" "${limit[@]}" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-    -artifact_prefix="$work/crashes/$t/" "$(dict_of "$t")" "$work/corpus/$t" "$work/seeds/$t" \
+    -artifact_prefix="$work/crashes/$t/" "$(dict_of "$t")" $(extra_of "$t") "$work/corpus/$t" "$work/seeds/$t" \
     >"$work/logs/$t.log" 2>&1
   rc=$?
   set -e

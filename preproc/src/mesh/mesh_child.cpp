@@ -217,6 +217,10 @@ Mesh load_in_child(const std::string& file, const std::function<Mesh(MeshReport*
     // that died between fork() and prctl() shows as a changed parent id: leave at once then.
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (::getppid() != parent) ::_exit(1);
+    // A crash inside gmsh must end the child by its signal, which the parent reports as a file
+    // gmsh cannot read (below). A handler the parent installed (AddressSanitizer's, in the
+    // sanitizer build: it would print its report and exit with status 1) does not apply here.
+    for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL}) ::signal(sig, SIG_DFL);
     ::close(fd[0]);
     std::string answer;
     try {

@@ -16,6 +16,11 @@ namespace ffr::formats {
 /// from the content checksums written with them. Things the caller should show but that do
 /// not stop the read (a version 1 file has no content checksums) are appended to `warnings`.
 Sid read_sid(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr);
+/// The same reading from a file opened by the caller (a file image: tools/fuzz's SID target).
+Sid read_sid(h5::Reader& reader, std::vector<std::string>* warnings = nullptr);
+/// read_sid of the bytes of a SID file held in memory, named `display_name` in messages.
+Sid read_sid_image(const void* image, std::size_t size, const std::string& display_name,
+                   std::vector<std::string>* warnings = nullptr);
 
 /// The warning for a file of a version without content checksums.
 std::string no_checksums_warning(const std::string& file, std::int64_t version);
