@@ -245,3 +245,30 @@ TEST(Diff, RenumberedSurfacesDoNotMisleadTheAlignment) {
   EXPECT_FALSE(r.equivalent);
   for (const auto& d : r.worst) EXPECT_EQ(d.dataset.rfind("/visual/", 0), 0u) << dump(r);
 }
+
+// A group of modes whose linear features (Pdm, rPdm, the nodes' shapes) are rounding noise -- a
+// Craig-Bampton fixed-interface mode with no net momentum and zero at its interface nodes --
+// carries no sign or orientation: the alignment must leave it as written, not turn B's modes by
+// the noise (Pdm 1e-13 in A and -1.6e-13 in B flipped a shell's mode and reported every
+// member of it as different).
+TEST(Diff, ModesWithoutLinearFeaturesAreLeftAsWritten) {
+  Sid a = symmetric_chain();
+  ASSERT_NEAR(a.refmod.frequency_hz[0], a.refmod.frequency_hz[1], 1e-9 * a.refmod.frequency_hz[0]);
+  auto silence = [](Sid& s, double noise) {
+    for (Eigen::Index k : {0, 1}) {
+      s.integrals.Pdm.col(k).setConstant(noise * static_cast<double>(k + 1));
+      for (auto& r : s.integrals.rPdm) r.col(k).setConstant(-noise);
+      for (auto& n : s.nodes) {
+        n.phi.col(k).setConstant(noise);
+        n.psi.col(k).setConstant(noise);
+      }
+    }
+  };
+  Sid b = a;
+  silence(a, 1e-13);
+  silence(b, -1.6e-13);
+  const DiffReport r = diff(a, b);
+  EXPECT_LT((r.alignment.T - MatrixXd::Identity(a.nq(), a.nq())).cwiseAbs().maxCoeff(), 1e-12) << r.alignment.T;
+  EXPECT_TRUE(r.equivalent) << dump(r);
+}
+

@@ -96,7 +96,11 @@ TEST_P(FactorizationBackends, GiveTheSameSid) {
   opt.rtol = 1e-9;
   opt.group_rtol = std::max(opt.group_rtol, opt.rtol);
   const formats::DiffReport rep = formats::diff(supernodal, cholmod, opt);
-  EXPECT_TRUE(rep.equivalent) << rep.datasets_different << " of " << rep.datasets_compared << " datasets differ";
+  std::string worst;
+  for (const auto& d : rep.worst)
+    worst += "\n  " + d.dataset + d.index + ": " + std::to_string(d.a) + " vs " + std::to_string(d.b) + " (rel " +
+             std::to_string(d.rel) + ")";
+  EXPECT_TRUE(rep.equivalent) << rep.datasets_different << " of " << rep.datasets_compared << " datasets differ:" << worst;
   EXPECT_GT(rep.datasets_compared, 10);
 }
 

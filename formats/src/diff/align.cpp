@@ -81,6 +81,12 @@ ModeAlignment align_modes(const Sid& a, const Sid& b, const DiffOptions& opt) {
   for (const auto& n : a.nodes)
     if (b.find_node(n.name) >= 0) common.push_back(n.name);
   const MatrixXd SA = features(a, b, common, z), SB = features(b, a, common, z);
+  // A group whose features are at the rounding level of the largest mode's (a Craig-Bampton
+  // fixed-interface mode with no net momentum and zero at every interface node: Pdm ~ 1e-13)
+  // says nothing about its sign or orientation; Procrustes on that noise would flip or turn B's
+  // modes at random. Such a group is left as written, and a real sign difference then shows.
+  const double feature_scale = std::max(SA.colwise().norm().maxCoeff(), SB.colwise().norm().maxCoeff());
+  const double no_information = 1e-9 * feature_scale * feature_scale;
   for (std::size_t g = 0; g < al.groups.size(); ++g) {
     const auto& G = al.groups[g];
     const auto n = static_cast<Eigen::Index>(G.size());
@@ -92,6 +98,7 @@ ModeAlignment align_modes(const Sid& a, const Sid& b, const DiffOptions& opt) {
     // Orthogonal Procrustes: min ||B T - A|| over orthogonal T. Only orthogonal changes of
     // basis are excused (a sign, a rotation): a rescaled mode stays a difference.
     const Eigen::JacobiSVD<MatrixXd> svd(B.transpose() * A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    if (!(svd.singularValues()(0) > no_information)) continue;  // T stays the identity on G
     const MatrixXd Tg = svd.matrixU() * svd.matrixV().transpose();
     for (Eigen::Index i = 0; i < n; ++i)
       for (Eigen::Index j = 0; j < n; ++j) al.T(G[i], G[j]) = Tg(i, j);

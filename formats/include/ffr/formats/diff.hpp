@@ -11,7 +11,9 @@
 // family because mass-orthonormal bases of one subspace differ by an orthogonal matrix; a
 // rescaled mode is not excused and shows as a difference. A rotation that none of this data
 // sees (modes that move no exported node, no visual vertex and no first-order integral)
-// cannot be resolved; it is then reported as a difference.
+// cannot be resolved: such a group (its features at the rounding level) is compared as written,
+// T = I on it, so that a sign or rotation there is reported as a difference -- never one taken
+// from the rounding noise of its features.
 //
 // Then every mode-dependent member of B is transformed consistently (transform_modes):
 // first-order members (one mode index: mdCM.M1, J.M1, Ct.M0, Cr.M0, Gr, Oe.M0, Pdm, rPdm,
