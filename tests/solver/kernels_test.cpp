@@ -22,10 +22,9 @@ Eigen::MatrixXd random_matrix(Index rows, Index cols, unsigned seed) {
 
 }  // namespace
 
-// Every shape the kernels branch on: basis widths k that are and are not multiples of their
-// 4-column steps, block widths p of 1 to 9 (groups of 4 and a rest), row ranges that start
-// and end off any chunk or vector boundary and span several 1024-row chunks; Q and V with
-// leading dimensions larger than their row count (blocks of a bigger matrix).
+// Basis widths k and block widths p of 1 to 11, row ranges that start and end anywhere, Q and
+// V with leading dimensions larger than their row count (blocks of a bigger matrix): the
+// products of a row range (dgemm on offset operands) against Eigen's.
 TEST(TallSkinny, MatchesEigenProductsForEveryShape) {
   const Index n = 2600, ld = 2611;
   for (const Index k : {1, 3, 4, 5, 8, 11}) {

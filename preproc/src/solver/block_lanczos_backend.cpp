@@ -57,8 +57,7 @@ bool cholesky_qr(MatrixXd& W, MatrixXd& MW, MatrixXd& R) {
 }
 
 // One classical Gram-Schmidt pass in the M inner product: c = Q^T MW, W <- W - Q c; returns c.
-// Both products stream the basis once (up to 70 MB on the 100k-DOF plate; tall_skinny.hpp);
-// they run over row parts, the partial c summed between them.
+// Both products run over row parts (tall_skinny.hpp), the partial c summed between them.
 MatrixXd project_out(const Eigen::Ref<const MatrixXd>& Q, const MatrixXd& MW, MatrixXd& W) {
   const Index n = Q.rows(), k = Q.cols(), p = W.cols();
   const unsigned parts = parts_for(n * k, Index{1} << 18);

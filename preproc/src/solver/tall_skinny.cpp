@@ -1,113 +1,35 @@
-// Tall-skinny products for the block Gram-Schmidt (see tall_skinny.hpp for why).
+// Tall-skinny products for the block Gram-Schmidt (see tall_skinny.hpp).
 #include "tall_skinny.hpp"
 
 #include "../run_parts.hpp"
-#include "kernel_clones.hpp"
 
 #include <Eigen/Core>
 
 #include <algorithm>
-#include <type_traits>
 #include <vector>
 
+// The Fortran BLAS, linked as CHOLMOD's (the factorization calls it too).
+extern "C" void dgemm_(const char*, const char*, const int*, const int*, const int*, const double*, const double*,
+                       const int*, const double*, const int*, const double*, double*, const int*);
+
 namespace ffr::preproc::detail {
-namespace {
 
 using Index = std::int64_t;
 
-// Rows per chunk: a chunk of 4 columns of V is 32 KB, the size of L1, and each column of Q is
-// read in runs of 8 KB, long enough for the hardware prefetcher.
-constexpr Index kChunk = 1024;
-
-using simd::load;
-using simd::store;
-using simd::v4;
-
-inline double sum(v4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
-
-// c[r + g * ldc] += q_r(0:m)^T v_g(0:m) for R columns q_r = q + r * ldq and G columns
-// v_g = V + g * ldv.
-template <int R, int G>
-inline void dots(const double* q, Index ldq, const double* V, Index ldv, Index m, double* c, Index ldc) {
-  v4 acc[R][G] = {};
-  Index i = 0;
-  for (; i + 4 <= m; i += 4) {
-    v4 vv[G];
-    for (int g = 0; g < G; ++g) vv[g] = load(V + g * ldv + i);
-    for (int r = 0; r < R; ++r) {
-      const v4 qv = load(q + r * ldq + i);
-      for (int g = 0; g < G; ++g) acc[r][g] += qv * vv[g];
-    }
-  }
-  for (int r = 0; r < R; ++r)
-    for (int g = 0; g < G; ++g) {
-      double s = sum(acc[r][g]);
-      for (Index t = i; t < m; ++t) s += q[r * ldq + t] * V[g * ldv + t];
-      c[r + g * ldc] += s;
-    }
-}
-
-// v_g(0:m) -= sum_r q_r(0:m) c[r + g * ldc] for R columns q_r = q + r * ldq and G columns
-// v_g = V + g * ldv.
-template <int R, int G>
-inline void axpys(const double* q, Index ldq, const double* c, Index ldc, Index m, double* V, Index ldv) {
-  double a[R][G];
-  for (int r = 0; r < R; ++r)
-    for (int g = 0; g < G; ++g) a[r][g] = c[r + g * ldc];
-  Index i = 0;
-  for (; i + 4 <= m; i += 4) {
-    v4 acc[G];
-    for (int g = 0; g < G; ++g) acc[g] = load(V + g * ldv + i);
-    for (int r = 0; r < R; ++r) {
-      const v4 x = load(q + r * ldq + i);
-      for (int g = 0; g < G; ++g) acc[g] -= a[r][g] * x;
-    }
-    for (int g = 0; g < G; ++g) store(V + g * ldv + i, acc[g]);
-  }
-  for (; i < m; ++i)
-    for (int g = 0; g < G; ++g) {
-      double v = V[g * ldv + i];
-      for (int r = 0; r < R; ++r) v -= a[r][g] * q[r * ldq + i];
-      V[g * ldv + i] = v;
-    }
-}
-
-// Calls kernel(R, G, j, l, a, m) (R and G as std::integral_constant) for the tiles of R columns
-// of Q from j and G columns of the thin block from l, over the rows [a, a + m) of each chunk:
-// tiles of 4 x 4 where they fit, then the rest by 1.
-template <class Kernel>
-inline void for_each_tile(Index k, Index p, Index r0, Index r1, Kernel&& kernel) {
-  using One = std::integral_constant<int, 1>;
-  using Four = std::integral_constant<int, 4>;
-  for (Index a = r0; a < r1; a += kChunk) {
-    const Index m = std::min(kChunk, r1 - a);
-    const auto columns_of_q = [&](auto R, Index j) {
-      Index l = 0;
-      for (; l + 4 <= p; l += 4) kernel(R, Four{}, j, l, a, m);
-      for (; l < p; ++l) kernel(R, One{}, j, l, a, m);
-    };
-    Index j = 0;
-    for (; j + 4 <= k; j += 4) columns_of_q(Four{}, j);
-    for (; j < k; ++j) columns_of_q(One{}, j);
-  }
-}
-
-}  // namespace
-
-FFR_KERNEL_CLONES
 void add_transposed_product(const double* Q, Index ldq, Index k, const double* V, Index ldv, Index p, Index r0,
                             Index r1, double* C) {
-  for_each_tile(k, p, r0, r1, [&](auto R, auto G, Index j, Index l, Index a, Index m) {
-    dots<R(), G()>(Q + j * ldq + a, ldq, V + l * ldv + a, ldv, m, C + j + l * k, k);
-  });
+  const int K = static_cast<int>(k), P = static_cast<int>(p), rows = static_cast<int>(r1 - r0);
+  const int lq = static_cast<int>(ldq), lv = static_cast<int>(ldv);
+  const double one = 1.0;
+  if (K > 0 && P > 0 && rows > 0) dgemm_("T", "N", &K, &P, &rows, &one, Q + r0, &lq, V + r0, &lv, &one, C, &K);
 }
 
-FFR_KERNEL_CLONES
 void subtract_product(const double* Q, Index ldq, Index k, const double* C, Index p, Index r0, Index r1, double* V,
                       Index ldv) {
-  for_each_tile(k, p, r0, r1, [&](auto R, auto G, Index j, Index l, Index a, Index m) {
-    axpys<R(), G()>(Q + j * ldq + a, ldq, C + j + l * k, k, m, V + l * ldv + a, ldv);
-  });
+  const int K = static_cast<int>(k), P = static_cast<int>(p), rows = static_cast<int>(r1 - r0);
+  const int lq = static_cast<int>(ldq), lv = static_cast<int>(ldv);
+  const double one = 1.0, minus_one = -1.0;
+  if (K > 0 && P > 0 && rows > 0) dgemm_("N", "N", &rows, &P, &K, &minus_one, Q + r0, &lq, C, &K, &one, V + r0, &lv);
 }
 
 namespace {

@@ -1,16 +1,13 @@
 #pragma once
 // Products of a tall basis Q (n x k, k up to a few hundred) with thin blocks (n x p, p about
-// 4): the block Gram-Schmidt of the block Lanczos backend. Each kernel streams the rows
-// [r0, r1) of Q once, in chunks whose slice of the thin block stays in L1.
+// 4): the block Gram-Schmidt of the block Lanczos backend, over parts of the rows on the
+// caller's threads.
 //
-// Why not Eigen's GEMM or the BLAS's dgemm: they pack the operand Q into a buffer before
-// multiplying, so a product with 4 columns reads Q, writes its copy and reads that again. With
-// OpenBLAS's dgemm over the same row parts these two products took about half as long again;
-// that is under 3 % of the 100k-DOF plate's run of tools/bench/reduce (RESULTS.md there), so by
-// the project's rule (an own kernel must save 5 %) dgemm should replace them. Not yet: with
-// dgemm the rounding moved a Craig-Bampton shell's SID across the factorization backends test's
-// rtol 1e-9 (a mode's orientation; the same happens with these kernels when OpenBLAS runs on
-// one thread, RESULTS.md).
+// The two products over a range of rows are the BLAS's dgemm (a one-thread BLAS under the
+// reducer's threads, ffr/cli/process_threads.hpp). Own kernels that stream Q once, without the
+// BLAS's packing of Q, took about a third less time for them, but that was under 3 % of the
+// 100k-DOF plate's run of tools/bench/reduce (RESULTS.md there), below the 5 % that an own
+// kernel has to save to be kept.
 
 #include <Eigen/Core>
 
@@ -39,9 +36,8 @@ void rotate_columns_in_place(Eigen::MatrixXd& Q, Eigen::Index k, const Eigen::Re
 
 /// A^T B (A n x k, B n x p, both with unit inner stride), with add_transposed_product over
 /// parts of the rows on up to max_threads() threads, the parts' sums added in order. Why: the
-/// Gram matrices of the block Lanczos's normalizations and of the eigen-solver's checks were
-/// Eigen products, compiled for SSE2 (the project's baseline) and on one thread: 40 ms of the
-/// 100k-DOF plate's Lanczos stage and 50 ms of its checks, while the other core waited.
+/// Gram matrices of the block Lanczos's normalizations and of the eigen-solver's checks as one
+/// product ran on one thread while the other core waited.
 Eigen::MatrixXd transposed_product(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B);
 
 /// X <- X U^{-1} for an upper-triangular p x p U (X n x p), over parts of the rows on up to
