@@ -25,6 +25,12 @@ function(ffr_test name)
   if(NOT T_TIMEOUT)
     set(T_TIMEOUT 300)
   endif()
+  # The labels are set by a script of their own, run by ctest after the discovered tests are
+  # added: passed in PROPERTIES, a list "a;b" reaches set_tests_properties as the value a and a
+  # property named b, and every label after the first is lost.
   gtest_discover_tests(${name} WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}
-    PROPERTIES TIMEOUT ${T_TIMEOUT} LABELS "${T_LABELS}" DISCOVERY_TIMEOUT 60)
+    PROPERTIES TIMEOUT ${T_TIMEOUT} DISCOVERY_TIMEOUT 60 TEST_LIST ${name}_TESTS)
+  set(script "${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake")
+  file(WRITE "${script}" "if(${name}_TESTS)\n  set_tests_properties(\${${name}_TESTS} PROPERTIES LABELS \"${T_LABELS}\")\nendif()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${script}")
 endfunction()
