@@ -98,8 +98,8 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   // with the assembly on one thread the two took about a fifth less time together.
   if (early.started()) aopt.threads = static_cast<int>(std::max(1u, max_threads() - 1));
   // The structure of K and M on every core, though: it is the first touch of their 250 MB on
-  // that plate, whose page faults cost more than the filling itself where the memory is
-  // backed slowly at first touch (a virtual machine's), and two threads share them.
+  // that plate, and where a page fault costs more than filling the page, threads share the
+  // faults.
   aopt.fill_threads = static_cast<int>(max_threads());
   // And the core back to the element loop once the analysis is done.
   if (early.started()) aopt.spare_core = [&early] { return early.finished(); };
