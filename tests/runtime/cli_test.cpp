@@ -15,20 +15,8 @@ namespace {
 
 const std::string kSim = std::string(FFR_BINARY_DIR) + "/bin/ffr-sim";
 
-struct Result {
-  int status;
-  std::string output;  // stdout and stderr
-};
-
-Result run(const std::string& args) {
-  const std::string cmd = kSim + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 512> buf{};
-  while (fgets(buf.data(), buf.size(), p)) out += buf.data();
-  const int st = pclose(p);
-  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
-}
+using Result = ffr::runtime::test::SimRun;
+Result run(const std::string& args) { return ffr::runtime::test::run_ffr_sim(args); }
 
 const char* kPendulum = R"({
   "gravity": [0, 0, -9.81],

@@ -227,14 +227,9 @@ TEST(ModalStress, AsymmetricKeM1IsRefused) {
     EXPECT_NE(what.find("symmetric"), std::string::npos);
   }
   test::write_text(dir / "model.json", kFree);
-  const std::string cmd = std::string(FFR_BINARY_DIR) + "/bin/ffr-sim " + (dir / "model.json").string() + " -o " +
-                          (dir / "out.h5").string() + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 512> buf{};
-  while (fgets(buf.data(), buf.size(), p)) out += buf.data();
-  const int st = pclose(p);
-  EXPECT_EQ(WIFEXITED(st) ? WEXITSTATUS(st) : -1, 2) << out;
+  const test::SimRun run = test::run_ffr_sim((dir / "model.json").string() + " -o " + (dir / "out.h5").string());
+  const std::string& out = run.output;
+  EXPECT_EQ(run.status, 2) << out;
   EXPECT_NE(out.find("/sid/Ke/M1"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
 }
@@ -258,15 +253,10 @@ TEST(ModalStress, WrongShapeKeM1IsRefused) {
     H5Fclose(f);
   }
   test::write_text(dir / "model.json", kFree);
-  const std::string cmd = std::string(FFR_BINARY_DIR) + "/bin/ffr-sim " + (dir / "model.json").string() + " -o " +
-                          (dir / "out.h5").string() + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 512> buf{};
-  while (fgets(buf.data(), buf.size(), p)) out += buf.data();
-  const int st = pclose(p);
+  const test::SimRun run = test::run_ffr_sim((dir / "model.json").string() + " -o " + (dir / "out.h5").string());
+  const std::string& out = run.output;
   std::printf("%s", out.c_str());
-  EXPECT_EQ(WIFEXITED(st) ? WEXITSTATUS(st) : -1, 2) << out;
+  EXPECT_EQ(run.status, 2) << out;
   EXPECT_NE(out.find("body.sid.h5"), std::string::npos) << out;
   EXPECT_NE(out.find("/sid/Ke/M1"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));

@@ -1,10 +1,13 @@
 #include "support.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 
 #include <fstream>
 #include <random>
+
+#include <sys/wait.h>
 
 namespace ffr::runtime::test {
 
@@ -59,6 +62,18 @@ double compound_pendulum_oracle(double end, double rate, double* theta_dot) {
   }
   if (theta_dot) *theta_dot = om;
   return th;
+}
+
+SimRun run_ffr_sim(const std::string& args) {
+  const std::string cmd = std::string(FFR_BINARY_DIR) + "/bin/ffr-sim " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  SimRun r;
+  if (!p) return r;
+  std::array<char, 512> buf{};
+  while (fgets(buf.data(), buf.size(), p)) r.output += buf.data();
+  const int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
 }
 
 }  // namespace ffr::runtime::test

@@ -33,4 +33,13 @@ double compound_pendulum_oracle(double end, double rate = 0, double* theta_dot =
 /// Parses a model from JSON text with relative paths resolved in `dir`.
 Model model_from(const std::string& json, const std::filesystem::path& dir = {});
 
+/// What a run of build/bin/ffr-sim gave: its exit status (-1 if it did not exit) and its
+/// stdout and stderr together.
+struct SimRun {
+  int status = -1;
+  std::string output;
+};
+/// Runs `ffr-sim ARGS` (ARGS as a shell would split them).
+SimRun run_ffr_sim(const std::string& args);
+
 }  // namespace ffr::runtime::test
