@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
     // The BLAS's threads by the factorization that will call it (process_threads.hpp says why);
     // without --threads as many as the reducer's own (all cores).
     ffr::cli::set_numerical_library_threads(
-        ffr::cli::blas_threads_for(part.reduction.factorization.c_str(), ffr::preproc::max_threads()));
+        ffr::cli::blas_threads_for(part.reduction.factorization, ffr::preproc::max_threads()));
     if (max_memory) {
       if (!(*max_memory > 0)) throw ffr::cli::UsageError("--max-memory must be a positive number of GiB");
       part.reduction.memory_limit_bytes = static_cast<std::uint64_t>(*max_memory * 1024.0 * 1024.0 * 1024.0);

@@ -9,6 +9,8 @@
 
 #include <dlfcn.h>
 
+#include <string_view>
+
 namespace ffr::cli {
 
 /// Holds OpenBLAS to n threads (openblas_set_num_threads) and keeps OpenMP regions inactive
@@ -35,9 +37,8 @@ inline void set_numerical_library_threads(unsigned n) {
 ///    (tools/bench/reduce/RESULTS.md).
 ///  - cholmod: `threads`. CHOLMOD takes the supernodes one after the other and finds its
 ///    parallelism only inside the BLAS calls of each.
-inline unsigned blas_threads_for(const char* factorization, unsigned threads) {
-  const bool cholmod = factorization && factorization[0] == 'c';  // "cholmod"; anything else is refused earlier
-  return cholmod ? threads : 1u;
+inline unsigned blas_threads_for(std::string_view factorization, unsigned threads) {
+  return factorization == "cholmod" ? threads : 1u;
 }
 
 }  // namespace ffr::cli
