@@ -40,7 +40,7 @@ constexpr double kRefQ1 = 0.1893192899613509e-3, kRefQ2 = 0.2375751249879174e-4;
 
 CrankState crank_state(const Model& model, const Data& data, std::int64_t steps) {
   const int o = model.bodies[1].offset + 12;
-  return {data.q(o), data.q(o + 1), steps};
+  return {data.state.q(o), data.state.q(o + 1), steps};
 }
 
 CrankState crank_fixed(const test::TempDir& dir, double h) {
@@ -67,7 +67,7 @@ CrankState crank_adaptive(const test::TempDir& dir, double rtol, double atol) {
   StepControl control(model, data);
   for (std::int64_t k = 1; k <= output_count(model); ++k) {
     advance_to(model, data, control, output_time(model, k));
-    EXPECT_EQ(data.t, output_time(model, k));  // the steps land on the output times
+    EXPECT_EQ(data.state.t, output_time(model, k));  // the steps land on the output times
   }
   std::printf("rtol %.0e: %lld steps accepted, %lld rejected, %lld Newton failures\n", rtol,
               static_cast<long long>(control.accepted), static_cast<long long>(control.rejected),
@@ -156,7 +156,7 @@ TEST(AdaptiveSteps, PendulumAgainstTheOracleForBothSchemes) {
     std::printf("pendulum%s: angle error %.2e after %lld steps (%lld rejected)\n", extra.empty() ? " (trapezoidal)" : " (generalized-alpha 0.5)",
                 err, static_cast<long long>(control.accepted), static_cast<long long>(control.rejected));
     EXPECT_LT(err, 1e-4);  // measured 1.1e-7 and 1.4e-7 at rtol 1e-6, atol 1e-7 (error per unit step)
-    EXPECT_EQ(data.t, 1.0);
+    EXPECT_EQ(data.state.t, 1.0);
   }
 }
 
@@ -193,7 +193,7 @@ TEST(AdaptiveSteps, AStepThatCannotBeTakenNamesTheTime) {
   StepControl control(model, data);
   advance_to(model, data, control, 0.01);  // the two agree
   data.motion_external[0] = 1;  // hub2 held from here on
-  data.motion_value[0] = Eigen::Vector3d(20.0 * data.t, 0, 0);
+  data.motion_value[0] = Eigen::Vector3d(20.0 * data.state.t, 0, 0);
   try {
     advance_to(model, data, control, 0.02);
     FAIL() << "two drives at odds ran on";
@@ -203,7 +203,7 @@ TEST(AdaptiveSteps, AStepThatCannotBeTakenNamesTheTime) {
     EXPECT_NE(msg.find("fell below the minimum"), std::string::npos) << msg;
     EXPECT_NE(msg.find("t = 0.01 s"), std::string::npos) << msg;
     EXPECT_NE(msg.find("Newton did not converge"), std::string::npos) << msg;  // the cause named
-    EXPECT_NEAR(data.t, 0.01, 1e-9);  // the last accepted state (steps below 1e-11 s still passed)
+    EXPECT_NEAR(data.state.t, 0.01, 1e-9);  // the last accepted state (steps below 1e-11 s still passed)
   }
 }
 

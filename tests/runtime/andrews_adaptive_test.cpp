@@ -109,12 +109,12 @@ Amplification measure_amplification() {
     for (std::int64_t i = 0; i < branch; ++i) step(model, a);
     Data b = a;
     for (const Body& body : model.bodies) {
-      for (int i = 0; i < 12; ++i) out.scale = std::max(out.scale, std::abs(a.q(body.offset + i)) * (i < 3 ? 1.0 / model.length : 1.0));
+      for (int i = 0; i < 12; ++i) out.scale = std::max(out.scale, std::abs(a.state.q(body.offset + i)) * (i < 3 ? 1.0 / model.length : 1.0));
     }
     step(model, a, h);
     step(model, b, 0.5 * h);
     step(model, b, 0.5 * h);
-    const double made = coordinate_gap(model, a.q, b.q);
+    const double made = coordinate_gap(model, a.state.q, b.state.q);
     for (std::int64_t i = branch + 1; i < n; ++i) {
       step(model, a, h);
       step(model, b, h);

@@ -29,7 +29,7 @@ struct Result {
 // A body's angular rate about z: its frame turns in the plane, so omega = (u x u_dot)_z.
 double spin(const Data& data, int body) {
   const int o = 12 * body;  // seven rigid bodies, none driven
-  const Eigen::Vector3d u = data.q.segment<3>(o + 3), ud = data.qd.segment<3>(o + 3);
+  const Eigen::Vector3d u = data.state.q.segment<3>(o + 3), ud = data.state.qd.segment<3>(o + 3);
   return u.cross(ud)(2);
 }
 

@@ -62,16 +62,16 @@ TEST(Corotational, MassMatrixAndInertiaForcesAgreeWithInvariants) {
   W << 0, -w(2), w(1), w(2), 0, -w(0), -w(1), w(0), 0;
   const Eigen::Matrix3d Ad = A * W;
   for (Data* d : {&a, &b}) {
-    d->q.head<3>() = Vector3d(0.1, 0.2, -0.3);
-    d->qd.head<3>() = Vector3d(0.5, -0.1, 0.2);
+    d->state.q.head<3>() = Vector3d(0.1, 0.2, -0.3);
+    d->state.qd.head<3>() = Vector3d(0.5, -0.1, 0.2);
     for (int k = 0; k < 3; ++k) {
-      d->q.segment<3>(3 + 3 * k) = A.col(k);
-      d->qd.segment<3>(3 + 3 * k) = Ad.col(k);
+      d->state.q.segment<3>(3 + 3 * k) = A.col(k);
+      d->state.qd.segment<3>(3 + 3 * k) = Ad.col(k);
     }
   }
-  for (Eigen::Index i = 12; i < a.q.size(); ++i) {
-    a.q(i) = b.q(i) = 0.01 * u(rng);
-    a.qd(i) = b.qd(i) = u(rng);
+  for (Eigen::Index i = 12; i < a.state.q.size(); ++i) {
+    a.state.q(i) = b.state.q(i) = 0.01 * u(rng);
+    a.state.qd(i) = b.state.qd(i) = u(rng);
   }
   for (Data* d : {&a, &b}) {
     update_bodies(d == &a ? p->inv : p->cor, *d);
@@ -106,7 +106,7 @@ TEST(Corotational, SameMotion) {
     step(p->inv, a);
     step(p->cor, b);
   }
-  const double d = (a.q - b.q).cwiseAbs().maxCoeff();
+  const double d = (a.state.q - b.state.q).cwiseAbs().maxCoeff();
   std::printf("after 50 steps: max |q_inv - q_fe| = %.2e\n", d);
   EXPECT_LT(d, 1e-9);
 }

@@ -84,16 +84,16 @@ CrankTrace runtime_crank(const std::filesystem::path& dir, const std::string& si
   const int iM = rod.find_node("M") >= 0 ? rod.find_node("M") : rod.find_node("mid");
   auto at = [&](int node) {
     const NodeSlice& s = rod.nodes[static_cast<std::size_t>(node)];
-    const Eigen::Vector3d r0 = data.q.segment<3>(rod.offset);
+    const Eigen::Vector3d r0 = data.state.q.segment<3>(rod.offset);
     Eigen::Matrix3d A;
-    for (int a = 0; a < 3; ++a) A.col(a) = data.q.segment<3>(rod.offset + 3 + 3 * a);
-    const Eigen::Vector3d p = r0 + A * (s.origin + s.phi * data.q.segment(rod.offset + 12, rod.nq));
+    for (int a = 0; a < 3; ++a) A.col(a) = data.state.q.segment<3>(rod.offset + 3 + 3 * a);
+    const Eigen::Vector3d p = r0 + A * (s.origin + s.phi * data.state.q.segment(rod.offset + 12, rod.nq));
     return Eigen::Vector2d(p.x(), p.y());
   };
   CrankTrace tr;
   for (std::int64_t i = 0; i < step_count(model); ++i) {
     step(model, data);
-    tr.t.push_back(data.t);
+    tr.t.push_back(data.state.t);
     tr.d.push_back(chord_deflection(at(iA), at(iM), at(iB)));
   }
   return tr;

@@ -62,7 +62,7 @@ double largest_difference(const Model& model, const std::vector<std::string>& bo
     for (const auto& name : bodies) {
       const Body& ba = reduced.bodies[static_cast<std::size_t>(reduced.find_body(name))];
       const Body& bb = whole.bodies[static_cast<std::size_t>(whole.find_body(name))];
-      worst = std::max(worst, (a.q.segment(ba.offset, ba.ncoord()) - b.q.segment(bb.offset, bb.ncoord())).cwiseAbs().maxCoeff());
+      worst = std::max(worst, (a.state.q.segment(ba.offset, ba.ncoord()) - b.state.q.segment(bb.offset, bb.ncoord())).cwiseAbs().maxCoeff());
     }
   }
   return worst;
@@ -163,9 +163,9 @@ TEST(DrivenBodies, FrameLockedSlidersAgreeWithTheIntegratedBodies) {
   initialize(m, data);
   EXPECT_EQ(data.unknowns.size(), 18u);
   EXPECT_EQ(data.na, m.nactive);
-  const Vector3d a0 = data.q.segment<3>(m.bodies[0].offset);
+  const Vector3d a0 = data.state.q.segment<3>(m.bodies[0].offset);
   for (int i = 0; i < 200; ++i) step(m, data);
-  EXPECT_GT((data.q.segment<3>(m.bodies[0].offset) - a0).norm(), 1e-2);
+  EXPECT_GT((data.state.q.segment<3>(m.bodies[0].offset) - a0).norm(), 1e-2);
 }
 
 // Phi_t and gamma of the rows that join integrated to driven bodies are the first and second
@@ -178,9 +178,9 @@ TEST(DrivenBodies, RatesAndBiasesAreTimeDerivativesOfTheDrive) {
     Data data(m);
     initialize(m, data);
     for (int i = 0; i < 5; ++i) step(m, data);
-    const double t = crank ? data.t : 0.15;  // the table at a point of its spline with curvature
-    data.qd.head(m.nfree).setZero();
-    data.qdd.head(m.nfree).setZero();
+    const double t = crank ? data.state.t : 0.15;  // the table at a point of its spline with curvature
+    data.state.qd.head(m.nfree).setZero();
+    data.state.qdd.head(m.nfree).setZero();
     const auto phi_at = [&](double time) {
       drive_bodies(m, data, time);
       update_bodies(m, data);
@@ -219,7 +219,7 @@ TEST(DrivenBodies, DisagreeingDrivesAreReported) {
   initialize(m, data);
   step(m, data);  // the two agree
   data.motion_external[0] = 1;  // hub2's motion: held at its present angle from here on
-  data.motion_value[0] = Eigen::Vector3d(20.0 * data.t, 0, 0);
+  data.motion_value[0] = Eigen::Vector3d(20.0 * data.state.t, 0, 0);
   try {
     for (std::int64_t i = 1; i < step_count(m); ++i) step(m, data);
     FAIL() << "two motions at odds on one body ran to the end";

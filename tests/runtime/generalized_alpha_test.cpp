@@ -75,11 +75,11 @@ EndErrors pendulum_errors(double h, double end, double rho, double w0) {
   const Eigen::Vector3d udd = thdd * Eigen::Vector3d(-std::sin(th), 0, -std::cos(th)) - om * om * Eigen::Vector3d(std::cos(th), 0, -std::sin(th));
   const Eigen::Vector3d R = kMass * (kD * udd - Eigen::Vector3d(0, 0, -kG));
   VectorXd force = VectorXd::Zero(model.ncoord);
-  add_constraint_forces(model, data, data.lambda, force);
+  add_constraint_forces(model, data, data.state.lambda, force);
   const int o = model.bodies[0].offset;
   // (The sign of Phi_q^T lambda is the equations' convention: M q'' + Phi_q^T lambda = Q.)
   return {std::abs(joint_coordinate(model, data, 0, JointCoordinate::Angle) - th),
-          (data.qdd.segment<3>(o + 3) - udd).cwiseAbs().maxCoeff(), (force.segment<3>(o) + R).cwiseAbs().maxCoeff()};
+          (data.state.qdd.segment<3>(o + 3) - udd).cwiseAbs().maxCoeff(), (force.segment<3>(o) + R).cwiseAbs().maxCoeff()};
 }
 
 // Chung & Hulbert's amplification matrix of (d, v, a) for d'' + omega^2 d = 0, one step of h.
@@ -147,12 +147,12 @@ TEST(GeneralizedAlpha, SpectralRadiusOneIsTheTrapezoidalRule) {
   initialize(trap, a);
   initialize(alpha, b);
   double worst = 0, motion = 0;
-  const VectorXd q_start = a.q;
+  const VectorXd q_start = a.state.q;
   for (std::int64_t i = 0; i < step_count(trap); ++i) {
     step(trap, a);
     step(alpha, b);
-    worst = std::max(worst, scaled_norm(trap, a.q - b.q));
-    motion = std::max(motion, scaled_norm(trap, a.q - q_start));
+    worst = std::max(worst, scaled_norm(trap, a.state.q - b.state.q));
+    motion = std::max(motion, scaled_norm(trap, a.state.q - q_start));
   }
   std::printf("rho_inf = 1 against the trapezoidal rule: states apart by %.2e at most (scaled; the motion %.2e)\n", worst, motion);
   EXPECT_GT(motion, 0.1);
@@ -193,7 +193,7 @@ TEST(GeneralizedAlpha, DampingOfOneModePerStepIsTheAnalyticAmplification) {
       const double spectral = std::abs(lam(p));
       const auto state = [&] {
         // d, v, a of the x coordinate: a is the scheme's pseudo-acceleration (Chung & Hulbert's a).
-        return Eigen::Vector3cd(data.q(0) - x_rest, data.qd(0), data.scheme.a(0));
+        return Eigen::Vector3cd(data.state.q(0) - x_rest, data.state.qd(0), data.state.a(0));
       };
       // From the state after the first step (the first step's own a_0 is the start's,
       // start_generalized_alpha, set inside it).

@@ -35,7 +35,7 @@ std::string driven(const std::string& extra_joint) {
 // max |Phi_q q_dot + Phi_t|
 double velocity_violation(const Model& model, const Data& data) {
   VectorXd c = VectorXd::Zero(model.nconstraints);  // constraint_times writes into a sized vector
-  constraint_times(model, data, data.qd, c);
+  constraint_times(model, data, data.state.qd, c);
   return (c + data.Phit).cwiseAbs().maxCoeff();
 }
 
@@ -53,10 +53,10 @@ TEST_F(InitialConditions, FramesTakeTheCorrectionAndTheModesStayAtRest) {
   const Body& b = model.bodies[0];
   // The hub's motion is met by turning the frame: modal velocities stay zero (to the AL
   // iteration's round-off), and the hub's rate is the prescribed 20 rad/s.
-  EXPECT_LT(data.qd.segment(b.offset + 12, b.nq).cwiseAbs().maxCoeff(), 1e-9)
-      << data.qd.segment(b.offset + 12, b.nq).transpose();
-  EXPECT_LT(data.q.segment(b.offset + 12, b.nq).cwiseAbs().maxCoeff(), 1e-12);
-  evaluate_constraints(model, data, data.t);
+  EXPECT_LT(data.state.qd.segment(b.offset + 12, b.nq).cwiseAbs().maxCoeff(), 1e-9)
+      << data.state.qd.segment(b.offset + 12, b.nq).transpose();
+  EXPECT_LT(data.state.q.segment(b.offset + 12, b.nq).cwiseAbs().maxCoeff(), 1e-12);
+  evaluate_constraints(model, data, data.state.t);
   EXPECT_LT(data.Phi.cwiseAbs().maxCoeff(), 1e-10);
   EXPECT_LT(velocity_violation(model, data), 1e-8);
 }
@@ -70,7 +70,7 @@ TEST_F(InitialConditions, ModesMoveOnlyWhenTheFramesCannotSatisfyTheJoints) {
   Data data(model);
   initialize(model, data);
   const Body& b = model.bodies[0];
-  EXPECT_GT(data.qd.segment(b.offset + 12, b.nq).cwiseAbs().maxCoeff(), 1e-3);
-  evaluate_constraints(model, data, data.t);
+  EXPECT_GT(data.state.qd.segment(b.offset + 12, b.nq).cwiseAbs().maxCoeff(), 1e-3);
+  evaluate_constraints(model, data, data.state.t);
   EXPECT_LT(velocity_violation(model, data), 1e-8);
 }

@@ -69,8 +69,8 @@ struct Fixture : ::testing::Test {
     set_external_load(*data, 1, 0, Eigen::Vector3d::Zero(), Eigen::Vector3d(-0.2, 0.1, 0.4));
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-1, 1);
-    q = data->q;
-    qd = data->qd;
+    q = data->state.q;
+    qd = data->state.qd;
     for (Eigen::Index i = 0; i < q.size(); ++i) {
       q(i) += 0.05 * u(rng);
       qd(i) = u(rng);
@@ -79,9 +79,9 @@ struct Fixture : ::testing::Test {
   }
 
   void set(const VectorXd& a, const VectorXd& b, const VectorXd& c) {
-    data->q = a;
-    data->qd = b;
-    data->qdd = c;
+    data->state.q = a;
+    data->state.qd = b;
+    data->state.qdd = c;
     update_bodies(model, *data);
     update_markers(model, *data);
   }

@@ -77,10 +77,10 @@ TEST(ModalStress, ForceTangentAndEnergyGradientMatchFiniteDifferences) {
   ASSERT_TRUE(model.bodies[0].modal_stress.has_value());
   ASSERT_TRUE(model.bodies[0].prestress.has_value());
   Data data(model);
-  const Eigen::VectorXd q = data.q, qd = Eigen::VectorXd::Zero(q.size());
+  const Eigen::VectorXd q = data.state.q, qd = Eigen::VectorXd::Zero(q.size());
   auto forces = [&](const Eigen::VectorXd& z) {
-    data.q = z;
-    data.qd = qd;
+    data.state.q = z;
+    data.state.qd = qd;
     update_bodies(model, data);
     update_markers(model, data);
     generalized_forces(model, data, 0);
@@ -101,8 +101,8 @@ TEST(ModalStress, ForceTangentAndEnergyGradientMatchFiniteDifferences) {
   const Eigen::VectorXd Q = forces(q);
   Eigen::VectorXd y = q.segment(o + 12, 3);
   auto potential = [&](const Eigen::VectorXd& yy) {
-    data.q = q;
-    data.q.segment(o + 12, 3) = yy;
+    data.state.q = q;
+    data.state.q.segment(o + 12, 3) = yy;
     Eigen::VectorXd v(1);
     v(0) = energy(model, data).potential;
     return v;
@@ -141,7 +141,7 @@ TEST(ModalStress, FreeBodyWithKeM1ConservesEnergyToSecondOrder) {
     initialize(model, data);
     const int o = model.bodies[0].offset;
     {
-      const Eigen::VectorXd y = data.q.segment(o + 12, 3);
+      const Eigen::VectorXd y = data.state.q.segment(o + 12, 3);
       double cubic = 0;
       for (int m = 0; m < 3; ++m) cubic += 0.5 * y(m) * y.dot(sid.KeM1[static_cast<std::size_t>(m)] * y);
       cubic_share = std::abs(cubic) / (0.5 * y.dot(sid.Ke * y));
@@ -190,21 +190,21 @@ TEST(ModalStress, InterfaceLoadIsTheStaticJointReaction) {
   Data data(model);
   initialize(model, data);
   for (std::int64_t i = 0; i < step_count(model); ++i) step(model, data);
-  generalized_forces(model, data, data.t);
+  generalized_forces(model, data, data.state.t);
   const Body& b = model.bodies[0];
   const BodyData& bd = data.bodies[0];
   const Eigen::Vector3d g(0, 0, -9.81);
-  const Eigen::Vector3d r0 = data.q.segment<3>(b.offset);
+  const Eigen::Vector3d r0 = data.state.q.segment<3>(b.offset);
   const int node = b.find_node("A");
   const NodeSlice& n = b.nodes[static_cast<std::size_t>(node)];
-  const Eigen::Vector3d r_node = r0 + bd.A * (n.origin + n.phi * data.q.segment(b.offset + 12, b.nq));
+  const Eigen::Vector3d r_node = r0 + bd.A * (n.origin + n.phi * data.state.q.segment(b.offset + 12, b.nq));
   const Eigen::Vector3d r_G = r0 + bd.A * bd.md / b.mass;
   const Eigen::Vector3d F = bd.A.transpose() * (-b.mass * g);
   const Eigen::Vector3d M = bd.A.transpose() * (-(r_G - r_node).cross(b.mass * g));
   const Eigen::Vector3d FK = bd.iface_load.col(0).head<3>(), MK = bd.iface_load.col(0).tail<3>();
   std::printf("interface force in K (%.6f, %.6f, %.6f), statics (%.6f, %.6f, %.6f); moment (%.6f, %.6f, %.6f), statics (%.6f, %.6f, %.6f); modal velocity %.1e\n",
               FK(0), FK(1), FK(2), F(0), F(1), F(2), MK(0), MK(1), MK(2), M(0), M(1), M(2),
-              data.qd.segment(b.offset + 12, b.nq).norm());
+              data.state.qd.segment(b.offset + 12, b.nq).norm());
   EXPECT_LT((FK - F).norm(), 1e-6 * F.norm());
   EXPECT_LT((MK - M).norm(), 1e-6 * F.norm() * (r_G - r_node).norm());
 }
@@ -294,14 +294,14 @@ TEST(ModalStress, StiffeningRateTangentsMatchFiniteDifferences) {
   Data data(model);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1, 1);
-  const Eigen::VectorXd q = data.q;
+  const Eigen::VectorXd q = data.state.q;
   const Eigen::VectorXd qd = Eigen::VectorXd::NullaryExpr(q.size(), [&](Eigen::Index) { return u(rng); });
   const Eigen::VectorXd qdd = Eigen::VectorXd::NullaryExpr(q.size(), [&](Eigen::Index) { return 30 * u(rng); });
   const int o = b.offset, nq = b.nq, nb = b.ncoord();
   auto forces = [&](const Eigen::VectorXd& v, const Eigen::VectorXd& a) {
-    data.q = q;
-    data.qd = v;
-    data.qdd = a;
+    data.state.q = q;
+    data.state.qd = v;
+    data.state.qdd = a;
     update_bodies(model, data);
     update_markers(model, data);
     generalized_forces(model, data, 0);

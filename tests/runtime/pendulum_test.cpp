@@ -30,17 +30,17 @@ TEST(RigidPendulum, LargeAmplitudePeriodMatchesEllipticIntegral) {
   // The bar swings down (angle about +y goes positive when x tips down: -z); it passes the bottom
   // (angle = +pi/2) every half period. Record the crossing times with linear interpolation.
   std::vector<double> crossings;
-  double prev = joint_coordinate(model, data, 0, JointCoordinate::Angle), tprev = data.t;
+  double prev = joint_coordinate(model, data, 0, JointCoordinate::Angle), tprev = data.state.t;
   double worst_violation = 0;
   while (crossings.size() < 21) {
     step(model, data);
     worst_violation = std::max(worst_violation, data.stats.last_violation);
     const double a = joint_coordinate(model, data, 0, JointCoordinate::Angle);
     const double bottom = theta0;
-    if ((prev - bottom) * (a - bottom) < 0) crossings.push_back(tprev + (bottom - prev) / (a - prev) * (data.t - tprev));
+    if ((prev - bottom) * (a - bottom) < 0) crossings.push_back(tprev + (bottom - prev) / (a - prev) * (data.state.t - tprev));
     prev = a;
-    tprev = data.t;
-    ASSERT_LT(data.t, 60.0);
+    tprev = data.state.t;
+    ASSERT_LT(data.state.t, 60.0);
   }
   const double T = (crossings.back() - crossings.front()) / 10.0;
   EXPECT_NEAR(T / T_exact - 1.0, 0.0, 2e-5) << "T = " << T << " exact " << T_exact;

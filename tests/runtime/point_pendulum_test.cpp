@@ -56,8 +56,8 @@ struct Swing {
   double angle, rate;
 };
 Swing swing(const Data& data, Frame frame) {
-  const Eigen::Vector3d r = data.q.segment<3>(0), rd = data.qd.segment<3>(0);
-  const Eigen::Vector3d u = data.q.segment<3>(3), ud = data.qd.segment<3>(3);
+  const Eigen::Vector3d r = data.state.q.segment<3>(0), rd = data.state.qd.segment<3>(0);
+  const Eigen::Vector3d u = data.state.q.segment<3>(3), ud = data.state.qd.segment<3>(3);
   const Eigen::Vector3d p = frame == Frame::AtBob ? r : Eigen::Vector3d(r + u);
   const Eigen::Vector3d pd = frame == Frame::AtBob ? rd : Eigen::Vector3d(rd + ud);
   const double x = p(0), z = -p(2);
@@ -71,11 +71,11 @@ std::vector<double> bottom_crossings(const Model& model, Data& data, Frame frame
   std::vector<double> out;
   const double bottom = M_PI / 2;
   Swing s0 = swing(data, frame);
-  double t0 = data.t;
+  double t0 = data.state.t;
   while (static_cast<int>(out.size()) < count) {
     step(model, data);
     const Swing s1 = swing(data, frame);
-    const double h = data.t - t0;
+    const double h = data.state.t - t0;
     if ((s0.angle - bottom) * (s1.angle - bottom) <= 0 && s0.angle != s1.angle) {
       auto p = [&](double s) {
         const double s2 = s * s, s3 = s2 * s;
@@ -90,8 +90,8 @@ std::vector<double> bottom_crossings(const Model& model, Data& data, Frame frame
       out.push_back(t0 + 0.5 * (lo + hi) * h);
     }
     s0 = s1;
-    t0 = data.t;
-    if (data.t > 20) break;
+    t0 = data.state.t;
+    if (data.state.t > 20) break;
   }
   return out;
 }

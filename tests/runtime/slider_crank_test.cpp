@@ -43,10 +43,10 @@ Result run(double h) {
     r.worst_violation = std::max(r.worst_violation, data.stats.last_violation);
   }
   const Body& rod = model.bodies[1];
-  const Vector3d u = data.q.segment<3>(rod.offset + 3);
+  const Vector3d u = data.state.q.segment<3>(rod.offset + 3);
   r.phi2 = std::atan2(u(1), u(0));
-  r.x3 = data.q(model.bodies[2].offset);
-  for (int k = 0; k < 4; ++k) r.q[k] = data.q(rod.offset + 12 + k);
+  r.x3 = data.state.q(model.bodies[2].offset);
+  for (int k = 0; k < 4; ++k) r.q[k] = data.state.q(rod.offset + 12 + k);
   r.iterations = static_cast<int>(data.stats.newton_iterations);
   return r;
 }
@@ -95,9 +95,9 @@ TEST(SliderCrank, RedundantMultipliersStayBounded) {
     double early = 0, late = 0;
     const auto n = step_count(model);
     for (std::int64_t i = 0; i < n; ++i) {
-      ASSERT_NO_THROW(step(model, data)) << "penalty " << penalty << ", t = " << data.t;
-      double& worst = data.t <= 0.2 ? early : late;
-      worst = std::max(worst, data.lambda.cwiseAbs().maxCoeff());
+      ASSERT_NO_THROW(step(model, data)) << "penalty " << penalty << ", t = " << data.state.t;
+      double& worst = data.state.t <= 0.2 ? early : late;
+      worst = std::max(worst, data.state.lambda.cwiseAbs().maxCoeff());
     }
     std::printf("penalty %g: largest multiplier %.3e in the first 0.2 s, %.3e after; %.2f Newton iterations per step\n",
                 penalty, early, late, static_cast<double>(data.stats.newton_iterations) / static_cast<double>(n));
@@ -124,10 +124,10 @@ TEST(SliderCrank, ProjectionsMeetConstraintsEvaluatedAfresh) {
     step(model, data);
     update_bodies(model, data);
     update_markers(model, data);
-    evaluate_constraints(model, data, data.t);
+    evaluate_constraints(model, data, data.state.t);
     // Both in model lengths per step (the projections' own units).
-    worst_v = std::max(worst_v, (data.Phiq * data.qd + data.Phit).cwiseAbs().maxCoeff() * h / model.length);
-    worst_a = std::max(worst_a, (data.Phiq * data.qdd + data.gamma).cwiseAbs().maxCoeff() * h * h / model.length);
+    worst_v = std::max(worst_v, (data.Phiq * data.state.qd + data.Phit).cwiseAbs().maxCoeff() * h / model.length);
+    worst_a = std::max(worst_a, (data.Phiq * data.state.qdd + data.gamma).cwiseAbs().maxCoeff() * h * h / model.length);
     bias = std::max(bias, data.gamma.cwiseAbs().maxCoeff() * h * h / model.length);
   }
   std::printf("velocity residual %.2e, acceleration residual %.2e (largest bias %.2e), model lengths per step\n",
@@ -156,7 +156,7 @@ TEST(SliderCrank, NewtonToleranceBoundsTheAcceptedState) {
   for (std::int64_t i = 0; i < n; ++i) {
     step(loose, a);
     step(tight, b);
-    worst = std::max(worst, scaled_norm(loose, a.q - b.q));
+    worst = std::max(worst, scaled_norm(loose, a.state.q - b.state.q));
     worst_violation = std::max(worst_violation, a.stats.last_violation);
   }
   const double its_a = static_cast<double>(a.stats.newton_iterations) / static_cast<double>(n);
@@ -186,8 +186,8 @@ TEST(SliderCrank, ReusedTangentFallsBackWhenTheCrankTurnsFast) {
   const auto n = step_count(fresh);
   for (std::int64_t i = 0; i < n; ++i) {
     step(fresh, a);
-    ASSERT_NO_THROW(step(kept, b)) << "t = " << b.t;
-    worst = std::max(worst, scaled_norm(fresh, a.q - b.q));
+    ASSERT_NO_THROW(step(kept, b)) << "t = " << b.state.t;
+    worst = std::max(worst, scaled_norm(fresh, a.state.q - b.state.q));
   }
   std::printf("states apart by %.2e at most; %.2f and %.2f factorisations a step\n", worst,
               static_cast<double>(a.stats.factorizations) / static_cast<double>(n),

@@ -49,18 +49,18 @@ TEST(State, RestoredFixedStepsRepeatBitForBit) {
     std::vector<VectorXd> first;
     for (int i = 0; i < 30; ++i) {
       step(model, data);
-      first.push_back(data.q);
+      first.push_back(data.state.q);
     }
-    const VectorXd lambda = data.lambda, qdd = data.qdd;
-    const double t = data.t;
+    const VectorXd lambda = data.state.lambda, qdd = data.state.qdd;
+    const double t = data.state.t;
     restore_state(saved, data);
     for (int i = 0; i < 30; ++i) {
       step(model, data);
-      EXPECT_TRUE(same_bits(data.q, first[static_cast<std::size_t>(i)])) << scheme << ", step " << i;
+      EXPECT_TRUE(same_bits(data.state.q, first[static_cast<std::size_t>(i)])) << scheme << ", step " << i;
     }
-    EXPECT_EQ(data.t, t);
-    EXPECT_TRUE(same_bits(data.lambda, lambda)) << scheme;
-    EXPECT_TRUE(same_bits(data.qdd, qdd)) << scheme;
+    EXPECT_EQ(data.state.t, t);
+    EXPECT_TRUE(same_bits(data.state.lambda, lambda)) << scheme;
+    EXPECT_TRUE(same_bits(data.state.qdd, qdd)) << scheme;
     // Through the flat form (the C API's) as well.
     std::vector<double> flat(static_cast<std::size_t>(packed_state_size(model)));
     pack_state(saved, flat.data());
@@ -68,7 +68,7 @@ TEST(State, RestoredFixedStepsRepeatBitForBit) {
     unpack_state(model, flat.data(), static_cast<int>(flat.size()), back);
     restore_state(back, data);
     for (int i = 0; i < 30; ++i) step(model, data);
-    EXPECT_TRUE(same_bits(data.q, first.back())) << scheme;
+    EXPECT_TRUE(same_bits(data.state.q, first.back())) << scheme;
   }
 }
 
@@ -86,12 +86,12 @@ TEST(State, RestoredAdaptiveStepsRepeatBitForBit) {
   save_state(data, saved);
   const StepControl kept = control;
   advance_to(model, data, control, 0.05);
-  const VectorXd q = data.q;
+  const VectorXd q = data.state.q;
   const auto accepted = control.accepted;
   restore_state(saved, data);
   control = kept;
   advance_to(model, data, control, 0.05);
-  EXPECT_TRUE(same_bits(data.q, q));
+  EXPECT_TRUE(same_bits(data.state.q, q));
   EXPECT_EQ(control.accepted, accepted);
 }
 

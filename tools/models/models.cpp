@@ -94,7 +94,7 @@ StepTiming run_timed(const ffr::runtime::Model& model, ffr::runtime::Data& data,
   const auto t0 = std::chrono::steady_clock::now();
   for (std::int64_t i = 0; i < n; ++i) {
     ffr::runtime::step(model, data);
-    if (trace) trace->push_back(data.q(last));
+    if (trace) trace->push_back(data.state.q(last));
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto per_step = [n](double x) { return x / static_cast<double>(n); };

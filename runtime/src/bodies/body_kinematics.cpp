@@ -29,13 +29,13 @@ namespace {
 // velocity and the products PPdm y_dot (A must be current).
 void body_rates(const Body& b, const Data& data, BodyData& bd) {
   const int o = b.offset;
-  for (int a = 0; a < 3; ++a) bd.Ad.col(a) = data.qd.segment<3>(o + 3 + 3 * a);
+  for (int a = 0; a < 3; ++a) bd.Ad.col(a) = data.state.qd.segment<3>(o + 3 + 3 * a);
   bd.omega = body_omega(bd.A, bd.Ad);
   if (b.nq == 0) return;
   // One product with the stacked matrices instead of nine small ones, whose calls cost more
   // than their multiply-adds (through the vectorised kernel of the step's products).
   const Eigen::Index n9 = 9 * b.nq;
-  detail::times(b.PPdm_stack.data(), n9, n9, b.nq, data.qd.data() + o + 12, bd.Pyd.data(), false);
+  detail::times(b.PPdm_stack.data(), n9, n9, b.nq, data.state.qd.data() + o + 12, bd.Pyd.data(), false);
 }
 
 }  // namespace
@@ -51,18 +51,18 @@ void update_bodies(const Model& model, Data& data, Scope scope) {
     BodyData& bd = data.bodies[i];
     const int o = b.offset;
     for (int a = 0; a < 3; ++a) {
-      bd.A.col(a) = data.q.segment<3>(o + 3 + 3 * a);
-      bd.Add.col(a) = data.qdd.segment<3>(o + 3 + 3 * a);
+      bd.A.col(a) = data.state.q.segment<3>(o + 3 + 3 * a);
+      bd.Add.col(a) = data.state.qdd.segment<3>(o + 3 + 3 * a);
     }
     body_rates(b, data, bd);
     bd.alpha = body_omega(bd.A, bd.Add);
-    bd.acc.noalias() = bd.A.transpose() * (data.qdd.segment<3>(o) - model.gravity);
+    bd.acc.noalias() = bd.A.transpose() * (data.state.qdd.segment<3>(o) - model.gravity);
     if (b.nq == 0) {
       bd.md = b.rdm;
       bd.Jc = b.J0;
       continue;
     }
-    const auto y = data.q.segment(o + 12, b.nq);
+    const auto y = data.state.q.segment(o + 12, b.nq);
     bd.md = b.rdm;
     bd.md.noalias() += b.Pdm * y;
     // S_a = rPdm[a] + P_a(y), row c of P_a(y) being (PPdm[a][c]^T y)^T = (PPdm[c][a] y)^T =

@@ -30,7 +30,7 @@ void mass_matrices(const Model& model, Data& data) {
     const Body& b = model.bodies[i];
     if (b.nq == 0) continue;
     if (b.full_mass)
-      fe_mass_matrix(b, data.bodies[i], data.q.segment(b.offset, b.ncoord()));
+      fe_mass_matrix(b, data.bodies[i], data.state.q.segment(b.offset, b.ncoord()));
     else
       body_mass_matrix(b, data.bodies[i]);
   }

@@ -87,7 +87,7 @@ void ffr_close(ffr_sim* sim) { delete sim; }
 
 int ffr_time(const ffr_sim* sim, double* t) {
   if (!sim || !t) return fail(FFR_ERROR_ARGUMENT, "ffr_time: NULL argument");
-  *t = sim->data->t;
+  *t = sim->data->state.t;
   return FFR_OK;
 }
 
@@ -107,7 +107,7 @@ int ffr_step(ffr_sim* sim, int n) {
       ffr::runtime::save_state(d, *sim->last);
       try {
         // (advance_to leaves the last accepted state itself when it gives up.)
-        if (sim->control) ffr::runtime::advance_to(sim->model, d, *sim->control, d.t + sim->model.settings.output_interval);
+        if (sim->control) ffr::runtime::advance_to(sim->model, d, *sim->control, d.state.t + sim->model.settings.output_interval);
         else ffr::runtime::step(sim->model, d);
       } catch (...) {
         ffr::runtime::restore_state(*sim->last, d);

@@ -18,19 +18,17 @@ void size_marker(MarkerData& md, int nb) {
 
 }  // namespace
 
-Data::Data(const Model& model) : start(model) {
+Data::Data(const Model& model) : state(model), start(model) {
   const int n = model.ncoord, m = model.nconstraints;
   nf = n;
   na = m;
   nblocks = static_cast<int>(model.blocks.size());
   integrated.assign(model.bodies.size(), 1);
   drive_ref.assign(model.bodies.size(), DriveReference{});
-  q = qd = qdd = VectorXd::Zero(n);
-  lambda = lambda_eff = lambda0 = VectorXd::Zero(m);
-  Q = f = dq = r = tmp = vstar = qdd_prev = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);
+  lambda_eff = lambda0 = VectorXd::Zero(m);
+  Q = f = dq = r = tmp = vstar = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);
   sigma = c = alpha = VectorXd::Zero(m);
-  scheme.a = VectorXd::Zero(n);
-  scheme.k = trapezoidal_coefficients(model.settings.step);
+  state.k = trapezoidal_coefficients(model.settings.step);
   K = C = W = T = MatrixXd::Zero(n, n);
   Phiq = MatrixXd::Zero(m, n);
   lu.resize(n);
@@ -72,15 +70,15 @@ Data::Data(const Model& model) : start(model) {
 
     // Initial state as given: frame, rates from the frame's velocity and angular velocity.
     const int o = b.offset;
-    q.segment<3>(o) = b.r0;
-    qd.segment<3>(o) = b.v0;
+    state.q.segment<3>(o) = b.r0;
+    state.qd.segment<3>(o) = b.v0;
     for (int a = 0; a < 3; ++a) {
-      q.segment<3>(o + 3 + 3 * a) = b.A0.col(a);
-      qd.segment<3>(o + 3 + 3 * a) = b.w0.cross(Vector3d(b.A0.col(a)));
+      state.q.segment<3>(o + 3 + 3 * a) = b.A0.col(a);
+      state.qd.segment<3>(o + 3 + 3 * a) = b.w0.cross(Vector3d(b.A0.col(a)));
     }
     if (nq) {
-      q.segment(o + 12, nq) = b.y0;
-      qd.segment(o + 12, nq) = b.yd0;
+      state.q.segment(o + 12, nq) = b.y0;
+      state.qd.segment(o + 12, nq) = b.yd0;
     }
   }
 
@@ -112,7 +110,6 @@ Data::Data(const Model& model) : start(model) {
   fz = fhz = VectorXd::Zero(pair_max);
   for (auto& w : w3) w = Matrix3N::Zero(3, nb_max);
 
-  angle_ref.assign(model.joints.size(), 0.0);
   motion_external.assign(model.motions.size(), 0);
   motion_value.assign(model.motions.size(), Eigen::Vector3d::Zero());
 
@@ -128,7 +125,7 @@ Data::Data(const Model& model) : start(model) {
     ext_list[i].reserve(static_cast<std::size_t>(slots));  // setting loads never allocates
     size_marker(ext_marker[i], model.bodies[i].ncoord());
   }
-  t = model.settings.start;
+  state.t = model.settings.start;
 }
 
 void set_external_load(Data& data, int body, int slot, const Vector3d& force, const Vector3d& torque) {

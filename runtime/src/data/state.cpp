@@ -1,4 +1,5 @@
-// The State (state.hpp): its copies to and from Data and its flat form for the C API.
+// The State (state.hpp): its copies to and from Data and its flat form for the C API. The copies
+// are assignments of equal-sized vectors, so they allocate nothing.
 #include "ffr/runtime/state.hpp"
 
 #include "ffr/runtime/data.hpp"
@@ -20,40 +21,10 @@ State::State(const Model& model)
       step_alpha(model.bodies.size(), Vector3d::Zero()),
       angle_ref(model.joints.size(), 0.0) {}
 
-void save_state(const Data& d, State& s) {
-  s.t = d.t;
-  s.q = d.q;
-  s.qd = d.qd;
-  s.qdd = d.qdd;
-  s.lambda = d.lambda;
-  s.a = d.scheme.a;
-  s.k = d.scheme.k;
-  s.qdd_prev = d.qdd_prev;
-  s.have_previous = d.have_previous;
-  for (std::size_t i = 0; i < d.bodies.size(); ++i) s.step_alpha[i] = d.bodies[i].step_alpha;
-  s.predictor_far = d.predictor_far;
-  s.newton_kappa = d.newton_kappa;
-  s.kappa_age = d.kappa_age;
-  s.last_iterations = d.stats.last_iterations;
-  std::copy(d.angle_ref.begin(), d.angle_ref.end(), s.angle_ref.begin());
-}
+void save_state(const Data& d, State& s) { s = d.state; }
 
 void restore_state(const State& s, Data& d) {
-  d.t = s.t;
-  d.q = s.q;
-  d.qd = s.qd;
-  d.qdd = s.qdd;
-  d.lambda = s.lambda;
-  d.scheme.a = s.a;
-  d.scheme.k = s.k;
-  d.qdd_prev = s.qdd_prev;
-  d.have_previous = s.have_previous;
-  for (std::size_t i = 0; i < d.bodies.size(); ++i) d.bodies[i].step_alpha = s.step_alpha[i];
-  d.predictor_far = s.predictor_far;
-  d.newton_kappa = s.newton_kappa;
-  d.kappa_age = s.kappa_age;
-  d.stats.last_iterations = s.last_iterations;
-  std::copy(s.angle_ref.begin(), s.angle_ref.end(), d.angle_ref.begin());
+  d.state = s;
   // The factorised tangent belongs to another state and step (reuse_jacobian would keep it).
   d.tangent_valid = false;
 }

@@ -29,8 +29,8 @@ DriveReference reference(const Model& model, const Data& data, int i) {
   const Body& b = model.bodies[static_cast<std::size_t>(i)];
   const Joint& j = model.joints[static_cast<std::size_t>(b.drive.joint)];
   DriveReference ref;
-  ref.r0 = data.q.segment<3>(b.offset);
-  ref.A = Eigen::Map<const Matrix3d>(data.q.data() + b.offset + 3);
+  ref.r0 = data.state.q.segment<3>(b.offset);
+  ref.A = Eigen::Map<const Matrix3d>(data.state.q.data() + b.offset + 3);
   // The ground's marker gives the fixed point; the axis is marker 1's e, the axis the joint's
   // coordinate is measured about (along): turning (moving) marker 2's body by +d, or marker 1's
   // body by -d, changes the coordinate by +d.
@@ -38,7 +38,7 @@ DriveReference reference(const Model& model, const Data& data, int i) {
   ref.point = ground.p;
   const Vector3d e1 = data.markers[static_cast<std::size_t>(j.m1)].e[0];
   ref.axis = (b.drive.side == 2 ? 1.0 : -1.0) * e1.normalized();
-  ref.value = b.drive.motion >= 0 ? motion_target(model, data, b.drive.motion, data.t)(0) : 0.0;
+  ref.value = b.drive.motion >= 0 ? motion_target(model, data, b.drive.motion, data.state.t)(0) : 0.0;
   return ref;
 }
 
@@ -61,7 +61,7 @@ void set_unknowns(const Model& model, Data& data, bool eliminate) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
     if (b.driven()) data.drive_ref[i] = reference(model, data, static_cast<int>(i));
-    if (b.frame_locked) data.drive_ref[i].A = Eigen::Map<const Matrix3d>(data.q.data() + b.offset + 3);
+    if (b.frame_locked) data.drive_ref[i].A = Eigen::Map<const Matrix3d>(data.state.q.data() + b.offset + 3);
   }
   data.nf = model.nfree;
   if (model.nunknown < model.nfree)
@@ -81,7 +81,7 @@ void set_unknowns(const Model& model, Data& data, bool eliminate) {
   data.nblocks = model.active_blocks;
   for (std::size_t i = 0; i < model.bodies.size(); ++i) data.integrated[i] = model.bodies[i].driven() ? 0 : 1;
   data.tangent_valid = false;
-  drive_bodies(model, data, data.t);
+  drive_bodies(model, data, data.state.t);
 }
 
 void drive_bodies(const Model& model, Data& data, double t) {
@@ -90,9 +90,9 @@ void drive_bodies(const Model& model, Data& data, double t) {
     const Body& b = model.bodies[i];
     if (b.frame_locked) {  // it slides only: the frame as it was, at rest
       const int o = b.offset;
-      Eigen::Map<Matrix3d>(data.q.data() + o + 3) = data.drive_ref[i].A;
-      data.qd.segment<9>(o + 3).setZero();
-      data.qdd.segment<9>(o + 3).setZero();
+      Eigen::Map<Matrix3d>(data.state.q.data() + o + 3) = data.drive_ref[i].A;
+      data.state.qd.segment<9>(o + 3).setZero();
+      data.state.qdd.segment<9>(o + 3).setZero();
       continue;
     }
     if (!b.driven()) continue;
@@ -118,12 +118,12 @@ void drive_bodies(const Model& model, Data& data, double t) {
       r0dd = v(2) * ref.axis;
     }
     const int o = b.offset;
-    data.q.segment<3>(o) = r0;
-    data.qd.segment<3>(o) = r0d;
-    data.qdd.segment<3>(o) = r0dd;
-    Eigen::Map<Matrix3d>(data.q.data() + o + 3) = A;
-    Eigen::Map<Matrix3d>(data.qd.data() + o + 3) = Ad;
-    Eigen::Map<Matrix3d>(data.qdd.data() + o + 3) = Add;
+    data.state.q.segment<3>(o) = r0;
+    data.state.qd.segment<3>(o) = r0d;
+    data.state.qdd.segment<3>(o) = r0dd;
+    Eigen::Map<Matrix3d>(data.state.q.data() + o + 3) = A;
+    Eigen::Map<Matrix3d>(data.state.qd.data() + o + 3) = Ad;
+    Eigen::Map<Matrix3d>(data.state.qdd.data() + o + 3) = Add;
   }
 }
 

@@ -19,7 +19,7 @@ void evaluate(const Model& model, Data& data, double t, Scope scope) {
 
 // W, T and the factorisation cover the unknowns only: the leading nf x nf blocks.
 void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& lam, bool modal_acceleration) {
-  const StepCoefficients& k = data.scheme.k;  // kv = h/2, kq = h^2/4 for the trapezoidal rule
+  const StepCoefficients& k = data.state.k;  // kv = h/2, kq = h^2/4 for the trapezoidal rule
   const int nf = data.nf;
   force_tangents(model, data, t);
   auto W = data.W.topLeftCorner(nf, nf);
@@ -29,14 +29,14 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
     if (!data.integrated[i]) continue;
     auto Wb = W.block(b.offset, b.offset, b.ncoord(), b.ncoord());
     Wb += data.bodies[i].M;
-    body_stiffening_rate_tangents(b, data.bodies[i], data.q.segment(b.offset + 12, b.nq), data.qd.segment(b.offset + 12, b.nq),
+    body_stiffening_rate_tangents(b, data.bodies[i], data.state.q.segment(b.offset + 12, b.nq), data.state.qd.segment(b.offset + 12, b.nq),
                                   k.kv, Wb);
   }
   refresh_constraint_tangent(model, data, lam, modal_acceleration);
 }
 
 void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& lam, bool modal_acceleration) {
-  const double kq = data.scheme.k.kq;
+  const double kq = data.state.k.kq;
   // The rows' penalties data.alpha were set by step() at its start.
   data.T.topLeftCorner(data.nf, data.nf) = data.W.topLeftCorner(data.nf, data.nf);
   add_penalty_tangent(model, data, data.alpha, kq, data.T);
@@ -53,7 +53,7 @@ void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& 
 
 void factorize_metric(const Model& model, Data& data) {
   data.T.topLeftCorner(data.nf, data.nf) = data.W.topLeftCorner(data.nf, data.nf);
-  add_penalty_tangent(model, data, data.alpha, data.scheme.k.kq, data.T);
+  add_penalty_tangent(model, data, data.alpha, data.state.k.kq, data.T);
   factorize_tangent(data);
   // Not Newton's tangent: a step that would keep it (reuse_jacobian) builds its own.
   data.tangent_valid = false;

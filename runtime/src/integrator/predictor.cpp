@@ -23,8 +23,8 @@ Eigen::Map<const Matrix3d> frame(const VectorXd& z, int offset) { return Eigen::
 }  // namespace
 
 void predict_frames(const Model& model, Data& data) {
-  const double h = data.scheme.k.h;
-  const double r = h / data.scheme.k.h_prev;  // this step over the last (adaptive steps)
+  const double h = data.state.k.h;
+  const double r = h / data.state.k.h_prev;  // this step over the last (adaptive steps)
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     if (!data.integrated[i]) continue;  // a driven body is placed by drive_bodies
     const int o = model.bodies[i].offset;
@@ -34,17 +34,17 @@ void predict_frames(const Model& model, Data& data) {
     // A_dot^T A_dot being symmetric, alpha~ = skew(A^T A_ddot)).
     const Vector3d omega = A * body_omega(A, frame(data.qd0, o));
     const Vector3d alpha = A * body_omega(A, frame(data.qdd0, o));
-    if (data.have_previous) {  // a step before this one: step_alpha is its start's
+    if (data.state.have_previous) {  // a step before this one: step_alpha is its start's
       // Rotation vector of the step to third order, the rate of alpha from the last step (the
       // commutator terms vanish for a fixed axis and are of the order of the error otherwise).
-      const Vector3d turn = h * omega + 0.5 * h * h * alpha + (r * h * h / 6) * (alpha - bd.step_alpha);
+      const Vector3d turn = h * omega + 0.5 * h * h * alpha + (r * h * h / 6) * (alpha - data.state.step_alpha[i]);
       const double angle = turn.norm();
       if (angle > 0) {
         const Matrix3d A_next = Eigen::AngleAxisd(angle, turn / angle).toRotationMatrix() * A;
-        Eigen::Map<Matrix3d>(data.q.data() + o + 3) = A_next;
+        Eigen::Map<Matrix3d>(data.state.q.data() + o + 3) = A_next;
       }
     }
-    bd.step_alpha = alpha;
+    data.state.step_alpha[i] = alpha;
   }
 }
 

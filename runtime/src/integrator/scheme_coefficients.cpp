@@ -63,12 +63,12 @@ StepCoefficients trapezoidal_coefficients(double h) {
 }
 
 void set_step_coefficients(const Model& model, Data& data, double h) {
-  const double h_prev = data.scheme.k.h;
+  const double h_prev = data.state.k.h;
   if (trapezoidal(model, data)) {
-    data.scheme.k = trapezoidal_coefficients(h);
+    data.state.k = trapezoidal_coefficients(h);
   } else {
     const AlphaParameters p = AlphaParameters::from_spectral_radius(model.settings.spectral_radius);
-    StepCoefficients& k = data.scheme.k;
+    StepCoefficients& k = data.state.k;
     k.h = h;
     k.c1 = p.gamma / (p.beta * h);
     k.c2 = (1 - p.alpha_m) / ((1 - p.alpha_f) * p.beta * h * h);
@@ -77,15 +77,15 @@ void set_step_coefficients(const Model& model, Data& data, double h) {
     // A new step size: a_n stands for the acceleration at t_n + (alpha_m - alpha_f) h (Arnold &
     // Bruls), so its lead over q_ddot_n is rescaled with h; kept, it would be a first-order
     // error of the new step's a_n.
-    if (data.have_previous && h != h_prev && h_prev > 0) data.scheme.a = data.qdd + (h / h_prev) * (data.scheme.a - data.qdd);
+    if (data.state.have_previous && h != h_prev && h_prev > 0) data.state.a = data.state.qdd + (h / h_prev) * (data.state.a - data.state.qdd);
   }
-  data.scheme.k.h_prev = h_prev > 0 ? h_prev : h;
+  data.state.k.h_prev = h_prev > 0 ? h_prev : h;
 }
 
 void start_generalized_alpha(const Model& model, Data& data, double h) {
   const AlphaParameters p = AlphaParameters::from_spectral_radius(model.settings.spectral_radius);
   const double delta = p.alpha_m - p.alpha_f;
-  data.scheme.a = data.qdd;
+  data.state.a = data.state.qdd;
   if (delta == 0) return;  // rho_inf = 1: a_n = q_ddot_n, the trapezoidal rule
   save_state(data, data.start);
   data.scheme.start_step = true;
@@ -97,14 +97,14 @@ void start_generalized_alpha(const Model& model, Data& data, double h) {
     throw;
   }
   data.scheme.start_step = false;
-  data.vstar = data.qdd;  // q_ddot_1 (vstar: the projections' work, free between steps)
+  data.vstar = data.state.qdd;  // q_ddot_1 (vstar: the projections' work, free between steps)
   restore_state(data.start, data);
-  data.scheme.a = data.qdd + delta * (data.vstar - data.qdd);
+  data.state.a = data.state.qdd + delta * (data.vstar - data.state.qdd);
   --data.stats.steps;  // not a step of the run
 }
 
 void set_step_predictors(const Model& model, Data& data) {
-  const StepCoefficients& k = data.scheme.k;
+  const StepCoefficients& k = data.state.k;
   const double h = k.h;
   if (trapezoidal(model, data)) {
     const double h2 = h * h;
@@ -113,7 +113,7 @@ void set_step_predictors(const Model& model, Data& data) {
     return;
   }
   const AlphaParameters p = AlphaParameters::from_spectral_radius(model.settings.spectral_radius);
-  VectorXd& a = data.scheme.a;
+  VectorXd& a = data.state.a;
   // a_{n+1} = q / (beta h^2) + base, base = -(q_n + h q_dot_n + h^2 (1/2 - beta) a_n) / (beta h^2);
   // data.tmp holds base (free at this point of the step).
   const double bh2 = p.beta * h * h;
@@ -126,13 +126,13 @@ void set_step_predictors(const Model& model, Data& data) {
 void finish_step_scheme(const Model& model, Data& data) {
   if (trapezoidal(model, data)) return;
   const AlphaParameters p = AlphaParameters::from_spectral_radius(model.settings.spectral_radius);
-  data.scheme.a = ((1 - p.alpha_f) / (1 - p.alpha_m)) * data.qdd + (p.alpha_f / (1 - p.alpha_m)) * data.qdd0 -
-                  (p.alpha_m / (1 - p.alpha_m)) * data.scheme.a;
+  data.state.a = ((1 - p.alpha_f) / (1 - p.alpha_m)) * data.state.qdd + (p.alpha_f / (1 - p.alpha_m)) * data.qdd0 -
+                  (p.alpha_m / (1 - p.alpha_m)) * data.state.a;
 }
 
 double local_error(const Model& model, const Data& data) {
   const SolverSettings& s = model.settings;
-  const double h = data.scheme.k.h;
+  const double h = data.state.k.h;
   // Local errors (exact minus computed) for a smooth solution: the Taylor predictor's
   // -h^3/6 q''' against the scheme's. Trapezoidal: q_{n+1} = q_n + h q_dot_n + h^2/4 (q_ddot_n +
   // q_ddot_{n+1}) is off by +h^3/12 q''', so the converged minus the predicted coordinates are
@@ -153,8 +153,8 @@ double local_error(const Model& model, const Data& data) {
   double worst = 0;
   const auto measure = [&](int i, double unit) {
     const double pred = data.q0(i) + h * data.qd0(i) + 0.5 * h * h * data.qdd0(i);
-    const double e = ratio * std::abs(data.q(i) - pred) * unit;
-    const double size = std::max(std::abs(data.q0(i)), std::abs(data.q(i))) * unit;
+    const double e = ratio * std::abs(data.state.q(i) - pred) * unit;
+    const double size = std::max(std::abs(data.q0(i)), std::abs(data.state.q(i))) * unit;
     worst = std::max(worst, e / ((atol + s.rtol * size) * share));
   };
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {

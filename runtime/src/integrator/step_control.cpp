@@ -41,8 +41,8 @@ double min_step(const Model& model, const StepControlLimits& lim) {
 [[noreturn]] void give_up(const Model& model, const StepControlLimits& lim, const Data& data, double h, const std::string& why) {
   char buf[160];
   std::snprintf(buf, sizeof buf, "adaptive step: the step fell below the minimum %.3g s at t = %.9g s (last tried %.3g s): ",
-                min_step(model, lim), data.t, h);
-  throw SolverError(data.t, h,
+                min_step(model, lim), data.state.t, h);
+  throw SolverError(data.state.t, h,
                     buf + why + "; loosen rtol/atol, or look for a discontinuity or a locked mechanism at that time");
 }
 
@@ -73,8 +73,8 @@ void advance_to(const Model& model, Data& data, StepControl& c, double t_target)
   const SolverSettings& s = model.settings;
   const double h_max = s.max_step > 0 ? s.max_step : s.output_interval > 0 ? s.output_interval : std::numeric_limits<double>::infinity();
   bool after_reject = false;
-  while (data.t < t_target) {
-    const double left = t_target - data.t;
+  while (data.state.t < t_target) {
+    const double left = t_target - data.state.t;
     const double wanted = std::min(c.h_next, h_max);
     double h = wanted;
     bool lands = false;
@@ -87,7 +87,7 @@ void advance_to(const Model& model, Data& data, StepControl& c, double t_target)
     if (h < h_min) give_up(model, lim, data, h, "the error estimate kept rejecting the step");
     save_state(data, c.saved);
     // With reuse_jacobian a tangent of another step size would be stale from its first iterate.
-    if (h != data.scheme.k.h) data.tangent_valid = false;
+    if (h != data.state.k.h) data.tangent_valid = false;
     try {
       step(model, data, h);
     } catch (const SolverError& e) {
@@ -107,7 +107,7 @@ void advance_to(const Model& model, Data& data, StepControl& c, double t_target)
       after_reject = true;
       continue;
     }
-    if (lands) data.t = t_target;  // t + (t_target - t) may miss it by the last bit
+    if (lands) data.state.t = t_target;  // t + (t_target - t) may miss it by the last bit
     ++c.accepted;
     c.accepted_any = true;
     c.h_next = h * std::min(after_reject ? 1.0 : lim.grow_max, fac);

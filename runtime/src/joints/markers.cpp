@@ -47,9 +47,9 @@ void marker_kinematics(const Model& model, const Marker& mk, const Data& data, M
   const int o = b.offset;
   const bool on_node = mk.node >= 0 && b.nq > 0;
   md.xbar = mk.c;
-  const double* y = data.q.data() + o + 12;
+  const double* y = data.state.q.data() + o + 12;
   if (on_node) md.xbar += slice_times(mk.phi, y);
-  md.p = data.q.segment<3>(o);
+  md.p = data.state.q.segment<3>(o);
   md.p.noalias() += bd.A * md.xbar;
   local_jacobian(bd.A, md.xbar, on_node ? &mk.phi : nullptr, true, md.Jp);
   for (int k = 0; k < 3; ++k) {
@@ -68,10 +68,10 @@ void marker_rates(const Model& model, const Marker& mk, const Data& data, Marker
   const BodyData& bd = data.bodies[mk.body];
   const int o = b.offset;
   const bool on_node = mk.node >= 0 && b.nq > 0;
-  md.pd = data.qd.segment<3>(o);
+  md.pd = data.state.qd.segment<3>(o);
   md.pd.noalias() += bd.Ad * md.xbar;
   md.pb.setZero();
-  const double* yd = data.qd.data() + o + 12;
+  const double* yd = data.state.qd.data() + o + 12;
   if (on_node) {
     const Vector3d py = slice_times(mk.phi, yd);
     md.pd.noalias() += bd.A * py;
@@ -92,7 +92,7 @@ void marker_rates(const Model& model, const Marker& mk, const Data& data, Marker
   // are then their whole accelerations, J z_ddot + J_dot z_dot, which the constraints' gamma
   // takes as it takes the ground's zeros.
   if (!integrated(data, mk.body)) {
-    const double* zdd = data.qdd.data() + o;
+    const double* zdd = data.state.qdd.data() + o;
     md.pb += slice_times(md.Jp, zdd);
     for (int k = 0; k < 3; ++k)
       if (mk.axes[k]) md.eb[k] += slice_times(md.Je[k], zdd);

@@ -47,7 +47,7 @@ RunInfo simulate_adaptive(const Model& model, Data& data, Recorder& rec, const R
   for (std::int64_t i = 1; i <= n; ++i) {
     advance_to(model, data, control, output_time(model, i));
     rec.record(model, data);
-    progress(data.t, model.settings.end);
+    progress(data.state.t, model.settings.end);
   }
   RunInfo info;
   info.steps = control.accepted;
@@ -69,7 +69,7 @@ RunInfo simulate(const Model& model, Data& data, Recorder& rec, const RunOptions
   for (std::int64_t i = 1; i <= n; ++i) {
     step(model, data);
     if (i % every == 0 || i == n) rec.record(model, data);
-    progress(data.t, model.settings.end);
+    progress(data.state.t, model.settings.end);
   }
   RunInfo info;
   info.steps = n;

@@ -37,7 +37,7 @@ Timing time_runs(const Model& model, int repeats) {
     const bench::StepTiming st = bench::run_timed(model, data);
     t.step_us = std::min(t.step_us, st.us_per_step);
     t.iterations = st.iterations_per_step;
-    t.q = data.q;
+    t.q = data.state.q;
     // The inertia evaluation alone: what the two ways differ in, per Newton iteration.
     const int reps = 2000;
     const auto t0 = std::chrono::steady_clock::now();
@@ -49,9 +49,9 @@ Timing time_runs(const Model& model, int repeats) {
         data.tmp.setZero();
         auto Qb = data.tmp.segment(body.offset, body.ncoord());
         if (body.full_mass)
-          fe_inertia_forces(body, data.bodies[b], data.qd.segment(body.offset, body.ncoord()), Qb);
+          fe_inertia_forces(body, data.bodies[b], data.state.qd.segment(body.offset, body.ncoord()), Qb);
         else
-          body_inertia_forces(body, data.bodies[b], data.qd.segment(body.offset, body.ncoord()), Qb);
+          body_inertia_forces(body, data.bodies[b], data.state.qd.segment(body.offset, body.ncoord()), Qb);
       }
     }
     t.inertia_us = std::min(t.inertia_us, 1e6 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / reps);

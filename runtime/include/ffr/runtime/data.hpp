@@ -36,7 +36,6 @@ struct BodyData {
   MatrixXd feB, feG, feD;       ///< co-rotational path only: B, M_FE B, dw/dz_dot [3N, nb]
   VectorXd few;                 ///< co-rotational path only: 2 A_dot Phi y_dot [3N]
   VectorXd wq;                  ///< work [nq]
-  Vector3d step_alpha = Vector3d::Zero(); ///< angular acceleration at the last step's start (predict_frames)
 };
 
 /// A marker's position and axes with their Jacobians (columns: the coordinates of its body).
@@ -55,7 +54,7 @@ struct Stats {
   std::int64_t newton_iterations = 0;
   std::int64_t factorizations = 0;
   std::int64_t solves = 0;       ///< solves with the factorised tangent (Newton, projections)
-  int last_iterations = 0;
+  int last_iterations = 0;      ///< of the last step (the policy reads State::last_iterations)
   double last_increment = 0;    ///< scaled
   double last_violation = 0;    ///< max |Phi| / length after the step
   double last_velocity_violation = 0;
@@ -76,10 +75,11 @@ struct DriveReference {
 struct Data {
   explicit Data(const Model& model);
 
-  double t = 0;
-  /// The integration scheme's coefficients and state (scheme.hpp).
+  /// The state (state.hpp): t, q, q_dot, q_ddot, lambda and what the next step reads of the
+  /// steps before. Everything below it is workspace that a step rebuilds before reading it.
+  State state;
+  /// The scheme's mode (scheme.hpp); its coefficients and pseudo-acceleration are in the state.
   SchemeState scheme;
-  VectorXd q, qd, qdd, lambda;  ///< state: coordinates, rates, accelerations, multipliers
   /// Work: the state the generalized-alpha start returns to after its trapezoidal step.
   State start;
 
@@ -124,19 +124,7 @@ struct Data {
   // Integrator work.
   VectorXd q0, qd0, qdd0;       ///< state at the start of the step
   VectorXd qd_hat, qdd_hat;     ///< the scheme's affine terms (scheme.hpp)
-  VectorXd qdd_prev;            ///< accelerations of the step before (predictor)
-  bool have_previous = false;
   VectorXd f, dq, r, sigma, c, tmp, vstar;
-  /// Newton's quadratic constant after a fresh tangent, inc_next / inc^2, as last measured, and
-  /// the steps since (ali3p.cpp: accepting an iterate on it).
-  double newton_kappa = std::numeric_limits<double>::infinity();
-  int kappa_age = 0;
-  /// The last step rebuilt its predictor's tangent at the second iterate (kStaleTangent): the
-  /// predictor is then too far off for its accelerations to serve the tangent (ali3p.cpp).
-  bool predictor_far = false;
-
-  // Joints: unwrapped angle of each revolute/cylindrical joint at the last accepted step.
-  std::vector<double> angle_ref;
   // Motions: values from the C API override the table when set.
   std::vector<char> motion_external;
   std::vector<Eigen::Vector3d> motion_value;  ///< value, rate, acceleration

@@ -24,7 +24,7 @@ void mass_times(const Model& model, const Data& data, const VectorXd& x, VectorX
 void add_modal_acceleration_tangent(const Model& model, const Data& data, double scale, MatrixXd& T);
 
 /// data.Q at time t. Needs update_bodies, update_markers and the mass matrices (for nothing
-/// else than the stiffening accelerations, which come from data.qdd). A driven body's own terms
+/// else than the stiffening accelerations, which come from data.state.qdd). A driven body's own terms
 /// (while it is eliminated) are left out: nothing reads them.
 void generalized_forces(const Model& model, Data& data, double t);
 

@@ -23,10 +23,10 @@ void evaluate(const Model& model, Data& data, double t, Scope scope = Scope::All
 /// sentences for the caller to show. Throws SolverError if the constraints cannot be met.
 std::vector<std::string> initialize(const Model& model, Data& data);
 
-/// One step of settings.step from data.t. Throws SolverError when Newton does not converge.
+/// One step of settings.step from data.state.t. Throws SolverError when Newton does not converge.
 /// Allocation-free.
 void step(const Model& model, Data& data);
-/// One step of h from data.t (adaptive steps, step_control.cpp); the same otherwise.
+/// One step of h from data.state.t (adaptive steps, step_control.cpp); the same otherwise.
 void step(const Model& model, Data& data, double h);
 
 /// Which coordinates are the step's unknowns: every body's (eliminate = false: what the
@@ -43,12 +43,12 @@ void drive_bodies(const Model& model, Data& data, double t);
 /// data.na), relative to the model length, and the block that has it (-1 when none).
 double driven_violation(const Model& model, const Data& data, int& block);
 
-/// Replaces the frame vectors of the predictor data.q by each body's frame at the step start
+/// Replaces the frame vectors of the predictor data.state.q by each body's frame at the step start
 /// (data.q0) turned by the rotation its angular velocity and acceleration predict.
 /// Allocation-free.
 void predict_frames(const Model& model, Data& data);
 
-/// Projects data.qd (then data.qdd) onto the velocity (acceleration) constraints in the metric
+/// Projects data.state.qd (then data.state.qdd) onto the velocity (acceleration) constraints in the metric
 /// of the last factorised tangent. Needs evaluate() at the current q. Returns the scaled residual.
 /// A projection that does not converge (after a fresh tangent and the metric alone) throws a
 /// SolverError, or, for the velocities with must_converge = false, returns infinity.

@@ -32,17 +32,15 @@ struct AlphaParameters {
   static AlphaParameters from_spectral_radius(double rho_inf);
 };
 
-/// The scheme's state beyond (q, q_dot, q_ddot, lambda): the pseudo-acceleration `a` of the
-/// generalized-alpha recurrence (unused by the trapezoidal rule) and the step's coefficients.
+/// The scheme's mode. Its state beyond (q, q_dot, q_ddot, lambda) — the step's coefficients and
+/// the pseudo-acceleration `a` of the generalized-alpha recurrence — is in State (state.hpp).
 struct SchemeState {
-  StepCoefficients k;
-  Eigen::VectorXd a;  ///< pseudo-acceleration a_n (generalized-alpha)
   /// Set while the generalized-alpha start takes its trapezoidal step (start_generalized_alpha):
   /// the scheme's functions then act as the trapezoidal rule's.
   bool start_step = false;
 };
 
-/// Sets data.scheme.k for a step of h from data.t (and remembers the previous step).
+/// Sets data.state.k for a step of h from data.state.t (and remembers the previous step).
 void set_step_coefficients(const Model& model, Data& data, double h);
 /// The trapezoidal coefficients for h: the metric the initial conditions' projections use.
 StepCoefficients trapezoidal_coefficients(double h);
@@ -55,7 +53,7 @@ StepCoefficients trapezoidal_coefficients(double h);
 void start_generalized_alpha(const Model& model, Data& data, double h);
 
 /// data.qd_hat and data.qdd_hat from the start-of-step state (data.q0, qd0, qdd0 and, for
-/// generalized-alpha, data.scheme.a). Allocation-free.
+/// generalized-alpha, data.state.a). Allocation-free.
 void set_step_predictors(const Model& model, Data& data);
 
 /// After the projections: advances the pseudo-acceleration with the projected accelerations,

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include <limits>
 #include <vector>
 
 namespace ffr::runtime {
@@ -33,7 +34,7 @@ struct State {
   std::vector<Vector3d> step_alpha;  ///< per body: angular acceleration at the last step's start
   // The step's policy memory (step_policy.hpp).
   bool predictor_far = false;
-  double newton_kappa = 0;
+  double newton_kappa = std::numeric_limits<double>::infinity();  ///< infinite until first measured
   int kappa_age = 0;
   int last_iterations = 0;       ///< Newton iterations of the last step (reuse_jacobian)
   // Joints: the unwrapped angle of each revolute/cylindrical joint at the last step.

@@ -42,7 +42,7 @@ double initial_step(const Model& model);
 std::int64_t output_count(const Model& model);
 double output_time(const Model& model, std::int64_t k);
 
-/// Advances data from data.t to exactly t_target with steps whose estimated local error is within
+/// Advances data from data.state.t to exactly t_target with steps whose estimated local error is within
 /// their share of the tolerances. Throws SolverError (naming the time) when the step falls below the minimum.
 /// Allocation-free.
 void advance_to(const Model& model, Data& data, StepControl& control, double t_target);
