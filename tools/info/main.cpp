@@ -22,6 +22,14 @@ an ffr-sim results file (time span, statistics, output channels with their final
   --png OUT.png           with --campbell: also draw the diagram into OUT.png
   --plot CH1,CH2[i],...   of an ffr-sim results file: draw the time histories of these output
                           channels (all components, or component i from 0) into --png OUT.png
+  --stress BODY           of an ffr-sim results file: von Mises and principal stresses over
+                          time at the nodes of BODY's SID /stress group (sigma = sum_k q_k S_k,
+                          q the run's modal_coordinates output of BODY): a table of each node's
+                          peak, or with --json every sample ({"time", "nodes": [{"node",
+                          "position", "von_mises": [nt], "principal": [nt][3]}]}), stress in
+                          the SID's units (Pa), principal stresses descending
+  --model MODEL.json      with --stress: the model file of the run (default: the one the run
+                          names in its attribute `model`, as given or beside the run)
   --help, --version
 
 Exit status: 0 ok, 2 bad input (named on stderr), 1 other failure. Bad input includes a
@@ -31,7 +39,7 @@ the file and the first failed check, and the status is 2. A file of format_versi
 content checksums) is read with a warning on stderr. In --json output, bytes of a string that
 are not valid UTF-8 are replaced by U+FFFD.
 )",
-    "ffr-info FILE.h5 [--json] | ffr-info FILE.sid.h5 --campbell x|y|z --speeds 0,50,100 [--json] [--png OUT.png] | ffr-info RESULTS.h5 --plot CH1,CH2 --png OUT.png"};
+    "ffr-info FILE.h5 [--json] | ffr-info FILE.sid.h5 --campbell x|y|z --speeds 0,50,100 [--json] [--png OUT.png] | ffr-info RESULTS.h5 --plot CH1,CH2 --png OUT.png | ffr-info RESULTS.h5 --stress BODY [--model MODEL.json] [--json]"};
 
 int run(ffr::cli::Args& a) {
   using ffr::cli::UsageError;
@@ -40,8 +48,15 @@ int run(ffr::cli::Args& a) {
   const auto speeds = a.option("--speeds");
   const auto png = a.option("--png");
   const auto plot = a.option("--plot");
+  const auto stress = a.option("--stress");
+  const auto model = a.option("--model");
   const auto files = a.positionals();
   if (files.size() != 1) throw UsageError(files.empty() ? "missing FILE" : "expected one FILE, got " + std::to_string(files.size()));
+  if (stress) {
+    if (plot || campbell || speeds || png) throw UsageError("--stress goes with --json and --model only");
+    return ffr::info::run_stress(files[0], *stress, model.value_or(""), json);
+  }
+  if (model) throw UsageError("--model needs --stress BODY");
   if (plot) {
     if (campbell || speeds) throw UsageError("--plot and --campbell do not go together");
     return ffr::info::run_plot(files[0], *plot, png.value_or(""));
