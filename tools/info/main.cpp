@@ -3,6 +3,7 @@
 #include "summary.hpp"
 
 #include "ffr/cli/cli.hpp"
+#include "ffr/formats/modal_stress.hpp"
 #include "ffr/formats/sid_io.hpp"
 
 #include <iostream>
@@ -78,6 +79,10 @@ int run(ffr::cli::Args& a) {
     } else {
       const auto version = r.has_attr("/", "format_version") ? r.attr_int("/", "format_version") : 0;
       summary = ffr::info::summarize_sid(ffr::formats::read_sid(files[0], &warnings), files[0], version);
+      // The optional /stress group, which read_sid leaves out (formats/SPEC.md section 12.1).
+      const auto stress = ffr::formats::read_modal_stress(files[0]);
+      summary["stress"] = stress ? nlohmann::json{{"nodes", stress->size()}, {"selection", stress->selection}}
+                                 : nlohmann::json(nullptr);
     }
   }
   summary["warnings"] = warnings;
