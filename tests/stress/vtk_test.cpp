@@ -300,3 +300,28 @@ TEST(VtkSeries, SidWithoutSurfaceIsRefusedBeforeTheRun) {
   for (const auto& e : std::filesystem::directory_iterator(run.dir.path()))
     EXPECT_EQ(e.path().filename().string().find(".run"), std::string::npos) << e.path();
 }
+
+// The frames folder is replaced at the end of a run, so one holding anything but frames is
+// refused before the run; a collection not named .pvd likewise.
+TEST(VtkSeries, ForeignFramesFolderAndWrongNameAreRefused) {
+  if (!have_tools()) GTEST_SKIP() << "gmsh, ffr-reduce or ffr-sim missing";
+  Scene run(true);
+  std::filesystem::create_directories(run.dir / "run_frames");
+  test::write_text(run.dir / "run_frames" / "notes.txt", "mine");
+  auto r = run.sim();
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("holds notes.txt, which is not a frame"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(run.dir / "run_frames" / "notes.txt"));
+  EXPECT_FALSE(std::filesystem::exists(run.dir / "run.h5"));
+  r = test::run("cd " + run.dir.path().string() + " && " + test::bin("ffr-sim").string() +
+                " model.json -o run.h5 --vtk run.vtu --quiet");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("must end in .pvd"), std::string::npos) << r.output;
+  // Frames of an earlier run are replaced.
+  std::filesystem::remove(run.dir / "run_frames" / "notes.txt");
+  test::write_text(run.dir / "run_frames" / "frame_000099.vtu", "old");
+  r = run.sim();
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(run.dir / "run_frames" / "frame_000099.vtu"));
+  EXPECT_TRUE(std::filesystem::exists(run.dir / "run_frames" / "frame_000000.vtu"));
+}
