@@ -181,6 +181,8 @@ void write_all(const Sid& s, h5::Writer& w) {
     w.write("/visual/modes", modes.data(), S({nq, nv, 3}));
   }
 
+  if (s.stress) write_modal_stress(w, *s.stress);
+
   write_provenance(w, s.provenance);
 }
 
@@ -276,6 +278,7 @@ void check_sizes(const Sid& s) {
     for (Eigen::Index t = 0; t < s.visual.triangles.size(); ++t)
       if (s.visual.triangles.data()[t] < 0 || s.visual.triangles.data()[t] >= s.visual.vertices.rows()) bad("visual.triangles");
   }
+  if (s.stress) check_modal_stress(*s.stress, nq);
 }
 
 void write_sid(const Sid& sid, const std::filesystem::path& path) {

@@ -5,6 +5,7 @@
 #include "ffr/preproc/mesh/gmsh_import.hpp"
 #include "ffr/preproc/reduce/damping.hpp"
 #include "ffr/preproc/reduce/invariants.hpp"
+#include "ffr/preproc/reduce/modal_stress.hpp"
 #include "ffr/preproc/reduce/node_data.hpp"
 #include "ffr/preproc/reduce/reduction.hpp"
 #include "ffr/preproc/reduce/stiffening.hpp"
@@ -89,6 +90,8 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   const FeModel model = build_model(mesh, part);
   stage("model: " + std::to_string(model.num_dofs) + " DOF, " + std::to_string(model.interfaces.size()) +
         " interface(s), " + std::to_string(model.masses.size()) + " attached mass(es) [" + fmt(sw.lap()) + " s]");
+  // The stress request is checked against the mesh before the reduction's minutes are spent.
+  const std::vector<Index> stress_at = part.stress ? stress_nodes(model) : std::vector<Index>{};
 
   // 3. Assembly, with the eigen-solve's symbolic analysis on another thread meanwhile.
   EarlyAnalysis early = EarlyAnalysis::start(model, part.reduction);
@@ -169,6 +172,11 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   stage("invariants: m = " + fmt(sid.refmod.mass, 6) + ", centre of mass (" + fmt(sid.mdCM.M0.x() / sid.refmod.mass) +
         ", " + fmt(sid.mdCM.M0.y() / sid.refmod.mass) + ", " + fmt(sid.mdCM.M0.z() / sid.refmod.mass) + ") [" +
         fmt(sw.lap()) + " s]");
+
+  if (part.stress) {
+    sid.stress = recover_modal_stress(model, red.Phi, stress_at);
+    stage("stress: " + std::to_string(stress_at.size()) + " nodes (" + sid.stress->selection + ") [" + fmt(sw.lap()) + " s]");
+  }
 
   // 6. Visual data.
   if (part.visual || !options.vtk.empty()) {

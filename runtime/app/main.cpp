@@ -2,6 +2,7 @@
 // Exit status: 0 ok, 2 bad input (one line naming the file and the field), 1 other failure.
 #include "ffr/cli/cli.hpp"
 #include "ffr/runtime/runtime.hpp"
+#include "vtk_series.hpp"
 
 #include <cstdint>
 #include <cstdio>
@@ -22,6 +23,10 @@ motions; flexible bodies from SID files) and writes the requested outputs to OUT
 
   -o, --output FILE   results file (HDF5), required
       --csv FILE      also write the outputs as CSV (one column per component, name[i])
+      --vtk RUN.pvd   also write a ParaView collection: one frame RUN_frames/frame_NNNNNN.vtu
+                      per output sample with every flexible body's deformed outer surface
+                      (the SID's /visual; point data displacement, and von_mises where the
+                      SID has a /stress group) and every rigid body as its inertia box
   -q, --quiet         no progress and no notes on stderr
   -h, --help          this text
       --version       the version
@@ -29,13 +34,14 @@ motions; flexible bodies from SID files) and writes the requested outputs to OUT
 Exit status: 0 ok, 2 bad input (malformed or inconsistent model, missing or bad SID file),
 1 other failure (e.g. Newton divergence, reported with the time and the residual).
 )",
-    "ffr-sim MODEL.json -o OUT.h5 [--csv OUT.csv] [--quiet]"};
+    "ffr-sim MODEL.json -o OUT.h5 [--csv OUT.csv] [--vtk RUN.pvd] [--quiet]"};
 
 int run(ffr::cli::Args& args) {
   using namespace ffr::runtime;
   auto out = args.option("-o");
   if (auto o = args.option("--output")) out = o;
   const auto csv = args.option("--csv");
+  const auto vtk = args.option("--vtk");
   const bool quiet = args.flag("-q") || args.flag("--quiet");
   const auto pos = args.positionals();
   if (pos.empty()) throw ffr::cli::UsageError("no model file given");
@@ -71,6 +77,9 @@ int run(ffr::cli::Args& args) {
     std::fprintf(stderr, "ffr-sim: error: %s\n", e.what());
     return 2;
   }
+  // Checked before the run (a SID without a surface is bad input); adds its hidden outputs.
+  std::optional<ffr::vtk::Series> series;
+  if (vtk) series.emplace(*vtk, pos[0], model);
   try {
     Data data(model);
     std::vector<std::string> notes = model.notes;
@@ -101,7 +110,12 @@ int run(ffr::cli::Args& args) {
     }
     const RunInfo info = simulate(model, data, rec, opt);
     if (reported) std::fputc('\n', stderr);
+    if (series) {
+      series->write_frames(model, rec);
+      model.outputs.resize(series->user_outputs());  // the results file holds the model file's outputs only
+    }
     write_results(*out, csv ? std::optional<std::filesystem::path>(*csv) : std::nullopt, model, rec, info);
+    if (series) series->commit();
     if (!quiet)
       std::fprintf(stderr, "ffr-sim: %lld steps, %lld Newton iterations, %.3f s integration (%.2f us per step)\n",
                    static_cast<long long>(info.steps), static_cast<long long>(info.newton_iterations),

@@ -70,10 +70,7 @@ void draw_panel(Canvas& cv, const formats::Results& r, const Selection& s, int t
     for (Eigen::Index i = 1; i < v.rows(); ++i)
       cv.line(a.X(r.time[i - 1]), a.Y(v(i - 1, c)), a.X(r.time[i]), a.Y(v(i, c)), col, 2);
     if (s.columns.size() > 1 || v.cols() > 1) {
-      // (Appended: `"[" + std::string&&` trips GCC 12's -Wrestrict false positive, PR105329.)
-      std::string key = "[";
-      key += std::to_string(c);
-      key += ']';
+      const std::string key = component_name(s.output->type, c, v.cols());
       cv.fill_rect(legend_x, a.top - 14, legend_x + 16, a.top - 10, col);
       cv.text(legend_x + 20, a.top - 19, key, col);
       legend_x += 20 + Canvas::text_width(key) + 16;

@@ -3,6 +3,7 @@
 #include "summary.hpp"
 
 #include "ffr/cli/cli.hpp"
+#include "ffr/formats/modal_stress.hpp"
 #include "ffr/formats/sid_io.hpp"
 
 #include <iostream>
@@ -21,7 +22,17 @@ an ffr-sim results file (time span, statistics, output channels with their final
   --speeds W1,W2,...      at these speeds [rad/s] (needs --campbell)
   --png OUT.png           with --campbell: also draw the diagram into OUT.png
   --plot CH1,CH2[i],...   of an ffr-sim results file: draw the time histories of these output
-                          channels (all components, or component i from 0) into --png OUT.png
+                          channels (all components, or component i from 0) into --png OUT.png;
+                          legends name the components by the output's type (kinetic/potential/
+                          total, x/y/z, Fx..Mz, mode k), else [i]
+  --stress BODY           of an ffr-sim results file: von Mises and principal stresses over
+                          time at the nodes of BODY's SID /stress group (sigma = sum_k q_k S_k,
+                          q the run's modal_coordinates output of BODY): a table of each node's
+                          peak, or with --json every sample ({"time", "nodes": [{"node",
+                          "position", "von_mises": [nt], "principal": [nt][3]}]}), stress in
+                          the SID's units (Pa), principal stresses descending
+  --model MODEL.json      with --stress: the model file of the run (default: the one the run
+                          names in its attribute `model`, as given or beside the run)
   --help, --version
 
 Exit status: 0 ok, 2 bad input (named on stderr), 1 other failure. Bad input includes a
@@ -31,7 +42,7 @@ the file and the first failed check, and the status is 2. A file of format_versi
 content checksums) is read with a warning on stderr. In --json output, bytes of a string that
 are not valid UTF-8 are replaced by U+FFFD.
 )",
-    "ffr-info FILE.h5 [--json] | ffr-info FILE.sid.h5 --campbell x|y|z --speeds 0,50,100 [--json] [--png OUT.png] | ffr-info RESULTS.h5 --plot CH1,CH2 --png OUT.png"};
+    "ffr-info FILE.h5 [--json] | ffr-info FILE.sid.h5 --campbell x|y|z --speeds 0,50,100 [--json] [--png OUT.png] | ffr-info RESULTS.h5 --plot CH1,CH2 --png OUT.png | ffr-info RESULTS.h5 --stress BODY [--model MODEL.json] [--json]"};
 
 int run(ffr::cli::Args& a) {
   using ffr::cli::UsageError;
@@ -40,8 +51,15 @@ int run(ffr::cli::Args& a) {
   const auto speeds = a.option("--speeds");
   const auto png = a.option("--png");
   const auto plot = a.option("--plot");
+  const auto stress = a.option("--stress");
+  const auto model = a.option("--model");
   const auto files = a.positionals();
   if (files.size() != 1) throw UsageError(files.empty() ? "missing FILE" : "expected one FILE, got " + std::to_string(files.size()));
+  if (stress) {
+    if (plot || campbell || speeds || png) throw UsageError("--stress goes with --json and --model only");
+    return ffr::info::run_stress(files[0], *stress, model.value_or(""), json);
+  }
+  if (model) throw UsageError("--model needs --stress BODY");
   if (plot) {
     if (campbell || speeds) throw UsageError("--plot and --campbell do not go together");
     return ffr::info::run_plot(files[0], *plot, png.value_or(""));
@@ -61,6 +79,10 @@ int run(ffr::cli::Args& a) {
     } else {
       const auto version = r.has_attr("/", "format_version") ? r.attr_int("/", "format_version") : 0;
       summary = ffr::info::summarize_sid(ffr::formats::read_sid(files[0], &warnings), files[0], version);
+      // The optional /stress group, which read_sid leaves out (formats/SPEC.md section 12.1).
+      const auto stress = ffr::formats::read_modal_stress(files[0]);
+      summary["stress"] = stress ? nlohmann::json{{"nodes", stress->size()}, {"selection", stress->selection}}
+                                 : nlohmann::json(nullptr);
     }
   }
   summary["warnings"] = warnings;

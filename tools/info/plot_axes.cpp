@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <vector>
 
 namespace ffr::info {
 namespace {
@@ -51,6 +53,24 @@ PlotArea draw_axes(Canvas& cv, PlotArea a, const std::string& title, const std::
   cv.text((a.left + a.right - Canvas::text_width(xlabel)) / 2, a.bottom + 32, xlabel, black);
   cv.text(a.left - 80, a.top - 20, ylabel, black);
   return a;
+}
+
+// The legend name of component c of an n-component output of this type (the model file's output
+// types, runtime/MODEL_FILE.md): kinetic/potential/total, x/y/z, mode numbers; [c] otherwise.
+std::string component_name(const std::string& type, long c, long n) {
+  static const std::map<std::string, std::vector<std::string>> names = {
+      {"energy", {"kinetic", "potential", "total"}},
+      {"node_position", {"x", "y", "z"}},
+      {"node_deformation", {"x", "y", "z"}},
+      {"node_velocity", {"x", "y", "z"}},
+      {"body_angular_velocity", {"x", "y", "z"}},
+      {"joint_reaction", {"Fx", "Fy", "Fz", "Mx", "My", "Mz"}}};
+  if (const auto it = names.find(type); it != names.end() && static_cast<long>(it->second.size()) == n)
+    return it->second[static_cast<std::size_t>(c)];
+  std::string key = type == "modal_coordinates" ? "mode " : "[";
+  key += std::to_string(type == "modal_coordinates" ? c + 1 : c);
+  if (type != "modal_coordinates") key += ']';
+  return key;
 }
 
 }  // namespace ffr::info

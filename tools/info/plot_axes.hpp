@@ -18,6 +18,11 @@ struct PlotArea {
 PlotArea draw_axes(Canvas& cv, PlotArea area, const std::string& title, const std::string& xlabel,
                    const std::string& ylabel);
 
+/// The legend name of component c of an n-component output of the model file's output `type`:
+/// kinetic/potential/total (energy), x/y/z (positions, deformations, velocities), Fx..Mz (joint
+/// reactions), "mode k" (modal coordinates, k from 1); [c] for other types.
+std::string component_name(const std::string& type, long c, long n);
+
 /// The eight line colours of the plots (matplotlib's "tab10" order).
 Rgb series_colour(std::size_t k);
 

@@ -1,5 +1,6 @@
 #pragma once
-// A minimal RGB raster with lines and a 5x7 bitmap font, written as PNG with zlib: enough to
+// A minimal RGB raster with lines and a 5x7 bitmap font of every printable ASCII character
+// (font5x7.cpp), written as PNG with zlib: enough to
 // draw a Campbell diagram without an external plotting program.
 #include <cstdint>
 #include <filesystem>

@@ -24,4 +24,7 @@ int run_campbell(const std::filesystem::path& file, const std::string& axis, con
 /// `ffr-info RESULTS.h5 --plot CH1,CH2[i],... --png OUT`: time histories, one panel per channel.
 int run_plot(const std::filesystem::path& file, const std::string& channels, const std::string& png);
 
+/// `ffr-info RESULTS.h5 --stress BODY [--model MODEL.json] [--json]` (stress_cmd.cpp).
+int run_stress(const std::filesystem::path& run, const std::string& body, const std::string& model, bool json);
+
 }  // namespace ffr::info

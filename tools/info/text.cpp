@@ -70,6 +70,8 @@ void sid_text(std::ostringstream& o, const json& s) {
   if (s["stiffening"].value("Ke_M1", false)) st += ", second-order stiffness Ke/M1";
   line(o, "stiffening", st);
   line(o, "visual", s["visual"].is_null() ? "no" : num(s["visual"]["vertices"]) + " vertices, " + num(s["visual"]["triangles"]) + " triangles");
+  if (s.contains("stress"))
+    line(o, "stress", s["stress"].is_null() ? "no" : num(s["stress"]["nodes"]) + " nodes (" + s["stress"]["selection"].get<std::string>() + ")");
   o << "  provenance\n";
   for (const auto& [k, v] : s["provenance"].items()) {
     if (v.is_string()) {

@@ -245,7 +245,7 @@ PartSpec load_part(const std::filesystem::path& path) {
   const JsonNode root = doc.root();
   if (!root.is_object()) root.fail("a part file is a JSON object");
   root.allow_only({"geometry", "mesh", "units", "groups", "materials", "shells", "beams", "point_masses",
-                   "interfaces", "reduction", "stiffening", "preload", "output_nodes", "damping", "visual", "comment"});
+                   "interfaces", "reduction", "stiffening", "preload", "output_nodes", "damping", "visual", "stress", "comment"});
   PartSpec p;
   p.file = path;
   const JsonNode g = root.at("geometry");
@@ -290,6 +290,20 @@ PartSpec load_part(const std::filesystem::path& path) {
       n.allow_only({"name", "at"});
       p.output_nodes.push_back({name_of(n), n.at("at").vec3()});
     }
+  if (auto st = root.find("stress")) {
+    if (!st->is_object()) st->fail("expected an object: {\"group\": NAME} or {\"surface\": true}");
+    st->allow_only({"group", "surface"});
+    StressSpec s;
+    if (auto g = st->find("group")) {
+      s.group = g->string();
+      if (s.group.empty()) g->fail("empty group name");
+    }
+    s.surface = st->boolean_or("surface", false);
+    if (s.surface == !s.group.empty())
+      st->fail(s.surface ? "give either \"group\" or \"surface\": true, not both"
+                         : "give \"group\": NAME or \"surface\": true");
+    p.stress = s;
+  }
 
   // Cross-references that need no mesh.
   std::set<std::string> names;

@@ -28,7 +28,7 @@ void sort_key(std::array<std::size_t, 4>& key, int n) {
 
 }  // namespace
 
-formats::Visual surface_with_modes(const FeModel& model, const Eigen::MatrixXd& Phi) {
+formats::Visual surface_with_modes(const FeModel& model, const Eigen::MatrixXd& Phi, std::vector<Index>* vertex_nodes) {
   const Mesh& mesh = *model.mesh;
   // Faces seen once among solid elements are on the boundary; shell faces are all visible.
   // The faces are keyed by their sorted node tags, not node indices, so the surface's order
@@ -104,6 +104,7 @@ formats::Visual surface_with_modes(const FeModel& model, const Eigen::MatrixXd& 
     for (std::size_t i = 0; i < nodes.size(); ++i)
       for (int a = 0; a < 3; ++a) m(static_cast<Index>(i), a) = Phi(model.dof(nodes[i], a), k);
   }
+  if (vertex_nodes) *vertex_nodes = std::move(nodes);
   return v;
 }
 

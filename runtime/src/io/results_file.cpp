@@ -15,6 +15,19 @@ namespace ffr::runtime {
 
 namespace {
 
+// The model file's name of an output type: written as the dataset's `type` attribute
+// (formats/SPEC.md section 13), which ffr-info uses to name the components in its plots.
+const char* output_type_name(OutputType t) {
+  switch (t) {
+    case OutputType::NodeDeformation: return "node_deformation";
+    case OutputType::NodePosition: return "node_position";
+    case OutputType::ModalCoordinates: return "modal_coordinates";
+    case OutputType::JointCoordinate: return "joint_coordinate";
+    case OutputType::Energy: return "energy";
+    default: return nullptr;
+  }
+}
+
 void write_h5(const std::filesystem::path& temp, const std::filesystem::path& path, const Model& model, const Recorder& rec,
               const RunInfo& info) {
   namespace h5 = ffr::formats::h5;
@@ -38,6 +51,8 @@ void write_h5(const std::filesystem::path& temp, const std::filesystem::path& pa
       for (std::uint64_t r = 0; r < nt; ++r)
         for (std::uint64_t c = 0; c < k; ++c) buf[r * k + c] = v(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
       w.write("/outputs/" + model.outputs[i].name, buf.data(), {nt, k});
+      if (const char* type = output_type_name(model.outputs[i].type))
+        w.attr("/outputs/" + model.outputs[i].name, "type", std::string(type));
     }
     w.close();
   }

@@ -10,6 +10,8 @@
 //    as std::vector (size nq) of (a x b) matrices.
 //  - All quantities are resolved in the body frame K (the mesh frame), about its origin O.
 
+#include "ffr/formats/modal_stress.hpp"
+
 #include <Eigen/Core>
 
 #include <array>
@@ -154,6 +156,9 @@ struct Sid {
   std::vector<Node> nodes;
   std::vector<Interface> interfaces;
   Visual visual;
+  /// Optional /stress (SPEC.md section 12.1): written by write_sid when set, never read by
+  /// read_sid (the runtime does not need it); read_modal_stress() reads it.
+  std::optional<ModalStress> stress;
   Provenance provenance;
 
   Index nq() const { return refmod.frequency_hz.size(); }

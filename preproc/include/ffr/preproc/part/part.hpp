@@ -108,6 +108,13 @@ struct OutputNodeSpec {
   Eigen::Vector3d at = Eigen::Vector3d::Zero();
 };
 
+/// Extension: modal stress recovery (formats/SPEC.md section 12.1) at the nodes of a mesh
+/// group, or at the solid nodes of the outer surface.
+struct StressSpec {
+  std::string group;     ///< a mesh physical group; empty with surface
+  bool surface = false;  ///< the outer surface's solid nodes
+};
+
 struct PartSpec {
   std::filesystem::path file;      ///< the part file itself
   std::filesystem::path geometry;  ///< resolved against the part file's folder
@@ -125,6 +132,7 @@ struct PartSpec {
   PreloadSpec preload;
   bool visual = true;
   std::vector<OutputNodeSpec> output_nodes;
+  std::optional<StressSpec> stress;
 
   const InterfaceSpec* find_interface(const std::string& name) const;
 };

@@ -9,7 +9,9 @@
 
 namespace ffr::preproc {
 
-formats::Visual surface_with_modes(const FeModel& model, const Eigen::MatrixXd& Phi);
+/// `vertex_nodes`, if given, receives the mesh node index of each vertex.
+formats::Visual surface_with_modes(const FeModel& model, const Eigen::MatrixXd& Phi,
+                                   std::vector<Index>* vertex_nodes = nullptr);
 
 /// Writes `path` (.vtk, legacy ASCII unstructured grid) atomically: corner-node cells of every
 /// element with properties, and one vector field "mode_<k>_<f>Hz" per mode.
