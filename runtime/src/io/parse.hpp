@@ -35,8 +35,12 @@ int body_ref(const Field& f, const Model& m);
 Vector3d unit_axis(const Field& f);
 /// An orthonormal triad [e f g] with e along `axis`.
 Matrix3d triad(const Vector3d& axis);
-/// A time table {"t": [...], "value": [...]} with `ncomp` components per time.
-Table parse_table(const Field& f, int ncomp);
+/// A table {"t": [...], "value": [...], "interpolation": ...} with `ncomp` components per time;
+/// without "interpolation", `default_kind` (linear for loads and characteristics, PCHIP for
+/// motions: MODEL_FILE.md "Tables").
+Table parse_table(const Field& f, int ncomp, Interpolation default_kind);
+/// "linear", "pchip" or "spline".
+Interpolation interpolation(const Field& f);
 
 /// Where something attaches: a body and either a node or a global point.
 struct Attachment {

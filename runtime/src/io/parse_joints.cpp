@@ -91,13 +91,58 @@ void connection_points(const Field& j, const Model& m, Attachment& a1, Attachmen
   a1.point = a2.point = P;
 }
 
+namespace {
+
+// {"type": "coupler", "joint1", "joint2", "ratio"}: joint1's coordinate changes by ratio times
+// joint2's (revolute: the angle, prismatic: the displacement, cylindrical: the angle).
+void parse_coupler(const Field& j, Model& m, std::set<std::string>& names) {
+  j.allow_only({"name", "type", "joint1", "joint2", "ratio"});
+  Coupler c;
+  c.name = j.at("name").string();
+  if (c.name.empty()) j.at("name").fail("must not be empty");
+  if (!names.insert(c.name).second) j.at("name").fail("duplicate joint name '" + c.name + "'");
+  JointCoordinate* coord[2] = {&c.c1, &c.c2};
+  int* joint[2] = {&c.joint1, &c.joint2};
+  for (int k = 0; k < 2; ++k) {
+    const Field f = j.at(k == 0 ? "joint1" : "joint2");
+    const std::string n = f.string();
+    const int idx = m.find_joint(n);
+    if (idx < 0) f.fail("unknown joint '" + n + "' (a coupler names revolute, prismatic or cylindrical joints)");
+    const JointType t = m.joints[idx].type;
+    if (t != JointType::Revolute && t != JointType::Prismatic && t != JointType::Cylindrical)
+      f.fail(std::string("a coupler needs a revolute, prismatic or cylindrical joint; '") + n + "' is " + to_string(t));
+    *joint[k] = idx;
+    *coord[k] = t == JointType::Prismatic ? JointCoordinate::Displacement : JointCoordinate::Angle;
+  }
+  if (c.joint1 == c.joint2) j.at("joint2").fail("must differ from joint1");
+  const Field rf = j.at("ratio");
+  c.ratio = rf.number();
+  if (!(c.ratio != 0)) rf.fail("must not be zero (the joints would not be coupled)");
+  // The row touches both joints' bodies: at most two besides the ground.
+  std::set<int> bodies;
+  for (int idx : {c.joint1, c.joint2})
+    for (int mk : {m.joints[idx].m1, m.joints[idx].m2})
+      if (m.markers[mk].body != kGround) bodies.insert(m.markers[mk].body);
+  if (bodies.size() > 2)
+    j.at("joint2").fail("the two joints move three bodies; a coupler is supported between joints that together move at most "
+                        "two bodies besides the ground (e.g. two shafts in the ground, or two joints between the same bodies)");
+  m.couplers.push_back(c);
+}
+
+}  // namespace
+
 void parse_joints(const Field& root, ParseContext& ctx) {
   if (!root.has("joints")) return;
   const Field list = root.at("joints");
   std::set<std::string> names;
   Model& m = ctx.model;
+  std::vector<std::size_t> couplers;  // parsed after the joints they name
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Field j = list.at(i);
+    if (j.is_object() && j.has("type") && j.at("type").is_string() && j.at("type").string() == "coupler") {
+      couplers.push_back(i);
+      continue;
+    }
     j.allow_only({"name", "type", "body1", "body2", "at", "node1", "node2", "axis", "axis1", "axis2"});
     Joint jt;
     jt.name = j.at("name").string();
@@ -136,6 +181,7 @@ void parse_joints(const Field& root, ParseContext& ctx) {
     jt.m2 = add_marker(m, a2, E2);
     m.joints.push_back(jt);
   }
+  for (std::size_t i : couplers) parse_coupler(list.at(i), m, names);
 }
 
 }  // namespace ffr::runtime::detail

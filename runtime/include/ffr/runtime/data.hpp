@@ -137,6 +137,8 @@ struct Data {
 
   // Joints: unwrapped angle of each revolute/cylindrical joint at the last accepted step.
   std::vector<double> angle_ref;
+  // Friction dampers: the memory of each (state.hpp), committed after each accepted step.
+  std::vector<FrictionState> friction;
   // Motions: values from the C API override the table when set.
   std::vector<char> motion_external;
   std::vector<Eigen::Vector3d> motion_value;  ///< value, rate, acceleration
