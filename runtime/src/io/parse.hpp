@@ -47,7 +47,12 @@ struct Attachment {
   int body = kGround;
   int node = -1;
   Vector3d point = Vector3d::Zero();  ///< global (initial configuration)
+  /// With a node: the point's offset from it (body frame), carried rigidly by the node's
+  /// translation and small rotation (MODEL_FILE.md "Joints").
+  Vector3d offset = Vector3d::Zero();
 };
+/// The offset key (offset1/offset2) of a side with a node: its value, the node's position moved by it.
+void node_offset(const Field& parent, const char* key, const Model& m, Attachment& a);
 /// Node index of body by the name in field f (fails if the body is rigid or has no such node).
 int node_ref(const Field& f, const Model& m, int body);
 /// Global initial position of a node.

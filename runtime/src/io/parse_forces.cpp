@@ -6,13 +6,17 @@ namespace ffr::runtime::detail {
 namespace {
 
 // One end of a spring: body, and node or global point (`at1`/`node1` style keys).
-Attachment end_point(const Field& f, const Model& m, const char* body_key, const char* at_key, const char* node_key) {
+Attachment end_point(const Field& f, const Model& m, const char* body_key, const char* at_key, const char* node_key,
+                     const char* offset_key) {
   Attachment a;
   a.body = body_ref(f.at(body_key), m);
   if (auto n = f.find(node_key)) {
     a.node = node_ref(*n, m, a.body);
     a.point = node_position(m, a.body, a.node);
     if (f.has(at_key)) f.at(at_key).fail(std::string("give either ") + at_key + " or " + node_key);
+    node_offset(f, offset_key, m, a);
+  } else if (f.has(offset_key)) {
+    f.at(offset_key).fail(std::string("is an offset from a node: give ") + node_key + " too");
   } else if (auto at = f.find(at_key)) {
     a.point = at->vec3();
   } else if (a.body != kGround) {
@@ -53,12 +57,12 @@ void parse_forces(const Field& root, ParseContext& ctx) {
     if (!f.is_object()) f.fail("expected an object");
     const std::string type = f.at("type").string();
     if (type == "spring_damper") {
-      f.allow_only({"name", "type", "body1", "at1", "node1", "body2", "at2", "node2", "k", "c", "length0", "force_table",
+      f.allow_only({"name", "type", "body1", "at1", "node1", "body2", "at2", "node2", "offset1", "offset2", "k", "c", "length0", "force_table",
                     "damping_table", "preload"});
       SpringDamper s;
       s.name = element_name(f, i);
-      const Attachment a1 = end_point(f, m, "body1", "at1", "node1");
-      const Attachment a2 = end_point(f, m, "body2", "at2", "node2");
+      const Attachment a1 = end_point(f, m, "body1", "at1", "node1", "offset1");
+      const Attachment a2 = end_point(f, m, "body2", "at2", "node2", "offset2");
       if (a1.body == a2.body) f.at("body2").fail("a spring needs two different bodies");
       // k or force_table (one of them), c or damping_table (at most one).
       if (auto t = f.find("force_table")) {
@@ -80,12 +84,12 @@ void parse_forces(const Field& root, ParseContext& ctx) {
       if (l == 0 && s.length0 > 0) f.fail("the two ends coincide initially, so the spring has no direction there");
       m.springs.push_back(s);
     } else if (type == "friction_damper") {
-      f.allow_only({"name", "type", "body1", "at1", "node1", "body2", "at2", "node2", "force", "series_stiffness",
+      f.allow_only({"name", "type", "body1", "at1", "node1", "body2", "at2", "node2", "offset1", "offset2", "force", "series_stiffness",
                     "velocity_tolerance"});
       FrictionDamper fd;
       fd.name = element_name(f, i);
-      const Attachment a1 = end_point(f, m, "body1", "at1", "node1");
-      const Attachment a2 = end_point(f, m, "body2", "at2", "node2");
+      const Attachment a1 = end_point(f, m, "body1", "at1", "node1", "offset1");
+      const Attachment a2 = end_point(f, m, "body2", "at2", "node2", "offset2");
       if (a1.body == a2.body) f.at("body2").fail("a friction damper needs two different bodies");
       fd.force = f.at("force").positive();
       if (auto k = f.find("series_stiffness")) {
@@ -102,7 +106,7 @@ void parse_forces(const Field& root, ParseContext& ctx) {
       fd.m2 = add_marker(m, a2, Matrix3d::Identity());
       m.friction_dampers.push_back(fd);
     } else if (type == "bushing") {
-      f.allow_only({"name", "type", "body1", "body2", "at", "node1", "node2", "axes", "stiffness", "damping", "tables", "preload"});
+      f.allow_only({"name", "type", "body1", "body2", "at", "node1", "node2", "offset1", "offset2", "axes", "stiffness", "damping", "tables", "preload"});
       Bushing bu;
       bu.name = element_name(f, i);
       Attachment a1, a2;

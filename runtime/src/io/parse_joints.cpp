@@ -20,6 +20,17 @@ int node_ref(const Field& f, const Model& m, int body) {
   return k;
 }
 
+void node_offset(const Field& parent, const char* key, const Model& m, Attachment& a) {
+  const auto f = parent.find(key);
+  if (!f) return;
+  if (a.node < 0) f->fail("is an offset from a node: give the node too");
+  a.offset = f->vec3();
+  // Where the node carries it in the initial configuration (its initial rotation Psi y0 too).
+  const Body& b = m.bodies[a.body];
+  const Vector3d theta = b.nodes[a.node].psi * b.y0;
+  a.point += b.A0 * (a.offset + theta.cross(a.offset));
+}
+
 Vector3d node_position(const Model& m, int body, int node) {
   const Body& b = m.bodies[body];
   const NodeSlice& n = b.nodes[node];
@@ -36,9 +47,13 @@ int add_marker(Model& m, const Attachment& a, const Matrix3d& E) {
     const Body& b = m.bodies[a.body];
     mk.E = b.A0.transpose() * E;
     if (a.node >= 0) {
+      // A point at offset o from the node moves by phi y + (psi y) x o = (phi - [o]x psi) y.
+      const Vector3d& o = a.offset;
+      Matrix3d ox;
+      ox << 0, -o(2), o(1), o(2), 0, -o(0), -o(1), o(0), 0;
       mk.node = a.node;
-      mk.c = b.nodes[a.node].origin;
-      mk.phi = b.nodes[a.node].phi;
+      mk.c = b.nodes[a.node].origin + o;
+      mk.phi = b.nodes[a.node].phi - ox * b.nodes[a.node].psi;
       mk.psi = b.nodes[a.node].psi;
     } else {
       mk.c = b.A0.transpose() * (a.point - b.r0);
@@ -74,13 +89,21 @@ void connection_points(const Field& j, const Model& m, Attachment& a1, Attachmen
   if (a1.body == a2.body) j.at("body2").fail("a connection needs two different bodies");
   if (auto n = j.find("node1")) a1.node = node_ref(*n, m, a1.body);
   if (auto n = j.find("node2")) a2.node = node_ref(*n, m, a2.body);
+  // `at` with a node would put the node's side at the node and the other side at `at`: refused.
+  if (j.has("at") && (a1.node >= 0 || a2.node >= 0))
+    j.at("at").fail(std::string("give either at or ") + (a1.node >= 0 ? "node1" : "node2") +
+                    " (the joint point is the node, or with offset1/offset2 a point carried by it)");
+  if (a1.node >= 0) a1.point = node_position(m, a1.body, a1.node);
+  if (a2.node >= 0) a2.point = node_position(m, a2.body, a2.node);
+  node_offset(j, "offset1", m, a1);
+  node_offset(j, "offset2", m, a2);
   Vector3d P;
   if (auto at = j.find("at")) {
     P = at->vec3();
   } else if (a1.node >= 0) {
-    P = node_position(m, a1.body, a1.node);
+    P = a1.point;
   } else if (a2.node >= 0) {
-    P = node_position(m, a2.body, a2.node);
+    P = a2.point;
   } else if (a2.body != kGround && m.bodies[a2.body].flexible) {
     P = m.bodies[a2.body].r0;
   } else if (a1.body != kGround && m.bodies[a1.body].flexible) {
@@ -143,7 +166,7 @@ void parse_joints(const Field& root, ParseContext& ctx) {
       couplers.push_back(i);
       continue;
     }
-    j.allow_only({"name", "type", "body1", "body2", "at", "node1", "node2", "axis", "axis1", "axis2"});
+    j.allow_only({"name", "type", "body1", "body2", "at", "node1", "node2", "offset1", "offset2", "axis", "axis1", "axis2"});
     Joint jt;
     jt.name = j.at("name").string();
     if (jt.name.empty()) j.at("name").fail("must not be empty");
