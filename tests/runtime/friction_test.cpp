@@ -180,3 +180,14 @@ TEST(FrictionDamper, BadInputRefused) {
   expect_error(oscillator(0.1, 100, R"("force": 1, "at2": [-2, 0, 0])", 1, 1e-3), "forces[1]", "coincide");
   expect_error(oscillator(0.1, 100, R"("force": 1, "friction": 2)", 1, 1e-3), "forces[1].friction", "unknown field");
 }
+
+// Through ffr-sim: exit status 2, the file and the field named, no results file written.
+TEST(FrictionDamper, NegativeForceIsExitTwoWithoutOutput) {
+  test::TempDir dir("friction_cli");
+  test::write_text(dir / "model.json", oscillator(0.1, 100, R"("force": -1)", 1, 1e-3));
+  const test::SimRun r = test::run_ffr_sim((dir / "model.json").string() + " -o " + (dir / "out.h5").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("model.json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("forces[1].force"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
+}
