@@ -10,6 +10,8 @@
 // step a hundredth of the runtime's.
 #include "support.hpp"
 
+#include "ffr/runtime/step_control.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -191,3 +193,28 @@ TEST(FrictionDamper, NegativeForceIsExitTwoWithoutOutput) {
   EXPECT_NE(r.output.find("forces[1].force"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
 }
+
+// Adaptive steps: a rejected step returns to the saved State, the slip with it (a slip kept from
+// the rejected attempt would shift the spring's unloaded length). Against the same RK4 reference.
+TEST(FrictionDamper, SeriesSpringAdaptiveStepsRestoreTheSlip) {
+  const double k = 100, ks = 400, F = 2, x0 = 0.1, end = 2.0;
+  std::string json = oscillator(x0, k, R"("force": 2, "series_stiffness": 400)", end, 1e-3);
+  const std::string fixed = R"("step": 0.001)";
+  json.replace(json.find(fixed), fixed.size(), R"("step": "auto", "rtol": 1e-7, "output_interval": 0.01)");
+  const Model model = test::model_from(json);
+  Data data(model);
+  initialize(model, data);
+  StepControl control(model, data);
+  std::vector<double> ref;
+  Jenkins{k, ks, F, 1.0}.run(x0, end, 1e-6, ref, 0.01);
+  double worst = 0;
+  for (std::int64_t i = 1; i < output_count(model); ++i) {
+    advance_to(model, data, control, output_time(model, i));
+    worst = std::max(worst, std::abs(position(data) - ref[static_cast<std::size_t>(i)]));
+  }
+  std::printf("adaptive: %lld steps accepted, %lld rejected; max |x - x_RK4| = %.3e m\n", static_cast<long long>(control.accepted),
+              static_cast<long long>(control.rejected), worst);
+  EXPECT_GT(control.rejected, 0);
+  EXPECT_LT(worst, 2e-4 * x0);
+}
+
