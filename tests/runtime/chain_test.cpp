@@ -125,11 +125,11 @@ Outcome run(bool free_hub, Stiff mode, int modes, double h, double T) {
   for (std::int64_t s = 0; s < step_count(model); ++s) {
     step(model, data);
     for (int k = 0; k < sub; ++k) oracle.step(h / sub);
-    const Vector3d u = chain.nodes[B].phi * data.q.segment(chain.offset + 12, chain.nq);
+    const Vector3d u = chain.nodes[B].phi * data.state.q.segment(chain.offset + 12, chain.nq);
     const Vector3d uo = oracle.displacement(5);
     worst = std::max(worst, (u - uo).norm());
     if (std::getenv("CHAIN_DEBUG") && s % 100 == 0)
-      std::printf("t %.3f th %.6f %.6f u %.5e %.5e %.5e uo %.5e %.5e %.5e\n", data.t, joint_coordinate(model, data, 0, JointCoordinate::Angle), oracle.theta(), u(0), u(1), u(2), uo(0), uo(1), uo(2));
+      std::printf("t %.3f th %.6f %.6f u %.5e %.5e %.5e uo %.5e %.5e %.5e\n", data.state.t, joint_coordinate(model, data, 0, JointCoordinate::Angle), oracle.theta(), u(0), u(1), u(2), uo(0), uo(1), uo(2));
     o.peak = std::max(o.peak, uo.norm());
   }
   o.err = worst / o.peak;

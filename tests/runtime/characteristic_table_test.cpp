@@ -70,9 +70,9 @@ TEST(CharacteristicTables, SpringForceTableStaticDeflection) {
       R"("force_table": {"x": [-1, 0, 0.01, 0.02, 0.05], "value": [-1000, 0, 5, 20, 200]}, "damping_table": {"x": [-1, 1], "value": [-20, 20]})"));
   const Data data = settle(model);
   const double delta = 0.01 + (9.81 - 5) / 1500;
-  EXPECT_NEAR(-data.q(2), delta, 1e-7);
-  EXPECT_NEAR(data.qd(2), 0, 1e-5);
-  std::printf("force table: deflection %.9f m (analytic %.9f)\n", -data.q(2), delta);
+  EXPECT_NEAR(-data.state.q(2), delta, 1e-7);
+  EXPECT_NEAR(data.state.qd(2), 0, 1e-5);
+  std::printf("force table: deflection %.9f m (analytic %.9f)\n", -data.state.q(2), delta);
 }
 
 // Preload: tension k delta + P with k = 1000 N/m, P = 4 N carries 9.81 N at delta = 5.81 mm.
@@ -80,8 +80,8 @@ TEST(CharacteristicTables, SpringPreloadStaticDeflection) {
   const Model model = test::model_from(hanging(R"("k": 1000, "c": 30, "preload": 4)"));
   const Data data = settle(model);
   const double delta = (9.81 - 4) / 1000;
-  EXPECT_NEAR(-data.q(2), delta, 1e-8);
-  std::printf("spring preload: deflection %.9f m (analytic %.9f)\n", -data.q(2), delta);
+  EXPECT_NEAR(-data.state.q(2), delta, 1e-8);
+  std::printf("spring preload: deflection %.9f m (analytic %.9f)\n", -data.state.q(2), delta);
 }
 
 // Bushing: the z axis from a table (a bump stop: 2000 N/m to 4 mm, then 20000 N/m), the preload
@@ -96,11 +96,11 @@ TEST(CharacteristicTables, BushingTablesAndPreload) {
       6));
   const Data data = settle(model);
   const double sz = -0.004 - (9.81 + 2 - 8) / 20000;
-  EXPECT_NEAR(data.q(2), sz, 1e-8);
+  EXPECT_NEAR(data.state.q(2), sz, 1e-8);
   // The body's x axis u = q(3..5) turned about z: sin(theta) = u_y.
-  EXPECT_NEAR(data.q(4), -0.05, 1e-8);
-  EXPECT_NEAR(data.q(0), 0, 1e-10);
-  std::printf("bushing: s_z %.9f m (analytic %.9f), sin(theta_z) %.9f (-0.05)\n", data.q(2), sz, data.q(4));
+  EXPECT_NEAR(data.state.q(4), -0.05, 1e-8);
+  EXPECT_NEAR(data.state.q(0), 0, 1e-10);
+  std::printf("bushing: s_z %.9f m (analytic %.9f), sin(theta_z) %.9f (-0.05)\n", data.state.q(2), sz, data.state.q(4));
 }
 
 TEST(CharacteristicTables, BadInputRefused) {

@@ -66,8 +66,8 @@ Result run(const std::string& json, JointCoordinate cb) {
   Result r;
   r.theta_a = joint_coordinate(model, data, 0, JointCoordinate::Angle);
   r.coord_b = joint_coordinate(model, data, 1, cb);
-  r.alpha = 2 * r.theta_a / (data.t * data.t);  // theta = alpha t^2 / 2
-  r.multiplier = data.lambda(model.blocks[static_cast<std::size_t>(model.couplers[0].block)].row0);
+  r.alpha = 2 * r.theta_a / (data.state.t * data.state.t);  // theta = alpha t^2 / 2
+  r.multiplier = data.state.lambda(model.blocks[static_cast<std::size_t>(model.couplers[0].block)].row0);
   // The row's scale: the model length for an angle of joint1 (the multiplier is then per length).
   if (cb == JointCoordinate::Angle) r.multiplier *= model.length;
   return r;

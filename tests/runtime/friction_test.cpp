@@ -43,7 +43,7 @@ std::string oscillator(double x0, double k, const std::string& friction, double 
    "solver": {"end": )" + num(end) + R"(, "step": )" + num(h) + "}}";
 }
 
-double position(const Data& data) { return data.q(0); }  // the mass's frame origin, x
+double position(const Data& data) { return data.state.q(0); }  // the mass's frame origin, x
 
 std::string error_of(const std::string& json) {
   try {
@@ -73,11 +73,11 @@ TEST(FrictionDamper, CoulombOscillatorDenHartog) {
   initialize(model, data);
   const double E0 = energy(model, data).total();
   std::vector<double> t, x;
-  t.push_back(data.t);
+  t.push_back(data.state.t);
   x.push_back(position(data));
   for (std::int64_t i = 0; i < step_count(model); ++i) {
     step(model, data);
-    t.push_back(data.t);
+    t.push_back(data.state.t);
     x.push_back(position(data));
   }
   // Extremes: samples where the motion turns (the last one, where it stops, found below).

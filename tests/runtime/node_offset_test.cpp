@@ -53,10 +53,10 @@ TEST(NodeOffset, PointCarriedByTheNodesTranslationAndRotation) {
   const Body& b = model.bodies[0];
   Eigen::VectorXd y(3);
   y << -0.03, 0.02, 0.05;
-  data.q.segment(b.offset + 12, 3) = y;
+  data.state.q.segment(b.offset + 12, 3) = y;
   const Eigen::Matrix3d A = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-  for (int a = 0; a < 3; ++a) data.q.segment<3>(b.offset + 3 + 3 * a) = A.col(a);
-  data.q.segment<3>(b.offset) = Eigen::Vector3d(0.2, 0.4, -0.1);
+  for (int a = 0; a < 3; ++a) data.state.q.segment<3>(b.offset + 3 + 3 * a) = A.col(a);
+  data.state.q.segment<3>(b.offset) = Eigen::Vector3d(0.2, 0.4, -0.1);
   update_bodies(model, data);
   update_markers(model, data);
   struct Case {
@@ -67,7 +67,7 @@ TEST(NodeOffset, PointCarriedByTheNodesTranslationAndRotation) {
   for (const Case& c : cases) {
     const NodeSlice& n = b.nodes[static_cast<std::size_t>(b.find_node(c.node))];
     const Eigen::Vector3d theta = n.psi * y;
-    const Eigen::Vector3d p = data.q.segment<3>(b.offset) + A * (n.origin + n.phi * y + c.o + theta.cross(c.o));
+    const Eigen::Vector3d p = data.state.q.segment<3>(b.offset) + A * (n.origin + n.phi * y + c.o + theta.cross(c.o));
     EXPECT_LT((data.markers[static_cast<std::size_t>(c.marker)].p - p).norm(), 1e-14) << c.node;
   }
   // The joint's point: both sides at node A + offset in the initial configuration.

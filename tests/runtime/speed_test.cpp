@@ -57,10 +57,10 @@ void check(const std::string& json, const Expected (&ex)[3], const char* what) {
   double worst = 0;
   for (std::int64_t i = 0; i < step_count(model); ++i) {
     step(model, data);
-    if (k < 3 && std::abs(data.t - ex[k].t) < 1e-9) {
+    if (k < 3 && std::abs(data.state.t - ex[k].t) < 1e-9) {
       const double th = joint_coordinate(model, data, 0, JointCoordinate::Angle);
       // The rate from the drum's frame: u_dot . v (its x axis turning towards y).
-      const double rate = data.qd.segment<3>(3).dot(data.q.segment<3>(6));
+      const double rate = data.state.qd.segment<3>(3).dot(data.state.q.segment<3>(6));
       EXPECT_NEAR(th, ex[k].angle, 1e-9 * (1 + std::abs(ex[k].angle))) << what << " at t = " << ex[k].t;
       EXPECT_NEAR(rate, ex[k].rate, 1e-8) << what << " at t = " << ex[k].t;
       worst = std::max(worst, std::abs(th - ex[k].angle));

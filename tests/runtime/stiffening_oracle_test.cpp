@@ -124,8 +124,8 @@ double runtime_column_frequency(double P, bool stiffening) {
   const int o = model.bodies[0].offset;
   for (std::int64_t i = 0; i < step_count(model); ++i) {
     step(model, data);
-    t.push_back(data.t);
-    y.push_back(data.q(o + 12));
+    t.push_back(data.state.t);
+    y.push_back(data.state.q(o + 12));
   }
   return 1 / mean_period(t, y);
 }
@@ -314,8 +314,8 @@ TipRun runtime_blade(const SpinUp& spin, double tip_mass, bool stiffening, doubl
   TipRun r;
   for (std::int64_t i = 0; i < step_count(model); ++i) {
     step(model, data);
-    const double th = spin(data.t)(0);
-    const Eigen::Vector3d p = data.q.segment<3>(tip.offset);
+    const double th = spin(data.state.t)(0);
+    const Eigen::Vector3d p = data.state.q.segment<3>(tip.offset);
     r.y.push_back(-std::sin(th) * p.x() + std::cos(th) * p.y());
   }
   return r;

@@ -180,7 +180,7 @@ TEST(Table, RampAndHoldLoadStaysInItsStaticEnvelope) {
       step(model, data);
       const double x = joint_coordinate(model, data, 0, JointCoordinate::Displacement);
       deepest = std::max(deepest, std::abs(x));
-      worst = std::max(worst, std::abs(x - ramp_response(data.t, F0, k, w, tr)));
+      worst = std::max(worst, std::abs(x - ramp_response(data.state.t, F0, k, w, tr)));
     }
     if (interp.find("spline") != std::string::npos) {
       // The spline's load dips below -2 N after the ramp: the spring goes past the envelope.

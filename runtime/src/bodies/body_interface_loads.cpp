@@ -22,7 +22,7 @@ void add_node_load(const Body& b, BodyData& bd, const Data& data, int slot, int 
   for (int a = 0; a < 3; ++a) M += Vector3d(bd.A.col(a)).cross(Vector3d(QA.segment<3>(3 * a)));
   const NodeSlice& n = b.nodes[static_cast<std::size_t>(node)];
   Vector3d xbar = n.origin;
-  xbar.noalias() += n.phi * data.q.segment(b.offset + 12, b.nq);
+  xbar.noalias() += n.phi * data.state.q.segment(b.offset + 12, b.nq);
   M -= (bd.A * xbar).cross(F);
   bd.iface_load.col(slot).head<3>() += bd.A.transpose() * F;
   bd.iface_load.col(slot).tail<3>() += bd.A.transpose() * M;
@@ -71,7 +71,7 @@ void interface_loads(const Model& model, Data& data) {
       if (mk.node < 0) continue;
       const int s = interface_at(*b.stiffening, mk.node);
       if (s < 0) continue;
-      const auto lam = data.lambda.segment(blk.row0, blk.rows);
+      const auto lam = data.state.lambda.segment(blk.row0, blk.rows);
       const Vector3d F = -(data.Phiq.middleRows(blk.row0, blk.rows).middleCols<3>(o).transpose() * lam);
       const Eigen::Matrix<double, 9, 1> QA = -(data.Phiq.middleRows(blk.row0, blk.rows).middleCols<9>(o + 3).transpose() * lam);
       add_node_load(b, bd, data, s, mk.node, F, QA);

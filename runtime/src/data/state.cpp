@@ -22,40 +22,40 @@ State::State(const Model& model)
       friction(model.friction_dampers.size()) {}
 
 void save_state(const Data& d, State& s) {
-  s.t = d.t;
-  s.q = d.q;
-  s.qd = d.qd;
-  s.qdd = d.qdd;
-  s.lambda = d.lambda;
-  s.a = d.scheme.a;
-  s.k = d.scheme.k;
-  s.qdd_prev = d.qdd_prev;
-  s.have_previous = d.have_previous;
+  s.t = d.state.t;
+  s.q = d.state.q;
+  s.qd = d.state.qd;
+  s.qdd = d.state.qdd;
+  s.lambda = d.state.lambda;
+  s.a = d.state.a;
+  s.k = d.state.k;
+  s.qdd_prev = d.state.qdd_prev;
+  s.have_previous = d.state.have_previous;
   for (std::size_t i = 0; i < d.bodies.size(); ++i) s.step_alpha[i] = d.bodies[i].step_alpha;
-  s.predictor_far = d.predictor_far;
-  s.newton_kappa = d.newton_kappa;
-  s.kappa_age = d.kappa_age;
+  s.predictor_far = d.state.predictor_far;
+  s.newton_kappa = d.state.newton_kappa;
+  s.kappa_age = d.state.kappa_age;
   s.last_iterations = d.stats.last_iterations;
-  std::copy(d.angle_ref.begin(), d.angle_ref.end(), s.angle_ref.begin());
+  std::copy(d.state.angle_ref.begin(), d.state.angle_ref.end(), s.angle_ref.begin());
   std::copy(d.friction.begin(), d.friction.end(), s.friction.begin());
 }
 
 void restore_state(const State& s, Data& d) {
-  d.t = s.t;
-  d.q = s.q;
-  d.qd = s.qd;
-  d.qdd = s.qdd;
-  d.lambda = s.lambda;
-  d.scheme.a = s.a;
-  d.scheme.k = s.k;
-  d.qdd_prev = s.qdd_prev;
-  d.have_previous = s.have_previous;
+  d.state.t = s.t;
+  d.state.q = s.q;
+  d.state.qd = s.qd;
+  d.state.qdd = s.qdd;
+  d.state.lambda = s.lambda;
+  d.state.a = s.a;
+  d.state.k = s.k;
+  d.state.qdd_prev = s.qdd_prev;
+  d.state.have_previous = s.have_previous;
   for (std::size_t i = 0; i < d.bodies.size(); ++i) d.bodies[i].step_alpha = s.step_alpha[i];
-  d.predictor_far = s.predictor_far;
-  d.newton_kappa = s.newton_kappa;
-  d.kappa_age = s.kappa_age;
+  d.state.predictor_far = s.predictor_far;
+  d.state.newton_kappa = s.newton_kappa;
+  d.state.kappa_age = s.kappa_age;
   d.stats.last_iterations = s.last_iterations;
-  std::copy(s.angle_ref.begin(), s.angle_ref.end(), d.angle_ref.begin());
+  std::copy(s.angle_ref.begin(), s.angle_ref.end(), d.state.angle_ref.begin());
   std::copy(s.friction.begin(), s.friction.end(), d.friction.begin());
   // The factorised tangent belongs to another state and step (reuse_jacobian would keep it).
   d.tangent_valid = false;

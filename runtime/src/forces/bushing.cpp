@@ -124,7 +124,7 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
   auto z = data.fz.head(ntot);
   auto hz = data.fhz.head(ntot);
   for (int side = 0; side < 2; ++side)
-    if (nb[side]) z.segment(col0[side], nb[side]) = data.qd.segment(offset(model, body[side]), nb[side]);
+    if (nb[side]) z.segment(col0[side], nb[side]) = data.state.qd.segment(offset(model, body[side]), nb[side]);
   Kc.setZero();
   Cc.setZero();
   for (int i = 0; i < 6; ++i) {

@@ -35,10 +35,10 @@ void generalized_forces(const Model& model, Data& data, double t) {
     const int o = b.offset, nb = b.ncoord();
     auto Qb = data.Q.segment(o, nb);
     if (b.full_mass)
-      fe_inertia_forces(b, data.bodies[i], data.qd.segment(o, nb), Qb);
+      fe_inertia_forces(b, data.bodies[i], data.state.qd.segment(o, nb), Qb);
     else
-      body_inertia_forces(b, data.bodies[i], data.qd.segment(o, nb), Qb);
-    body_applied_forces(b, data.bodies[i], model.gravity, data.q.segment(o, nb), data.qd.segment(o, nb), Qb);
+      body_inertia_forces(b, data.bodies[i], data.state.qd.segment(o, nb), Qb);
+    body_applied_forces(b, data.bodies[i], model.gravity, data.state.q.segment(o, nb), data.state.qd.segment(o, nb), Qb);
   }
 }
 
@@ -52,9 +52,9 @@ void force_tangents(const Model& model, Data& data, double t) {
     auto Kb = data.K.block(o, o, nb, nb);
     auto Cb = data.C.block(o, o, nb, nb);
     if (b.full_mass)
-      fe_inertia_tangents(b, data.bodies[i], data.qd.segment(o, nb), Cb);
+      fe_inertia_tangents(b, data.bodies[i], data.state.qd.segment(o, nb), Cb);
     else
-      body_inertia_tangents(b, data.bodies[i], data.qd.segment(o, nb), Kb, Cb);
+      body_inertia_tangents(b, data.bodies[i], data.state.qd.segment(o, nb), Kb, Cb);
     body_applied_tangents(b, data.bodies[i], model.gravity, Kb, Cb);
   }
   for (const SpringDamper& s : model.springs) detail::spring_tangents(model, s, data);

@@ -44,7 +44,7 @@ void add_line_tangents(const Model& model, int m1, int m2, const LineState& st, 
     const MarkerData& dj = data.markers[mk[j]];
     // G = dd/dz_j, V = d(d_dot)/dz_j through J_j(z_j), then DD = Dd G + Dv V.
     auto V = data.w3[0].leftCols(nbj);
-    jzd_derivative(mj.phi, data.bodies[mj.body].Ad, data.qd.segment(oj + 12, nbj - 12), V);
+    jzd_derivative(mj.phi, data.bodies[mj.body].Ad, data.state.qd.segment(oj + 12, nbj - 12), V);
     auto DD = data.w3[1].leftCols(nbj);
     DD.noalias() = sign[j] * Dd * dj.Jp;
     DD.noalias() += sign[j] * Dv * V;

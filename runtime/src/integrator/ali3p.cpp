@@ -89,7 +89,7 @@ std::string newton_failure(const Model& model, const Data& data, double t, int i
          " of the model length; scaled increment " + fmt(inc) + ", tolerance " + fmt(model.settings.newton_tolerance) +
          "), the largest constraint violation in " + row + " (" + fmt(phi) + " of the model length, tolerance " +
          fmt(model.settings.policy.newton.violation_factor * model.settings.tolerance) + "). Try a smaller step (" + (model.settings.adaptive ? "solver.max_step = " : "solver.step = ") +
-         fmt(0.5 * data.scheme.k.h) + "), more iterations (solver.max_iterations), or check that body's mass and " +
+         fmt(0.5 * data.state.k.h) + "), more iterations (solver.max_iterations), or check that body's mass and " +
          "that joint's axes and points";
 }
 
@@ -113,7 +113,7 @@ std::string newton_failure(const Model& model, const Data& data, double t, int i
 // step (more passes gained nothing more then; see NewtonPolicy::multiplier_passes for the second). At most
 // `passes` passes. Returns the linearised violation left at q - dq, in model lengths.
 double newton_direction(const Model& model, Data& data, int passes) {
-  const double h4 = data.scheme.k.kq;
+  const double h4 = data.state.k.kq;
   solve_tangent(data, data.f, data.dq);
   data.sigma.setZero();
   double left = 0;
@@ -128,7 +128,7 @@ double newton_direction(const Model& model, Data& data, int passes) {
     add_constraint_forces(model, data, data.tmp, data.r);
     solve_tangent(data, data.r, data.dq);
   }
-  data.lambda += data.sigma;
+  data.state.lambda += data.sigma;
   return left;
 }
 
@@ -162,16 +162,16 @@ void step(const Model& model, Data& data) { step(model, data, model.settings.ste
 void step(const Model& model, Data& data, double h) {
   const SolverSettings& s = model.settings;
   const NewtonPolicy& p = s.policy.newton;
-  if (s.integrator == Integrator::GeneralizedAlpha && !data.have_previous && !data.scheme.start_step)
+  if (s.integrator == Integrator::GeneralizedAlpha && !data.state.have_previous && !data.scheme.start_step)
     start_generalized_alpha(model, data, h);
   // The scheme (scheme.hpp): q_dot = c1 q + qd_hat, q_ddot = c2 q + qdd_hat; the trapezoidal rule
   // has c1 = 2/h, c2 = 4/h^2, kq = 1/c2 = h^2/4.
   set_step_coefficients(model, data, h);
-  const StepCoefficients& k = data.scheme.k;
-  const double h2 = h * h, t1 = data.t + h;
-  data.q0 = data.q;
-  data.qd0 = data.qd;
-  data.qdd0 = data.qdd;
+  const StepCoefficients& k = data.state.k;
+  const double h2 = h * h, t1 = data.state.t + h;
+  data.q0 = data.state.q;
+  data.qd0 = data.state.qd;
+  data.qdd0 = data.state.qdd;
   set_step_predictors(model, data);
   // Predictor of the trapezoidal solution q + h qd + h^2/4 (qdd + qdd_next) with qdd_next
   // extrapolated from the last two accelerations (O(h^4) error instead of O(h^3): for a frame
@@ -182,15 +182,15 @@ void step(const Model& model, Data& data, double h) {
   // step's round-off there was doubled by 2 lambda_n - lambda_n-1 and grew without bound: the
   // benchmark's planar slider-crank failed after 0.62 s, SliderCrank.RedundantMultipliersStayBounded).
   // (With a step r times the last, qdd_next = qdd + r (qdd - qdd_prev).)
-  if (data.have_previous) {
+  if (data.state.have_previous) {
     const double r = h / k.h_prev;
-    data.q.noalias() += h * data.qd0 + (0.25 * (2 + r) * h2) * data.qdd0 - (0.25 * r * h2) * data.qdd_prev;
+    data.state.q.noalias() += h * data.qd0 + (0.25 * (2 + r) * h2) * data.qdd0 - (0.25 * r * h2) * data.state.qdd_prev;
   } else {
-    data.q.noalias() += h * data.qd0 + (0.5 * h2) * data.qdd0;
+    data.state.q.noalias() += h * data.qd0 + (0.5 * h2) * data.qdd0;
   }
   predict_frames(model, data);
-  data.qdd_prev = data.qdd0;
-  data.lambda0 = data.lambda;
+  data.state.qdd_prev = data.qdd0;
+  data.lambda0 = data.state.lambda;
   // The step's penalties, before the first iterate's lambda + alpha Phi uses them: whoever
   // factorised last (the initial conditions, a projection) may have left other ones.
   penalty_weights(model, data, data.W, s.penalty * k.c2, data.alpha);
@@ -201,7 +201,7 @@ void step(const Model& model, Data& data, double h) {
   // derivatives use the multipliers lambda, not lambda + alpha Phi: at the predictor the
   // constraints are violated by O(h^3) and the penalised multipliers swing far off.
   bool refactor = !data.tangent_valid || !s.reuse_jacobian || data.stats.last_iterations > p.reuse_max_iterations;
-  ++data.kappa_age;
+  ++data.state.kappa_age;
   bool fresh_before = false;  // the last update was made with a tangent built at its iterate
   bool constraints_only = false;  // the next refresh keeps W (see stale_tangent)
   int refreshes = 0;
@@ -210,8 +210,8 @@ void step(const Model& model, Data& data, double h) {
   int it = 0;
   bool converged = false;
   for (it = 1; it <= s.max_iterations; ++it) {
-    data.qd = k.c1 * data.q + data.qd_hat;
-    data.qdd = k.c2 * data.q + data.qdd_hat;
+    data.state.qd = k.c1 * data.state.q + data.qd_hat;
+    data.state.qdd = k.c2 * data.state.q + data.qdd_hat;
     drive_bodies(model, data, t1);
     // After the first iterate the driven bodies, their markers and the rows among them are
     // those of t1 already (drive_bodies gives them the same values at every iterate).
@@ -221,16 +221,16 @@ void step(const Model& model, Data& data, double h) {
     if (it == 1) check_drives(model, data, t1);
     // Augmented-Lagrangian update with the new iterate (from the second pass on: the first uses
     // the previous step's multipliers), then the penalised force lambda + alpha Phi.
-    if (it > 1) data.lambda += data.alpha.cwiseProduct(data.Phi);
-    data.lambda_eff = data.lambda + data.alpha.cwiseProduct(data.Phi);
-    mass_times(model, data, data.qdd, data.f);
+    if (it > 1) data.state.lambda += data.alpha.cwiseProduct(data.Phi);
+    data.lambda_eff = data.state.lambda + data.alpha.cwiseProduct(data.Phi);
+    mass_times(model, data, data.state.qdd, data.f);
     data.f -= data.Q;
     add_constraint_forces(model, data, data.lambda_eff, data.f);
     data.f *= k.kq;
     bool refreshed_now = refactor;
     if (refactor) {
       if (constraints_only) {
-        refresh_constraint_tangent(model, data, data.lambda);
+        refresh_constraint_tangent(model, data, data.state.lambda);
       } else {
         // The predictor's tangent of a step like the last one, which rebuilt it at the second
         // iterate: its accelerations 4/h^2 q + qdd_hat carry 4/h^2 times the predictor's error
@@ -238,7 +238,7 @@ void step(const Model& model, Data& data, double h) {
         // themselves), so the modal acceleration block is left to the rebuild. Measured there:
         // 2.18 Newton iterations a step without it, 2.19 with (and 2.46 when the constraint
         // Hessian is left out as well, which is therefore kept).
-        refresh_tangent(model, data, t1, data.lambda, !(it == 1 && data.predictor_far));
+        refresh_tangent(model, data, t1, data.state.lambda, !(it == 1 && data.state.predictor_far));
       }
       data.tangent_fresh_step = true;
       refactor = constraints_only = false;
@@ -258,17 +258,17 @@ void step(const Model& model, Data& data, double h) {
     // non-finite state (SliderCrank.ReusedTangentFallsBackWhenTheCrankTurnsFast).
     const bool stale = it >= 2 ? !(next_inc < p.rejected_growth * inc) : s.penalty * next_inc > p.stale_tangent;
     if (!refreshed_now && refreshes < p.max_refreshes && stale) {
-      data.lambda -= data.sigma;
+      data.state.lambda -= data.sigma;
       // (At the first iterate as the usual refresh there: without the modal acceleration
       // block after a step that found its predictor far off.)
-      refresh_tangent(model, data, t1, data.lambda, !(it == 1 && data.predictor_far));
+      refresh_tangent(model, data, t1, data.state.lambda, !(it == 1 && data.state.predictor_far));
       data.tangent_fresh_step = true;
       refreshed_now = true;
       ++refreshes;
       left = newton_direction(model, data, passes);
       next_inc = scaled_norm(model, data.dq);
     }
-    data.q -= data.dq;
+    data.state.q -= data.dq;
     prev_inc = inc;
     inc = next_inc;
     if (!std::isfinite(inc)) throw SolverError(t1, inc, newton_failure(model, data, t1, it, inc, viol, " (the tangent is singular)"));
@@ -286,8 +286,8 @@ void step(const Model& model, Data& data, double h) {
     const bool own_tangent = data.tangent_fresh_step;
     const double error_left = it == 1 ? (own_tangent ? inc : inf) : (theta < 1 ? inc * theta / (1 - theta) : inf);
     if (fresh_before && !refreshed_now && prev_inc > 0) {
-      data.newton_kappa = inc / (prev_inc * prev_inc);
-      data.kappa_age = 0;
+      data.state.newton_kappa = inc / (prev_inc * prev_inc);
+      data.state.kappa_age = 0;
     }
     fresh_before = refreshed_now && it >= 2;
     if ((error_left < s.newton_tolerance || (own_tangent && inc < s.newton_tolerance)) && left < s.tolerance &&
@@ -297,7 +297,7 @@ void step(const Model& model, Data& data, double h) {
     }
     // Right after a fresh tangent (kappa_life): the violation the update leaves is the
     // linearised one plus O(inc^2), which stands for the check on viol (the violation before it).
-    if (fresh_before && data.kappa_age <= p.kappa_life && 2 * data.newton_kappa * inc * inc < s.newton_tolerance &&
+    if (fresh_before && data.state.kappa_age <= p.kappa_life && 2 * data.state.newton_kappa * inc * inc < s.newton_tolerance &&
         left < s.tolerance && inc * inc < s.tolerance) {
       converged = true;
       break;
@@ -305,17 +305,17 @@ void step(const Model& model, Data& data, double h) {
     // The predictor's tangent, far from this iterate: rebuild its constraint terms here (W, the
     // masses and force tangents, moved by O(increment) only).
     if (it == 1 && refreshed_now) {
-      data.predictor_far = s.penalty * inc > p.stale_tangent;
-      if (data.predictor_far) refactor = constraints_only = true;
+      data.state.predictor_far = s.penalty * inc > p.stale_tangent;
+      if (data.state.predictor_far) refactor = constraints_only = true;
     }
     if (it >= 2 && inc > p.slow_contraction * prev_inc && refreshes < p.max_refreshes) {
       refactor = true;
       // A stale tangent (reused from an earlier step) may already have thrown the iterate and
       // the multipliers far off: start the step again from the predictor.
       if (!data.tangent_fresh_step) {
-        data.q = data.q0;
-        data.q.noalias() += h * data.qd0 + (0.5 * h2) * data.qdd0;
-        data.lambda = data.lambda0;
+        data.state.q = data.q0;
+        data.state.q.noalias() += h * data.qd0 + (0.5 * h2) * data.qdd0;
+        data.state.lambda = data.lambda0;
         inc = 0;
       }
     }
@@ -326,20 +326,20 @@ void step(const Model& model, Data& data, double h) {
   if (!converged) throw SolverError(t1, std::max(inc, viol), newton_failure(model, data, t1, s.max_iterations, inc, viol, ""));
 
   // Final state and projections.
-  data.qd = k.c1 * data.q + data.qd_hat;
-  data.qdd = k.c2 * data.q + data.qdd_hat;
+  data.state.qd = k.c1 * data.state.q + data.qd_hat;
+  data.state.qdd = k.c2 * data.state.q + data.qdd_hat;
   drive_bodies(model, data, t1);
   update_bodies(model, data, Scope::Unknowns);
   update_markers(model, data, Scope::Unknowns);
   evaluate_constraints(model, data, t1, Scope::Unknowns);
-  data.lambda += data.alpha.cwiseProduct(data.Phi);
+  data.state.lambda += data.alpha.cwiseProduct(data.Phi);
   data.stats.last_violation = data.Phi.cwiseAbs().maxCoeff() / model.length;
   data.stats.last_velocity_violation = project_velocities(model, data, t1);
   data.stats.last_acceleration_violation = project_accelerations(model, data, t1);
   finish_step_scheme(model, data);
   detail::commit_friction(model, data, h);  // the markers are those of the final state
-  data.t = t1;
-  data.have_previous = true;
+  data.state.t = t1;
+  data.state.have_previous = true;
   ++data.stats.steps;
   update_angle_references(model, data);
 }

@@ -14,12 +14,12 @@ Energy energy(const Model& model, Data& data) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
     const BodyData& bd = data.bodies[i];
-    const auto zd = data.qd.segment(b.offset, b.ncoord());
+    const auto zd = data.state.qd.segment(b.offset, b.ncoord());
     e.kinetic += 0.5 * zd.dot(bd.M * zd);
-    const Vector3d r0 = data.q.segment<3>(b.offset);
+    const Vector3d r0 = data.state.q.segment<3>(b.offset);
     e.potential -= model.gravity.dot(b.mass * r0 + bd.A * bd.md);
     if (b.nq) {
-      const auto y = data.q.segment(b.offset + 12, b.nq);
+      const auto y = data.state.q.segment(b.offset + 12, b.nq);
       e.potential += 0.5 * y.dot(b.Ke * y);
       // The strain energy of Ke/M1 (FORMULATION.md 7) and the prestress's y^T f0 + 1/2 y^T K1 y.
       BodyData& bdw = data.bodies[i];  // work vectors: energy() allocates nothing
@@ -60,7 +60,7 @@ Vector3d linear_momentum(const Model& model, Data& data) {
   Vector3d p = Vector3d::Zero();
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
-    p += b.mass * data.qd.segment<3>(b.offset) + relative_momentum(b, data.bodies[i], data.qd);
+    p += b.mass * data.state.qd.segment<3>(b.offset) + relative_momentum(b, data.bodies[i], data.state.qd);
   }
   return p;
 }
@@ -71,13 +71,13 @@ Vector3d angular_momentum(const Model& model, Data& data) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
     const BodyData& bd = data.bodies[i];
-    const Vector3d r0 = data.q.segment<3>(b.offset), r0d = data.qd.segment<3>(b.offset);
-    const Vector3d pb = relative_momentum(b, bd, data.qd);
+    const Vector3d r0 = data.state.q.segment<3>(b.offset), r0d = data.state.qd.segment<3>(b.offset);
+    const Vector3d pb = relative_momentum(b, bd, data.state.qd);
     H += b.mass * r0.cross(r0d) + r0.cross(pb) + (bd.A * bd.md).cross(r0d);
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < 3; ++c) H += bd.Jc(a, c) * Vector3d(bd.A.col(a)).cross(Vector3d(bd.Ad.col(c)));
     if (b.nq) {
-      const auto yd = data.qd.segment(b.offset + 12, b.nq);
+      const auto yd = data.state.qd.segment(b.offset + 12, b.nq);
       for (int a = 0; a < 3; ++a) H += Vector3d(bd.A.col(a)).cross(bd.A * (bd.S[a] * yd));
       if (b.has_rotary_coupling) H += bd.A * (b.PsiI.transpose() * yd);
     }
