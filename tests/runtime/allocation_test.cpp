@@ -180,3 +180,54 @@ TEST(Allocation, GeneralizedAlphaAndAdaptiveStepsAllocateNothing) {
     EXPECT_GT(control.rejected, 0);  // the restore was exercised
   }
 }
+
+// The elements of issue 33: a coupler between two shafts, friction dampers (regularised, and with
+// a series spring whose slip is committed each step), a spring-damper with force and damping
+// tables and a preload, a bushing with a table and a preload on a flexible body, PCHIP motion and
+// linear load tables, the energy output with the dissipated energy.
+TEST(Allocation, CouplersFrictionAndTablesAllocateNothing) {
+  test::TempDir dir("alloc_elements");
+  write_sids(dir);
+  const Model model = test::model_from(R"({
+  "gravity": [0, -9.81, 0],
+  "bodies": [
+    {"name": "a", "type": "rigid", "mass": 1, "com": [0, 0, 0], "inertia": [[0.15, 0, 0], [0, 0.15, 0], [0, 0, 0.2]]},
+    {"name": "b", "type": "rigid", "mass": 2, "com": [1, 0, 0], "inertia": [[0.03, 0, 0], [0, 0.03, 0], [0, 0, 0.05]]},
+    {"name": "mass", "type": "rigid", "mass": 1, "com": [0, -1, 0], "inertia": [[0.1, 0, 0], [0, 0.1, 0], [0, 0, 0.1]]},
+    {"name": "flap", "type": "flexible", "sid": "lumpy.sid.h5", "position": [0, 0.5, 0]}
+  ],
+  "joints": [
+    {"name": "ja", "type": "revolute", "body1": "ground", "body2": "a", "at": [0, 0, 0], "axis": [0, 0, 1]},
+    {"name": "jb", "type": "revolute", "body1": "ground", "body2": "b", "at": [1, 0, 0], "axis": [0, 0, 1]},
+    {"name": "belt", "type": "coupler", "joint1": "jb", "joint2": "ja", "ratio": 3},
+    {"name": "slide", "type": "prismatic", "body1": "ground", "body2": "mass", "at": [0, -1, 0], "axis": [0, 1, 0]},
+    {"name": "hinge", "type": "spherical", "body1": "ground", "body2": "flap", "node2": "A"}
+  ],
+  "motions": [{"joint": "ja", "table": {"t": [0, 0.05, 0.1, 1], "value": [0, 0.1, 0.5, 3]}}],
+  "forces": [
+    {"type": "spring_damper", "body1": "ground", "at1": [0, 0, 0], "body2": "mass", "force_table": {"x": [-1, 0, 0.01, 1], "value": [-100, 0, 5, 2000]},
+     "damping_table": {"x": [-1, 1], "value": [-5, 5]}, "preload": 3},
+    {"type": "friction_damper", "body1": "ground", "at1": [0, 1, 0], "body2": "mass", "force": 2, "series_stiffness": 300},
+    {"type": "friction_damper", "body1": "ground", "at1": [0.5, -1, 0], "body2": "mass", "force": 0.5, "velocity_tolerance": 1e-2},
+    {"type": "bushing", "body1": "flap", "node1": "B", "body2": "ground", "stiffness": [1e3, 1e3, 0, 10, 10, 10], "damping": [1, 1, 1, 0.1, 0.1, 0.1],
+     "tables": {"z": {"x": [-1, 0, 1], "value": [-500, 0, 2000], "interpolation": "pchip"}}, "preload": {"force": [0, 0, 1], "torque": [0, 0.1, 0]}},
+    {"type": "point_force", "body": "mass", "table": {"t": [0, 0.1, 1], "value": [[0, 0, 0], [0, -2, 0], [0, -2, 0]]}}
+  ],
+  "solver": {"end": 0.2, "step": 1e-3},
+  "outputs": [{"name": "energy", "type": "energy"}]
+})", dir.path);
+  Data data(model);
+  initialize(model, data);
+  Recorder rec(model, 1000);
+  step(model, data);
+  const long before = g_allocations.load();
+  for (int i = 0; i < 150; ++i) {
+    step(model, data);
+    rec.record(model, data);
+  }
+  const long after = g_allocations.load();
+  std::printf("150 steps with couplers, friction and tables: %ld allocations; dissipated %.6g J\n", after - before,
+              energy(model, data).dissipated);
+  EXPECT_EQ(after - before, 0);
+  EXPECT_GT(energy(model, data).dissipated, 0);
+}

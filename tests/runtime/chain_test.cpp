@@ -92,7 +92,7 @@ Outcome run(bool free_hub, Stiff mode, int modes, double h, double T) {
   if (!free_hub) {
     json += R"("bodies": [{"name": "chain", "type": "flexible", "sid": "chain.sid.h5", "stiffening": )" + stiff + R"(}],
       "joints": [{"name": "hub", "type": "revolute", "body1": "ground", "body2": "chain", "node2": "A", "axis": [0, 0, 1]}],
-      "motions": [{"joint": "hub", "table": {"t": [)" + table_t + R"(], "value": [)" + table_v + R"(]}}]})";
+      "motions": [{"joint": "hub", "table": {"t": [)" + table_t + R"(], "value": [)" + table_v + R"(], "interpolation": "spline"}}]})";
   } else {
     json += R"("bodies": [
         {"name": "hub", "type": "rigid", "mass": 0.5, "com": [0, 0, 0], "inertia": [[0.05, 0, 0], [0, 0.05, 0], [0, 0, 0.05]]},

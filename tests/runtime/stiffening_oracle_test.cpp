@@ -281,7 +281,7 @@ TipRun runtime_blade(const SpinUp& spin, double tip_mass, bool stiffening, doubl
     {"name": "clamp", "type": "fixed", "body1": "hub", "body2": "blade", "node2": "A", "axis": [0, 0, 1]},
     {"name": "tip_joint", "type": "spherical", "body1": "blade", "body2": "tip", "node1": "B"}
   ],
-  "motions": [{"joint": "hinge", "table": {"t": [TIMES], "value": [VALUES]}}],
+  "motions": [{"joint": "hinge", "table": {"t": [TIMES], "value": [VALUES], "interpolation": "spline"}}],
   "solver": {"end": END, "step": STEP}
 })";
   if (tip_on_bushing) {

@@ -63,7 +63,7 @@ SimRun simulate(double W, bool stiffening, double end) {
     "bodies": [{"name": "beam", "type": "flexible", "sid": ")" << beam_sid().string() << R"(", "stiffening": )"
         << (stiffening ? "true" : "false") << R"(}],
     "joints": [{"name": "hub", "type": "revolute", "body1": "ground", "body2": "beam", "node2": "root", "axis": [0, 0, 1]}],
-    "motions": [{"joint": "hub", "table": {"t": [)" << t.str() << R"(], "value": [)" << v.str() << R"(]}}],
+    "motions": [{"joint": "hub", "table": {"t": [)" << t.str() << R"(], "value": [)" << v.str() << R"(], "interpolation": "spline"}}],
     "solver": {"end": )" << end << R"(, "step": 0.002},
     "outputs": [{"name": "tip", "type": "node_deformation", "body": "beam", "node": "tip"}]})";
   test::write_text(dir / "model.json", model.str());

@@ -62,6 +62,7 @@ void interface_loads(const Model& model, Data& data) {
     const int o = b.offset, body = static_cast<int>(i);
     for (const ConstraintBlock& blk : model.blocks) {
       if (blk.kind == BlockKind::RigidBody || (blk.body1 != body && blk.body2 != body)) continue;
+      if (blk.kind == BlockKind::Coupler) continue;  // not an interface load (FORMULATION.md 12)
       const Joint& jt = model.joints[static_cast<std::size_t>(blk.kind == BlockKind::Joint ? blk.index : model.motions[static_cast<std::size_t>(blk.index)].joint)];
       const Marker& m1 = model.markers[static_cast<std::size_t>(jt.m1)];
       const Marker& m2 = model.markers[static_cast<std::size_t>(jt.m2)];

@@ -100,9 +100,14 @@ Data::Data(const Model& model) : state(model), start(model) {
   };
   for (const auto& s : model.springs) pair_max = std::max(pair_max, pair(s.m1, s.m2));
   for (const auto& s : model.bushings) pair_max = std::max(pair_max, pair(s.m1, s.m2));
+  for (const auto& s : model.friction_dampers) pair_max = std::max(pair_max, pair(s.m1, s.m2));
   fK = fC = fH = MatrixXd::Zero(pair_max, pair_max);
   int joint_pair = 0;
   for (const auto& j : model.joints) joint_pair = std::max(joint_pair, pair(j.m1, j.m2));
+  for (const auto& b : model.blocks)  // a coupler's row: the bodies of its two joints
+    if (b.kind == BlockKind::Coupler)
+      joint_pair = std::max(joint_pair, (b.body1 == kGround ? 0 : model.bodies[b.body1].ncoord()) +
+                                            (b.body2 == kGround ? 0 : model.bodies[b.body2].ncoord()));
   cH = MatrixXd::Zero(joint_pair, joint_pair);
   cg = Eigen::Matrix<double, 4, Eigen::Dynamic>::Zero(4, joint_pair);
   cl = VectorXd::Zero(6);

@@ -19,7 +19,8 @@ State::State(const Model& model)
       a(VectorXd::Zero(model.ncoord)),
       qdd_prev(VectorXd::Zero(model.ncoord)),
       step_alpha(model.bodies.size(), Vector3d::Zero()),
-      angle_ref(model.joints.size(), 0.0) {}
+      angle_ref(model.joints.size(), 0.0),
+      friction(model.friction_dampers.size()) {}
 
 void save_state(const Data& d, State& s) { s = d.state; }
 
@@ -33,14 +34,14 @@ namespace {
 
 // t, the six step coefficients, have_previous, predictor_far, newton_kappa, kappa_age,
 // last_iterations: 12 scalars; then q, qd, qdd, a, qdd_prev (n each), lambda (m), step_alpha
-// (3 per body), angle_ref (one per joint).
+// (3 per body), angle_ref (one per joint), friction (3 per friction damper).
 constexpr int kScalars = 12;
 
 }  // namespace
 
 int packed_state_size(const Model& model) {
   return kScalars + 5 * model.ncoord + model.nconstraints + 3 * static_cast<int>(model.bodies.size()) +
-         static_cast<int>(model.joints.size());
+         static_cast<int>(model.joints.size()) + 3 * static_cast<int>(model.friction_dampers.size());
 }
 
 void pack_state(const State& s, double* out) {
@@ -51,7 +52,9 @@ void pack_state(const State& s, double* out) {
     *p++ = v;
   for (const VectorXd* v : {&s.q, &s.qd, &s.qdd, &s.a, &s.qdd_prev, &s.lambda}) p = std::copy(v->data(), v->data() + v->size(), p);
   for (const Vector3d& w : s.step_alpha) p = std::copy(w.data(), w.data() + 3, p);
-  std::copy(s.angle_ref.begin(), s.angle_ref.end(), p);
+  p = std::copy(s.angle_ref.begin(), s.angle_ref.end(), p);
+  for (const FrictionState& f : s.friction)
+    for (double v : {f.slip, f.dissipated, f.power}) *p++ = v;
 }
 
 void unpack_state(const Model& model, const double* in, int size, State& s) {
@@ -83,6 +86,12 @@ void unpack_state(const Model& model, const double* in, int size, State& s) {
     p += 3;
   }
   std::copy(p, p + s.angle_ref.size(), s.angle_ref.begin());
+  p += s.angle_ref.size();
+  for (FrictionState& f : s.friction) {
+    f.slip = *p++;
+    f.dissipated = *p++;
+    f.power = *p++;
+  }
 }
 
 }  // namespace ffr::runtime

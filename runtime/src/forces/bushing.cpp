@@ -1,9 +1,10 @@
-// Linear 6-DOF bushing. Its six measures are sums of dot products of the markers' points and
+// 6-DOF bushing, linear or with a characteristic per axis, and a preload. Its six measures are sums of dot products of the markers' points and
 // axes (E1 = [e1 f1 g1] of marker 1, E2 of marker 2, d = p2 - p1):
 //   s_k     = E1_k . d                                   (k = x, y, z)
 //   theta_x = (g1.f2 - f1.g2)/2, theta_y = (e1.g2 - g1.e2)/2, theta_z = (f1.e2 - e1.f2)/2
 // (the small relative rotation of triad 2, in triad 1). The generalized force is
-// Q = -sum_i F_i grad s_i with F_i = k_i (s_i - s0_i) + c_i s_dot_i, and its exact tangent
+// Q = -sum_i F_i grad s_i with F_i = f_i(s_i - s0_i) + c_i s_dot_i + P_i (f_i linear, k_i x, or
+// a table; P_i the preload), and its exact tangent with k_i = f_i'(s_i - s0_i)
 // K = sum_i k_i g_i^T g_i + c_i g_i^T (H_i z_dot)^T + F_i H_i,  C = sum_i c_i g_i^T g_i.
 #include "force_helpers.hpp"
 #include "forces.hpp"
@@ -31,9 +32,7 @@ const Vector3d& value(const MarkerData& md, int k) { return k < 0 ? md.p : md.e[
 const Vector3d& rate(const MarkerData& md, int k) { return k < 0 ? md.pd : md.ed[k]; }
 const Matrix3N& jac(const MarkerData& md, int k) { return k < 0 ? md.Jp : md.Je[k]; }
 
-}  // namespace
-
-Vector6d bushing_measures(const Model& model, const Bushing& bu, const Data& data) {
+Vector6d measures(const Bushing& bu, const Data& data) {
   const MarkerData* md[2] = {&data.markers[bu.m1], &data.markers[bu.m2]};
   Vector6d s = Vector6d::Zero();
   for (int i = 0; i < 6; ++i)
@@ -41,9 +40,51 @@ Vector6d bushing_measures(const Model& model, const Bushing& bu, const Data& dat
   return s;
 }
 
+}  // namespace
+
+Vector6d bushing_measures(const Model& model, const Bushing& bu, const Data& data) {
+  (void)model;
+  return measures(bu, data);
+}
+
+namespace {
+
+// The elastic part of each axis's force (linear k or its table, plus the preload) and its slope.
+void elastic(const Bushing& bu, const Vector6d& ds, Vector6d& F, Vector6d& slope) {
+  for (int i = 0; i < 6; ++i) {
+    if (bu.tables[i].empty()) {
+      F(i) = bu.k(i) * ds(i);
+      slope(i) = bu.k(i);
+    } else {
+      double d2;
+      bu.tables[i].eval(ds(i), 0, F(i), slope(i), d2);
+    }
+    F(i) += bu.preload(i);
+  }
+}
+
+}  // namespace
+
+Vector6d bushing_force(const Model& model, const Bushing& bu, const Data& data) {
+  // The measures' rates from the markers' (as bushing_forces computes them).
+  const MarkerData* md[2] = {&data.markers[bu.m1], &data.markers[bu.m2]};
+  Vector6d sd = Vector6d::Zero();
+  for (int i = 0; i < 6; ++i)
+    for (const DotTerm& t : kTerms[i])
+      sd(i) += t.coef * (rate(*md[t.ma], t.ka).dot(value(*md[t.mb], t.kb)) + value(*md[t.ma], t.ka).dot(rate(*md[t.mb], t.kb)));
+  Vector6d F, slope;
+  elastic(bu, bushing_measures(model, bu, data) - bu.s0, F, slope);
+  return F + bu.c.cwiseProduct(sd);
+}
+
 double bushing_energy(const Model& model, const Bushing& bu, Data& data) {
   const Vector6d ds = bushing_measures(model, bu, data) - bu.s0;
-  return 0.5 * ds.dot(bu.k.cwiseProduct(ds));
+  double e = 0;
+  for (int i = 0; i < 6; ++i) {
+    e += bu.tables[i].empty() ? 0.5 * bu.k(i) * ds(i) * ds(i) : bu.tables[i].integral(ds(i), 0) - bu.tables[i].integral(0.0, 0);
+    e += bu.preload(i) * ds(i);
+  }
+  return e;
 }
 
 void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_q, bool tangents) {
@@ -69,7 +110,9 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
       if (nb[t.ma]) g.row(i).segment(col0[t.ma], nb[t.ma]).noalias() += t.coef * xb.transpose() * jac(*md[t.ma], t.ka);
       if (nb[t.mb]) g.row(i).segment(col0[t.mb], nb[t.mb]).noalias() += t.coef * xa.transpose() * jac(*md[t.mb], t.kb);
     }
-  const Vector6d F = bu.k.cwiseProduct(s - bu.s0) + bu.c.cwiseProduct(sd);
+  Vector6d F, slope;
+  elastic(bu, s - bu.s0, F, slope);
+  F += bu.c.cwiseProduct(sd);
   for (int side = 0; side < 2 && add_q; ++side)
     if (nb[side])
       data.Q.segment(offset(model, body[side]), nb[side]).noalias() -= g.middleCols(col0[side], nb[side]).transpose() * F;
@@ -85,7 +128,7 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
   Kc.setZero();
   Cc.setZero();
   for (int i = 0; i < 6; ++i) {
-    if (bu.k(i) == 0 && bu.c(i) == 0) continue;
+    if (slope(i) == 0 && bu.c(i) == 0 && F(i) == 0) continue;
     H.setZero();
     for (const DotTerm& t : kTerms[i]) {
       const int sa = t.ma, sb = t.mb;
@@ -99,7 +142,7 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
       if (on_node(model, *mm[sb])) add_jt_f_derivative(slice(*mm[sb], t.kb), xa, t.coef, H.block(col0[sb], col0[sb], nb[sb], nb[sb]));
     }
     hz.noalias() = H * z;
-    Kc.noalias() += bu.k(i) * g.row(i).transpose() * g.row(i);
+    Kc.noalias() += slope(i) * g.row(i).transpose() * g.row(i);
     Kc.noalias() += bu.c(i) * g.row(i).transpose() * hz.transpose();
     Kc += F(i) * H;
     Cc.noalias() += bu.c(i) * g.row(i).transpose() * g.row(i);

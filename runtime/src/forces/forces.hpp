@@ -6,6 +6,8 @@
 
 namespace ffr::runtime::detail {
 
+/// The tension of a spring-damper in the current state (its element force).
+double spring_force(const Model& model, const SpringDamper& s, const Data& data);
 void spring_forces(const Model& model, const SpringDamper& s, Data& data);
 void spring_tangents(const Model& model, const SpringDamper& s, Data& data);
 double spring_energy(const Model& model, const SpringDamper& s, const Data& data);
@@ -13,8 +15,20 @@ double spring_energy(const Model& model, const SpringDamper& s, const Data& data
 /// add_q: add the forces to data.Q; tangents: add -dQ/dq, -dQ/dqd to data.K, data.C.
 void bushing_forces(const Model& model, const Bushing& b, Data& data, bool add_q, bool tangents);
 double bushing_energy(const Model& model, const Bushing& b, Data& data);
+/// The six forces and torques (bushing axes; its element force) in the current state.
+Vector6d bushing_force(const Model& model, const Bushing& b, const Data& data);
 /// The six measures (displacement in marker 1's triad, small rotation) in the current state.
 Vector6d bushing_measures(const Model& model, const Bushing& b, const Data& data);
+
+/// Friction dampers (friction_damper.cpp). The tension (its element force) and the forces use
+/// the slip committed at the last accepted step; commit_friction, after a step of length h (0:
+/// at the start), commits the slip and adds the energy dissipated over the step.
+double friction_force(const Model& model, const FrictionDamper& f, const FrictionState& fs, const Data& data);
+void friction_forces(const Model& model, const FrictionDamper& f, const FrictionState& fs, Data& data);
+void friction_tangents(const Model& model, const FrictionDamper& f, const FrictionState& fs, Data& data);
+/// The series spring's elastic energy.
+double friction_energy(const Model& model, const FrictionDamper& f, const FrictionState& fs, const Data& data);
+void commit_friction(const Model& model, Data& data, double h);
 
 /// A global force or torque at a marker (computed kinematics md).
 void marker_load(const Model& model, const Marker& mk, const MarkerData& md, const Vector3d& f, bool torque,

@@ -21,6 +21,12 @@ void generalized_forces(const Model& model, Data& data, double t) {
     detail::bushing_forces(model, b, data, true, false);
     at.add_to_interfaces(model, data);
   }
+  for (std::size_t i = 0; i < model.friction_dampers.size(); ++i) {
+    const FrictionDamper& f = model.friction_dampers[i];
+    const InterfaceLoadCapture at(model, data, f.m1, f.m2);
+    detail::friction_forces(model, f, data.state.friction[i], data);
+    at.add_to_interfaces(model, data);
+  }
   detail::point_loads(model, data, t, true, false);
   detail::external_loads(model, data, true, false);
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
@@ -53,6 +59,8 @@ void force_tangents(const Model& model, Data& data, double t) {
   }
   for (const SpringDamper& s : model.springs) detail::spring_tangents(model, s, data);
   for (const Bushing& b : model.bushings) detail::bushing_forces(model, b, data, false, true);
+  for (std::size_t i = 0; i < model.friction_dampers.size(); ++i)
+    detail::friction_tangents(model, model.friction_dampers[i], data.state.friction[i], data);
   detail::point_loads(model, data, t, false, true);
   detail::external_loads(model, data, false, true);
 }

@@ -1,85 +1,67 @@
-// Linear spring-damper between two marker points: tension F = k (l - l0) + c l_dot along the
-// line of the points; force +F n on point 1 and -F n on point 2 (n from 1 to 2).
+// Spring-damper between two marker points: tension F = f(l - l0) + g(l_dot) + preload along the
+// line of the points (line_force.hpp), f and g linear (k, c) or tables (their slopes the
+// tangent's dF/dl and dF/dl_dot).
 #include "forces.hpp"
-#include "force_helpers.hpp"
-
-#include <cmath>
+#include "line_force.hpp"
 
 namespace ffr::runtime::detail {
 namespace {
 
-struct SpringState {
-  Vector3d d, dd, n;
-  double l = 0, ldot = 0, F = 0;
-  bool valid = false;
+struct Tension {
+  double F = 0, kl = 0, cl = 0;
 };
 
-SpringState spring_state(const Model& model, const SpringDamper& s, const Data& data) {
-  const MarkerData& a = data.markers[s.m1];
-  const MarkerData& b = data.markers[s.m2];
-  SpringState st;
-  st.d = b.p - a.p;
-  st.dd = b.pd - a.pd;
-  st.l = st.d.norm();
-  // A spring squeezed to a point has no direction: it exerts nothing there (and the model
-  // loader refuses springs whose ends coincide initially unless length0 = 0).
-  st.valid = st.l > 1e-14 * model.length;
-  if (!st.valid) return st;
-  st.n = st.d / st.l;
-  st.ldot = st.n.dot(st.dd);
-  st.F = s.k * (st.l - s.length0) + s.c * st.ldot;
-  return st;
+Tension tension(const SpringDamper& s, const LineState& st) {
+  Tension r;
+  const double x = st.l - s.length0;
+  double d2;
+  if (s.force_table.empty()) {
+    r.F = s.k * x;
+    r.kl = s.k;
+  } else {
+    double f;
+    s.force_table.eval(x, 0, f, r.kl, d2);
+    r.F = f;
+  }
+  if (s.damping_table.empty()) {
+    r.F += s.c * st.ldot;
+    r.cl = s.c;
+  } else {
+    double g;
+    s.damping_table.eval(st.ldot, 0, g, r.cl, d2);
+    r.F += g;
+  }
+  r.F += s.preload;
+  return r;
 }
 
 }  // namespace
 
+double spring_force(const Model& model, const SpringDamper& s, const Data& data) {
+  const LineState st = line_state(model, s.m1, s.m2, data);
+  return st.valid ? tension(s, st).F : 0.0;
+}
+
 void spring_forces(const Model& model, const SpringDamper& s, Data& data) {
-  const SpringState st = spring_state(model, s, data);
-  if (!st.valid) return;
-  const Vector3d f2 = -st.F * st.n;
-  const int b1 = model.markers[s.m1].body, b2 = model.markers[s.m2].body;
-  if (b1 != kGround) data.Q.segment(offset(model, b1), ncoord(model, b1)).noalias() -= data.markers[s.m1].Jp.transpose() * f2;
-  if (b2 != kGround) data.Q.segment(offset(model, b2), ncoord(model, b2)).noalias() += data.markers[s.m2].Jp.transpose() * f2;
+  const LineState st = line_state(model, s.m1, s.m2, data);
+  if (st.valid) add_line_force(model, s.m1, s.m2, st, tension(s, st).F, data);
 }
 
 double spring_energy(const Model& model, const SpringDamper& s, const Data& data) {
-  const SpringState st = spring_state(model, s, data);
-  return st.valid ? 0.5 * s.k * (st.l - s.length0) * (st.l - s.length0) : 0.5 * s.k * s.length0 * s.length0;
+  const LineState st = line_state(model, s.m1, s.m2, data);
+  const double x = (st.valid ? st.l : 0.0) - s.length0;
+  // The elastic part's work from the free length: 1/2 k x^2, or the integral of the table from
+  // zero deflection; the preload's P x.
+  const double elastic =
+      s.force_table.empty() ? 0.5 * s.k * x * x : s.force_table.integral(x, 0) - s.force_table.integral(0.0, 0);
+  return elastic + s.preload * x;
 }
 
 void spring_tangents(const Model& model, const SpringDamper& s, Data& data) {
-  const SpringState st = spring_state(model, s, data);
+  const LineState st = line_state(model, s.m1, s.m2, data);
   if (!st.valid) return;
-  const Matrix3d P = Matrix3d::Identity() - st.n * st.n.transpose();
-  // f2 = -F(d, d_dot) n(d): its derivatives with respect to d and d_dot.
-  const Matrix3d Dd = -(s.k * st.n * st.n.transpose() + s.c * st.n * (P * st.dd).transpose() / st.l + st.F * P / st.l);
-  const Matrix3d Dv = -s.c * st.n * st.n.transpose();
-  const Vector3d f2 = -st.F * st.n;
-  const int mk[2] = {s.m1, s.m2};
-  const double sign[2] = {-1.0, 1.0};  // d = p2 - p1 and f_i = sign_i f2
-  for (int j = 0; j < 2; ++j) {
-    const Marker& mj = model.markers[mk[j]];
-    if (mj.body == kGround) continue;
-    const int nbj = ncoord(model, mj.body), oj = offset(model, mj.body);
-    const MarkerData& dj = data.markers[mk[j]];
-    // G = dd/dz_j, V = d(d_dot)/dz_j through J_j(z_j), then DD = Dd G + Dv V.
-    auto V = data.w3[0].leftCols(nbj);
-    jzd_derivative(mj.phi, data.bodies[mj.body].Ad, data.state.qd.segment(oj + 12, nbj - 12), V);
-    auto DD = data.w3[1].leftCols(nbj);
-    DD.noalias() = sign[j] * Dd * dj.Jp;
-    DD.noalias() += sign[j] * Dv * V;
-    auto DC = data.w3[2].leftCols(nbj);
-    DC.noalias() = sign[j] * Dv * dj.Jp;
-    for (int i = 0; i < 2; ++i) {
-      const Marker& mi = model.markers[mk[i]];
-      if (mi.body == kGround) continue;
-      const int nbi = ncoord(model, mi.body), oi = offset(model, mi.body);
-      const MarkerData& di = data.markers[mk[i]];
-      data.K.block(oi, oj, nbi, nbj).noalias() -= sign[i] * di.Jp.transpose() * DD;
-      data.C.block(oi, oj, nbi, nbj).noalias() -= sign[i] * di.Jp.transpose() * DC;
-    }
-    add_jt_f_derivative(mj.phi, sign[j] * f2, -1.0, data.K.block(oj, oj, nbj, nbj));
-  }
+  const Tension r = tension(s, st);
+  add_line_tangents(model, s.m1, s.m2, st, r.F, r.kl, r.cl, data);
 }
 
 }  // namespace ffr::runtime::detail

@@ -11,6 +11,7 @@
 #include "ffr/runtime/errors.hpp"
 #include "ffr/runtime/integrator.hpp"
 #include "ffr/runtime/kinematics.hpp"
+#include "../forces/forces.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -70,6 +71,7 @@ std::string worst_row(const Model& model, const Data& data, double& size) {
       case BlockKind::Joint: return "joint '" + model.joints[static_cast<std::size_t>(b.index)].name + "'" + r;
       case BlockKind::Motion:
         return "the motion of joint '" + model.joints[static_cast<std::size_t>(model.motions[static_cast<std::size_t>(b.index)].joint)].name + "'";
+      case BlockKind::Coupler: return "coupler '" + model.couplers[static_cast<std::size_t>(b.index)].name + "'";
     }
   }
   return "row " + std::to_string(row);
@@ -142,6 +144,7 @@ void check_drives(const Model& model, const Data& data, double t) {
     const auto name = [&](int body) { return body == kGround ? std::string("ground") : model.bodies[static_cast<std::size_t>(body)].name; };
     std::string what = b.kind == BlockKind::Joint    ? "joint '" + model.joints[static_cast<std::size_t>(b.index)].name + "'"
                        : b.kind == BlockKind::Motion ? "the motion of joint '" + model.joints[static_cast<std::size_t>(model.motions[static_cast<std::size_t>(b.index)].joint)].name + "'"
+                       : b.kind == BlockKind::Coupler ? "coupler '" + model.couplers[static_cast<std::size_t>(b.index)].name + "'"
                                                      : "the frame of '" + name(b.body1) + "'";
     char buf[96];
     std::snprintf(buf, sizeof buf, "%.3g", v);
@@ -335,6 +338,7 @@ void step(const Model& model, Data& data, double h) {
   data.stats.last_velocity_violation = project_velocities(model, data, t1);
   data.stats.last_acceleration_violation = project_accelerations(model, data, t1);
   finish_step_scheme(model, data);
+  detail::commit_friction(model, data, h);  // the markers are those of the final state
   data.state.t = t1;
   data.state.have_previous = true;
   ++data.stats.steps;

@@ -5,6 +5,7 @@
 // integrator (so redundant constraints are fine). Velocities: the M-orthogonal projection of the
 // given ones. Accelerations and multipliers: M a + Phi_q^T lambda = Q, Phi_q a + gamma = 0,
 // by augmented-Lagrangian iterations.
+#include "../forces/forces.hpp"
 #include "ffr/runtime/constraints.hpp"
 #include "ffr/runtime/dynamics.hpp"
 #include "ffr/runtime/errors.hpp"
@@ -143,6 +144,7 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
   data.state.qdd.setZero();
   data.state.have_previous = false;
   data.stats = Stats{};
+  std::fill(data.state.friction.begin(), data.state.friction.end(), FrictionState{});
   // Every body is moved into place, the driven ones too; they follow their drives afterwards.
   set_unknowns(model, data, false);
   // Angles of driven joints are unwrapped around their targets from the start.
@@ -198,6 +200,7 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
       if (res < 1e-3 * model.settings.tolerance) break;
     }
   }
+  detail::commit_friction(model, data, 0.0);  // the friction dampers' power at the start
   data.tangent_valid = false;
   set_unknowns(model, data, true);
   return notes;

@@ -41,8 +41,17 @@ Matrix3d triad(const Vector3d& axis) {
   return E;
 }
 
-Table parse_table(const Field& f, int ncomp) {
-  f.allow_only({"t", "value"});
+Interpolation interpolation(const Field& f) {
+  const std::string s = f.string();
+  if (s == "linear") return Interpolation::Linear;
+  if (s == "pchip") return Interpolation::Pchip;
+  if (s == "spline") return Interpolation::Spline;
+  f.fail("unknown interpolation '" + s + "' (expected linear, pchip or spline)");
+}
+
+Table parse_table(const Field& f, int ncomp, Interpolation default_kind) {
+  f.allow_only({"t", "value", "interpolation"});
+  const Interpolation kind = f.has("interpolation") ? interpolation(f.at("interpolation")) : default_kind;
   const Eigen::VectorXd t = f.at("t").vector();
   const Field vf = f.at("value");
   const Eigen::MatrixXd v = vf.matrix(ncomp);
@@ -50,7 +59,7 @@ Table parse_table(const Field& f, int ncomp) {
     vf.fail("has " + std::to_string(v.rows()) + " entries but t has " + std::to_string(t.size()));
   for (Eigen::Index i = 1; i < t.size(); ++i)
     if (!(t(i) > t(i - 1))) f.at("t").fail("times must be strictly increasing (entry " + std::to_string(i) + ")");
-  return Table(t, v);
+  return Table(t, v, kind);
 }
 
 // The integrator (FORMULATION.md section 9) and "step": a fixed step, or "auto" with its own

@@ -35,15 +35,24 @@ int body_ref(const Field& f, const Model& m);
 Vector3d unit_axis(const Field& f);
 /// An orthonormal triad [e f g] with e along `axis`.
 Matrix3d triad(const Vector3d& axis);
-/// A time table {"t": [...], "value": [...]} with `ncomp` components per time.
-Table parse_table(const Field& f, int ncomp);
+/// A table {"t": [...], "value": [...], "interpolation": ...} with `ncomp` components per time;
+/// without "interpolation", `default_kind` (linear for loads and characteristics, PCHIP for
+/// motions: MODEL_FILE.md "Tables").
+Table parse_table(const Field& f, int ncomp, Interpolation default_kind);
+/// "linear", "pchip" or "spline".
+Interpolation interpolation(const Field& f);
 
 /// Where something attaches: a body and either a node or a global point.
 struct Attachment {
   int body = kGround;
   int node = -1;
   Vector3d point = Vector3d::Zero();  ///< global (initial configuration)
+  /// With a node: the point's offset from it (body frame), carried rigidly by the node's
+  /// translation and small rotation (MODEL_FILE.md "Joints").
+  Vector3d offset = Vector3d::Zero();
 };
+/// The offset key (offset1/offset2) of a side with a node: its value, the node's position moved by it.
+void node_offset(const Field& parent, const char* key, const Model& m, Attachment& a);
 /// Node index of body by the name in field f (fails if the body is rigid or has no such node).
 int node_ref(const Field& f, const Model& m, int body);
 /// Global initial position of a node.

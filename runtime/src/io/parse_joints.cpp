@@ -20,6 +20,17 @@ int node_ref(const Field& f, const Model& m, int body) {
   return k;
 }
 
+void node_offset(const Field& parent, const char* key, const Model& m, Attachment& a) {
+  const auto f = parent.find(key);
+  if (!f) return;
+  if (a.node < 0) f->fail("is an offset from a node: give the node too");
+  a.offset = f->vec3();
+  // Where the node carries it in the initial configuration (its initial rotation Psi y0 too).
+  const Body& b = m.bodies[a.body];
+  const Vector3d theta = b.nodes[a.node].psi * b.y0;
+  a.point += b.A0 * (a.offset + theta.cross(a.offset));
+}
+
 Vector3d node_position(const Model& m, int body, int node) {
   const Body& b = m.bodies[body];
   const NodeSlice& n = b.nodes[node];
@@ -36,9 +47,13 @@ int add_marker(Model& m, const Attachment& a, const Matrix3d& E) {
     const Body& b = m.bodies[a.body];
     mk.E = b.A0.transpose() * E;
     if (a.node >= 0) {
+      // A point at offset o from the node moves by phi y + (psi y) x o = (phi - [o]x psi) y.
+      const Vector3d& o = a.offset;
+      Matrix3d ox;
+      ox << 0, -o(2), o(1), o(2), 0, -o(0), -o(1), o(0), 0;
       mk.node = a.node;
-      mk.c = b.nodes[a.node].origin;
-      mk.phi = b.nodes[a.node].phi;
+      mk.c = b.nodes[a.node].origin + o;
+      mk.phi = b.nodes[a.node].phi - ox * b.nodes[a.node].psi;
       mk.psi = b.nodes[a.node].psi;
     } else {
       mk.c = b.A0.transpose() * (a.point - b.r0);
@@ -74,13 +89,21 @@ void connection_points(const Field& j, const Model& m, Attachment& a1, Attachmen
   if (a1.body == a2.body) j.at("body2").fail("a connection needs two different bodies");
   if (auto n = j.find("node1")) a1.node = node_ref(*n, m, a1.body);
   if (auto n = j.find("node2")) a2.node = node_ref(*n, m, a2.body);
+  // `at` with a node would put the node's side at the node and the other side at `at`: refused.
+  if (j.has("at") && (a1.node >= 0 || a2.node >= 0))
+    j.at("at").fail(std::string("give either at or ") + (a1.node >= 0 ? "node1" : "node2") +
+                    " (the joint point is the node, or with offset1/offset2 a point carried by it)");
+  if (a1.node >= 0) a1.point = node_position(m, a1.body, a1.node);
+  if (a2.node >= 0) a2.point = node_position(m, a2.body, a2.node);
+  node_offset(j, "offset1", m, a1);
+  node_offset(j, "offset2", m, a2);
   Vector3d P;
   if (auto at = j.find("at")) {
     P = at->vec3();
   } else if (a1.node >= 0) {
-    P = node_position(m, a1.body, a1.node);
+    P = a1.point;
   } else if (a2.node >= 0) {
-    P = node_position(m, a2.body, a2.node);
+    P = a2.point;
   } else if (a2.body != kGround && m.bodies[a2.body].flexible) {
     P = m.bodies[a2.body].r0;
   } else if (a1.body != kGround && m.bodies[a1.body].flexible) {
@@ -91,14 +114,59 @@ void connection_points(const Field& j, const Model& m, Attachment& a1, Attachmen
   a1.point = a2.point = P;
 }
 
+namespace {
+
+// {"type": "coupler", "joint1", "joint2", "ratio"}: joint1's coordinate changes by ratio times
+// joint2's (revolute: the angle, prismatic: the displacement, cylindrical: the angle).
+void parse_coupler(const Field& j, Model& m, std::set<std::string>& names) {
+  j.allow_only({"name", "type", "joint1", "joint2", "ratio"});
+  Coupler c;
+  c.name = j.at("name").string();
+  if (c.name.empty()) j.at("name").fail("must not be empty");
+  if (!names.insert(c.name).second) j.at("name").fail("duplicate joint name '" + c.name + "'");
+  JointCoordinate* coord[2] = {&c.c1, &c.c2};
+  int* joint[2] = {&c.joint1, &c.joint2};
+  for (int k = 0; k < 2; ++k) {
+    const Field f = j.at(k == 0 ? "joint1" : "joint2");
+    const std::string n = f.string();
+    const int idx = m.find_joint(n);
+    if (idx < 0) f.fail("unknown joint '" + n + "' (a coupler names revolute, prismatic or cylindrical joints)");
+    const JointType t = m.joints[idx].type;
+    if (t != JointType::Revolute && t != JointType::Prismatic && t != JointType::Cylindrical)
+      f.fail(std::string("a coupler needs a revolute, prismatic or cylindrical joint; '") + n + "' is " + to_string(t));
+    *joint[k] = idx;
+    *coord[k] = t == JointType::Prismatic ? JointCoordinate::Displacement : JointCoordinate::Angle;
+  }
+  if (c.joint1 == c.joint2) j.at("joint2").fail("must differ from joint1");
+  const Field rf = j.at("ratio");
+  c.ratio = rf.number();
+  if (!(c.ratio != 0)) rf.fail("must not be zero (the joints would not be coupled)");
+  // The row touches both joints' bodies: at most two besides the ground.
+  std::set<int> bodies;
+  for (int idx : {c.joint1, c.joint2})
+    for (int mk : {m.joints[idx].m1, m.joints[idx].m2})
+      if (m.markers[mk].body != kGround) bodies.insert(m.markers[mk].body);
+  if (bodies.size() > 2)
+    j.at("joint2").fail("the two joints move three bodies; a coupler is supported between joints that together move at most "
+                        "two bodies besides the ground (e.g. two shafts in the ground, or two joints between the same bodies)");
+  m.couplers.push_back(c);
+}
+
+}  // namespace
+
 void parse_joints(const Field& root, ParseContext& ctx) {
   if (!root.has("joints")) return;
   const Field list = root.at("joints");
   std::set<std::string> names;
   Model& m = ctx.model;
+  std::vector<std::size_t> couplers;  // parsed after the joints they name
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Field j = list.at(i);
-    j.allow_only({"name", "type", "body1", "body2", "at", "node1", "node2", "axis", "axis1", "axis2"});
+    if (j.is_object() && j.has("type") && j.at("type").is_string() && j.at("type").string() == "coupler") {
+      couplers.push_back(i);
+      continue;
+    }
+    j.allow_only({"name", "type", "body1", "body2", "at", "node1", "node2", "offset1", "offset2", "axis", "axis1", "axis2"});
     Joint jt;
     jt.name = j.at("name").string();
     if (jt.name.empty()) j.at("name").fail("must not be empty");
@@ -136,6 +204,7 @@ void parse_joints(const Field& root, ParseContext& ctx) {
     jt.m2 = add_marker(m, a2, E2);
     m.joints.push_back(jt);
   }
+  for (std::size_t i : couplers) parse_coupler(list.at(i), m, names);
 }
 
 }  // namespace ffr::runtime::detail

@@ -32,7 +32,7 @@ void parse_motions(const Field& root, ParseContext& ctx) {
   std::set<int> driven;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Field f = list.at(i);
-    f.allow_only({"joint", "table", "coordinate"});
+    f.allow_only({"joint", "table", "speed", "coordinate"});
     Motion mo;
     mo.joint = joint_ref(f.at("joint"), m);
     const Joint& j = m.joints[mo.joint];
@@ -49,7 +49,15 @@ void parse_motions(const Field& root, ParseContext& ctx) {
     }
     if (!driven.insert(mo.joint * 2 + static_cast<int>(mo.coordinate)).second)
       f.at("joint").fail("this joint coordinate is already prescribed");
-    mo.table = parse_table(f.at("table"), 1);
+    // The coordinate (`table`) or its rate (`speed`, integrated exactly), never both.
+    if (auto sp = f.find("speed")) {
+      if (f.has("table")) sp->fail("give either table (the coordinate) or speed (its rate), not both");
+      mo.table = parse_table(*sp, 1, Interpolation::Pchip);
+      mo.speed = true;
+      mo.start = m.settings.start;
+    } else {
+      mo.table = parse_table(f.at("table"), 1, Interpolation::Pchip);
+    }
     m.motions.push_back(std::move(mo));
   }
 }
@@ -102,7 +110,8 @@ void parse_outputs(const Field& root, ParseContext& ctx) {
       o.size = static_cast<int>(o.coords.size());
     } else if (type == "energy") {
       o.type = OutputType::Energy;
-      o.size = 3;
+      // With friction dampers a fourth value: the energy they have dissipated.
+      o.size = m.friction_dampers.empty() ? 3 : 4;
     } else {
       f.at("type").fail("unknown output type '" + type +
                         "' (expected node_deformation, node_position, modal_coordinates, joint_coordinate or energy)");

@@ -143,18 +143,21 @@ void joint_hessian(const Model& model, const Data& data, const Joint& j, const E
   }
 }
 
-void motion_hessian(const Model& model, Data& data, const Motion& mo, double lam, Target& T) {
-  const Joint& j = model.joints[mo.joint];
-  if (mo.coordinate == JointCoordinate::Displacement) {
-    const Expr d = two(quantity(model, data, j.m2, -1, 2), quantity(model, data, j.m1, -1, 1, -1.0));
-    dot_hessian(T, d, one(quantity(model, data, j.m1, 0, 1)), lam);
+// lam times the second derivative of a joint coordinate (scaled by the model length for an
+// angle), its markers 1 and 2 on the target's sides s1 and s2.
+void coordinate_hessian(const Model& model, Data& data, int joint, JointCoordinate coord, double lam, Target& T, int s1,
+                        int s2) {
+  const Joint& j = model.joints[joint];
+  if (coord == JointCoordinate::Displacement) {
+    const Expr d = two(quantity(model, data, j.m2, -1, s2), quantity(model, data, j.m1, -1, s1, -1.0));
+    dot_hessian(T, d, one(quantity(model, data, j.m1, 0, s1)), lam);
     return;
   }
   // Angle row L (theta - target): build g_x, g_y, H_x, H_y over [z1, z2] in the work buffers.
   const int n = T.nb[1] + T.nb[2];
   Target local{&data.cH, {0, 0, T.nb[1]}, {0, T.nb[1], T.nb[2]}, T.buf};
-  const Expr f2 = one(quantity(model, data, j.m2, 1, 2));
-  const Expr f1 = one(quantity(model, data, j.m1, 1, 1)), g1 = one(quantity(model, data, j.m1, 2, 1));
+  const Expr f2 = one(quantity(model, data, j.m2, 1, s2));
+  const Expr f1 = one(quantity(model, data, j.m1, 1, s1)), g1 = one(quantity(model, data, j.m1, 2, s1));
   const double x = f1.value().dot(f2.value()), y = g1.value().dot(f2.value()), r2 = x * x + y * y;
   auto gx = data.cg.row(0).head(n);
   auto gy = data.cg.row(1).head(n);
@@ -177,6 +180,27 @@ void motion_hessian(const Model& model, Data& data, const Motion& mo, double lam
   for (int a = 1; a <= 2; ++a)
     for (int b = 1; b <= 2; ++b)
       if (T.nb[a] && T.nb[b]) T.M->block(T.off[a], T.off[b], T.nb[a], T.nb[b]) += c * H.block(local.off[a], local.off[b], T.nb[a], T.nb[b]);
+}
+
+void motion_hessian(const Model& model, Data& data, const Motion& mo, double lam, Target& T) {
+  coordinate_hessian(model, data, mo.joint, mo.coordinate, lam, T, 1, 2);
+}
+
+// A coupler's row w (theta1 - ratio theta2): the two coordinates' Hessians (an angle's carries
+// the model length itself, coordinate_hessian).
+void coupler_hessian(const Model& model, Data& data, const ConstraintBlock& b, double lam, Target& T) {
+  const Coupler& c = model.couplers[b.index];
+  const double w = c.c1 == JointCoordinate::Angle ? 1.0 : 1.0 / model.length;  // the row's w over the length
+  const int joints[2] = {c.joint1, c.joint2};
+  const JointCoordinate coords[2] = {c.c1, c.c2};
+  const double scales[2] = {w, -w * c.ratio};
+  for (int k = 0; k < 2; ++k) {
+    const Joint& j = model.joints[joints[k]];
+    const auto side = [&](int marker) { return model.markers[marker].body == b.body2 && b.body2 != kGround ? 2 : 1; };
+    // coordinate_hessian scales an angle by the length and leaves a displacement as it is.
+    const double s = coords[k] == JointCoordinate::Angle ? scales[k] : scales[k] * model.length;
+    coordinate_hessian(model, data, joints[k], coords[k], lam * s, T, side(j.m1), side(j.m2));
+  }
 }
 
 }  // namespace
@@ -211,6 +235,8 @@ void add_constraint_hessian(const Model& model, Data& data, const VectorXd& lam,
       data.cl.head(n).setZero();
       data.cl.segment(b.first, b.rows) = factor * l;
       joint_hessian(model, data, j, data.cl.head(n), T);
+    } else if (b.kind == BlockKind::Coupler) {
+      coupler_hessian(model, data, b, factor * l(0), T);
     } else {
       motion_hessian(model, data, model.motions[b.index], factor * l(0), T);
     }

@@ -125,22 +125,24 @@ void joint_rows(const Model& model, const Data& data, const Joint& j, Rows& r) {
 
 double unwrap(double raw, double ref) { return raw + 2 * M_PI * std::round((ref - raw) / (2 * M_PI)); }
 
-// Coordinate value, rate and bias; with jac, adds scale * gradient to row `row`.
+// Coordinate value, rate and bias; with jac, adds scale * gradient to row `row`. The joint's
+// markers 1 and 2 add to the block's columns of sides side1 and side2 (a coupler's block holds
+// two joints, whose bodies need not be its body1 and body2 in that order).
 detail::DotValue coordinate(const Model& model, const Data& data, int joint, JointCoordinate c, Rows* r, int row,
-                            double scale) {
+                            double scale, int side1 = 1, int side2 = 2) {
   const Joint& j = model.joints[joint];
   const JointSides s = sides(model, data, j);
   if (c == JointCoordinate::Displacement) {
-    const VecExpr d = expr(point(*s.m2, 2, s.g2), point(*s.m1, 1, s.g1, -1.0));
-    const VecExpr e = expr(axis(*s.m1, 0, 1, s.g1));
+    const VecExpr d = expr(point(*s.m2, side2, s.g2), point(*s.m1, side1, s.g1, -1.0));
+    const VecExpr e = expr(axis(*s.m1, 0, side1, s.g1));
     if (r) dot_jacobian(d, e, scale, r->J1, r->J2, row);
     auto v = dot(d, e);
     v.value -= j.d0;
     return v;
   }
   // theta = atan2(g1.f2, f1.f2): the rotation of marker 2's f axis about marker 1's e axis.
-  const VecExpr f2 = expr(axis(*s.m2, 1, 2, s.g2));
-  const VecExpr f1 = expr(axis(*s.m1, 1, 1, s.g1)), g1 = expr(axis(*s.m1, 2, 1, s.g1));
+  const VecExpr f2 = expr(axis(*s.m2, 1, side2, s.g2));
+  const VecExpr f1 = expr(axis(*s.m1, 1, side1, s.g1)), g1 = expr(axis(*s.m1, 2, side1, s.g1));
   const auto x = dot(f1, f2), y = dot(g1, f2);
   const double rho2 = x.value * x.value + y.value * y.value;
   if (r) {
@@ -163,6 +165,24 @@ void motion_row(const Model& model, const Data& data, int m, double t, Rows& r) 
   r.gamma(0) = scale * (v.bias - target(2));
 }
 
+// A coupler's row w (theta1 - ratio theta2): the two coordinates' rows added.
+void coupler_row(const Model& model, const Data& data, const ConstraintBlock& b, Rows& r) {
+  const Coupler& c = model.couplers[b.index];
+  const double w = c.c1 == JointCoordinate::Angle ? model.length : 1.0;
+  r.Phi(0) = r.Phit(0) = r.gamma(0) = 0;
+  const int joints[2] = {c.joint1, c.joint2};
+  const JointCoordinate coords[2] = {c.c1, c.c2};
+  const double scales[2] = {w, -w * c.ratio};
+  for (int k = 0; k < 2; ++k) {
+    const Joint& j = model.joints[joints[k]];
+    const auto side = [&](int marker) { return model.markers[marker].body == b.body2 && b.body2 != kGround ? 2 : 1; };
+    const auto v = coordinate(model, data, joints[k], coords[k], r.jacobian ? &r : nullptr, 0, scales[k], side(j.m1), side(j.m2));
+    r.Phi(0) += scales[k] * v.value;
+    r.Phit(0) += scales[k] * v.given;
+    r.gamma(0) += scales[k] * v.bias;
+  }
+}
+
 // The body's columns of a block's rows in data.Phiq (none for the ground or a driven body).
 detail::JacobianBlock block_columns(const Model& model, Data& data, const ConstraintBlock& b, int body) {
   if (!integrated(data, body)) return data.Phiq.block(b.row0, 0, b.rows, 0);
@@ -175,7 +195,14 @@ detail::JacobianBlock block_columns(const Model& model, Data& data, const Constr
 Vector3d motion_target(const Model& model, const Data& data, int m, double t) {
   if (data.motion_external[m]) return data.motion_value[m];
   Vector3d v;
-  model.motions[m].table.eval(t, 0, v(0), v(1), v(2));
+  const Motion& mo = model.motions[m];
+  if (mo.speed) {
+    double d2;
+    mo.table.eval(t, 0, v(1), v(2), d2);
+    v(0) = mo.table.integral(t, 0) - mo.table.integral(mo.start, 0);
+    return v;
+  }
+  mo.table.eval(t, 0, v(0), v(1), v(2));
   return v;
 }
 
@@ -205,6 +232,7 @@ void evaluate_rows(const Model& model, Data& data, double t, bool jacobian, bool
       case BlockKind::RigidBody: rigid_body_rows(model, data, b.index, r); break;
       case BlockKind::Joint: joint_rows(model, data, model.joints[b.index], r); break;
       case BlockKind::Motion: motion_row(model, data, b.index, t, r); break;
+      case BlockKind::Coupler: coupler_row(model, data, b, r); break;
     }
   }
 }

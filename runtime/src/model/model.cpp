@@ -140,6 +140,7 @@ void order_blocks(Model& m) {
     row += b.rows;
     if (b.kind == BlockKind::Joint) m.joints[b.index].block = static_cast<int>(i);
     if (b.kind == BlockKind::Motion) m.motions[b.index].block = static_cast<int>(i);
+    if (b.kind == BlockKind::Coupler) m.couplers[b.index].block = static_cast<int>(i);
     if (active(b)) {
       m.active_blocks = static_cast<int>(i) + 1;
       m.nactive = row;
@@ -279,6 +280,20 @@ void finalize(Model& m) {
                        std::string("a ") + to_string(jt.type) + " joint has no " +
                            (mo.coordinate == JointCoordinate::Angle ? "angle" : "displacement") + " to prescribe");
     m.blocks.push_back({BlockKind::Motion, static_cast<int>(i), 0, 1, m.markers[jt.m1].body, m.markers[jt.m2].body});
+  }
+  for (std::size_t i = 0; i < m.couplers.size(); ++i) {
+    // Its row touches the bodies of both joints: at most two besides the ground (the loader
+    // refuses more), body1 and body2 of the block in the order met.
+    const Coupler& c = m.couplers[i];
+    int b[2] = {kGround, kGround}, n = 0;
+    for (int j : {c.joint1, c.joint2})
+      for (int mk : {m.joints[j].m1, m.joints[j].m2}) {
+        const int body = m.markers[mk].body;
+        if (body == kGround || body == b[0] || body == b[1]) continue;
+        if (n == 2) throw ModelError(m.source, "couplers", "a coupler's joints move more than two bodies");
+        b[n++] = body;
+      }
+    m.blocks.push_back({BlockKind::Coupler, static_cast<int>(i), 0, 1, b[0], b[1]});
   }
   order_blocks(m);
   mark_read_axes(m);

@@ -41,6 +41,7 @@ void evaluate_output(const Model& model, Data& data, const Output& o, double* ou
       out[0] = e.kinetic;
       out[1] = e.potential;
       out[2] = e.total();
+      if (o.size > 3) out[3] = e.dissipated;
       break;
     }
   }

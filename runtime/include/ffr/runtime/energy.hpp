@@ -8,11 +8,14 @@ namespace ffr::runtime {
 
 struct Energy {
   double kinetic = 0, potential = 0;
+  /// Energy the friction dampers have dissipated since the start (not part of the total: with
+  /// conservative loads, total + dissipated is what stays constant).
+  double dissipated = 0;
   double total() const { return kinetic + potential; }
 };
 
-/// Kinetic energy 1/2 q_d^T M q_d and potential energy of gravity, modal elasticity, springs and
-/// bushings (table loads and external inputs are not conservative and have none). Updates the
+/// Kinetic energy 1/2 q_d^T M q_d and potential energy of gravity, modal elasticity, springs,
+/// bushings and the series springs of friction dampers (table loads and external inputs are not conservative and have none). Updates the
 /// body kinematics and mass matrices in data.
 Energy energy(const Model& model, Data& data);
 

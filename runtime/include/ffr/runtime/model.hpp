@@ -192,17 +192,51 @@ struct Joint {
   double d0 = 0;         ///< initial displacement along the axis (prismatic/cylindrical coordinate zero)
 };
 
+/// A coupler (belt, gear, rack): the change of joint1's coordinate is `ratio` times joint2's,
+/// one constraint row w (theta1 - ratio theta2) (w = model length for an angle of joint1, else 1;
+/// both coordinates are zero in the initial configuration).
+struct Coupler {
+  std::string name;
+  int joint1 = -1, joint2 = -1;
+  JointCoordinate c1 = JointCoordinate::Angle, c2 = JointCoordinate::Angle;
+  double ratio = 1;
+  int block = -1;
+};
+
 struct Motion {
   int joint = -1;
   JointCoordinate coordinate = JointCoordinate::Angle;
   Table table;           ///< one component
+  /// The table is the coordinate's rate: the coordinate is its exact integral from the start
+  /// time (zero there, the initial configuration), the rate the table, the acceleration its slope.
+  bool speed = false;
+  double start = 0;      ///< the start time (for a speed)
   int block = -1;
 };
 
+/// Tension F = f(l - length0) + g(l_dot) + preload along the line of two points, f and g linear
+/// (k, c) or tables of the deflection and of the rate (MODEL_FILE.md "Forces").
 struct SpringDamper {
   std::string name;
   int m1 = -1, m2 = -1;
   double k = 0, c = 0, length0 = 0;
+  Table force_table;    ///< deflection l - length0 -> force (replaces k when not empty)
+  Table damping_table;  ///< rate l_dot -> force (replaces c when not empty)
+  double preload = 0;   ///< constant tension [N]
+};
+
+/// Coulomb friction along the line of two points (a friction damper): its tension opposes the
+/// rate of change of their distance with magnitude `force`. Without a series spring, regularised:
+/// T = force clamp(l_dot / velocity_tolerance, -1, 1). With a series spring (a rubber bearing),
+/// T = series_stiffness (l - length0 - s) with the slip s of a Jenkins element, exact stick and
+/// slip by return mapping (FORMULATION.md section 8, friction dampers).
+struct FrictionDamper {
+  std::string name;
+  int m1 = -1, m2 = -1;
+  double force = 0;               ///< Coulomb force [N]
+  double series_stiffness = 0;    ///< [N/m]; 0: none
+  double velocity_tolerance = 0;  ///< [m/s]; regularisation without a series spring
+  double length0 = 0;             ///< initial length: the series spring is unloaded there
 };
 
 /// Linear 6-DOF bushing: force and torque from the displacement and small rotation of marker 2
@@ -212,6 +246,10 @@ struct Bushing {
   int m1 = -1, m2 = -1;
   Vector6d k = Vector6d::Zero(), c = Vector6d::Zero();
   Vector6d s0 = Vector6d::Zero();  ///< measures in the initial configuration (the unloaded state)
+  /// Per axis (x, y, z, rx, ry, rz): a characteristic of the measure's change from s0 (force or
+  /// torque), replacing that axis's k when not empty.
+  std::array<Table, 6> tables;
+  Vector6d preload = Vector6d::Zero();  ///< constant force and torque (bushing axes) added to each axis
 };
 
 /// A force or torque (global components) at a marker, from a time table with 3 components.
@@ -235,7 +273,7 @@ struct Output {
 
 /// Constraint equations come in blocks that touch at most two bodies, so the Jacobian is stored
 /// per block (rows x body coordinates) and the tangent is assembled from small products.
-enum class BlockKind { RigidBody, Joint, Motion };
+enum class BlockKind { RigidBody, Joint, Motion, Coupler };
 struct ConstraintBlock {
   BlockKind kind = BlockKind::Joint;
   int index = -1;                 ///< body, joint or motion index
@@ -291,9 +329,11 @@ struct Model {
   std::vector<Marker> markers;
   std::vector<Joint> joints;
   std::vector<Motion> motions;
+  std::vector<Coupler> couplers;
   std::vector<SpringDamper> springs;
   std::vector<Bushing> bushings;
   std::vector<PointLoad> loads;
+  std::vector<FrictionDamper> friction_dampers;
   std::vector<Output> outputs;
   SolverSettings settings;
 

@@ -19,6 +19,13 @@ namespace ffr::runtime {
 
 struct Data;
 
+/// A friction damper's memory (friction_damper.cpp): the slip of its Jenkins element (with a
+/// series spring), the energy it has dissipated since the start, and its power at the last
+/// accepted step (for the trapezoidal rule on the regularised damper's dissipation).
+struct FrictionState {
+  double slip = 0, dissipated = 0, power = 0;
+};
+
 struct State {
   /// Sized for the model once (save_state and restore_state then allocate nothing).
   explicit State(const Model& model);
@@ -39,6 +46,8 @@ struct State {
   int last_iterations = 0;       ///< Newton iterations of the last step (reuse_jacobian)
   // Joints: the unwrapped angle of each revolute/cylindrical joint at the last step.
   std::vector<double> angle_ref;
+  // Friction dampers: slip, dissipated energy and power, one each.
+  std::vector<FrictionState> friction;
 };
 
 /// Copies data's state into `state`. Allocation-free.
