@@ -26,7 +26,7 @@ Data::Data(const Model& model) : start(model) {
   integrated.assign(model.bodies.size(), 1);
   drive_ref.assign(model.bodies.size(), DriveReference{});
   q = qd = qdd = VectorXd::Zero(n);
-  lambda = lambda_eff = lambda0 = VectorXd::Zero(m);
+  lambda = lambda_eff = lambda0 = reaction_lambda = VectorXd::Zero(m);
   Q = f = dq = r = tmp = vstar = qdd_prev = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);
   sigma = c = alpha = VectorXd::Zero(m);
   scheme.a = VectorXd::Zero(n);
