@@ -374,3 +374,31 @@ TEST(Reaction, DrivenHingeGivesTheDriveTorque) {
   // The multipliers hold the accelerations' projection to its tolerance: 1e-6 of the 14 N here.
   EXPECT_LT(worst, 1e-5);
 }
+
+// Bad output definitions are refused naming the field (ffr-sim: exit status 2, nothing written).
+TEST(Reaction, BadOutputsAreRefused) {
+  const char* cases[][2] = {
+      {R"({"name": "o", "type": "element_force", "force": "nothing"})", "no spring_damper or bushing named 'nothing'"},
+      {R"({"name": "o", "type": "element_force", "force": "push"})", "is a point load"},
+      {R"({"name": "o", "type": "node_velocity", "body": "b", "force": "s"})", "is a key of element_force outputs"},
+      {R"({"name": "o", "type": "joint_reaction", "joint": "nothing"})", "unknown joint 'nothing'"},
+      {R"({"name": "o", "type": "joint_rate", "joint": "ball"})", "has no joint coordinate"},
+      {R"({"name": "o", "type": "body_angular_velocity", "body": "ground"})", "the ground does not move"},
+      {R"({"name": "o", "type": "element_force"})", "force"},
+  };
+  for (const auto& c : cases) {
+    const std::string json = std::string(R"({"bodies": [{"name": "b", "type": "rigid", "mass": 1, "com": [0, 0, 0],
+      "inertia": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}],
+      "joints": [{"name": "ball", "type": "spherical", "body1": "ground", "body2": "b", "at": [0, 0, 0]}],
+      "forces": [{"name": "s", "type": "spring_damper", "body1": "ground", "at1": [1, 0, 0], "body2": "b", "k": 1},
+                 {"name": "push", "type": "point_force", "body": "b", "table": {"t": [0], "value": [[1, 0, 0]]}}],
+      "solver": {"end": 1, "step": 0.1}, "outputs": [)") + c[0] + "]}";
+    try {
+      test::model_from(json);
+      ADD_FAILURE() << "accepted: " << c[0];
+    } catch (const ModelError& e) {
+      EXPECT_NE(std::string(e.what()).find(c[1]), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("outputs[0]"), std::string::npos) << e.what();
+    }
+  }
+}
