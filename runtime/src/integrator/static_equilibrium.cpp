@@ -112,6 +112,10 @@ std::vector<std::string> settle_statically(const Model& model, Data& data) {
   set_unknowns(model, data, false);  // every body an unknown, every row active
   data.qd.setZero();
   data.qdd.setZero();
+  // The multipliers of the initial conditions start Newton (near an equilibrium they are nearly
+  // the static ones); where those could not be computed (a body without inertia about an axis a
+  // force element holds) from zero.
+  if (!data.lambda.allFinite()) data.lambda.setZero();
   const VectorXd q_start = data.q;
   MatrixXd T(n, n), A(n + m, n + m);
   VectorXd rhs(n + m), x(n + m), scale(n + m);
