@@ -234,7 +234,7 @@ TEST(Reaction, FourBarMatchesPlanarNewtonEuler) {
       const auto R = output(model, data, names[k]);
       scale = std::max(scale, Eigen::Vector2d(ref(2 * k), ref(2 * k + 1)).norm());
       worst = std::max({worst, std::abs(R[0] - ref(2 * k)), std::abs(R[1] - ref(2 * k + 1))});
-      if (s == 1000) std::printf("t = %.2f pin %s: runtime (%.6f, %.6f) N, Newton-Euler (%.6f, %.6f) N\n", data.t, names[k], R[0], R[1], ref(2 * k), ref(2 * k + 1));
+      if (s == 1000) std::printf("t = %.2f pin %s: runtime (%.6f, %.6f) N, Newton-Euler (%.6f, %.6f) N\n", data.state.t, names[k], R[0], R[1], ref(2 * k), ref(2 * k + 1));
     }
   }
   std::printf("four-bar pin forces: worst difference %.3e N of %.3f N\n", worst, scale);

@@ -69,7 +69,7 @@ TEST(Static, MassOnSpringSettlesToWeightOverStiffness) {
   EXPECT_NEAR(z, -1 - 2 * g / 500, 1e-10);
   EXPECT_NEAR(F, 2 * g, 1e-8);
   for (int i = 0; i < 6; ++i) EXPECT_NEAR(R[i], 0, 1e-8);
-  EXPECT_NEAR(data.qdd.cwiseAbs().maxCoeff(), 0, 1e-8);  // at rest: the accelerations vanish
+  EXPECT_NEAR(data.state.qdd.cwiseAbs().maxCoeff(), 0, 1e-8);  // at rest: the accelerations vanish
 }
 
 // A 30 kg tub-like rigid body (centre of mass off its middle) hanging from three vertical springs

@@ -73,23 +73,23 @@ double assemble_in_metric(const Model& model, Data& data, const VectorXd& given,
                           int& it) {
   const double kappa = model.settings.penalty;
   const double tol = model.settings.tolerance;
-  data.q = given;
+  data.state.q = given;
   update_bodies(model, data);
   mass_matrices(model, data);
   update_markers(model, data);
   evaluate_constraints(model, data, t0);
-  data.lambda.setZero();
+  data.state.lambda.setZero();
   double viol = data.Phi.cwiseAbs().maxCoeff() / model.length, inc = 0;
   for (it = 0; it < kMaxAssembly; ++it) {
     // The metric is the mass matrix at the given configuration; the tangent is refreshed each pass.
     factor_metric(model, data, kappa, 1.0, elastic_weight);
-    if (it > 0) data.lambda += data.alpha.cwiseProduct(data.Phi);
-    data.lambda_eff = data.lambda + data.alpha.cwiseProduct(data.Phi);
-    data.tmp = data.q - given;
+    if (it > 0) data.state.lambda += data.alpha.cwiseProduct(data.Phi);
+    data.lambda_eff = data.state.lambda + data.alpha.cwiseProduct(data.Phi);
+    data.tmp = data.state.q - given;
     data.r.noalias() = data.W * data.tmp;
     add_constraint_forces(model, data, data.lambda_eff, data.r);
     solve_tangent(data, data.r, data.dq);
-    data.q -= data.dq;
+    data.state.q -= data.dq;
     inc = scaled_norm(model, data.dq);
     update_bodies(model, data);
     update_markers(model, data);
@@ -107,7 +107,7 @@ double assemble_in_metric(const Model& model, Data& data, const VectorXd& given,
 // over frame and modal coordinates and start the body vibrating in its stiffest modes (a
 // Craig-Bampton rod on a 1500 rpm crank got 1.5 units of modal velocity in a constraint mode).
 void assemble_positions(const Model& model, Data& data, double t0, std::vector<std::string>& notes) {
-  const VectorXd given = data.q;
+  const VectorXd given = data.state.q;
   update_bodies(model, data);
   mass_matrices(model, data);
   update_markers(model, data);
@@ -121,33 +121,33 @@ void assemble_positions(const Model& model, Data& data, double t0, std::vector<s
   // the plain metric from there (a round-off-sized correction), or from the given
   // configuration if the frames alone could not do it.
   if (!(viol < 1e-3 * tol)) {
-    const VectorXd start = viol < 1e-6 ? VectorXd(data.q) : given;
+    const VectorXd start = viol < 1e-6 ? VectorXd(data.state.q) : given;
     viol = assemble_in_metric(model, data, start, t0, 0.0, it);
   }
   if (!(viol < tol))
     throw SolverError(t0, viol,
                       "the initial configuration cannot be assembled: the joints and motions leave a violation of " +
                           fmt(viol) + " of the model length after " + std::to_string(it) + " iterations");
-  const double change = (data.q - given).cwiseAbs().maxCoeff();
+  const double change = (data.state.q - given).cwiseAbs().maxCoeff();
   if (change > 1e-9) notes.push_back("initial positions adjusted to satisfy the joints and motions: largest change " +
-                                     largest_change(model, data.q, given, "m"));
+                                     largest_change(model, data.state.q, given, "m"));
 }
 
 std::vector<std::string> consistent_state(const Model& model, Data& data) {
   std::vector<std::string> notes;
   const double h = model.settings.step;
   const double t0 = model.settings.start;
-  data.t = t0;
-  data.scheme.k = trapezoidal_coefficients(h);  // the projections' metric below (scheme.hpp)
-  data.qdd.setZero();
-  data.have_previous = false;
+  data.state.t = t0;
+  data.state.k = trapezoidal_coefficients(h);  // the projections' metric below (scheme.hpp)
+  data.state.qdd.setZero();
+  data.state.have_previous = false;
   data.stats = Stats{};
   // Every body is moved into place, the driven ones too; they follow their drives afterwards.
   set_unknowns(model, data, false);
   // Angles of driven joints are unwrapped around their targets from the start.
   for (std::size_t m = 0; m < model.motions.size(); ++m)
     if (model.motions[m].coordinate == JointCoordinate::Angle)
-      data.angle_ref[model.motions[m].joint] = motion_target(model, data, static_cast<int>(m), t0)(0);
+      data.state.angle_ref[model.motions[m].joint] = motion_target(model, data, static_cast<int>(m), t0)(0);
 
   assemble_positions(model, data, t0, notes);
   update_angle_references(model, data);
@@ -157,7 +157,7 @@ std::vector<std::string> consistent_state(const Model& model, Data& data) {
   mass_matrices(model, data);
   update_markers(model, data);
   evaluate_constraints(model, data, t0);
-  const VectorXd given = data.qd;
+  const VectorXd given = data.state.qd;
   // Rigid first, as for the positions, then the plain metric from there (or from the given
   // velocities if the frames alone could not satisfy the joints and motions).
   factor_metric(model, data, model.settings.penalty * 4.0 / (h * h), 0.25 * h * h, kElasticWeight);
@@ -165,39 +165,39 @@ std::vector<std::string> consistent_state(const Model& model, Data& data) {
   // (Not converging here is no error: the plain metric below is the fallback.)
   double vres = project_velocities(model, data, t0, false);
   if (vres > 1e-2 * model.settings.tolerance) {
-    if (!(vres < 1e-6)) data.qd = given;
+    if (!(vres < 1e-6)) data.state.qd = given;
     factor_metric(model, data, model.settings.penalty * 4.0 / (h * h), 0.25 * h * h);
     vres = project_velocities(model, data, t0);
   }
   if (vres > model.settings.tolerance)
     throw SolverError(t0, vres, "the initial velocities cannot be made consistent with the joints and motions");
-  const double dv = (data.qd - given).cwiseAbs().maxCoeff();
+  const double dv = (data.state.qd - given).cwiseAbs().maxCoeff();
   // Below this the change is the rounding of the given numbers, not worth a note.
   if (dv > 1e-8 * std::max(1.0, given.cwiseAbs().maxCoeff()))
     notes.push_back("initial velocities adjusted to satisfy the joints and motions: largest change " +
-                    largest_change(model, data.qd, given, "m/s"));
+                    largest_change(model, data.state.qd, given, "m/s"));
 
   // Accelerations and multipliers. The stiffening forces depend on the accelerations, hence the
   // outer fixed-point passes.
   for (int pass = 0; pass < 3; ++pass) {
     evaluate(model, data, t0);
     factor_metric(model, data, model.settings.penalty, 1.0);
-    data.lambda.setZero();
+    data.state.lambda.setZero();
     double res = 0;
     for (int k = 0; k < 100; ++k) {
       // (M + alpha Phi_q^T Phi_q) a = Q - Phi_q^T (lambda + alpha gamma);  lambda += alpha (Phi_q a + gamma)
       data.r = data.Q;
-      data.c = -(data.lambda + data.alpha.cwiseProduct(data.gamma));
+      data.c = -(data.state.lambda + data.alpha.cwiseProduct(data.gamma));
       add_constraint_forces(model, data, data.c, data.r);
-      solve_tangent(data, data.r, data.qdd);
-      constraint_times(model, data, data.qdd, data.c);
+      solve_tangent(data, data.r, data.state.qdd);
+      constraint_times(model, data, data.state.qdd, data.c);
       data.c += data.gamma;
-      data.lambda += data.alpha.cwiseProduct(data.c);
+      data.state.lambda += data.alpha.cwiseProduct(data.c);
       res = data.c.cwiseAbs().maxCoeff() * h * h / model.length;
       if (res < 1e-3 * model.settings.tolerance) break;
     }
   }
-  data.reaction_lambda = data.lambda;
+  data.reaction_lambda = data.state.lambda;
   data.tangent_valid = false;
   set_unknowns(model, data, true);
   return notes;

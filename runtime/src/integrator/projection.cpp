@@ -46,7 +46,7 @@ struct Projected {
 Projected project_once(const Model& model, Data& data, VectorXd& x, const VectorXd& bias, double time_scale) {
   const SolverSettings& s = model.settings;
   const ProjectionPolicy& p = s.policy.projection;
-  const double h4 = data.scheme.k.kq;  // h^2/4 for the trapezoidal rule
+  const double h4 = data.state.k.kq;  // h^2/4 for the trapezoidal rule
   const double unit = time_scale / model.length;
   const double target = p.residual_fraction * s.tolerance;
   const double inf = std::numeric_limits<double>::infinity();
@@ -102,7 +102,7 @@ double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias
   Projected r = project_once(model, data, x, bias, time_scale);
   if (!r.converged && !data.tangent_fresh_step) {
     x = data.vstar;
-    refresh_tangent(model, data, t, data.lambda);
+    refresh_tangent(model, data, t, data.state.lambda);
     data.tangent_fresh_step = true;
     r = project_once(model, data, x, bias, time_scale);
   }
@@ -126,21 +126,21 @@ double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias
 }  // namespace
 
 double project_velocities(const Model& model, Data& data, double t, bool must_converge) {
-  const double h = data.scheme.k.h;
-  return project(model, data, data.qd, data.Phit, h, t, "velocity", must_converge);
+  const double h = data.state.k.h;
+  return project(model, data, data.state.qd, data.Phit, h, t, "velocity", must_converge);
 }
 
 double project_accelerations(const Model& model, Data& data, double t) {
-  const double h = data.scheme.k.h;
+  const double h = data.state.k.h;
   // gamma depends on the (projected) velocities; q, and with it the Jacobian, has not changed
   // since the final evaluation of the step.
   update_body_rates(model, data);
   update_marker_rates(model, data);
   evaluate_constraint_biases(model, data, t);
-  const double res = project(model, data, data.qdd, data.gamma, h * h, t, "acceleration", true);
+  const double res = project(model, data, data.state.qdd, data.gamma, h * h, t, "acceleration", true);
   // The projection's multipliers: at its fixed point W (q_dd - q_dd*) + kq Phi_q^T sigma = 0, so
   // lambda + kq sigma balances the projected accelerations (to the h/2 C + h^2/4 K of W).
-  data.reaction_lambda = data.lambda + data.scheme.k.kq * data.sigma;
+  data.reaction_lambda = data.state.lambda + data.state.k.kq * data.sigma;
   return res;
 }
 

@@ -59,7 +59,7 @@ std::string coordinate_name(const Model& model, const VectorXd& v) {
 void static_tangent(const Model& model, Data& data, double t, MatrixXd& T) {
   force_tangents(model, data, t);
   T = data.K;
-  add_constraint_hessian(model, data, data.lambda, 1.0, T);
+  add_constraint_hessian(model, data, data.state.lambda, 1.0, T);
 }
 
 // Refuses an equilibrium whose stiffness on the motions the constraints leave free is not
@@ -107,16 +107,16 @@ void check_stability(const Model& model, const Data& data, const MatrixXd& T, do
 }  // namespace
 
 std::vector<std::string> settle_statically(const Model& model, Data& data) {
-  const double t = data.t;
+  const double t = data.state.t;
   const int n = model.ncoord, m = model.nconstraints;
   set_unknowns(model, data, false);  // every body an unknown, every row active
-  data.qd.setZero();
-  data.qdd.setZero();
+  data.state.qd.setZero();
+  data.state.qdd.setZero();
   // The multipliers of the initial conditions start Newton (near an equilibrium they are nearly
   // the static ones); where those could not be computed (a body without inertia about an axis a
   // force element holds) from zero.
-  if (!data.lambda.allFinite()) data.lambda.setZero();
-  const VectorXd q_start = data.q;
+  if (!data.state.lambda.allFinite()) data.state.lambda.setZero();
+  const VectorXd q_start = data.state.q;
   MatrixXd T(n, n), A(n + m, n + m);
   VectorXd rhs(n + m), x(n + m), scale(n + m);
   double inc = 0, viol = 0;
@@ -127,7 +127,7 @@ std::vector<std::string> settle_statically(const Model& model, Data& data) {
     viol = m ? data.Phi.cwiseAbs().maxCoeff() / model.length : 0.0;
     static_tangent(model, data, t, T);
     rhs.head(n) = data.Q;
-    rhs.head(n).noalias() -= data.Phiq.transpose() * data.lambda;
+    rhs.head(n).noalias() -= data.Phiq.transpose() * data.state.lambda;
     rhs.tail(m) = -data.Phi;
     A.topLeftCorner(n, n) = T;
     A.topRightCorner(n, m) = data.Phiq.transpose();
@@ -146,8 +146,8 @@ std::vector<std::string> settle_statically(const Model& model, Data& data) {
     inc = scaled_norm(model, x.head(n));
     if (!std::isfinite(inc)) break;
     const double damp = inc > kMaxCorrection ? kMaxCorrection / inc : 1.0;
-    data.q += damp * x.head(n);
-    data.lambda += damp * x.tail(m);
+    data.state.q += damp * x.head(n);
+    data.state.lambda += damp * x.tail(m);
     if (damp == 1.0 && inc < model.settings.newton_tolerance && viol < model.settings.tolerance) {
       converged = true;
       break;
@@ -170,7 +170,7 @@ std::vector<std::string> settle_statically(const Model& model, Data& data) {
   evaluate(model, data, t);
   static_tangent(model, data, t, T);
   check_stability(model, data, T, t);
-  const VectorXd moved = data.q - q_start;
+  const VectorXd moved = data.state.q - q_start;
   double largest = 0;
   for (const Body& b : model.bodies) largest = std::max(largest, moved.segment<3>(b.offset).norm());
   return {"static equilibrium reached in " + std::to_string(it) + " Newton iterations (largest frame displacement " + fmt(largest) +

@@ -147,7 +147,7 @@ detail::DotValue coordinate(const Model& model, const Data& data, int joint, Joi
     dot_jacobian(g1, f2, scale * x.value / rho2, r->J1, r->J2, row);
     dot_jacobian(f1, f2, -scale * y.value / rho2, r->J1, r->J2, row);
   }
-  const double th = unwrap(std::atan2(y.value, x.value), data.angle_ref[joint]);
+  const double th = unwrap(std::atan2(y.value, x.value), data.state.angle_ref[joint]);
   const double thd = (x.value * y.rate - y.value * x.rate) / rho2;
   const double bias = (x.value * y.bias - y.value * x.bias) / rho2 - 2 * thd * (x.value * x.rate + y.value * y.rate) / rho2;
   return {th, thd, bias, (x.value * y.given - y.value * x.given) / rho2};
@@ -229,7 +229,7 @@ void update_angle_references(const Model& model, Data& data) {
   for (std::size_t j = 0; j < model.joints.size(); ++j) {
     const JointType t = model.joints[j].type;
     if (t == JointType::Revolute || t == JointType::Cylindrical)
-      data.angle_ref[j] = joint_coordinate(model, data, static_cast<int>(j), JointCoordinate::Angle);
+      data.state.angle_ref[j] = joint_coordinate(model, data, static_cast<int>(j), JointCoordinate::Angle);
   }
 }
 

@@ -12,23 +12,23 @@ void evaluate_output(const Model& model, Data& data, const Output& o, double* ou
   switch (o.type) {
     case OutputType::NodeDeformation: {
       const Body& b = model.bodies[o.body];
-      const Vector3d u = b.nodes[o.node].phi * data.q.segment(b.offset + 12, b.nq);
+      const Vector3d u = b.nodes[o.node].phi * data.state.q.segment(b.offset + 12, b.nq);
       for (int i = 0; i < 3; ++i) out[i] = u(i);
       break;
     }
     case OutputType::NodePosition: {
       const Body& b = model.bodies[o.body];
       Vector3d x = o.point;
-      if (o.node >= 0) x = b.nodes[o.node].origin + b.nodes[o.node].phi * data.q.segment(b.offset + 12, b.nq);
+      if (o.node >= 0) x = b.nodes[o.node].origin + b.nodes[o.node].phi * data.state.q.segment(b.offset + 12, b.nq);
       Matrix3d A;
-      for (int a = 0; a < 3; ++a) A.col(a) = data.q.segment<3>(b.offset + 3 + 3 * a);
-      const Vector3d p = data.q.segment<3>(b.offset) + A * x;
+      for (int a = 0; a < 3; ++a) A.col(a) = data.state.q.segment<3>(b.offset + 3 + 3 * a);
+      const Vector3d p = data.state.q.segment<3>(b.offset) + A * x;
       for (int i = 0; i < 3; ++i) out[i] = p(i);
       break;
     }
     case OutputType::ModalCoordinates: {
       const Body& b = model.bodies[o.body];
-      for (int k = 0; k < b.nq; ++k) out[k] = data.q(b.offset + 12 + k);
+      for (int k = 0; k < b.nq; ++k) out[k] = data.state.q(b.offset + 12 + k);
       break;
     }
     case OutputType::JointCoordinate:
@@ -54,10 +54,10 @@ void evaluate_output(const Model& model, Data& data, const Output& o, double* ou
       update_bodies(model, data);
       const BodyData& bd = data.bodies[o.body];
       Vector3d x = o.point;
-      Vector3d v = data.qd.segment<3>(b.offset);
+      Vector3d v = data.state.qd.segment<3>(b.offset);
       if (o.node >= 0) {
-        x = b.nodes[o.node].origin + b.nodes[o.node].phi * data.q.segment(b.offset + 12, b.nq);
-        v.noalias() += bd.A * (b.nodes[o.node].phi * data.qd.segment(b.offset + 12, b.nq));
+        x = b.nodes[o.node].origin + b.nodes[o.node].phi * data.state.q.segment(b.offset + 12, b.nq);
+        v.noalias() += bd.A * (b.nodes[o.node].phi * data.state.qd.segment(b.offset + 12, b.nq));
       }
       v.noalias() += bd.Ad * x;
       for (int i = 0; i < 3; ++i) out[i] = v(i);
@@ -97,7 +97,7 @@ Recorder::Recorder(const Model& model, std::int64_t max_rows) {
 
 void Recorder::record(const Model& model, Data& data) {
   if (rows_ >= t_.size()) return;
-  t_(rows_) = data.t;
+  t_(rows_) = data.state.t;
   for (std::size_t i = 0; i < model.outputs.size(); ++i) {
     // Rows of a column-major matrix are strided: evaluate into a contiguous buffer first.
     evaluate_output(model, data, model.outputs[i], row_.data());

@@ -38,7 +38,7 @@ void penalty_weights(const Model& model, const Data& data, const MatrixXd& W, do
 /// M += factor * sum_i lam_i d2Phi_i/dq2 (the constraints' second derivatives; Newton tangent).
 void add_constraint_hessian(const Model& model, Data& data, const VectorXd& lam, double factor, MatrixXd& M);
 
-/// A joint's coordinate in the current state (angle unwrapped around data.angle_ref).
+/// A joint's coordinate in the current state (angle unwrapped around data.state.angle_ref).
 double joint_coordinate(const Model& model, const Data& data, int joint, JointCoordinate c);
 /// Its rate in the current state (needs the markers' velocities, update_markers).
 double joint_coordinate_rate(const Model& model, const Data& data, int joint, JointCoordinate c);

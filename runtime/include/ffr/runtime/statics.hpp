@@ -11,7 +11,7 @@
 namespace ffr::runtime {
 
 /// Moves data's consistent state (after initialize's assembly) to the static equilibrium at
-/// data.t: Q(q, 0, t) = Phi_q^T lambda, Phi(q, t) = 0 under gravity, the force elements, the
+/// data.state.t: Q(q, 0, t) = Phi_q^T lambda, Phi(q, t) = 0 under gravity, the force elements, the
 /// loads' values at t and the motions' prescribed coordinates at t, by Newton's method on the
 /// augmented Lagrangian. Velocities and accelerations are left zero (the caller makes the
 /// state consistent again). Checks that the equilibrium is stable: the stiffness on the motions
