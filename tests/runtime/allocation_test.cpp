@@ -84,7 +84,13 @@ const char* kMixedModel = R"({
     {"name": "q", "type": "modal_coordinates", "body": "rod"},
     {"name": "angle", "type": "joint_coordinate", "joint": "hub"},
     {"name": "stroke", "type": "joint_coordinate", "joint": "guide"},
-    {"name": "energy", "type": "energy"}
+    {"name": "energy", "type": "energy"},
+    {"name": "rate", "type": "joint_rate", "joint": "hub"},
+    {"name": "pin_reaction", "type": "joint_reaction", "joint": "pin"},
+    {"name": "tip_velocity", "type": "node_velocity", "body": "rod", "node": "M"},
+    {"name": "spin", "type": "body_angular_velocity", "body": "flap"},
+    {"name": "spring_force", "type": "element_force", "force": "forces[0]"},
+    {"name": "bushing_force", "type": "element_force", "force": "forces[1]"}
   ]
 })";
 

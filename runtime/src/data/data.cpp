@@ -25,7 +25,7 @@ Data::Data(const Model& model) : state(model), start(model) {
   nblocks = static_cast<int>(model.blocks.size());
   integrated.assign(model.bodies.size(), 1);
   drive_ref.assign(model.bodies.size(), DriveReference{});
-  lambda_eff = lambda0 = VectorXd::Zero(m);
+  lambda_eff = lambda0 = reaction_lambda = VectorXd::Zero(m);
   Q = f = dq = r = tmp = vstar = q0 = qd0 = qdd0 = qd_hat = qdd_hat = VectorXd::Zero(n);
   sigma = c = alpha = VectorXd::Zero(m);
   state.k = trapezoidal_coefficients(model.settings.step);

@@ -11,6 +11,7 @@
 #include "ffr/runtime/errors.hpp"
 #include "ffr/runtime/integrator.hpp"
 #include "ffr/runtime/kinematics.hpp"
+#include "ffr/runtime/statics.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -133,9 +134,7 @@ void assemble_positions(const Model& model, Data& data, double t0, std::vector<s
                                      largest_change(model, data.state.q, given, "m"));
 }
 
-}  // namespace
-
-std::vector<std::string> initialize(const Model& model, Data& data) {
+std::vector<std::string> consistent_state(const Model& model, Data& data) {
   std::vector<std::string> notes;
   const double h = model.settings.step;
   const double t0 = model.settings.start;
@@ -201,8 +200,22 @@ std::vector<std::string> initialize(const Model& model, Data& data) {
     }
   }
   detail::commit_friction(model, data, 0.0);  // the friction dampers' power at the start
+  data.reaction_lambda = data.state.lambda;
   data.tangent_valid = false;
   set_unknowns(model, data, true);
+  return notes;
+}
+
+}  // namespace
+
+std::vector<std::string> initialize(const Model& model, Data& data) {
+  std::vector<std::string> notes = consistent_state(model, data);
+  const SolverSettings& s = model.settings;
+  if (!s.static_analysis && !s.initial_equilibrium) return notes;
+  // Settled at rest (statics.hpp), then the accelerations and multipliers made consistent
+  // again there (the positions hold the constraints already; the velocities are zero).
+  for (auto& n : settle_statically(model, data)) notes.push_back(std::move(n));
+  for (auto& n : consistent_state(model, data)) notes.push_back(std::move(n));
   return notes;
 }
 

@@ -137,7 +137,11 @@ double project_accelerations(const Model& model, Data& data, double t) {
   update_body_rates(model, data);
   update_marker_rates(model, data);
   evaluate_constraint_biases(model, data, t);
-  return project(model, data, data.state.qdd, data.gamma, h * h, t, "acceleration", true);
+  const double res = project(model, data, data.state.qdd, data.gamma, h * h, t, "acceleration", true);
+  // The projection's multipliers: at its fixed point W (q_dd - q_dd*) + kq Phi_q^T sigma = 0, so
+  // lambda + kq sigma balances the projected accelerations (to the h/2 C + h^2/4 K of W).
+  data.reaction_lambda = data.state.lambda + data.state.k.kq * data.sigma;
+  return res;
 }
 
 }  // namespace ffr::runtime

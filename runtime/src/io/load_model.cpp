@@ -106,9 +106,31 @@ void parse_scheme(const Field& s, SolverSettings& st) {
 void parse_solver(const Field& root, ParseContext& ctx) {
   const Field s = root.at("solver");
   s.allow_only({"start", "end", "step", "output_every", "tolerance", "newton_tolerance", "max_iterations", "penalty", "reuse_jacobian",
-                "eliminate_driven_bodies", "integrator", "spectral_radius", "rtol", "atol", "output_interval", "max_step"});
+                "eliminate_driven_bodies", "integrator", "spectral_radius", "rtol", "atol", "output_interval", "max_step",
+                "analysis", "initial_equilibrium"});
   SolverSettings& st = ctx.model.settings;
   if (auto f = s.find("start")) st.start = f->number();
+  if (auto f = s.find("analysis")) {
+    const std::string v = f->string();
+    if (v == "static") st.static_analysis = true;
+    else if (v != "dynamic") f->fail("unknown analysis '" + v + "' (dynamic, static)");
+  }
+  if (st.static_analysis) {
+    // One equilibrium at "start": the keys of a time integration would be ignored, so they are refused.
+    for (const char* k : {"end", "step", "output_every", "integrator", "spectral_radius", "rtol", "atol", "output_interval",
+                          "max_step", "initial_equilibrium"})
+      if (auto f = s.find(k))
+        f->fail("is a setting of a dynamic run (\"analysis\": \"static\" solves the equilibrium at \"start\" alone)");
+    st.end = st.start;
+    if (auto f = s.find("tolerance")) st.tolerance = f->positive();
+    if (auto f = s.find("newton_tolerance")) st.newton_tolerance = f->positive();
+    if (auto f = s.find("penalty")) st.penalty = f->positive();
+    if (auto f = s.find("eliminate_driven_bodies")) st.eliminate_driven = f->boolean();
+    if (auto f = s.find("max_iterations")) f->fail("is a setting of a dynamic run's steps");
+    if (auto f = s.find("reuse_jacobian")) f->fail("is a setting of a dynamic run's steps");
+    return;
+  }
+  if (auto f = s.find("initial_equilibrium")) st.initial_equilibrium = f->boolean();
   st.end = s.at("end").number();
   if (!(st.end > st.start)) s.at("end").fail("must be after the start time");
   parse_scheme(s, st);

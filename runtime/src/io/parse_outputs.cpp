@@ -69,13 +69,14 @@ void parse_outputs(const Field& root, ParseContext& ctx) {
   std::set<std::string> names;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Field f = list.at(i);
-    f.allow_only({"name", "type", "body", "node", "at", "joint"});
+    f.allow_only({"name", "type", "body", "node", "at", "joint", "force"});
     Output o;
     o.name = f.at("name").string();
     if (o.name.empty() || o.name.find('/') != std::string::npos || o.name == "." || o.name == "..")
       f.at("name").fail("must be a non-empty name without '/'");
     if (!names.insert(o.name).second) f.at("name").fail("duplicate output name '" + o.name + "'");
     const std::string type = f.at("type").string();
+    if (f.has("force") && type != "element_force") f.at("force").fail("is a key of element_force outputs");
     auto flexible_body = [&]() {
       o.body = body_ref(f.at("body"), m);
       if (o.body == kGround || !m.bodies[o.body].flexible) f.at("body").fail("must be a flexible body");
@@ -85,8 +86,8 @@ void parse_outputs(const Field& root, ParseContext& ctx) {
       o.type = OutputType::NodeDeformation;
       o.node = node_ref(f.at("node"), m, o.body);
       o.size = 3;
-    } else if (type == "node_position") {
-      o.type = OutputType::NodePosition;
+    } else if (type == "node_position" || type == "node_velocity") {
+      o.type = type == "node_position" ? OutputType::NodePosition : OutputType::NodeVelocity;
       o.body = body_ref(f.at("body"), m);
       if (o.body == kGround) f.at("body").fail("the ground does not move");
       o.size = 3;
@@ -108,13 +109,55 @@ void parse_outputs(const Field& root, ParseContext& ctx) {
       o.joint = joint_ref(f.at("joint"), m);
       o.coords = joint_coordinates(f.at("joint"), m.joints[o.joint]);
       o.size = static_cast<int>(o.coords.size());
+    } else if (type == "joint_rate") {
+      o.type = OutputType::JointRate;
+      o.joint = joint_ref(f.at("joint"), m);
+      o.coords = joint_coordinates(f.at("joint"), m.joints[o.joint]);
+      o.size = static_cast<int>(o.coords.size());
+    } else if (type == "joint_reaction") {
+      o.type = OutputType::JointReaction;
+      o.joint = joint_ref(f.at("joint"), m);
+      o.size = 6;
+    } else if (type == "body_angular_velocity") {
+      o.type = OutputType::BodyAngularVelocity;
+      o.body = body_ref(f.at("body"), m);
+      if (o.body == kGround) f.at("body").fail("the ground does not move");
+      o.size = 3;
+    } else if (type == "element_force") {
+      o.type = OutputType::ElementForce;
+      const Field ef = f.at("force");
+      const std::string n = ef.string();
+      for (std::size_t k = 0; k < m.springs.size() && o.element < 0; ++k)
+        if (m.springs[k].name == n) {
+          o.element_kind = ForceElementKind::SpringDamper;
+          o.element = static_cast<int>(k);
+          o.size = 1;
+        }
+      for (std::size_t k = 0; k < m.bushings.size() && o.element < 0; ++k)
+        if (m.bushings[k].name == n) {
+          o.element_kind = ForceElementKind::Bushing;
+          o.element = static_cast<int>(k);
+          o.size = 6;
+        }
+      for (std::size_t k = 0; k < m.friction_dampers.size() && o.element < 0; ++k)
+        if (m.friction_dampers[k].name == n) {
+          o.element_kind = ForceElementKind::FrictionDamper;
+          o.element = static_cast<int>(k);
+          o.size = 1;
+        }
+      if (o.element < 0) {
+        for (const PointLoad& l : m.loads)
+          if (l.name == n) ef.fail("'" + n + "' is a point load: its force is its table");
+        ef.fail("no spring_damper, bushing or friction_damper named '" + n + "'");
+      }
     } else if (type == "energy") {
       o.type = OutputType::Energy;
       // With friction dampers a fourth value: the energy they have dissipated.
       o.size = m.friction_dampers.empty() ? 3 : 4;
     } else {
       f.at("type").fail("unknown output type '" + type +
-                        "' (expected node_deformation, node_position, modal_coordinates, joint_coordinate or energy)");
+                        "' (expected node_deformation, node_position, node_velocity, modal_coordinates, joint_coordinate, joint_rate, "
+                        "joint_reaction, body_angular_velocity, element_force or energy)");
     }
     m.outputs.push_back(o);
   }

@@ -249,6 +249,10 @@ double joint_coordinate(const Model& model, const Data& data, int joint, JointCo
   return coordinate(model, data, joint, c, nullptr, 0, 1.0).value;
 }
 
+double joint_coordinate_rate(const Model& model, const Data& data, int joint, JointCoordinate c) {
+  return coordinate(model, data, joint, c, nullptr, 0, 1.0).rate;
+}
+
 void update_angle_references(const Model& model, Data& data) {
   for (std::size_t j = 0; j < model.joints.size(); ++j) {
     const JointType t = model.joints[j].type;

@@ -118,6 +118,21 @@ void find_drives(Model& m) {
   }
   for (auto& b : m.bodies)
     if (b.driven()) b.frame_locked = false;  // a later joint drove it: it is known whole
+  // A joint whose reaction is an output needs its multipliers, which only the rows of the
+  // unknowns have: its bodies stay integrated when neither would be (and a frame-locked slider
+  // keeps its frame among the unknowns, whose rows carry the guide's reaction torque).
+  for (const Output& o : m.outputs) {
+    if (o.type != OutputType::JointReaction) continue;
+    const Joint& jt = m.joints[static_cast<std::size_t>(o.joint)];
+    const int bs[2] = {m.markers[jt.m1].body, m.markers[jt.m2].body};
+    const auto fixed = [&](int b) { return b == kGround || m.bodies[b].driven(); };
+    const bool neither = fixed(bs[0]) && fixed(bs[1]);
+    for (int b : bs) {
+      if (b == kGround) continue;
+      if (neither) m.bodies[b].drive = Drive{};
+      m.bodies[b].frame_locked = false;
+    }
+  }
 }
 
 // Active blocks (touching an integrated body, other than a frame-locked body's own frame)

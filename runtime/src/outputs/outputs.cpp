@@ -36,6 +36,45 @@ void evaluate_output(const Model& model, Data& data, const Output& o, double* ou
       update_markers(model, data);
       for (std::size_t i = 0; i < o.coords.size(); ++i) out[i] = joint_coordinate(model, data, o.joint, o.coords[i]);
       break;
+    case OutputType::JointRate:
+      update_bodies(model, data);
+      update_markers(model, data);
+      for (std::size_t i = 0; i < o.coords.size(); ++i) out[i] = joint_coordinate_rate(model, data, o.joint, o.coords[i]);
+      break;
+    case OutputType::JointReaction: {
+      update_bodies(model, data);
+      update_markers(model, data);
+      const Vector6d w = joint_reaction(model, data, o.joint);
+      for (int i = 0; i < 6; ++i) out[i] = w(i);
+      break;
+    }
+    case OutputType::NodeVelocity: {
+      // v = r0_dot + A_dot xbar + A Phi_p y_dot (xbar = the deformed local point).
+      const Body& b = model.bodies[o.body];
+      update_bodies(model, data);
+      const BodyData& bd = data.bodies[o.body];
+      Vector3d x = o.point;
+      Vector3d v = data.state.qd.segment<3>(b.offset);
+      if (o.node >= 0) {
+        x = b.nodes[o.node].origin + b.nodes[o.node].phi * data.state.q.segment(b.offset + 12, b.nq);
+        v.noalias() += bd.A * (b.nodes[o.node].phi * data.state.qd.segment(b.offset + 12, b.nq));
+      }
+      v.noalias() += bd.Ad * x;
+      for (int i = 0; i < 3; ++i) out[i] = v(i);
+      break;
+    }
+    case OutputType::BodyAngularVelocity: {
+      update_bodies(model, data);
+      const BodyData& bd = data.bodies[o.body];
+      const Vector3d w = bd.A * bd.omega;
+      for (int i = 0; i < 3; ++i) out[i] = w(i);
+      break;
+    }
+    case OutputType::ElementForce:
+      update_bodies(model, data);
+      update_markers(model, data);
+      element_force(model, data, o.element_kind, o.element, out);
+      break;
     case OutputType::Energy: {
       const Energy e = energy(model, data);
       out[0] = e.kinetic;

@@ -40,6 +40,8 @@ void add_constraint_hessian(const Model& model, Data& data, const VectorXd& lam,
 
 /// A joint's coordinate in the current state (angle unwrapped around data.state.angle_ref).
 double joint_coordinate(const Model& model, const Data& data, int joint, JointCoordinate c);
+/// Its rate in the current state (needs the markers' velocities, update_markers).
+double joint_coordinate_rate(const Model& model, const Data& data, int joint, JointCoordinate c);
 
 /// Records the current joint angles as the unwrapping references (after each accepted step).
 void update_angle_references(const Model& model, Data& data);

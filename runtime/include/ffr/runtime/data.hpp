@@ -113,6 +113,11 @@ struct Data {
   VectorXd Phi, Phit, gamma;    ///< constraint value, partial time derivative, acceleration bias
   VectorXd lambda_eff;          ///< lambda + alpha Phi
   VectorXd lambda0;             ///< multipliers at the start of the step
+  /// The multipliers with the projected accelerations (M q_dd + Phi_q^T lambda = Q for the
+  /// q_dd after the acceleration projection): what the reaction outputs read. The step's own
+  /// lambda balances the scheme's accelerations before the projection, whose error (undamped by
+  /// the trapezoidal rule) would show in the reactions (FORMULATION.md 13).
+  VectorXd reaction_lambda;
   MatrixXd W;                   ///< M + kv C + kq K at the last factorisation (projection metric; scheme.hpp)
   MatrixXd T;                   ///< tangent W + kq Phi_q^T alpha Phi_q
   SmallLU lu;                   ///< of the scaled tangent S T S (see factorize_tangent)

@@ -260,15 +260,22 @@ struct PointLoad {
   Table table;
 };
 
-enum class OutputType { NodeDeformation, NodePosition, ModalCoordinates, JointCoordinate, Energy };
+enum class OutputType {
+  NodeDeformation, NodePosition, ModalCoordinates, JointCoordinate, Energy,
+  JointRate, JointReaction, NodeVelocity, BodyAngularVelocity, ElementForce
+};
+/// Which list an element_force output reads (Output::element indexes it).
+enum class ForceElementKind { SpringDamper, Bushing, FrictionDamper };
 
 struct Output {
   std::string name;
   OutputType type = OutputType::Energy;
   int body = -1, node = -1, joint = -1;
   Vector3d point = Vector3d::Zero();     ///< local point of a node_position on a rigid body
-  std::vector<JointCoordinate> coords;  ///< for JointCoordinate
+  std::vector<JointCoordinate> coords;  ///< for JointCoordinate and JointRate
   int size = 0;
+  ForceElementKind element_kind = ForceElementKind::SpringDamper;  ///< for ElementForce
+  int element = -1;                     ///< index into Model::springs, bushings or friction_dampers
 };
 
 /// Constraint equations come in blocks that touch at most two bodies, so the Jacobian is stored
@@ -318,6 +325,10 @@ struct SolverSettings {
   /// follow their joint and motion exactly, and the constraints among the ground and driven
   /// bodies alone drop out. Off: every body is integrated (the reference the tests compare with).
   bool eliminate_driven = true;
+  /// "analysis": "static": solve the equilibrium at the start time and record it alone.
+  bool static_analysis = false;
+  /// "initial_equilibrium": settle statically before the dynamic run.
+  bool initial_equilibrium = false;
   /// Acceptance and tangent-refresh rules of the step (step_policy.hpp); not in the model file.
   StepPolicy policy;
 };

@@ -18,6 +18,16 @@ namespace ffr::runtime {
 /// Writes output `o` at the current state into out[0 .. o.size).
 void evaluate_output(const Model& model, Data& data, const Output& o, double* out);
 
+/// The force and torque (global components, the torque about marker 2's point: the joint point)
+/// that body1 exerts on body2 through joint `joint`, with the force or torque of a motion
+/// prescribed on it, from the multipliers data.reaction_lambda (FORMULATION.md 13). Needs update_markers.
+Vector6d joint_reaction(const Model& model, const Data& data, int joint);
+
+/// A force element's force in the current state: a spring_damper's tension (one value, positive
+/// pulling its ends together), a bushing's force and torque on body2 (six values, global
+/// components, the torque about its point). Needs update_markers.
+void element_force(const Model& model, const Data& data, ForceElementKind kind, int index, double* out);
+
 /// Preallocated storage for every output at every recorded time.
 class Recorder {
  public:

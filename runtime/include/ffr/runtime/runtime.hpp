@@ -19,6 +19,7 @@
 #include "ffr/runtime/outputs.hpp"
 #include "ffr/runtime/scheme.hpp"
 #include "ffr/runtime/state.hpp"
+#include "ffr/runtime/statics.hpp"
 #include "ffr/runtime/step_control.hpp"
 
 namespace ffr::runtime {
