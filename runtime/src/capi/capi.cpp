@@ -12,14 +12,7 @@
 #include <stdexcept>
 #include <string>
 
-struct ffr_sim {
-  ffr::runtime::Model model;
-  std::unique_ptr<ffr::runtime::Data> data;
-  std::unique_ptr<ffr::runtime::State> last;  ///< the last accepted state, restored if a step fails
-  std::unique_ptr<ffr::runtime::State> scratch;  ///< ffr_save_state / ffr_restore_state's copy
-  /// "step": "auto": one ffr_step is one output interval of adaptive steps (step_control.hpp).
-  std::unique_ptr<ffr::runtime::StepControl> control;
-};
+#include "sim_handle.hpp"
 
 namespace {
 
@@ -60,19 +53,14 @@ int motion_of(const ffr_sim* s, const char* joint) {
 
 }  // namespace
 
-extern "C" {
+namespace {
 
-const char* ffr_version(void) { return ffr::kVersion; }
-
-const char* ffr_last_error(void) { return g_error.c_str(); }
-
-int ffr_open(const char* path, ffr_sim** sim) {
-  if (!sim) return fail(FFR_ERROR_ARGUMENT, "ffr_open: sim is NULL");
-  *sim = nullptr;
-  if (!path) return fail(FFR_ERROR_ARGUMENT, "ffr_open: model_path is NULL");
+// The rest of opening, shared by ffr_open and ffr_open_json: state, workspace, step control.
+template <class Load>
+int open_with(Load&& load, ffr_sim** sim) {
   return guarded([&] {
     auto s = std::make_unique<ffr_sim>();
-    s->model = ffr::runtime::load_model(path);
+    s->model = load();
     s->data = std::make_unique<ffr::runtime::Data>(s->model);
     ffr::runtime::initialize(s->model, *s->data);
     s->last = std::make_unique<ffr::runtime::State>(s->model);
@@ -83,7 +71,42 @@ int ffr_open(const char* path, ffr_sim** sim) {
   });
 }
 
+}  // namespace
+
+extern "C" {
+
+const char* ffr_version(void) { return ffr::kVersion; }
+
+const char* ffr_last_error(void) { return g_error.c_str(); }
+
+int ffr_open(const char* path, ffr_sim** sim) {
+  if (!sim) return fail(FFR_ERROR_ARGUMENT, "ffr_open: sim is NULL");
+  *sim = nullptr;
+  if (!path) return fail(FFR_ERROR_ARGUMENT, "ffr_open: model_path is NULL");
+  return open_with([&] { return ffr::runtime::load_model(path); }, sim);
+}
+
+int ffr_open_json(const char* json_text, const char* base_dir, const char* name, ffr_sim** sim) {
+  if (!sim) return fail(FFR_ERROR_ARGUMENT, "ffr_open_json: sim is NULL");
+  *sim = nullptr;
+  if (!json_text) return fail(FFR_ERROR_ARGUMENT, "ffr_open_json: json_text is NULL");
+  const std::string dir = base_dir ? base_dir : ".";
+  const std::string shown = name ? name : "<model text>";
+  return open_with([&] { return ffr::runtime::parse_model(json_text, dir, shown); }, sim);
+}
+
 void ffr_close(ffr_sim* sim) { delete sim; }
+
+int ffr_reinitialize(ffr_sim* sim) {
+  if (!sim) return fail(FFR_ERROR_ARGUMENT, "ffr_reinitialize: sim is NULL");
+  if (sim->data->stats.steps > 0 || sim->data->t != sim->model.settings.start)
+    return fail(FFR_ERROR_ARGUMENT, "ffr_reinitialize: only at the start time, before the first step");
+  return guarded([&] {
+    ffr::runtime::initialize(sim->model, *sim->data);
+    if (sim->control) *sim->control = ffr::runtime::StepControl(sim->model, *sim->data);
+    return FFR_OK;
+  });
+}
 
 int ffr_time(const ffr_sim* sim, double* t) {
   if (!sim || !t) return fail(FFR_ERROR_ARGUMENT, "ffr_time: NULL argument");
