@@ -139,6 +139,12 @@ class Simulation:
             raise ValueError(f"ffr.Simulation.step: n must be at least 1, not {n}")
         self._sim.step(n)
 
+    def reinitialize(self):
+        """Makes the initial state consistent again with the loads and motions set since the
+        model was opened, so that they act from the start time (only before the first step;
+        without it the first step starts from the accelerations without them)."""
+        self._sim.reinitialize()
+
     def output(self, name):
         """The output `name` at the current state, as a 1-D array."""
         return self._sim.output(_name(name, "output", "name"))

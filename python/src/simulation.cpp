@@ -91,6 +91,8 @@ void Simulation::step(int n) {
   check(status);
 }
 
+void Simulation::reinitialize() { check(ffr_reinitialize(sim_)); }
+
 py::array_t<double> Simulation::output(const std::string& name) {
   int k = 0;
   check(ffr_output_size(sim_, name.c_str(), &k));
@@ -208,6 +210,7 @@ void bind_simulation(py::module_& m) {
       .def_property_readonly("end", &Simulation::end)
       .def_property_readonly("outputs", &Simulation::outputs)
       .def("step", &Simulation::step, py::arg("n") = 1)
+      .def("reinitialize", &Simulation::reinitialize)
       .def("output", &Simulation::output, py::arg("name"))
       .def("set_load", &Simulation::set_load, py::arg("body"), py::arg("node") = py::none(),
            py::arg("force") = py::none(), py::arg("torque") = py::none())

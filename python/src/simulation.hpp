@@ -25,6 +25,7 @@ class Simulation {
   double end() const;
   pybind11::list outputs() const;
   void step(int n);
+  void reinitialize();
   pybind11::array_t<double> output(const std::string& name);
   void set_load(const std::string& body, std::optional<std::string> node, pybind11::object force, pybind11::object torque);
   void clear_loads();

@@ -216,21 +216,27 @@ class SimulationTest(Workdir):
 
     def test_load_holds_pendulum_in_equilibrium(self):
         # Closed form: gravity's moment about the hinge of the 1 kg bar with its centre 0.5 m out
-        # along x, g = 9.81 m/s^2 along -z, is r x F = (0, 4.905, 0) N m; with the opposite torque
-        # the bar has no angular acceleration. (The load enters from the first step on; the
-        # initial acceleration was made consistent without it when the model was opened, so the
-        # first step leaves a small constant rate: compare second differences of the angle.)
+        # along x, g = 9.81 m/s^2 along -z, is r x F = (0, 4.905, 0) N m; with the opposite
+        # torque, acting from the start (reinitialize), the released bar stays where it is.
         sim = ffr.Simulation(PENDULUM)
         sim.set_load("bar", torque=[0.0, -0.5 * 9.81, 0.0])
+        sim.reinitialize()
+        sim.step(1000)
+        self.assertLess(abs(sim.output("angle")[0]), 1e-12)
+        # Without reinitialize the load enters from the first step on: the initial acceleration
+        # (free fall) is averaged into the first step and leaves a constant rate, no acceleration.
+        late = ffr.Simulation(PENDULUM)
+        late.set_load("bar", torque=[0.0, -0.5 * 9.81, 0.0])
         angles = []
         for _ in range(3):
-            sim.step(500)
-            angles.append(sim.output("angle")[0])
+            late.step(500)
+            angles.append(late.output("angle")[0])
         free = 0.75 * 9.81 * 0.5 ** 2  # the released bar's angle change over 0.5 s: (3 g / 2 L) t^2 / 2
-        # what is left is gravity's moment changing as cos(angle) while the bar drifts: below
-        # (1 - cos 0.02) = 2e-4 of the free fall's
         self.assertLess(abs(angles[2]), 0.02)
+        # what is left is gravity's moment changing as cos(angle): below (1 - cos 0.02) = 2e-4
         self.assertLess(abs(angles[2] - 2 * angles[1] + angles[0]), 2e-4 * free)
+        with self.assertRaisesRegex(ValueError, "before the first step"):
+            late.reinitialize()
         sim.clear_loads()
         sim.step(10)  # (the first step after the change still averages the old acceleration in)
         a0 = sim.output("angle")[0]
