@@ -154,7 +154,9 @@ py::dict Simulation::run() {
   const std::int64_t i0 = std::llround((data.t - s.start) / interval);
   const int every = s.adaptive ? 1 : std::max(1, s.output_every);
   const std::int64_t rows = (n > i0 ? (n - i0) / every : 0) + 2;
-  const std::int64_t steps0 = data.stats.steps, iterations0 = data.stats.newton_iterations;
+  // Steps as ffr-sim counts them: with adaptive steps the accepted ones.
+  auto steps_now = [&] { return sim_->control ? sim_->control->accepted : data.stats.steps; };
+  const std::int64_t steps0 = steps_now(), iterations0 = data.stats.newton_iterations;
   std::optional<Recorder> recorder;
   translated([&] { return recorder.emplace(model, rows), 0; });
   Recorder& rec = *recorder;
@@ -192,7 +194,7 @@ py::dict Simulation::run() {
   }
   out["time"] = t;
   out["outputs"] = values;
-  out["steps"] = static_cast<long long>(data.stats.steps - steps0);
+  out["steps"] = static_cast<long long>(steps_now() - steps0);
   out["newton_iterations"] = static_cast<long long>(data.stats.newton_iterations - iterations0);
   return out;
 }

@@ -371,3 +371,23 @@ TEST_F(FmuTest, MissingSidIsRefusedWithoutOutput) {
 }
 
 }  // namespace
+
+namespace {
+
+// Bad input: two variables of one name (a scalar output "energy[0]" beside the vector output
+// "energy") are refused before anything is written.
+TEST_F(FmuTest, DuplicateVariableNameIsRefused) {
+  auto model = nlohmann::json::parse(read(kModels / "four_bar.json"));
+  nlohmann::json out = nlohmann::json::object();
+  out["name"] = "energy[0]";
+  out["type"] = "joint_coordinate";
+  out["joint"] = "O";
+  model["outputs"].push_back(out);
+  std::ofstream(dir_ / "model.json") << model.dump();
+  const auto p = sh((kBin / "ffr-fmu").string() + " " + q(dir_ / "model.json") + " -o " + q(dir_ / "m.fmu"));
+  EXPECT_EQ(p.status, 2) << p.output;
+  EXPECT_NE(p.output.find("energy[0]"), std::string::npos) << p.output;
+  EXPECT_FALSE(fs::exists(dir_ / "m.fmu"));
+}
+
+}  // namespace

@@ -197,6 +197,22 @@ class SimulationTest(Workdir):
         self.assertEqual(n, 501)
         self.assertTrue(same_bits(res["outputs"]["crank_angle"], self.cli["outputs"]["crank_angle"][:n]))
 
+    def test_adaptive_run_is_ffr_sim(self):
+        with open(FOUR_BAR) as f:
+            model = json.load(f)
+        model["solver"] = {"end": 0.5, "step": "auto"}
+        path = self.file("auto.json")
+        with open(path, "w") as f:
+            json.dump(model, f)
+        r = tool("ffr-sim", path, "-o", self.file("auto.h5"), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        ref = ffr.read_results(self.file("auto.h5"))
+        res = ffr.Simulation(path).run()
+        self.assertTrue(same_bits(res["time"], ref["time"]))
+        for name, values in ref["outputs"].items():
+            self.assertTrue(same_bits(res["outputs"][name], values), name)
+        self.assertEqual(res["steps"], ref["steps"])
+
     def test_state_restore_continues_bit_for_bit(self):
         sim = ffr.Simulation(FOUR_BAR)
         sim.step(700)

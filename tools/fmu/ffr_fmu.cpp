@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -147,6 +148,18 @@ int run(ffr::cli::Args& args) {
   } catch (const ffr::runtime::ModelError& e) {
     std::fprintf(stderr, "ffr-fmu: error: %s\n", e.what());
     return 2;
+  }
+
+  // Variable names must be unique in modelDescription.xml: an output "a[0]" beside a vector
+  // output "a", or an output named like an input, cannot be packaged.
+  {
+    std::set<std::string> names;
+    for (const auto& v : ffr::fmu::variables(model))
+      if (!names.insert(v.name).second) {
+        std::fprintf(stderr, "ffr-fmu: error: %s: outputs, motions and loads give the FMU variable '%s' twice; rename one\n",
+                     model_file.c_str(), v.name.c_str());
+        return 2;
+      }
   }
 
   // The model file with its SID paths replaced by the copies' names under resources/.
