@@ -86,6 +86,19 @@ class ReduceTest(Workdir):
         self.assertEqual(sid.attrs["/"]["format"], "ffr-sid")
         self.assertEqual(sid["/sid/Cr/M1"].shape[0], sid["/refmod/frequency_hz"].shape[0])
 
+    def test_read_sid_agrees_with_ffr_info(self):
+        r = tool("ffr-info", self.cli, "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        info = json.loads(r.stdout)  # numbers printed to round trip
+        sid = ffr.read_sid(self.cli)
+        self.assertEqual(sid["/refmod/mass"], info["mass"])
+        self.assertEqual(sid["/refmod/frequency_hz"].tolist(), [m["frequency_hz"] for m in info["modes"]])
+        self.assertEqual(sid["/refmod/mode_type"], [m["type"] for m in info["modes"]])
+        self.assertEqual(sid["/nodes/name"], [n["name"] for n in info["nodes"]])
+        self.assertEqual(sid["/nodes/origin"].tolist(), [n["origin"] for n in info["nodes"]])
+        with self.assertRaisesRegex(ffr.NotFoundError, "no dataset '/refmod/frequencies'"):
+            sid["/refmod/frequencies"]
+
     def test_part_as_dict(self):
         with open(ROD) as f:
             part = json.load(f)
@@ -137,7 +150,7 @@ class ReadTest(Workdir):
         with self.assertRaises(ffr.InputError):
             ffr.read_results(bad)
 
-    def test_missing_dataset(self):
+    def test_results_file_is_not_a_sid(self):
         r = tool("ffr-sim", PENDULUM, "-o", self.file("p.h5"), "--quiet")
         self.assertEqual(r.returncode, 0, r.stderr)
         with self.assertRaises(ffr.InputError):  # a results file is not a SID
