@@ -33,6 +33,7 @@ struct Instance {
   std::vector<char> motion_set;      ///< per motion: an input of it has been set
   std::vector<double> output_buffer;
   bool terminated = false;
+  bool has_loads = false;  ///< some inputs are point loads (summed per slot at each step)
   ~Instance() { ffr_close(sim); }
 };
 
@@ -85,29 +86,31 @@ std::string read_text(const std::string& path) {
 // added force or torque (summed per body and slot: the C interface holds one load per slot).
 fmi2Status apply_inputs(Instance* c) {
   const auto& model = c->sim->model;
-  std::vector<std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>> slots(model.bodies.size());
-  std::vector<std::vector<char>> used(model.bodies.size());
-  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
-    slots[b].assign(1 + model.bodies[b].nodes.size(), {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()});
-    used[b].assign(slots[b].size(), 0);
-  }
-  bool any_load = false;
   for (std::size_t i = 0; i < c->vars.size(); ++i) {
     const Variable& v = c->vars[i];
     if (v.kind == Variable::Kind::Motion && v.component == 0 && c->motion_set[v.index]) {
       const std::string& joint = model.joints[model.motions[v.index].joint].name;
       if (ffr_set_motion(c->sim, joint.c_str(), c->inputs[i], c->inputs[i + 1], c->inputs[i + 2]) != FFR_OK)
         return error(c, ffr_last_error());
-    } else if (v.kind == Variable::Kind::Load) {
+    }
+  }
+  if (!c->has_loads) return fmi2OK;
+  std::vector<std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>> slots(model.bodies.size());
+  std::vector<std::vector<char>> used(model.bodies.size());
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    slots[b].assign(1 + model.bodies[b].nodes.size(), {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()});
+    used[b].assign(slots[b].size(), 0);
+  }
+  for (std::size_t i = 0; i < c->vars.size(); ++i) {
+    const Variable& v = c->vars[i];
+    if (v.kind == Variable::Kind::Load) {
       const auto& load = model.loads[v.index];
       const auto s = ffr::fmu::load_slot(model, load);
       auto& fm = slots[s.body][s.slot];
       (load.torque ? fm.second : fm.first)[v.component] += c->inputs[i];
       used[s.body][s.slot] = 1;
-      any_load = true;
     }
   }
-  if (!any_load) return fmi2OK;
   for (std::size_t b = 0; b < slots.size(); ++b)
     for (std::size_t s = 0; s < slots[b].size(); ++s) {
       if (!used[b][s]) continue;
@@ -136,7 +139,7 @@ FFR_FMI_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type f
   if (!functions || !functions->logger) return nullptr;
   std::unique_ptr<Instance> c;
   try {
-    c.reset(new Instance{instanceName ? instanceName : "", *functions, {}, nullptr, {}, {}, {}, {}, false});
+    c.reset(new Instance{instanceName ? instanceName : "", *functions, {}, nullptr, {}, {}, {}, {}, false, false});
     if (fmuType != fmi2CoSimulation) {
       error(c.get(), "this FMU is for co-simulation only (fmuType fmi2CoSimulation)");
       return nullptr;
@@ -156,6 +159,7 @@ FFR_FMI_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type f
     }
     c->vars = ffr::fmu::variables(c->sim->model);
     c->inputs.assign(c->vars.size(), 0.0);
+    for (const auto& v : c->vars) c->has_loads = c->has_loads || v.kind == Variable::Kind::Load;
     c->motion_set.assign(c->sim->model.motions.size(), 0);
     int largest = 1;
     for (const auto& o : c->sim->model.outputs) largest = std::max(largest, o.size);
