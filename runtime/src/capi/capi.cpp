@@ -6,6 +6,7 @@
 #include "ffr/version.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <memory>
 #include <new>
@@ -71,6 +72,15 @@ int open_with(Load&& load, ffr_sim** sim) {
   });
 }
 
+// With adaptive steps: the next of the model's output times (the very times ffr-sim's run lands
+// on, so that stepping here reproduces its samples bit for bit), then on past the end by whole
+// output intervals.
+double next_output_time(const ffr::runtime::Model& model, double t) {
+  const auto& s = model.settings;
+  const std::int64_t k = std::llround((t - s.start) / s.output_interval) + 1;
+  return k <= ffr::runtime::output_count(model) ? ffr::runtime::output_time(model, k) : t + s.output_interval;
+}
+
 }  // namespace
 
 extern "C" {
@@ -130,7 +140,7 @@ int ffr_step(ffr_sim* sim, int n) {
       ffr::runtime::save_state(d, *sim->last);
       try {
         // (advance_to leaves the last accepted state itself when it gives up.)
-        if (sim->control) ffr::runtime::advance_to(sim->model, d, *sim->control, d.t + sim->model.settings.output_interval);
+        if (sim->control) ffr::runtime::advance_to(sim->model, d, *sim->control, next_output_time(sim->model, d.t));
         else ffr::runtime::step(sim->model, d);
       } catch (...) {
         ffr::runtime::restore_state(*sim->last, d);
