@@ -22,6 +22,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <mutex>
 #include <stdexcept>
 
 namespace py = pybind11;
@@ -62,29 +63,33 @@ class ReduceThreads {
 std::string reduce(const std::string& part_path, const std::string& output, py::object progress) {
   preproc::PipelineLog log;
   if (!progress.is_none())
-    log.stage = [progress](const std::string& s) {
+    log.stage = [&progress](const std::string& s) {  // (by reference: no reference counting without the GIL)
       py::gil_scoped_acquire hold;
       progress(s);
     };
   std::exception_ptr failure;  // raised as a Python error once the GIL is held again
   {
+    // Without the GIL (the pipeline may report progress from its own threads), one reduce at a
+    // time: the BLAS settings above are the process's.
     py::gil_scoped_release free;
+    static std::mutex one_at_a_time;
+    const std::lock_guard<std::mutex> lock(one_at_a_time);
     try {
-    const preproc::PartSpec part = preproc::load_part(part_path);
-    const ReduceThreads threads(part.reduction.factorization);
-    const formats::Sid sid = preproc::run_pipeline(part, {}, log);
-    const auto report = formats::validate(sid);
-    if (!report.ok()) {
-      std::string text;
-      for (const auto& c : report.checks)
-        if (c.applicable && !c.pass) {
-          char nums[96];
-          std::snprintf(nums, sizeof nums, ": violation %.3g (tolerance %.3g) ", c.rel, c.tol);
-          text += "\n  " + c.name + nums + c.note;
-        }
-      throw std::runtime_error("the reduced body fails validation (nothing written):" + text);
-    }
-    formats::write_sid(sid, output);
+      const preproc::PartSpec part = preproc::load_part(part_path);
+      const ReduceThreads threads(part.reduction.factorization);
+      const formats::Sid sid = preproc::run_pipeline(part, {}, log);
+      const auto report = formats::validate(sid);
+      if (!report.ok()) {
+        std::string text;
+        for (const auto& c : report.checks)
+          if (c.applicable && !c.pass) {
+            char nums[96];
+            std::snprintf(nums, sizeof nums, ": violation %.3g (tolerance %.3g) ", c.rel, c.tol);
+            text += "\n  " + c.name + nums + c.note;
+          }
+        throw std::runtime_error("the reduced body fails validation (nothing written):" + text);
+      }
+      formats::write_sid(sid, output);
     } catch (...) {
       failure = std::current_exception();
     }

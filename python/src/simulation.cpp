@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <exception>
 #include <optional>
 #include <vector>
 
@@ -82,14 +81,9 @@ py::list Simulation::outputs() const {
   return l;
 }
 
-void Simulation::step(int n) {
-  int status;
-  {
-    py::gil_scoped_release free;
-    status = ffr_step(sim_, n);
-  }
-  check(status);
-}
+// The GIL stays held while the runtime works: a handle is not thread-safe, and holding it keeps
+// another Python thread from calling into the same handle meanwhile.
+void Simulation::step(int n) { check(ffr_step(sim_, n)); }
 
 void Simulation::reinitialize() { check(ffr_reinitialize(sim_)); }
 
@@ -160,27 +154,22 @@ py::dict Simulation::run() {
   std::optional<Recorder> recorder;
   translated([&] { return recorder.emplace(model, rows), 0; });
   Recorder& rec = *recorder;
-  std::exception_ptr failure;  // raised as a Python error once the GIL is held again
-  {
-    py::gil_scoped_release free;
-    try {
-      rec.record(model, data);
-      for (std::int64_t i = i0 + 1; i <= n; ++i) {
-        save_state(data, *sim_->last);
-        try {
-          if (sim_->control) advance_to(model, data, *sim_->control, output_time(model, i));
-          else ffr::runtime::step(model, data);
-        } catch (...) {
-          restore_state(*sim_->last, data);
-          throw;
-        }
-        if (i % every == 0 || i == n) rec.record(model, data);
+  // (The GIL stays held: see step(). A failed step leaves the last accepted state, as ffr_step.)
+  translated([&] {
+    rec.record(model, data);
+    for (std::int64_t i = i0 + 1; i <= n; ++i) {
+      save_state(data, *sim_->last);
+      try {
+        if (sim_->control) advance_to(model, data, *sim_->control, output_time(model, i));
+        else ffr::runtime::step(model, data);
+      } catch (...) {
+        restore_state(*sim_->last, data);
+        throw;
       }
-    } catch (...) {
-      failure = std::current_exception();
+      if (i % every == 0 || i == n) rec.record(model, data);
     }
-  }
-  if (failure) translated([&] { return std::rethrow_exception(failure), 0; });
+    return 0;
+  });
   py::dict out, values;
   const auto nt = static_cast<py::ssize_t>(rec.rows());
   py::array_t<double> t(nt);
