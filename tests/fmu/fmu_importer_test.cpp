@@ -247,6 +247,19 @@ TEST_F(FmuTest, FourBarAgreesWithFfrSimAndRestoresState) {
   fmu.free_state(c, &saved);
   fmu.free_state(c, &copy);
   EXPECT_EQ(fmu.terminate(c), fmi2OK);
+  EXPECT_EQ(fmu.do_step(c, 1.5, h, fmi2False), fmi2Error);  // terminated
+
+  // fmi2Reset: the instance as after fmi2Instantiate; the run again gives ffr-sim's first steps.
+  auto* reset = reinterpret_cast<fmi2ResetTYPE*>(dlsym(fmu.lib, "fmi2Reset"));
+  ASSERT_NE(reset, nullptr);
+  ASSERT_EQ(reset(c), fmi2OK);
+  ASSERT_EQ(fmu.setup(c, fmi2False, 0.0, 0.0, fmi2True, 2.0), fmi2OK);
+  ASSERT_EQ(fmu.enter_init(c), fmi2OK);
+  ASSERT_EQ(fmu.exit_init(c), fmi2OK);
+  for (int k = 1; k <= 3; ++k) {
+    ASSERT_EQ(fmu.do_step(c, (k - 1) * h, h, fmi2False), fmi2OK);
+    EXPECT_EQ(fmu.get(c, "crank_angle"), angle->values(k, 0)) << k;
+  }
   fmu.free_instance(c);
 
   // A wrong GUID (another FMU's resources) is refused with a message.
