@@ -145,7 +145,7 @@ py::dict Simulation::run() {
   // The step (or output) index of the current time, counted from the start as simulate() does.
   const double interval = s.adaptive ? s.output_interval : s.step;
   const std::int64_t n = step_count(model);
-  const std::int64_t i0 = std::llround((data.t - s.start) / interval);
+  const std::int64_t i0 = std::llround((data.state.t - s.start) / interval);
   const int every = s.adaptive ? 1 : std::max(1, s.output_every);
   const std::int64_t rows = (n > i0 ? (n - i0) / every : 0) + 2;
   // Steps as ffr-sim counts them: with adaptive steps the accepted ones.

@@ -109,7 +109,7 @@ void ffr_close(ffr_sim* sim) { delete sim; }
 
 int ffr_reinitialize(ffr_sim* sim) {
   if (!sim) return fail(FFR_ERROR_ARGUMENT, "ffr_reinitialize: sim is NULL");
-  if (sim->data->stats.steps > 0 || sim->data->t != sim->model.settings.start)
+  if (sim->data->stats.steps > 0 || sim->data->state.t != sim->model.settings.start)
     return fail(FFR_ERROR_ARGUMENT, "ffr_reinitialize: only at the start time, before the first step");
   return guarded([&] {
     ffr::runtime::initialize(sim->model, *sim->data);
@@ -120,7 +120,7 @@ int ffr_reinitialize(ffr_sim* sim) {
 
 int ffr_time(const ffr_sim* sim, double* t) {
   if (!sim || !t) return fail(FFR_ERROR_ARGUMENT, "ffr_time: NULL argument");
-  *t = sim->data->t;
+  *t = sim->data->state.t;
   return FFR_OK;
 }
 
@@ -140,7 +140,7 @@ int ffr_step(ffr_sim* sim, int n) {
       ffr::runtime::save_state(d, *sim->last);
       try {
         // (advance_to leaves the last accepted state itself when it gives up.)
-        if (sim->control) ffr::runtime::advance_to(sim->model, d, *sim->control, next_output_time(sim->model, d.t));
+        if (sim->control) ffr::runtime::advance_to(sim->model, d, *sim->control, next_output_time(sim->model, d.state.t));
         else ffr::runtime::step(sim->model, d);
       } catch (...) {
         ffr::runtime::restore_state(*sim->last, d);
