@@ -19,6 +19,8 @@ packages=(
   googletest libgtest-dev libgmock-dev
   calculix-ccx
   zlib1g-dev
+  python3-dev python3-numpy pybind11-dev   # the Python package (python/), for /usr/bin/python3
+  unzip                                    # tests/fmu unpacks the FMUs as an importer does
   clang libclang-rt-14-dev   # libFuzzer and the sanitizers of tools/fuzz
 )
 

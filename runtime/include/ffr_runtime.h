@@ -39,6 +39,15 @@ const char* ffr_last_error(void);
 /* Loads the model (and its SID files), makes the initial state consistent. *sim is NULL on failure. */
 int ffr_open(const char* model_path, ffr_sim** sim);
 
+/* Same from the model file's JSON text: relative SID paths are resolved against base_dir (NULL:
+   the working directory); name (NULL: "<model text>") stands for the file in messages. */
+int ffr_open_json(const char* json_text, const char* base_dir, const char* name, ffr_sim** sim);
+
+/* Makes the initial state consistent again, now with the loads and motions set since opening
+   (ffr_open did it without them: the first step would start from accelerations without the
+   loads). Only at the start time, before the first step. */
+int ffr_reinitialize(ffr_sim* sim);
+
 /* Frees everything; NULL is accepted. */
 void ffr_close(ffr_sim* sim);
 

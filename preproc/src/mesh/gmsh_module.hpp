@@ -23,7 +23,8 @@ struct GmshModule {
 };
 
 /// The module, loaded once: from $FFR_GMSH_MODULE if set, else next to the running program
-/// (installed: libexec/ffr/), else in ../libexec/ffr/ from it (the build tree's bin/ and tests/).
+/// (installed: libexec/ffr/), else in ../libexec/ffr/ from it (the build tree's bin/ and tests/),
+/// else next to the shared object the preprocessor is linked into (the Python package).
 /// Throws std::runtime_error naming the places tried (an incomplete installation).
 const GmshModule& gmsh_module();
 

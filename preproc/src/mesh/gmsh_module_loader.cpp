@@ -22,6 +22,13 @@ const GmshModule* load() {
     places.push_back(exe.parent_path() / kModule);
     places.push_back(exe.parent_path().parent_path() / "libexec" / "ffr" / kModule);
   }
+  // A host that is not ffr's own program (python3 importing the ffr package): next to the
+  // shared object this code is linked into.
+  Dl_info self{};
+  if (dladdr(reinterpret_cast<const void*>(&gmsh_module), &self) && self.dli_fname) {
+    const std::filesystem::path object = std::filesystem::absolute(self.dli_fname, ec);
+    if (!ec && object != exe) places.push_back(object.parent_path() / kModule);
+  }
   std::string tried;
   for (const auto& p : places) {
     tried += (tried.empty() ? "" : ", ") + p.string();

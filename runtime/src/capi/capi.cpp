@@ -6,20 +6,14 @@
 #include "ffr/version.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <memory>
 #include <new>
 #include <stdexcept>
 #include <string>
 
-struct ffr_sim {
-  ffr::runtime::Model model;
-  std::unique_ptr<ffr::runtime::Data> data;
-  std::unique_ptr<ffr::runtime::State> last;  ///< the last accepted state, restored if a step fails
-  std::unique_ptr<ffr::runtime::State> scratch;  ///< ffr_save_state / ffr_restore_state's copy
-  /// "step": "auto": one ffr_step is one output interval of adaptive steps (step_control.hpp).
-  std::unique_ptr<ffr::runtime::StepControl> control;
-};
+#include "sim_handle.hpp"
 
 namespace {
 
@@ -60,19 +54,14 @@ int motion_of(const ffr_sim* s, const char* joint) {
 
 }  // namespace
 
-extern "C" {
+namespace {
 
-const char* ffr_version(void) { return ffr::kVersion; }
-
-const char* ffr_last_error(void) { return g_error.c_str(); }
-
-int ffr_open(const char* path, ffr_sim** sim) {
-  if (!sim) return fail(FFR_ERROR_ARGUMENT, "ffr_open: sim is NULL");
-  *sim = nullptr;
-  if (!path) return fail(FFR_ERROR_ARGUMENT, "ffr_open: model_path is NULL");
+// The rest of opening, shared by ffr_open and ffr_open_json: state, workspace, step control.
+template <class Load>
+int open_with(Load&& load, ffr_sim** sim) {
   return guarded([&] {
     auto s = std::make_unique<ffr_sim>();
-    s->model = ffr::runtime::load_model(path);
+    s->model = load();
     s->data = std::make_unique<ffr::runtime::Data>(s->model);
     ffr::runtime::initialize(s->model, *s->data);
     s->last = std::make_unique<ffr::runtime::State>(s->model);
@@ -83,7 +72,51 @@ int ffr_open(const char* path, ffr_sim** sim) {
   });
 }
 
+// With adaptive steps: the next of the model's output times (the very times ffr-sim's run lands
+// on, so that stepping here reproduces its samples bit for bit), then on past the end by whole
+// output intervals.
+double next_output_time(const ffr::runtime::Model& model, double t) {
+  const auto& s = model.settings;
+  const std::int64_t k = std::llround((t - s.start) / s.output_interval) + 1;
+  return k <= ffr::runtime::output_count(model) ? ffr::runtime::output_time(model, k) : t + s.output_interval;
+}
+
+}  // namespace
+
+extern "C" {
+
+const char* ffr_version(void) { return ffr::kVersion; }
+
+const char* ffr_last_error(void) { return g_error.c_str(); }
+
+int ffr_open(const char* path, ffr_sim** sim) {
+  if (!sim) return fail(FFR_ERROR_ARGUMENT, "ffr_open: sim is NULL");
+  *sim = nullptr;
+  if (!path) return fail(FFR_ERROR_ARGUMENT, "ffr_open: model_path is NULL");
+  return open_with([&] { return ffr::runtime::load_model(path); }, sim);
+}
+
+int ffr_open_json(const char* json_text, const char* base_dir, const char* name, ffr_sim** sim) {
+  if (!sim) return fail(FFR_ERROR_ARGUMENT, "ffr_open_json: sim is NULL");
+  *sim = nullptr;
+  if (!json_text) return fail(FFR_ERROR_ARGUMENT, "ffr_open_json: json_text is NULL");
+  const std::string dir = base_dir ? base_dir : ".";
+  const std::string shown = name ? name : "<model text>";
+  return open_with([&] { return ffr::runtime::parse_model(json_text, dir, shown); }, sim);
+}
+
 void ffr_close(ffr_sim* sim) { delete sim; }
+
+int ffr_reinitialize(ffr_sim* sim) {
+  if (!sim) return fail(FFR_ERROR_ARGUMENT, "ffr_reinitialize: sim is NULL");
+  if (sim->data->stats.steps > 0 || sim->data->state.t != sim->model.settings.start)
+    return fail(FFR_ERROR_ARGUMENT, "ffr_reinitialize: only at the start time, before the first step");
+  return guarded([&] {
+    ffr::runtime::initialize(sim->model, *sim->data);
+    if (sim->control) *sim->control = ffr::runtime::StepControl(sim->model, *sim->data);
+    return FFR_OK;
+  });
+}
 
 int ffr_time(const ffr_sim* sim, double* t) {
   if (!sim || !t) return fail(FFR_ERROR_ARGUMENT, "ffr_time: NULL argument");
@@ -107,7 +140,7 @@ int ffr_step(ffr_sim* sim, int n) {
       ffr::runtime::save_state(d, *sim->last);
       try {
         // (advance_to leaves the last accepted state itself when it gives up.)
-        if (sim->control) ffr::runtime::advance_to(sim->model, d, *sim->control, d.state.t + sim->model.settings.output_interval);
+        if (sim->control) ffr::runtime::advance_to(sim->model, d, *sim->control, next_output_time(sim->model, d.state.t));
         else ffr::runtime::step(sim->model, d);
       } catch (...) {
         ffr::runtime::restore_state(*sim->last, d);
