@@ -1,6 +1,9 @@
 #include "ffr/formats/json_input.hpp"
 #include "ffr/preproc/part/part.hpp"
 
+#include "../mesh/bdf_reader.hpp"
+#include "../mesh/inp_reader.hpp"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -32,12 +35,8 @@ constexpr double kSlowestWave = 10.0, kFastestWave = 1e5;
 double length_in_m(const std::string& u) { return u == "mm" ? 1e-3 : u == "cm" ? 1e-2 : 1.0; }
 double time_in_s(const std::string& u) { return u == "ms" ? 1e-3 : 1.0; }
 
-Material read_material(const JsonNode& n, const Units& u) {
-  Material m;
-  m.E = n.at("E").positive();
-  m.nu = n.at("nu").number();
-  if (!(m.nu > -1.0 && m.nu < 0.5)) n.at("nu").fail("Poisson's ratio must lie in (-1, 0.5)");
-  m.rho = n.at("rho").non_negative();
+// Why the material is not one of a solid in the part's units, or empty.
+std::string unit_problem(const Material& m, const Units& u) {
   if (m.rho > 0) {
     const double c = std::sqrt(m.E / m.rho);  // length / time of the part's units
     const double c_si = c * length_in_m(u.length) / time_in_s(u.time);
@@ -45,11 +44,43 @@ Material read_material(const JsonNode& n, const Units& u) {
       char buf[160];
       std::snprintf(buf, sizeof buf, "sqrt(E / rho) = %.3g %s/%s (%.3g m/s), where solids have 20 m/s to 18 km/s", c,
                     u.length.c_str(), u.time.c_str(), c_si);
-      n.fail(std::string(buf) + ": E and rho are not in the part's units (length " + u.length + ", mass " + u.mass +
-             ", time " + u.time + "; E in MPa goes with lengths in mm and rho in t/mm^3)");
+      return std::string(buf) + ": E and rho are not in the part's units (length " + u.length + ", mass " + u.mass +
+             ", time " + u.time + "; E in MPa goes with lengths in mm and rho in t/mm^3)";
     }
   }
+  return {};
+}
+
+Material read_material(const JsonNode& n, const Units& u) {
+  Material m;
+  m.E = n.at("E").positive();
+  m.nu = n.at("nu").number();
+  if (!(m.nu > -1.0 && m.nu < 0.5)) n.at("nu").fail("Poisson's ratio must lie in (-1, 0.5)");
+  m.rho = n.at("rho").non_negative();
+  if (const std::string p = unit_problem(m, u); !p.empty()) n.fail(p);
   return m;
+}
+
+// The deck's solid and shell sections for the element sets the part file gives no property
+// for, checked as the part file's own materials are.
+void add_deck_sections(PartSpec& p) {
+  std::set<std::string> given;
+  for (const auto& m : p.materials) given.insert(m.group);
+  for (const auto& s : p.shells) given.insert(s.group);
+  for (const auto& b : p.beams) given.insert(b.group);
+  const std::string deck = p.geometry.string();
+  const std::vector<detail::DeckSection> sections =
+      detail::is_inp(p.geometry) ? detail::read_inp_sections(deck) : detail::read_bdf_sections(deck);
+  for (const auto& s : sections) {
+    if (given.count(s.group)) continue;
+    if (!(s.mat.E > 0)) throw FormatError(deck, s.where, "Young's modulus must be positive");
+    if (!(s.mat.nu > -1.0 && s.mat.nu < 0.5)) throw FormatError(deck, s.where, "Poisson's ratio must lie in (-1, 0.5)");
+    if (!(s.mat.rho >= 0)) throw FormatError(deck, s.where, "the density must not be negative");
+    if (const std::string why = unit_problem(s.mat, p.units); !why.empty()) throw FormatError(deck, s.where, why);
+    if (s.kind == detail::DeckSection::Kind::Shell) p.shells.push_back({s.group, s.thickness, s.mat});
+    else if (s.kind == detail::DeckSection::Kind::Beam) p.beams.push_back(s.beam);
+    else p.materials.push_back({s.group, s.mat});
+  }
 }
 
 Units read_units(const JsonNode& n) {
@@ -253,8 +284,8 @@ PartSpec load_part(const std::filesystem::path& path) {
   {
     const auto ext = p.geometry.extension().string();
     if (ext != ".geo" && ext != ".step" && ext != ".stp" && ext != ".brep" && ext != ".msh" && ext != ".STEP" &&
-        ext != ".STP")
-      g.fail("unsupported geometry '" + ext + "' (.geo, .step/.stp, .brep or .msh)");
+        ext != ".STP" && !detail::is_inp(p.geometry) && !detail::is_bdf(p.geometry))
+      g.fail("unsupported geometry '" + ext + "' (.geo, .step/.stp, .brep, .msh, .inp, or .bdf/.dat/.nas)");
     std::error_code ec;
     if (!std::filesystem::exists(p.geometry, ec)) g.fail("file not found: " + p.geometry.string());
   }
@@ -274,8 +305,12 @@ PartSpec load_part(const std::filesystem::path& path) {
     }
   if (auto bs = root.find("beams"))
     for (const auto& n : bs->items()) p.beams.push_back(read_beam(n, p.units));
+  if (detail::is_inp(p.geometry) || detail::is_bdf(p.geometry)) {
+    if (root.has("groups")) root.at("groups").fail("\"groups\" are made from CAD entities; a deck's groups are its sets");
+    add_deck_sections(p);
+  }
   if (p.materials.empty() && p.shells.empty() && p.beams.empty())
-    root.fail("the part has no material: give \"materials\", \"shells\" or \"beams\"");
+    root.fail("the part has no material: give \"materials\", \"shells\" or \"beams\" (or sections in its deck)");
   if (auto pm = root.find("point_masses"))
     for (const auto& n : pm->items()) p.point_masses.push_back(read_point_mass(n));
   if (auto is = root.find("interfaces"))
