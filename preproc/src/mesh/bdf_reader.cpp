@@ -101,7 +101,13 @@ std::vector<Card> read_cards(const std::string& file, const std::string& text) {
       const std::size_t per_line = large ? 4 : 8;
       data.assign(parts.begin() + 1, parts.end());
       // A last field beyond the line's data fields is its continuation marker.
-      if (data.size() == per_line + 1) data.pop_back();
+      if (data.size() == per_line + 1) {
+        // Never a data field: a number there would be lost.
+        if (!data.back().empty() && data.back()[0] != '+' && data.back()[0] != '*')
+          throw at("field 10 of a free-field line is its continuation marker (blank, '+...' or '*...'), found '" +
+                   data.back() + "': " + std::to_string(per_line) + " data fields a line");
+        data.pop_back();
+      }
       if (data.size() > per_line)
         throw at("a free-field line holds at most " + std::to_string(per_line) +
                  " data fields and a continuation marker; found " + std::to_string(data.size()));
@@ -430,62 +436,74 @@ std::vector<DeckSection> sections(const Bulk& b) {
   std::unordered_map<std::size_t, std::size_t> node_line;
   for (std::size_t i = 0; i < b.mesh.node_ids.size(); ++i) node_line.emplace(b.mesh.node_ids[i], i);
   std::vector<DeckSection> out;
-  std::set<std::size_t> done;
+  std::set<std::size_t> done, failed;
   for (std::size_t e = 0; e < b.element_pid.size(); ++e) {
     const std::size_t pid = b.element_pid[e];
-    const Fields ef(file, *b.element_card[e]);
-    const auto p = b.properties.find(pid);
-    const auto kind = std::find_if(element_cards().begin(), element_cards().end(),
-                                   [&](const ElementCard& c) { return b.element_card[e]->name == c.name; })->kind;
-    const char* wanted = kind == DeckSection::Kind::Solid ? "PSOLID" : kind == DeckSection::Kind::Shell ? "PSHELL" : "PBAR";
-    if (p == b.properties.end()) ef.fail("field 3 (PID): no property " + std::to_string(pid) + " (" + wanted + ") in the deck");
-    if (p->second.kind != kind) ef.fail("field 3 (PID): property " + std::to_string(pid) + " is a " + p->second.card->name + ", expected a " + wanted);
-    if (!done.insert(pid).second && kind != DeckSection::Kind::Beam) continue;
-    const Property& pr = p->second;
-    const Fields pf(file, *pr.card);
-    DeckSection ds;
-    ds.kind = kind;
-    ds.group = "pid" + std::to_string(pid);
-    ds.where = "line " + std::to_string(pr.card->line) + " (" + pr.card->name + " " + std::to_string(pid) + ")";
-    if (kind == DeckSection::Kind::Beam) {
-      // One y axis per beam group: every bar of the property must point its v the same way.
-      const Bar& bar = b.bars.at(e);
-      Eigen::Vector3d v = bar.v;
-      if (bar.g0) {
-        const auto a = node_line.find(bar.ga), g = node_line.find(bar.g0);
-        if (a == node_line.end() || g == node_line.end()) ef.fail("fields 4, 6 (GA, G0): grid not defined");
-        v = Eigen::Map<const Eigen::Vector3d>(&b.mesh.xyz[3 * g->second]) - Eigen::Map<const Eigen::Vector3d>(&b.mesh.xyz[3 * a->second]);
-        if (v.norm() == 0) ef.fail("field 6 (G0): the orientation grid lies on GA");
+    if (failed.count(pid)) continue;
+    try {
+      const Fields ef(file, *b.element_card[e]);
+      const auto p = b.properties.find(pid);
+      const auto kind = std::find_if(element_cards().begin(), element_cards().end(),
+                                     [&](const ElementCard& c) { return b.element_card[e]->name == c.name; })->kind;
+      const char* wanted = kind == DeckSection::Kind::Solid ? "PSOLID" : kind == DeckSection::Kind::Shell ? "PSHELL" : "PBAR";
+      if (p == b.properties.end()) ef.fail("field 3 (PID): no property " + std::to_string(pid) + " (" + wanted + ") in the deck");
+      if (p->second.kind != kind) ef.fail("field 3 (PID): property " + std::to_string(pid) + " is a " + p->second.card->name + ", expected a " + wanted);
+      if (!done.insert(pid).second && kind != DeckSection::Kind::Beam) continue;
+      const Property& pr = p->second;
+      const Fields pf(file, *pr.card);
+      DeckSection ds;
+      ds.kind = kind;
+      ds.group = "pid" + std::to_string(pid);
+      ds.where = "line " + std::to_string(pr.card->line) + " (" + pr.card->name + " " + std::to_string(pid) + ")";
+      if (kind == DeckSection::Kind::Beam) {
+        // One y axis per beam group: every bar of the property must point its v the same way.
+        const Bar& bar = b.bars.at(e);
+        Eigen::Vector3d v = bar.v;
+        if (bar.g0) {
+          const auto a = node_line.find(bar.ga), g = node_line.find(bar.g0);
+          if (a == node_line.end() || g == node_line.end()) ef.fail("fields 4, 6 (GA, G0): grid not defined");
+          v = Eigen::Map<const Eigen::Vector3d>(&b.mesh.xyz[3 * g->second]) - Eigen::Map<const Eigen::Vector3d>(&b.mesh.xyz[3 * a->second]);
+          if (v.norm() == 0) ef.fail("field 6 (G0): the orientation grid lies on GA");
+        }
+        v.normalize();
+        auto it = std::find_if(out.begin(), out.end(), [&](const DeckSection& s) { return s.group == ds.group; });
+        if (it != out.end()) {
+          if ((it->beam.y_axis - v).norm() > 1e-9)
+            ef.fail("the orientation vector differs from the first CBAR of property " + std::to_string(pid) +
+                    ": ffr takes one y axis per beam group (give bars of other orientations another PBAR)");
+          continue;
+        }
+        ds.beam = pr.beam;
+        ds.beam.y_axis = v;
       }
-      v.normalize();
-      auto it = std::find_if(out.begin(), out.end(), [&](const DeckSection& s) { return s.group == ds.group; });
-      if (it != out.end()) {
-        if ((it->beam.y_axis - v).norm() > 1e-9)
-          ef.fail("the orientation vector differs from the first CBAR of property " + std::to_string(pid) +
-                  ": ffr takes one y axis per beam group (give bars of other orientations another PBAR)");
-        continue;
-      }
-      ds.beam = pr.beam;
-      ds.beam.y_axis = v;
+      const auto m = b.materials.find(pr.mid);
+      if (m == b.materials.end()) pf.fail("field 3 (MID): no MAT1 " + std::to_string(pr.mid) + " in the deck");
+      const Fields mf(file, *m->second);
+      const std::optional<double> E = mf.real_opt(3, "E"), G = mf.real_opt(4, "G"), nu = mf.real_opt(5, "NU");
+      // Two of E, G, NU give the third (E = 2 G (1 + NU)).
+      if (!!E + !!G + !!nu < 2) mf.fail("give two of E, G and NU");
+      ds.mat.E = E ? *E : 2 * *G * (1 + *nu);
+      ds.mat.nu = nu ? *nu : *E / (2 * *G) - 1;
+      if (E && G && nu && std::abs(*E - 2 * *G * (1 + *nu)) > 1e-6 * std::abs(*E))
+        mf.fail("E, G and NU disagree (E != 2 G (1 + NU)): give two of them");
+      const std::optional<double> rho = mf.real_opt(6, "RHO");
+      if (!rho) mf.fail("field 6 (RHO): no density (the reduction needs mass)");
+      ds.mat.rho = *rho;
+      mf.require_zero(9, "GE, structural damping: give damping in the part file");
+      ds.beam.group = ds.group;
+      ds.beam.mat = ds.mat;
+      ds.thickness = pr.thickness;
+      out.push_back(ds);
+    } catch (const FormatError& error) {
+      // The part file may give the property of this group itself: only then is it no error.
+      DeckSection ds;
+      ds.group = "pid" + std::to_string(pid);
+      ds.where = error.object();
+      ds.problem = error.detail();
+      out.erase(std::remove_if(out.begin(), out.end(), [&](const DeckSection& s) { return s.group == ds.group; }), out.end());
+      out.push_back(ds);
+      failed.insert(pid);
     }
-    const auto m = b.materials.find(pr.mid);
-    if (m == b.materials.end()) pf.fail("field 3 (MID): no MAT1 " + std::to_string(pr.mid) + " in the deck");
-    const Fields mf(file, *m->second);
-    const std::optional<double> E = mf.real_opt(3, "E"), G = mf.real_opt(4, "G"), nu = mf.real_opt(5, "NU");
-    // Two of E, G, NU give the third (E = 2 G (1 + NU)).
-    if (!!E + !!G + !!nu < 2) mf.fail("give two of E, G and NU");
-    ds.mat.E = E ? *E : 2 * *G * (1 + *nu);
-    ds.mat.nu = nu ? *nu : *E / (2 * *G) - 1;
-    if (E && G && nu && std::abs(*E - 2 * *G * (1 + *nu)) > 1e-6 * std::abs(*E))
-      mf.fail("E, G and NU disagree (E != 2 G (1 + NU)): give two of them");
-    const std::optional<double> rho = mf.real_opt(6, "RHO");
-    if (!rho) mf.fail("field 6 (RHO): no density (the reduction needs mass)");
-    ds.mat.rho = *rho;
-    mf.require_zero(9, "GE, structural damping: give damping in the part file");
-    ds.beam.group = ds.group;
-    ds.beam.mat = ds.mat;
-    ds.thickness = pr.thickness;
-    out.push_back(ds);
   }
   return out;
 }
@@ -501,9 +519,8 @@ std::vector<DeckSection> read_bdf_sections(const std::string& file) { return sec
 
 Mesh read_bdf(const std::string& file, MeshReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
-  Bulk b = parse(file);
-  (void)sections(b);
-  return build_deck_mesh(b.mesh, report, t0);
+  // The properties are load_part's (read_bdf_sections): the part file may replace them.
+  return build_deck_mesh(parse(file).mesh, report, t0);
 }
 
 }  // namespace ffr::preproc::detail

@@ -22,7 +22,9 @@ bool is_bdf(const std::filesystem::path& file);
 /// Throws formats::FormatError naming the file, the line and the card.
 Mesh read_bdf(const std::string& file, MeshReport* report);
 
-/// The PSOLID, PSHELL and PBAR properties the elements use, with their MAT1 materials.
+/// The PSOLID, PSHELL and PBAR properties the elements use, with their MAT1 materials; a
+/// property missing or refused is returned with its `problem`, an error only where the part
+/// file gives no property for its group.
 std::vector<DeckSection> read_bdf_sections(const std::string& file);
 
 }  // namespace ffr::preproc::detail

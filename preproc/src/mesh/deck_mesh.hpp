@@ -21,6 +21,7 @@ struct DeckSection {
   double thickness = 0;   ///< shells
   BeamProps beam;         ///< beams (group and mat as above)
   std::string where;      ///< "line N (...)" for messages
+  std::string problem;    ///< why the deck's property cannot be taken (then only `where` is set)
 };
 
 struct DeckMesh {

@@ -73,6 +73,7 @@ void add_deck_sections(PartSpec& p) {
       detail::is_inp(p.geometry) ? detail::read_inp_sections(deck) : detail::read_bdf_sections(deck);
   for (const auto& s : sections) {
     if (given.count(s.group)) continue;
+    if (!s.problem.empty()) throw FormatError(deck, s.where, s.problem);
     if (!(s.mat.E > 0)) throw FormatError(deck, s.where, "Young's modulus must be positive");
     if (!(s.mat.nu > -1.0 && s.mat.nu < 0.5)) throw FormatError(deck, s.where, "Poisson's ratio must lie in (-1, 0.5)");
     if (!(s.mat.rho >= 0)) throw FormatError(deck, s.where, "the density must not be negative");
