@@ -158,3 +158,42 @@ TEST_P(InpCalculix, FrequenciesOfTheDeck) {
 INSTANTIATE_TEST_SUITE_P(Elements, InpCalculix,
                          ::testing::Values(CcxCase{2, true, 1e-6, "C3D20"}, CcxCase{2, false, 1e-5, "C3D10"}),
                          [](const auto& info) { return std::string(info.param.name); });
+
+// A QUAD4 plate: gmsh's deck with its plane elements (CPS4) declared as the shells they are
+// meshed for (S4, the same node order), gmsh's edge elements (T3D2) dropped for their node
+// set, and a *SHELL SECTION: the same SID as the MSH file with the part file's shell.
+TEST(InpDeck, ShellDeckGivesTheSameSidAsItsMsh) {
+  test::TempDir dir("interop_shell");
+  test::write_text(dir / "plate.geo", R"(SetFactory("OpenCASCADE");
+Rectangle(1) = {0, 0, 0, 0.3, 0.1};
+Recombine Surface{1};
+Physical Surface("skin") = {1};
+Physical Curve("edge") = Curve In BoundingBox{-1e-6, -1, -1, 1e-6, 1, 1};
+)");
+  const auto r = test::run("gmsh -2 -clmax 0.02 -format msh41 " + (dir / "plate.geo").string() + " -o " + (dir / "plate.msh").string() +
+                           " && gmsh " + (dir / "plate.msh").string() + " -0 -setnumber Mesh.SaveGroupsOfNodes 1 -format inp -o " +
+                           (dir / "gmsh.inp").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::istringstream in(formats::read_text_file(dir / "gmsh.inp"));
+  std::ostringstream deck;
+  std::string line;
+  bool drop = false;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line[0] == '*' && line.rfind("**", 0) != 0) {
+      drop = line.find("type=T3D2") != std::string::npos || line.find("ELSET=edge") != std::string::npos;
+      if (const auto p = line.find("type=CPS4"); p != std::string::npos) line.replace(p, 9, "type=S4");
+    }
+    if (!drop) deck << line << "\n";
+  }
+  ASSERT_NE(deck.str().find("type=S4"), std::string::npos);
+  test::write_text(dir / "plate.inp", deck.str() + "*MATERIAL, NAME=AL\n*ELASTIC\n7e10, 0.33\n*DENSITY\n2700\n"
+                                                   "*SHELL SECTION, ELSET=skin, MATERIAL=AL\n0.002\n");
+  const auto reduce = [&](const std::string& geometry, const std::string& shells) {
+    test::write_text(dir / "part.json", R"({"geometry": ")" + geometry + R"(", "visual": false, )" + shells + R"(
+      "interfaces": [{"name": "root", "group": "edge"}],
+      "reduction": {"method": "clamped", "interface": "root", "modes": 6}})");
+    return preproc::run_pipeline(preproc::load_part(dir / "part.json"));
+  };
+  expect_same_sid(reduce("plate.msh", R"("shells": [{"group": "skin", "thickness": 0.002, "E": 7e10, "nu": 0.33, "rho": 2700}],)"),
+                  reduce("plate.inp", ""));
+}
