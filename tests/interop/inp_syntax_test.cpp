@@ -4,8 +4,10 @@
 // manual's C3D10 and C3D20 against gmsh's ("Node ordering" of the gmsh reference manual), and
 // every refusal: file, line and what was expected, exit status 2, no SID.
 #include "ffr/formats/h5.hpp"
+#include "ffr/formats/text_file.hpp"
 #include "ffr/preproc/mesh/gmsh_import.hpp"
 #include "ffr/preproc/pipeline.hpp"
+#include "mesh/bdf_reader.hpp"
 #include "mesh/inp_reader.hpp"
 #include "support.hpp"
 
@@ -204,4 +206,36 @@ TEST(InpRefusals, CommandLineExitsWithTwoAndWritesNothing) {
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("bad.inp: line 6"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "bad.sid.h5"));
+}
+
+// Damaged decks (the example decks cut short at many places, and with bytes replaced): each
+// is read or refused with a FormatError, never another exception or a crash.
+TEST(DeckRobustness, CutAndDamagedDecksAreReadOrRefused) {
+  test::TempDir dir("deck_damage");
+  int refused = 0, read_ok = 0;
+  for (const char* name : {"arm.inp", "link.bdf"}) {
+    const std::string text = formats::read_text_file(test::source(std::string("meshes/fe_interop/") + name));
+    const bool inp = std::string(name).find(".inp") != std::string::npos;
+    const auto path = dir / name;
+    const auto attempt = [&](const std::string& t) {
+      test::write_text(path, t);
+      try {
+        if (inp) (void)preproc::detail::read_inp(path.string(), nullptr);
+        else (void)preproc::detail::read_bdf(path.string(), nullptr);
+        ++read_ok;
+      } catch (const formats::FormatError&) {
+        ++refused;
+      }
+    };
+    const std::size_t step = text.size() / 150 + 1;
+    for (std::size_t cut = 0; cut < text.size(); cut += step) attempt(text.substr(0, cut));
+    const char junk[] = {',', '*', '\n', 'x', '9', ' ', '-', '$', '+', '.'};
+    for (std::size_t at = 7, k = 0; at < text.size(); at += step, ++k) {
+      std::string t = text;
+      t[at] = junk[k % sizeof junk];
+      attempt(t);
+    }
+  }
+  EXPECT_GT(refused, 50);
+  EXPECT_GT(read_ok, 10);
 }
