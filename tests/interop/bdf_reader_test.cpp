@@ -257,3 +257,53 @@ TEST(BdfRefusals, EveryBadDeckNamesFileLineCardAndWhatWasExpected) {
     EXPECT_NE(what.find(c.expected), std::string::npos) << "deck:\n" << c.deck << "\nmessage: " << what << "\nexpected: " << c.expected;
   }
 }
+
+namespace {
+
+// element tag -> (type, node tags in gmsh order) of every element of the blocks of `group`.
+std::map<std::size_t, std::pair<std::string, std::vector<std::size_t>>> all_elements(const preproc::Mesh& m,
+                                                                                      const std::string& group) {
+  std::map<std::size_t, std::pair<std::string, std::vector<std::size_t>>> out;
+  for (const auto& b : m.blocks)
+    if (b.group == group)
+      for (preproc::Index e = 0; e < b.size(); ++e) {
+        auto& el = out[m.element_tag(b, e)];
+        el.first = preproc::name(b.type);
+        for (int i = 0; i < preproc::num_nodes(b.type); ++i) el.second.push_back(m.node_tag(b.element(e)[i]));
+      }
+  return out;
+}
+
+}  // namespace
+
+// gmsh's CHEXA (20 grids) and CQUAD4 cards land in gmsh's own HEX20 and QUAD4 node order.
+TEST(BdfDeck, GmshHex20AndQuadsLandInGmshOrder) {
+  test::TempDir dir("interop_bdf_hex");
+  test::write_text(dir / "hex.geo", R"(Point(1) = {0, 0, 0}; Point(2) = {0.2, 0, 0}; Line(1) = {1, 2};
+e[] = Extrude{0, 0.02, 0}{Line{1}; Layers{3}; Recombine;};
+v[] = Extrude{0, 0, 0.012}{Surface{e[1]}; Layers{2}; Recombine;};
+Transfinite Curve{1} = 13;
+Physical Volume("body") = {v[1]};
+)");
+  test::write_text(dir / "plate.geo", R"(SetFactory("OpenCASCADE");
+Rectangle(1) = {0, 0, 0, 0.3, 0.1};
+Recombine Surface{1};
+Physical Surface("skin") = {1};
+)");
+  const std::vector<std::pair<std::string, std::string>> cases = {{"hex", "-3 -order 2 -setnumber Mesh.SecondOrderIncomplete 1"},
+                                                                   {"plate", "-2 -clmax 0.02"}};
+  for (const auto& [name, opts] : cases) {
+    const auto geo = dir / (name + ".geo"), msh = dir / (name + ".msh"), bdf = dir / (name + ".bdf");
+    const auto r = test::run("gmsh " + opts + " -format msh41 " + geo.string() + " -o " + msh.string() + " && gmsh " + msh.string() +
+                             " -0 -setnumber Mesh.BdfFieldFormat 2 -format bdf -o " + bdf.string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    preproc::PartSpec p;
+    p.geometry = msh;
+    const preproc::Mesh a = preproc::load_mesh(p);
+    const preproc::Mesh b = preproc::detail::read_bdf(bdf.string(), nullptr);
+    const auto ea = all_elements(a, name == "hex" ? "body" : "skin"), eb = all_elements(b, "pid1");
+    ASSERT_FALSE(ea.empty());
+    EXPECT_EQ(ea.begin()->second.first, name == "hex" ? "HEX20" : "QUAD4");
+    EXPECT_EQ(ea, eb) << name;
+  }
+}
