@@ -197,3 +197,42 @@ Physical Curve("edge") = Curve In BoundingBox{-1e-6, -1, -1, 1e-6, 1, 1};
   expect_same_sid(reduce("plate.msh", R"("shells": [{"group": "skin", "thickness": 0.002, "E": 7e10, "nu": 0.33, "rho": 2700}],)"),
                   reduce("plate.inp", ""));
 }
+
+// A B31 beam: gmsh's deck of a line mesh (its T3D2 truss elements declared as the B31 beams
+// they are meshed for, the same two nodes), with the section from the part file's "beams":
+// the same SID as the MSH file.
+TEST(InpDeck, BeamDeckGivesTheSameSidAsItsMsh) {
+  test::TempDir dir("interop_beam");
+  test::write_text(dir / "spar.geo", R"(Point(1) = {0, 0, 0}; Point(2) = {0.5, 0.1, 0}; Line(1) = {1, 2};
+Transfinite Curve{1} = 21;
+Physical Curve("spar") = {1};
+Physical Point("root") = {1};
+)");
+  const auto r = test::run("gmsh -1 -format msh41 " + (dir / "spar.geo").string() + " -o " + (dir / "spar.msh").string() +
+                           " && gmsh " + (dir / "spar.msh").string() + " -0 -setnumber Mesh.SaveGroupsOfNodes 1 -format inp -o " +
+                           (dir / "gmsh.inp").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::string deck = formats::read_text_file(dir / "gmsh.inp");
+  ASSERT_NE(deck.find("type=T3D2"), std::string::npos);
+  deck.replace(deck.find("type=T3D2"), 9, "type=B31");
+  // gmsh's point element of the root (no element ffr takes) and its set: the node set stays.
+  std::istringstream in(deck);
+  std::ostringstream out;
+  std::string line;
+  bool drop = false;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line[0] == '*' && line.rfind("**", 0) != 0)
+      drop = (line.rfind("*ELEMENT", 0) == 0 && line.find("type=B31") == std::string::npos) || line.find("ELSET=root") != std::string::npos;
+    if (!drop) out << line << "\n";
+  }
+  test::write_text(dir / "spar.inp", out.str());
+  const auto reduce = [&](const std::string& geometry) {
+    test::write_text(dir / "part.json", R"({"geometry": ")" + geometry + R"(", "visual": false,
+      "beams": [{"group": "spar", "E": 2.1e11, "nu": 0.3, "rho": 7850,
+                 "section": {"A": 4e-4, "Iy": 2e-8, "Iz": 3e-8, "J": 4e-8, "ky": 0.85, "kz": 0.85}, "y_axis": [0, 0, 1]}],
+      "interfaces": [{"name": "root", "group": "root"}],
+      "reduction": {"method": "clamped", "interface": "root", "modes": 6}})");
+    return preproc::run_pipeline(preproc::load_part(dir / "part.json"));
+  };
+  expect_same_sid(reduce("spar.msh"), reduce("spar.inp"));
+}
