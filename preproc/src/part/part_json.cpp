@@ -272,12 +272,51 @@ const InterfaceSpec* PartSpec::find_interface(const std::string& name) const {
   return nullptr;
 }
 
+// "matrices": K and M from another FE code. What needs element stresses or ffr's element
+// kernels is refused here, by the field that asks for it.
+MatrixInputSpec read_matrices(const JsonNode& n, const PartSpec& p) {
+  n.allow_only({"K", "M", "format", "dofs"});
+  MatrixInputSpec m;
+  const std::string f = n.at("format").string();
+  if (f == "matrix_market") m.format = MatrixInputSpec::Format::MatrixMarket;
+  else if (f == "calculix") m.format = MatrixInputSpec::Format::Calculix;
+  else n.at("format").fail("unknown matrix format '" + f + "' (matrix_market, calculix)");
+  const auto dir = p.file.parent_path();
+  auto file = [&](const char* key, std::filesystem::path& out) {
+    const JsonNode k = n.at(key);
+    out = dir / k.string();
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(out, ec)) k.fail("file not found: " + out.string());
+  };
+  file("K", m.K);
+  file("M", m.M);
+  if (n.has("dofs")) file("dofs", m.dofs);
+  else if (m.format == MatrixInputSpec::Format::Calculix) {
+    // ccx's *MATRIX STORAGE writes job.sti, job.mas and job.dof side by side.
+    m.dofs = m.K;
+    m.dofs.replace_extension(".dof");
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(m.dofs, ec))
+      n.fail("no \"dofs\" given and no " + m.dofs.string() + " beside K (CalculiX writes job.dof with job.sti)");
+  } else n.at("dofs");  // required: fails naming the field
+  if (!detail::is_inp(p.geometry) && !detail::is_bdf(p.geometry))
+    n.fail("assembled matrices need the nodes of an FE deck as \"geometry\" (.inp, .bdf/.dat/.nas)");
+  if (p.stiffening)
+    n.fail("\"stiffening\": true needs element stresses, which assembled matrices do not have; drop it or give "
+           "the elements");
+  if (!p.preload.empty()) n.fail("a \"preload\" needs element stresses, which assembled matrices do not have");
+  if (!p.point_masses.empty())
+    n.fail("\"point_masses\" cannot be added to assembled matrices; put them into the mass matrix");
+  return m;
+}
+
 PartSpec load_part(const std::filesystem::path& path) {
   const auto doc = formats::JsonDocument::load(path);
   const JsonNode root = doc.root();
   if (!root.is_object()) root.fail("a part file is a JSON object");
   root.allow_only({"geometry", "mesh", "units", "groups", "materials", "shells", "beams", "point_masses",
-                   "interfaces", "reduction", "stiffening", "preload", "output_nodes", "damping", "visual", "comment"});
+                   "interfaces", "reduction", "stiffening", "preload", "output_nodes", "damping", "visual", "comment",
+                   "matrices"});
   PartSpec p;
   p.file = path;
   const JsonNode g = root.at("geometry");
@@ -326,6 +365,8 @@ PartSpec load_part(const std::filesystem::path& path) {
       n.allow_only({"name", "at"});
       p.output_nodes.push_back({name_of(n), n.at("at").vec3()});
     }
+
+  if (auto mx = root.find("matrices")) p.matrices = read_matrices(*mx, p);
 
   // Cross-references that need no mesh.
   std::set<std::string> names;

@@ -108,6 +108,17 @@ struct OutputNodeSpec {
   Eigen::Vector3d at = Eigen::Vector3d::Zero();
 };
 
+/// Assembled stiffness and mass from another FE code instead of ffr's element matrices
+/// (PART_FILE.md, "Assembled matrices"). The deck of `geometry` gives the nodes, their
+/// coordinates, the sets and the elements that say which nodes carry DOFs.
+struct MatrixInputSpec {
+  enum class Format { MatrixMarket, Calculix };
+  Format format = Format::MatrixMarket;
+  std::filesystem::path K, M;  ///< resolved against the part file's folder
+  std::filesystem::path dofs;  ///< row i of K and M = line i: "node component" (CalculiX: node.component)
+  bool given() const { return !K.empty(); }
+};
+
 struct PartSpec {
   std::filesystem::path file;      ///< the part file itself
   std::filesystem::path geometry;  ///< resolved against the part file's folder
@@ -125,6 +136,7 @@ struct PartSpec {
   PreloadSpec preload;
   bool visual = true;
   std::vector<OutputNodeSpec> output_nodes;
+  MatrixInputSpec matrices;  ///< not given(): ffr assembles its elements
 
   const InterfaceSpec* find_interface(const std::string& name) const;
 };
