@@ -397,6 +397,16 @@ TEST_P(MatrixInputRefusal, ExitTwoNamingFileAndLine) {
     test::write_text(bar.dir / "K.mtx", replace_line(K, 10, "7 5 1.0e+x"));
   } else if (name == "rotation") {
     test::write_text(bar.dir / "dofs.txt", replace_line(formats::read_text_file(bar.dir / "dofs.txt"), 2, "1 4"));
+  } else if (name == "unjoined") {
+    // A spring between the first and the last DOF's nodes (the bar's two ends).
+    std::istringstream in(K);
+    std::string l;
+    for (int k = 0; k < 3; ++k) std::getline(in, l);
+    std::istringstream ls(l);
+    long rows = 0, cols = 0, nnz = 0;
+    ls >> rows >> cols >> nnz;
+    std::string k2 = replace_line(K, 3, std::to_string(rows) + " " + std::to_string(cols) + " " + std::to_string(nnz + 1));
+    test::write_text(bar.dir / "K.mtx", k2 + std::to_string(rows) + " 1 -1.0e6\n");
   } else if (name == "stiffening") {
     matrices = std::string(kMtx) + R"(, "stiffening": true)";
   }
@@ -418,5 +428,6 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"missing", "bad.json", "file not found"},
                       BadCase{"malformed", "K.mtx", "line 10: 'row column value'"},
                       BadCase{"rotation", "dofs.txt", "line 2: rotational DOF"},
-                      BadCase{"stiffening", "bad.json", "needs element stresses"}),
+                      BadCase{"stiffening", "bad.json", "needs element stresses"},
+                      BadCase{"unjoined", "K.mtx", "which no element of the deck joins"}),
     [](const auto& info) { return std::string(info.param.name); });

@@ -5,6 +5,7 @@
 
 #include <Eigen/SparseCholesky>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -217,6 +218,61 @@ std::vector<DofRow> read_dof_map(const std::filesystem::path& file, bool calculi
   return rows;
 }
 
+// K's structure against the deck's elements: every node pair K couples must share an element
+// (the element graph is what the connectivity check and the solver's node ordering and symbolic
+// analysis are built from, pattern_analysis.hpp), and K's own node graph, with the interfaces
+// joining their groups, must be one piece (a piece K leaves apart would be a mechanism or extra
+// rigid-body modes).
+void check_structure(const FeModel& model, const MatrixInputSpec& spec, const FileMatrix& Kf, const std::vector<DofRow>& map) {
+  const Mesh& mesh = *model.mesh;
+  const Index N = mesh.num_nodes();
+  std::vector<std::vector<Index>> adj(static_cast<std::size_t>(N));
+  for (const auto& pb : model.blocks) {
+    const auto& blk = mesh.blocks[pb.block];
+    const int nn = num_nodes(blk.type);
+    for (Index e = 0; e < blk.size(); ++e)
+      for (int i = 0; i < nn; ++i)
+        for (int j = 0; j < nn; ++j) adj[static_cast<std::size_t>(blk.element(e)[i])].push_back(blk.element(e)[j]);
+  }
+  for (auto& a : adj) {
+    std::sort(a.begin(), a.end());
+    a.erase(std::unique(a.begin(), a.end()), a.end());
+  }
+  std::vector<Index> parent(static_cast<std::size_t>(N));
+  for (Index n = 0; n < N; ++n) parent[static_cast<std::size_t>(n)] = n;
+  auto find = [&](Index a) {
+    while (parent[static_cast<std::size_t>(a)] != a) a = parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
+    return a;
+  };
+  auto unite = [&](Index a, Index b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+  };
+  for (const auto& [rc, vl] : Kf.upper) {
+    const Index a = map[static_cast<std::size_t>(rc.first)].node, b = map[static_cast<std::size_t>(rc.second)].node;
+    if (a == b || vl.first == 0) continue;
+    const auto& na = adj[static_cast<std::size_t>(a)];
+    if (!std::binary_search(na.begin(), na.end(), b))
+      fail(spec.K, std::abs(vl.second), "K couples nodes " + std::to_string(mesh.node_tag(a)) + " and " +
+                                            std::to_string(mesh.node_tag(b)) +
+                                            ", which no element of the deck joins; the deck's elements must give the "
+                                            "matrices' connectivity (add an element or an interface between them)");
+    unite(a, b);
+  }
+  for (const auto& itf : model.interfaces)
+    for (std::size_t i = 1; i < itf.nodes.size(); ++i) unite(itf.nodes[0], itf.nodes[i]);
+  std::vector<Index> roots;
+  for (Index n = 0; n < N; ++n)
+    if (model.node_ndof[static_cast<std::size_t>(n)] > 0 && find(n) == n) roots.push_back(n);
+  if (roots.size() > 1) {
+    std::string nodes;
+    for (std::size_t i = 0; i < std::min<std::size_t>(roots.size(), 5); ++i) nodes += " " + std::to_string(mesh.node_tag(roots[i]));
+    fail(spec.K, 0, "K does not hold the body together: " + std::to_string(roots.size()) + " pieces (containing nodes" +
+                        nodes + (roots.size() > 5 ? " ...)" : ")"));
+  }
+}
+
 }  // namespace
 
 MatrixInput read_matrix_input(const FeModel& model, const PartSpec& part) {
@@ -231,6 +287,7 @@ MatrixInput read_matrix_input(const FeModel& model, const PartSpec& part) {
   const Index nf = static_cast<Index>(map.size());
   const FileMatrix Kf = ccx ? read_calculix(spec.K, nf) : read_matrix_market(spec.K, nf);
   const FileMatrix Mf = ccx ? read_calculix(spec.M, nf) : read_matrix_market(spec.M, nf);
+  check_structure(model, spec, Kf, map);
 
   // M = Ms (x) I3: no entry couples two components, and the three components' entries of a
   // node pair are equal (to the file's rounding).
