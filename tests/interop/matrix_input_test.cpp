@@ -314,6 +314,16 @@ std::string replace_line(const std::string& text, int line, const std::string& w
   for (int k = 1; std::getline(in, l); ++k) out << (k == line ? with : l) << "\n";
   return out.str();
 }
+// A Matrix Market text with one more entry (the size line's count raised).
+std::string append_entry(const std::string& mtx, const std::string& entry) {
+  std::istringstream in(mtx);
+  std::string l;
+  for (int k = 0; k < 3; ++k) std::getline(in, l);
+  std::istringstream ls(l);
+  long rows = 0, cols = 0, nnz = 0;
+  ls >> rows >> cols >> nnz;
+  return replace_line(mtx, 3, std::to_string(rows) + " " + std::to_string(cols) + " " + std::to_string(nnz + 1)) + entry + "\n";
+}
 }  // namespace
 
 TEST_P(MatrixInputRefusal, ExitTwoNamingFileAndLine) {
@@ -399,14 +409,10 @@ TEST_P(MatrixInputRefusal, ExitTwoNamingFileAndLine) {
     test::write_text(bar.dir / "dofs.txt", replace_line(formats::read_text_file(bar.dir / "dofs.txt"), 2, "1 4"));
   } else if (name == "unjoined") {
     // A spring between the first and the last DOF's nodes (the bar's two ends).
-    std::istringstream in(K);
-    std::string l;
-    for (int k = 0; k < 3; ++k) std::getline(in, l);
-    std::istringstream ls(l);
-    long rows = 0, cols = 0, nnz = 0;
-    ls >> rows >> cols >> nnz;
-    std::string k2 = replace_line(K, 3, std::to_string(rows) + " " + std::to_string(cols) + " " + std::to_string(nnz + 1));
-    test::write_text(bar.dir / "K.mtx", k2 + std::to_string(rows) + " 1 -1.0e6\n");
+    test::write_text(bar.dir / "K.mtx", append_entry(K, std::to_string(own.K.rows()) + " 1 -1.0e6"));
+  } else if (name == "coupled") {
+    // A mass coupling x and y of the first node: not Ms (x) I3.
+    test::write_text(bar.dir / "M.mtx", append_entry(M, "2 1 1.0e-4"));
   } else if (name == "stiffening") {
     matrices = std::string(kMtx) + R"(, "stiffening": true)";
   }
@@ -429,5 +435,6 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"malformed", "K.mtx", "line 10: 'row column value'"},
                       BadCase{"rotation", "dofs.txt", "line 2: rotational DOF"},
                       BadCase{"stiffening", "bad.json", "needs element stresses"},
-                      BadCase{"unjoined", "K.mtx", "which no element of the deck joins"}),
+                      BadCase{"unjoined", "K.mtx", "which no element of the deck joins"},
+                      BadCase{"coupled", "M.mtx", "a translational mass Ms (x) I3 is expected"}),
     [](const auto& info) { return std::string(info.param.name); });

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <map>
 #include <sstream>
 #include <unordered_map>
 
@@ -66,31 +65,57 @@ struct Lines {
 
 // One matrix of the file: entries by (row, col) of the file's numbering (0-based), each with
 // the line it came from; symmetric storage mirrored, general storage checked for symmetry.
+// Collected and sorted (not a map: a 100k-DOF K has millions of entries).
 struct FileMatrix {
   Index n = 0;
-  std::map<std::pair<Index, Index>, std::pair<double, int>> upper;  ///< row <= col
+  std::vector<std::pair<std::pair<Index, Index>, std::pair<double, int>>> upper;  ///< row <= col, sorted
+  struct Raw {
+    Index r, c;
+    double v;
+    int line;
+    bool lower;  ///< given below the diagonal (general storage)
+  };
+  std::vector<Raw> raw;
 };
 
-void add_entry(FileMatrix& A, const std::filesystem::path& file, int line, long long i, long long j, double v,
-               bool general) {
+void add_entry(FileMatrix& A, const std::filesystem::path& file, int line, long long i, long long j, double v) {
   if (i < 1 || j < 1 || i > A.n || j > A.n)
     fail(file, line, "index (" + std::to_string(i) + ", " + std::to_string(j) + ") outside the " + std::to_string(A.n) +
                          " x " + std::to_string(A.n) + " matrix of the DOF map's " + std::to_string(A.n) + " rows");
-  const Index r = std::min(i, j) - 1, c = std::max(i, j) - 1;
-  auto [it, fresh] = A.upper.try_emplace({r, c}, v, line);
-  if (fresh) return;
-  if (general && i != j) {
-    // The transpose of an entry already read: equal to rounding, or the matrix is not symmetric.
-    const double a = it->second.first;
-    if (std::abs(a - v) > 1e-9 * std::max(std::abs(a), std::abs(v)) + 1e-300)
-      fail(file, line, "the matrix is not symmetric: entry (" + std::to_string(i) + ", " + std::to_string(j) + ") = " +
-                           std::to_string(v) + " but its transpose on line " + std::to_string(it->second.second) +
-                           " is " + std::to_string(a) + " (a symmetric K and M are expected)");
-    it->second.second = -std::abs(it->second.second);  // paired
-    return;
+  A.raw.push_back({std::min<Index>(i, j) - 1, std::max<Index>(i, j) - 1, v, line, i > j});
+}
+
+// Sorts the entries into `upper`: a duplicate is refused; in general storage each off-diagonal
+// entry must come with its transpose, equal to 1e-9.
+void finish(FileMatrix& A, const std::filesystem::path& file, bool general) {
+  auto& raw = A.raw;
+  std::sort(raw.begin(), raw.end(), [](const FileMatrix::Raw& x, const FileMatrix::Raw& y) {
+    return x.r != y.r ? x.r < y.r : x.c != y.c ? x.c < y.c : x.line < y.line;
+  });
+  auto where = [](const FileMatrix::Raw& e) {
+    return "entry (" + std::to_string((e.lower ? e.c : e.r) + 1) + ", " + std::to_string((e.lower ? e.r : e.c) + 1) + ")";
+  };
+  A.upper.reserve(raw.size());
+  for (std::size_t k = 0; k < raw.size();) {
+    std::size_t e = k + 1;
+    while (e < raw.size() && raw[e].r == raw[k].r && raw[e].c == raw[k].c) ++e;
+    const auto& x = raw[k];
+    const bool pair_ok = general && x.r != x.c && e - k == 2 && raw[k].lower != raw[k + 1].lower;
+    if (e - k > 1 && !pair_ok)
+      fail(file, raw[k + 1].line, where(raw[k + 1]) + " given twice (first on line " + std::to_string(x.line) + ")");
+    if (pair_ok) {
+      const double a = x.v, b = raw[k + 1].v;
+      if (std::abs(a - b) > 1e-9 * std::max(std::abs(a), std::abs(b)))
+        fail(file, raw[k + 1].line, "the matrix is not symmetric: " + where(raw[k + 1]) + " = " + std::to_string(b) +
+                                        " but its transpose on line " + std::to_string(x.line) + " is " + std::to_string(a) +
+                                        " (a symmetric K and M are expected)");
+    } else if (general && x.r != x.c && x.v != 0)
+      fail(file, x.line, "the matrix is not symmetric: " + where(x) + " has no transpose (a symmetric K and M are expected)");
+    A.upper.push_back({{x.r, x.c}, {x.v, x.line}});
+    k = e;
   }
-  fail(file, line, "entry (" + std::to_string(i) + ", " + std::to_string(j) + ") given twice (first on line " +
-                       std::to_string(std::abs(it->second.second)) + ")");
+  raw.clear();
+  raw.shrink_to_fit();
 }
 
 FileMatrix read_matrix_market(const std::filesystem::path& file, Index expected_rows) {
@@ -131,16 +156,12 @@ FileMatrix read_matrix_market(const std::filesystem::path& file, Index expected_
     if (f.size() != 3 || !to_long(f[0], i) || !to_long(f[1], j) || !to_double(f[2], v))
       fail(file, line, "'row column value' (two integers and a finite number) expected, got '" + std::string(L.lines[k]) + "'");
     if (++count > nnz) fail(file, line, "more entries than the " + std::to_string(nnz) + " of the size line");
-    add_entry(A, file, line, i, j, v, general);
+    add_entry(A, file, line, i, j, v);
   }
   if (count != nnz)
     fail(file, static_cast<int>(L.lines.size()), "the file ends after " + std::to_string(count) + " of the " +
                                                      std::to_string(nnz) + " entries of the size line");
-  if (general)
-    for (const auto& [rc, vl] : A.upper)
-      if (rc.first != rc.second && vl.second > 0 && vl.first != 0)
-        fail(file, vl.second, "the matrix is not symmetric: entry (" + std::to_string(rc.first + 1) + ", " +
-                                  std::to_string(rc.second + 1) + ") has no transpose (a symmetric K and M are expected)");
+  finish(A, file, general);
   return A;
 }
 
@@ -159,8 +180,9 @@ FileMatrix read_calculix(const std::filesystem::path& file, Index rows) {
     if (f.size() != 3 || !to_long(f[0], i) || !to_long(f[1], j) || !to_double(f[2], v))
       fail(file, line, "'row column value' (two integers and a finite number) expected, got '" + std::string(L.lines[k]) + "'");
     if (i > j) fail(file, line, "an entry below the diagonal; CalculiX's matrix storage holds the upper triangle (row <= column)");
-    add_entry(A, file, line, i, j, v, false);
+    add_entry(A, file, line, i, j, v);
   }
+  finish(A, file, false);
   if (A.upper.empty()) fail(file, 0, "no entries");
   return A;
 }
@@ -254,7 +276,7 @@ void check_structure(const FeModel& model, const MatrixInputSpec& spec, const Fi
     if (a == b || vl.first == 0) continue;
     const auto& na = adj[static_cast<std::size_t>(a)];
     if (!std::binary_search(na.begin(), na.end(), b))
-      fail(spec.K, std::abs(vl.second), "K couples nodes " + std::to_string(mesh.node_tag(a)) + " and " +
+      fail(spec.K, vl.second, "K couples nodes " + std::to_string(mesh.node_tag(a)) + " and " +
                                             std::to_string(mesh.node_tag(b)) +
                                             ", which no element of the deck joins; the deck's elements must give the "
                                             "matrices' connectivity (add an element or an interface between them)");
@@ -294,13 +316,18 @@ MatrixInput read_matrix_input(const FeModel& model, const PartSpec& part) {
   const Index N = model.mesh->num_nodes();
   double mmax = 0;
   for (const auto& [rc, vl] : Mf.upper) mmax = std::max(mmax, std::abs(vl.first));
-  std::map<std::pair<Index, Index>, std::pair<double, int>> ms;  // node pair (upper) -> value, line
-  std::map<std::pair<Index, Index>, int> count;
+  struct NodeEntry {
+    std::pair<Index, Index> key;  ///< node pair, first <= second
+    double v;
+    int line;
+  };
+  std::vector<NodeEntry> entries;
+  entries.reserve(Mf.upper.size());
   const double tol = 1e-9 * mmax;
   for (const auto& [rc, vl] : Mf.upper) {
     const DofRow& a = map[static_cast<std::size_t>(rc.first)];
     const DofRow& b = map[static_cast<std::size_t>(rc.second)];
-    const int line = std::abs(vl.second);
+    const int line = vl.second;
     if (a.component != b.component) {
       if (std::abs(vl.first) > tol)
         fail(spec.M, line, "the mass couples component " + std::to_string(a.component + 1) + " of node " +
@@ -309,20 +336,27 @@ MatrixInput read_matrix_input(const FeModel& model, const PartSpec& part) {
                                "; a translational mass Ms (x) I3 is expected (a solid's consistent or lumped mass)");
       continue;
     }
-    const std::pair<Index, Index> key{std::min(a.node, b.node), std::max(a.node, b.node)};
-    auto [it, fresh] = ms.try_emplace(key, vl.first, line);
-    ++count[key];
-    if (!fresh && std::abs(it->second.first - vl.first) > tol)
-      fail(spec.M, line, "the mass of nodes " + std::to_string(model.mesh->node_tag(a.node)) + ", " +
-                             std::to_string(model.mesh->node_tag(b.node)) + " in component " + std::to_string(a.component + 1) +
-                             " is " + std::to_string(vl.first) + " but " + std::to_string(it->second.first) + " on line " +
-                             std::to_string(it->second.second) + "; a translational mass Ms (x) I3 is expected");
+    entries.push_back({{std::min(a.node, b.node), std::max(a.node, b.node)}, vl.first, line});
   }
-  for (const auto& [key, c] : count)
-    if (c != 3 && std::abs(ms[key].first) > tol)
-      fail(spec.M, ms[key].second, "nodes " + std::to_string(model.mesh->node_tag(key.first)) + ", " +
-                                       std::to_string(model.mesh->node_tag(key.second)) + " have a mass entry in " +
-                                       std::to_string(c) + " of the 3 components; a translational mass Ms (x) I3 is expected");
+  std::sort(entries.begin(), entries.end(),
+            [](const NodeEntry& x, const NodeEntry& y) { return x.key != y.key ? x.key < y.key : x.line < y.line; });
+  std::vector<std::pair<std::pair<Index, Index>, std::pair<double, int>>> ms;  // node pair -> value, line
+  for (std::size_t k = 0; k < entries.size();) {
+    std::size_t e = k + 1;
+    while (e < entries.size() && entries[e].key == entries[k].key) ++e;
+    const auto& x = entries[k];
+    const auto tag = [&](Index n) { return std::to_string(model.mesh->node_tag(n)); };
+    for (std::size_t j = k + 1; j < e; ++j)
+      if (std::abs(entries[j].v - x.v) > tol)
+        fail(spec.M, entries[j].line, "the mass of nodes " + tag(x.key.first) + ", " + tag(x.key.second) + " is " +
+                                          std::to_string(entries[j].v) + " here but " + std::to_string(x.v) + " on line " +
+                                          std::to_string(x.line) + " in another component; a translational mass Ms (x) I3 is expected");
+    if (e - k != 3 && std::abs(x.v) > tol)
+      fail(spec.M, x.line, "nodes " + tag(x.key.first) + ", " + tag(x.key.second) + " have a mass entry in " +
+                               std::to_string(e - k) + " of the 3 components; a translational mass Ms (x) I3 is expected");
+    ms.push_back({x.key, {x.v, x.line}});
+    k = e;
+  }
 
   MatrixInput out;
   Assembled& fe = out.fe;
