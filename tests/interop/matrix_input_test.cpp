@@ -12,6 +12,7 @@
 //  - bad input: exit status 2 naming the file, the line and what was expected, no SID.
 #include "ffr/formats/diff.hpp"
 #include "ffr/formats/h5.hpp"
+#include "ffr/formats/sid_io.hpp"
 #include "ffr/formats/text_file.hpp"
 #include "ffr/preproc/assembly/assembly.hpp"
 #include "ffr/preproc/mesh/gmsh_import.hpp"
@@ -207,6 +208,12 @@ TEST(CalculixInput, MatrixStorageGivesTheSidOfTheDeck) {
   // ccx writes 14 significant digits, and integrates C3D20 as ffr's HEX20.
   const double f = expect_same_sid(deck, mat, 1e-9);
   EXPECT_LE(f, 1.5e-7);
+  // And by the command-line tool outside scripts use.
+  formats::write_sid(deck, ccx.bar.dir / "deck.sid.h5");
+  formats::write_sid(mat, ccx.bar.dir / "ccx.sid.h5");
+  const auto r = test::run(test::bin("ffr-diff").string() + " " + (ccx.bar.dir / "deck.sid.h5").string() + " " +
+                           (ccx.bar.dir / "ccx.sid.h5").string() + " --rtol 1e-9");
+  EXPECT_EQ(r.status, 0) << r.output;
   std::printf("CalculiX .sti/.mas vs the deck: largest relative frequency difference %.2e\n", f);
 }
 
