@@ -12,6 +12,7 @@
 #include "ffr/preproc/threads.hpp"
 #include "ffr/preproc/visual/visual.hpp"
 #include "ffr/version.hpp"
+#include "matrix_input/matrix_input.hpp"
 #include "reduce/pattern_analysis.hpp"
 #include "reduce/setup.hpp"
 
@@ -93,46 +94,59 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   // The stress request is checked against the mesh before the reduction's minutes are spent.
   const std::vector<Index> stress_at = part.stress ? stress_nodes(model) : std::vector<Index>{};
 
-  // 3. Assembly, with the eigen-solve's symbolic analysis on another thread meanwhile.
-  EarlyAnalysis early = EarlyAnalysis::start(model, part.reduction);
-  AssemblyOptions aopt;
-  // One core left to the analysis while it runs. Why: at two threads the analysis, not the
-  // assembly, was what the factorization waited for on the 100k-DOF plate of tools/bench/reduce;
-  // with the assembly on one thread the two took about a fifth less time together.
-  if (early.started()) aopt.threads = static_cast<int>(std::max(1u, max_threads() - 1));
-  // The structure of K and M on every core, though: it is the first touch of their 250 MB on
-  // that plate, and where a page fault costs more than filling the page, threads share the
-  // faults.
-  aopt.fill_threads = static_cast<int>(max_threads());
-  // And the core back to the element loop once the analysis is done.
-  if (early.started()) aopt.spare_core = [&early] { return early.finished(); };
-  aopt.progress = [&](double f) { progress("assembly " + std::to_string(static_cast<int>(100 * f)) + " %"); };
-  // Only the stiffening's static solves use K and M after the reduction; otherwise they are
-  // freed before the factorization, the memory peak of the run.
-  const bool keep_matrices = part.stiffening || !part.preload.empty();
-  // M itself is needed only by the stiffening and Craig-Bampton, and where the eigen-solve's
-  // matrix is not a principal submatrix of the assembled one; otherwise a part of solids alone
-  // has it from Ms (the assembly checks the solids).
-  if (!keep_matrices && part.reduction.method != ReductionSpec::Method::CraigBampton) {
-    try {
-      const DofTransform t = build_transform(model, detail::states_for(model, part.reduction));
-      aopt.node_mass_only = !detail::factorized_rows(model, t, part.reduction).empty();
-    } catch (const std::exception&) {
-      // Bad interfaces: M is assembled, and the reduction reports them as it always did.
+  // 3. Assembly, with the eigen-solve's symbolic analysis on another thread meanwhile; or
+  // the part's own assembled matrices, without either.
+  const bool from_files = part.matrices.given();
+  std::string file_mass_type;
+  EarlyAnalysis early = from_files ? EarlyAnalysis{} : EarlyAnalysis::start(model, part.reduction);
+  Assembled fe;
+  if (from_files) {
+    detail::MatrixInput in = detail::read_matrix_input(model, part);
+    fe = std::move(in.fe);
+    file_mass_type = std::move(in.mass_type);
+    stage("matrices: K and M from " + part.matrices.K.filename().string() + ", " + part.matrices.M.filename().string() +
+          ", nnz(K) = " + std::to_string(fe.K.nonZeros()) + ", mass " + fmt(fe.mass, 6) + " " + part.units.mass + " (" +
+          file_mass_type + ") [" + fmt(sw.lap()) + " s]");
+  } else {
+    AssemblyOptions aopt;
+    // One core left to the analysis while it runs. Why: at two threads the analysis, not the
+    // assembly, was what the factorization waited for on the 100k-DOF plate of tools/bench/reduce;
+    // with the assembly on one thread the two took about a fifth less time together.
+    if (early.started()) aopt.threads = static_cast<int>(std::max(1u, max_threads() - 1));
+    // The structure of K and M on every core, though: it is the first touch of their 250 MB on
+    // that plate, and where a page fault costs more than filling the page, threads share the
+    // faults.
+    aopt.fill_threads = static_cast<int>(max_threads());
+    // And the core back to the element loop once the analysis is done.
+    if (early.started()) aopt.spare_core = [&early] { return early.finished(); };
+    aopt.progress = [&](double f) { progress("assembly " + std::to_string(static_cast<int>(100 * f)) + " %"); };
+    // Only the stiffening's static solves use K and M after the reduction; otherwise they are
+    // freed before the factorization, the memory peak of the run.
+    const bool keep_matrices = part.stiffening || !part.preload.empty();
+    // M itself is needed only by the stiffening and Craig-Bampton, and where the eigen-solve's
+    // matrix is not a principal submatrix of the assembled one; otherwise a part of solids alone
+    // has it from Ms (the assembly checks the solids).
+    if (!keep_matrices && part.reduction.method != ReductionSpec::Method::CraigBampton) {
+      try {
+        const DofTransform t = build_transform(model, detail::states_for(model, part.reduction));
+        aopt.node_mass_only = !detail::factorized_rows(model, t, part.reduction).empty();
+      } catch (const std::exception&) {
+        // Bad interfaces: M is assembled, and the reduction reports them as it always did.
+      }
     }
+    fe = assemble(model, aopt);
+    stage("assembly: " + std::to_string(fe.elements) + " elements, nnz(K) = " + std::to_string(fe.K.nonZeros()) +
+          ", mass " + fmt(fe.mass, 6) + " " + part.units.mass + " [" + fmt(sw.lap()) + " s]");
+    if (!fe.worst_element.empty())
+      stage("  quality: worst scaled Jacobian " + fmt(fe.worst_scaled_jacobian) + " (" + fe.worst_element + ")");
   }
-  Assembled fe = assemble(model, aopt);
-  stage("assembly: " + std::to_string(fe.elements) + " elements, nnz(K) = " + std::to_string(fe.K.nonZeros()) +
-        ", mass " + fmt(fe.mass, 6) + " " + part.units.mass + " [" + fmt(sw.lap()) + " s]");
-  if (!fe.worst_element.empty())
-    stage("  quality: worst scaled Jacobian " + fmt(fe.worst_scaled_jacobian) + " (" + fe.worst_element + ")");
 
   // 4. Modes.
   ReductionLog rlog;
   rlog.message = [&](const std::string& s) { stage("  " + s); };
   rlog.progress = progress;
-  ReductionResult red = keep_matrices ? reduce(model, fe, part.reduction, rlog, &early)
-                                      : reduce_consuming_matrices(model, fe, part.reduction, rlog, &early);
+  ReductionResult red = part.stiffening || !part.preload.empty() ? reduce(model, fe, part.reduction, rlog, from_files ? nullptr : &early)
+                                      : reduce_consuming_matrices(model, fe, part.reduction, rlog, from_files ? nullptr : &early);
   {
     std::string f;
     for (Index i = 0; i < std::min<Index>(red.lambda.size(), 6); ++i)
@@ -196,11 +210,17 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   p.reduction_parameters = red.parameters_json;
   p.damping_model = damping_text(part.damping);
   p.element_counts = mrep.element_counts;
-  const std::string mm = mass_model_text(model);
+  const std::string mm = from_files ? file_mass_type : mass_model_text(model);
   for (const char* g : {"/sid/mdCM", "/sid/J", "/sid/Ct", "/sid/Cr", "/sid/Me", "/sid/Gr", "/sid/Ge", "/sid/Oe", "/integrals"})
     p.mass_model[g] = mm;
   p.mass_model["/integrals/rotary"] = "point rotary inertia carried by no material point (shell drilling)";
   p.extra["geometry"] = part.geometry.filename().string();
+  if (from_files) {
+    p.extra["matrices"] = std::string(part.matrices.format == MatrixInputSpec::Format::Calculix ? "calculix" : "matrix_market") +
+                          ": K " + part.matrices.K.filename().string() + " (sha256 " + formats::sha256_file(part.matrices.K) +
+                          "), M " + part.matrices.M.filename().string() + " (sha256 " + formats::sha256_file(part.matrices.M) + ")";
+    p.element_counts.clear();
+  }
   p.extra["eigen_backend"] = red.backend;
   p.extra["factorization"] = to_string(red.factor.backend);
   p.extra["max_relative_residual"] = fmt(red.max_residual, 3);

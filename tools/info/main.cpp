@@ -1,5 +1,6 @@
 // ffr-info: summary of a SID or ffr-sim results file (formats/SPEC.md), or the Campbell
 // diagram of a SID. Exit status: 0 ok, 2 bad input, 1 other failure.
+#include "export.hpp"
 #include "summary.hpp"
 
 #include "ffr/cli/cli.hpp"
@@ -33,6 +34,10 @@ an ffr-sim results file (time span, statistics, output channels with their final
                           the SID's units (Pa), principal stresses descending
   --model MODEL.json      with --stress: the model file of the run (default: the one the run
                           names in its attribute `model`, as given or beside the run)
+  --export-fbi -o OUT     write the SID as a SID_FEM text file (the standard input data of a
+                          flexible body, the layout SIMPACK's flexible-body import reads)
+  --export-mtx -o DIR     write the reduced matrices Me, Ke, De (and Ke.M1) as Matrix Market
+                          files into DIR (formats/SPEC.md, "Exports")
   --help, --version
 
 Exit status: 0 ok, 2 bad input (named on stderr), 1 other failure. Bad input includes a
@@ -42,7 +47,7 @@ the file and the first failed check, and the status is 2. A file of format_versi
 content checksums) is read with a warning on stderr. In --json output, bytes of a string that
 are not valid UTF-8 are replaced by U+FFFD.
 )",
-    "ffr-info FILE.h5 [--json] | ffr-info FILE.sid.h5 --campbell x|y|z --speeds 0,50,100 [--json] [--png OUT.png] | ffr-info RESULTS.h5 --plot CH1,CH2 --png OUT.png | ffr-info RESULTS.h5 --stress BODY [--model MODEL.json] [--json]"};
+    "ffr-info FILE.h5 [--json] | ffr-info FILE.sid.h5 --export-fbi|--export-mtx -o OUT | ffr-info FILE.sid.h5 --campbell x|y|z --speeds 0,50,100 [--json] [--png OUT.png] | ffr-info RESULTS.h5 --plot CH1,CH2 --png OUT.png | ffr-info RESULTS.h5 --stress BODY [--model MODEL.json] [--json]"};
 
 int run(ffr::cli::Args& a) {
   using ffr::cli::UsageError;
@@ -51,10 +56,18 @@ int run(ffr::cli::Args& a) {
   const auto speeds = a.option("--speeds");
   const auto png = a.option("--png");
   const auto plot = a.option("--plot");
+  const bool export_fbi = a.flag("--export-fbi"), export_mtx = a.flag("--export-mtx");
+  const auto out = a.option("-o");
   const auto stress = a.option("--stress");
   const auto model = a.option("--model");
   const auto files = a.positionals();
   if (files.size() != 1) throw UsageError(files.empty() ? "missing FILE" : "expected one FILE, got " + std::to_string(files.size()));
+  if (export_fbi || export_mtx || out) {
+    if (export_fbi == export_mtx) throw UsageError(out ? "-o needs --export-fbi or --export-mtx" : "give one of --export-fbi and --export-mtx");
+    if (!out) throw UsageError(export_fbi ? "--export-fbi needs -o OUT" : "--export-mtx needs -o DIR");
+    if (json || plot || campbell || speeds || png || stress || model) throw UsageError("an export goes with no other option");
+    return export_fbi ? ffr::info::run_export_fbi(files[0], *out) : ffr::info::run_export_mtx(files[0], *out);
+  }
   if (stress) {
     if (plot || campbell || speeds || png) throw UsageError("--stress goes with --json and --model only");
     return ffr::info::run_stress(files[0], *stress, model.value_or(""), json);

@@ -2,7 +2,9 @@
 // module (gmsh_module.hpp), its meshing and reading in a child process (mesh_child.hpp).
 #include "ffr/preproc/mesh/gmsh_import.hpp"
 
+#include "bdf_reader.hpp"
 #include "gmsh_module.hpp"
+#include "inp_reader.hpp"
 #include "mesh_child.hpp"
 #include "msh41_reader.hpp"
 
@@ -23,6 +25,9 @@ Mesh load_mesh_with_gmsh(const PartSpec& part, MeshReport* report, const MeshLog
 }  // namespace detail
 
 Mesh load_mesh(const PartSpec& part, MeshReport* report, const MeshLog& log) {
+  // FE input decks are read here, never by gmsh (inp_reader.hpp, bdf_reader.hpp).
+  if (detail::is_inp(part.geometry)) return detail::read_inp(part.geometry.string(), report);
+  if (detail::is_bdf(part.geometry)) return detail::read_bdf(part.geometry.string(), report);
   // An ASCII MSH 4.1 file is read here when the part adds no groups of its own (those need
   // gmsh's entities, bounding boxes included); anything else goes to gmsh (msh41_reader.hpp).
   if (part.geometry.extension() == ".msh" && part.groups.empty())

@@ -1,6 +1,9 @@
 #include "ffr/formats/json_input.hpp"
 #include "ffr/preproc/part/part.hpp"
 
+#include "../mesh/bdf_reader.hpp"
+#include "../mesh/inp_reader.hpp"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -32,12 +35,8 @@ constexpr double kSlowestWave = 10.0, kFastestWave = 1e5;
 double length_in_m(const std::string& u) { return u == "mm" ? 1e-3 : u == "cm" ? 1e-2 : 1.0; }
 double time_in_s(const std::string& u) { return u == "ms" ? 1e-3 : 1.0; }
 
-Material read_material(const JsonNode& n, const Units& u) {
-  Material m;
-  m.E = n.at("E").positive();
-  m.nu = n.at("nu").number();
-  if (!(m.nu > -1.0 && m.nu < 0.5)) n.at("nu").fail("Poisson's ratio must lie in (-1, 0.5)");
-  m.rho = n.at("rho").non_negative();
+// Why the material is not one of a solid in the part's units, or empty.
+std::string unit_problem(const Material& m, const Units& u) {
   if (m.rho > 0) {
     const double c = std::sqrt(m.E / m.rho);  // length / time of the part's units
     const double c_si = c * length_in_m(u.length) / time_in_s(u.time);
@@ -45,11 +44,44 @@ Material read_material(const JsonNode& n, const Units& u) {
       char buf[160];
       std::snprintf(buf, sizeof buf, "sqrt(E / rho) = %.3g %s/%s (%.3g m/s), where solids have 20 m/s to 18 km/s", c,
                     u.length.c_str(), u.time.c_str(), c_si);
-      n.fail(std::string(buf) + ": E and rho are not in the part's units (length " + u.length + ", mass " + u.mass +
-             ", time " + u.time + "; E in MPa goes with lengths in mm and rho in t/mm^3)");
+      return std::string(buf) + ": E and rho are not in the part's units (length " + u.length + ", mass " + u.mass +
+             ", time " + u.time + "; E in MPa goes with lengths in mm and rho in t/mm^3)";
     }
   }
+  return {};
+}
+
+Material read_material(const JsonNode& n, const Units& u) {
+  Material m;
+  m.E = n.at("E").positive();
+  m.nu = n.at("nu").number();
+  if (!(m.nu > -1.0 && m.nu < 0.5)) n.at("nu").fail("Poisson's ratio must lie in (-1, 0.5)");
+  m.rho = n.at("rho").non_negative();
+  if (const std::string p = unit_problem(m, u); !p.empty()) n.fail(p);
   return m;
+}
+
+// The deck's solid and shell sections for the element sets the part file gives no property
+// for, checked as the part file's own materials are.
+void add_deck_sections(PartSpec& p) {
+  std::set<std::string> given;
+  for (const auto& m : p.materials) given.insert(m.group);
+  for (const auto& s : p.shells) given.insert(s.group);
+  for (const auto& b : p.beams) given.insert(b.group);
+  const std::string deck = p.geometry.string();
+  const std::vector<detail::DeckSection> sections =
+      detail::is_inp(p.geometry) ? detail::read_inp_sections(deck) : detail::read_bdf_sections(deck);
+  for (const auto& s : sections) {
+    if (given.count(s.group)) continue;
+    if (!s.problem.empty()) throw FormatError(deck, s.where, s.problem);
+    if (!(s.mat.E > 0)) throw FormatError(deck, s.where, "Young's modulus must be positive");
+    if (!(s.mat.nu > -1.0 && s.mat.nu < 0.5)) throw FormatError(deck, s.where, "Poisson's ratio must lie in (-1, 0.5)");
+    if (!(s.mat.rho >= 0)) throw FormatError(deck, s.where, "the density must not be negative");
+    if (const std::string why = unit_problem(s.mat, p.units); !why.empty()) throw FormatError(deck, s.where, why);
+    if (s.kind == detail::DeckSection::Kind::Shell) p.shells.push_back({s.group, s.thickness, s.mat});
+    else if (s.kind == detail::DeckSection::Kind::Beam) p.beams.push_back(s.beam);
+    else p.materials.push_back({s.group, s.mat});
+  }
 }
 
 Units read_units(const JsonNode& n) {
@@ -240,12 +272,52 @@ const InterfaceSpec* PartSpec::find_interface(const std::string& name) const {
   return nullptr;
 }
 
+// "matrices": K and M from another FE code. What needs element stresses or ffr's element
+// kernels is refused here, by the field that asks for it.
+MatrixInputSpec read_matrices(const JsonNode& n, const PartSpec& p) {
+  n.allow_only({"K", "M", "format", "dofs"});
+  MatrixInputSpec m;
+  const std::string f = n.at("format").string();
+  if (f == "matrix_market") m.format = MatrixInputSpec::Format::MatrixMarket;
+  else if (f == "calculix") m.format = MatrixInputSpec::Format::Calculix;
+  else n.at("format").fail("unknown matrix format '" + f + "' (matrix_market, calculix)");
+  const auto dir = p.file.parent_path();
+  auto file = [&](const char* key, std::filesystem::path& out) {
+    const JsonNode k = n.at(key);
+    out = dir / k.string();
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(out, ec)) k.fail("file not found: " + out.string());
+  };
+  file("K", m.K);
+  file("M", m.M);
+  if (n.has("dofs")) file("dofs", m.dofs);
+  else if (m.format == MatrixInputSpec::Format::Calculix) {
+    // ccx's *MATRIX STORAGE writes job.sti, job.mas and job.dof side by side.
+    m.dofs = m.K;
+    m.dofs.replace_extension(".dof");
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(m.dofs, ec))
+      n.fail("no \"dofs\" given and no " + m.dofs.string() + " beside K (CalculiX writes job.dof with job.sti)");
+  } else n.at("dofs");  // required: fails naming the field
+  if (!detail::is_inp(p.geometry) && !detail::is_bdf(p.geometry))
+    n.fail("assembled matrices need the nodes of an FE deck as \"geometry\" (.inp, .bdf/.dat/.nas)");
+  if (p.stiffening)
+    n.fail("\"stiffening\": true needs element stresses, which assembled matrices do not have; drop it or give "
+           "the elements");
+  if (!p.preload.empty()) n.fail("a \"preload\" needs element stresses, which assembled matrices do not have");
+  if (p.stress) n.fail("\"stress\" recovery needs ffr's own elements and material, which assembled matrices do not have");
+  if (!p.point_masses.empty())
+    n.fail("\"point_masses\" cannot be added to assembled matrices; put them into the mass matrix");
+  return m;
+}
+
 PartSpec load_part(const std::filesystem::path& path) {
   const auto doc = formats::JsonDocument::load(path);
   const JsonNode root = doc.root();
   if (!root.is_object()) root.fail("a part file is a JSON object");
   root.allow_only({"geometry", "mesh", "units", "groups", "materials", "shells", "beams", "point_masses",
-                   "interfaces", "reduction", "stiffening", "preload", "output_nodes", "damping", "visual", "stress", "comment"});
+                   "interfaces", "reduction", "stiffening", "preload", "output_nodes", "damping", "visual", "stress", "comment",
+                   "matrices"});
   PartSpec p;
   p.file = path;
   const JsonNode g = root.at("geometry");
@@ -253,8 +325,8 @@ PartSpec load_part(const std::filesystem::path& path) {
   {
     const auto ext = p.geometry.extension().string();
     if (ext != ".geo" && ext != ".step" && ext != ".stp" && ext != ".brep" && ext != ".msh" && ext != ".STEP" &&
-        ext != ".STP")
-      g.fail("unsupported geometry '" + ext + "' (.geo, .step/.stp, .brep or .msh)");
+        ext != ".STP" && !detail::is_inp(p.geometry) && !detail::is_bdf(p.geometry))
+      g.fail("unsupported geometry '" + ext + "' (.geo, .step/.stp, .brep, .msh, .inp, or .bdf/.dat/.nas)");
     std::error_code ec;
     if (!std::filesystem::exists(p.geometry, ec)) g.fail("file not found: " + p.geometry.string());
   }
@@ -274,8 +346,12 @@ PartSpec load_part(const std::filesystem::path& path) {
     }
   if (auto bs = root.find("beams"))
     for (const auto& n : bs->items()) p.beams.push_back(read_beam(n, p.units));
+  if (detail::is_inp(p.geometry) || detail::is_bdf(p.geometry)) {
+    if (root.has("groups")) root.at("groups").fail("\"groups\" are made from CAD entities; a deck's groups are its sets");
+    add_deck_sections(p);
+  }
   if (p.materials.empty() && p.shells.empty() && p.beams.empty())
-    root.fail("the part has no material: give \"materials\", \"shells\" or \"beams\"");
+    root.fail("the part has no material: give \"materials\", \"shells\" or \"beams\" (or sections in its deck)");
   if (auto pm = root.find("point_masses"))
     for (const auto& n : pm->items()) p.point_masses.push_back(read_point_mass(n));
   if (auto is = root.find("interfaces"))
@@ -304,6 +380,8 @@ PartSpec load_part(const std::filesystem::path& path) {
                          : "give \"group\": NAME or \"surface\": true");
     p.stress = s;
   }
+
+  if (auto mx = root.find("matrices")) p.matrices = read_matrices(*mx, p);
 
   // Cross-references that need no mesh.
   std::set<std::string> names;

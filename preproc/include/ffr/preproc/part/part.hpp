@@ -113,6 +113,15 @@ struct OutputNodeSpec {
 struct StressSpec {
   std::string group;     ///< a mesh physical group; empty with surface
   bool surface = false;  ///< the outer surface's solid nodes
+/// Assembled stiffness and mass from another FE code instead of ffr's element matrices
+/// (PART_FILE.md, "Assembled matrices"). The deck of `geometry` gives the nodes, their
+/// coordinates, the sets and the elements that say which nodes carry DOFs.
+struct MatrixInputSpec {
+  enum class Format { MatrixMarket, Calculix };
+  Format format = Format::MatrixMarket;
+  std::filesystem::path K, M;  ///< resolved against the part file's folder
+  std::filesystem::path dofs;  ///< row i of K and M = line i: "node component" (CalculiX: node.component)
+  bool given() const { return !K.empty(); }
 };
 
 struct PartSpec {
@@ -133,6 +142,7 @@ struct PartSpec {
   bool visual = true;
   std::vector<OutputNodeSpec> output_nodes;
   std::optional<StressSpec> stress;
+  MatrixInputSpec matrices;  ///< not given(): ffr assembles its elements
 
   const InterfaceSpec* find_interface(const std::string& name) const;
 };

@@ -1,0 +1,526 @@
+#include "bdf_reader.hpp"
+
+#include "ffr/formats/h5.hpp"
+#include "ffr/formats/text_file.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <set>
+#include <string_view>
+#include <unordered_map>
+
+namespace ffr::preproc::detail {
+namespace {
+
+using formats::FormatError;
+
+std::string upper(std::string_view s) {
+  std::string u(s);
+  for (char& c : u) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return u;
+}
+
+std::string trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return std::string(s);
+}
+
+// A card: its name (without the large-field '*') and its data fields, field 2 of the first
+// line at index 0, 8 fields per small-field line and per two large-field lines, as the
+// Nastran Quick Reference Guide numbers them.
+struct Card {
+  std::string name;
+  std::vector<std::string> f;
+  int line = 0;
+};
+
+// Small-field (8 characters), large-field (16, the name ending in '*', continuation lines
+// starting with '*') and free-field (commas) lines; '$' starts a comment; a line whose first
+// field is blank or starts with '+' or '*' continues the card before it.
+std::vector<Card> read_cards(const std::string& file, const std::string& text) {
+  std::vector<Card> cards;
+  // Executive and case control before BEGIN BULK select the solution: passed over.
+  bool bulk = true;
+  {
+    std::size_t p = 0;
+    while (p < text.size()) {
+      const std::size_t e = text.find('\n', p);
+      const std::string l = upper(trim(std::string_view(text).substr(p, e == std::string::npos ? std::string::npos : e - p)));
+      if (l.rfind("BEGIN", 0) == 0 && l.find("BULK") != std::string::npos) {
+        bulk = false;
+        break;
+      }
+      p = e == std::string::npos ? text.size() : e + 1;
+    }
+  }
+  std::size_t p = 0;
+  int line_no = 0;
+  while (p < text.size()) {
+    const std::size_t e = text.find('\n', p);
+    std::string raw = text.substr(p, e == std::string::npos ? std::string::npos : e - p);
+    p = e == std::string::npos ? text.size() : e + 1;
+    ++line_no;
+    if (const auto c = raw.find('$'); c != std::string::npos) raw.erase(c);
+    // Tabs to the next multiple of 8 columns.
+    std::string l;
+    for (char c : raw) {
+      if (c == '\r') continue;
+      if (c == '\t') l.append(8 - l.size() % 8, ' ');
+      else l += c;
+    }
+    const std::string t = upper(trim(l));
+    if (t.empty()) continue;
+    if (!bulk) {
+      if (t.rfind("BEGIN", 0) == 0 && t.find("BULK") != std::string::npos) bulk = true;
+      continue;
+    }
+    if (t.rfind("ENDDATA", 0) == 0) break;
+    const auto at = [&](const std::string& what) { return FormatError(file, "line " + std::to_string(line_no), what); };
+
+    std::string first;
+    std::vector<std::string> data;
+    if (l.find(',') != std::string::npos) {
+      std::vector<std::string> parts;
+      std::size_t b = 0;
+      for (;;) {
+        const std::size_t c = l.find(',', b);
+        parts.push_back(upper(trim(std::string_view(l).substr(b, c == std::string::npos ? std::string::npos : c - b))));
+        if (c == std::string::npos) break;
+        b = c + 1;
+      }
+      first = parts[0];
+      const bool large = (!first.empty() && first.back() == '*') || (!first.empty() && first[0] == '*');
+      const std::size_t per_line = large ? 4 : 8;
+      data.assign(parts.begin() + 1, parts.end());
+      // A last field beyond the line's data fields is its continuation marker.
+      if (data.size() == per_line + 1) {
+        // Never a data field: a number there would be lost.
+        if (!data.back().empty() && data.back()[0] != '+' && data.back()[0] != '*')
+          throw at("field 10 of a free-field line is its continuation marker (blank, '+...' or '*...'), found '" +
+                   data.back() + "': " + std::to_string(per_line) + " data fields a line");
+        data.pop_back();
+      }
+      if (data.size() > per_line)
+        throw at("a free-field line holds at most " + std::to_string(per_line) +
+                 " data fields and a continuation marker; found " + std::to_string(data.size()));
+      data.resize(per_line);
+    } else {
+      first = upper(trim(l.substr(0, std::min<std::size_t>(8, l.size()))));
+      const bool large = (!first.empty() && first.back() == '*') || (!first.empty() && first[0] == '*');
+      const std::size_t width = large ? 16 : 8, count = large ? 4 : 8;
+      for (std::size_t k = 0; k < count; ++k) {
+        const std::size_t b = 8 + k * width;
+        data.push_back(b < l.size() ? upper(trim(l.substr(b, std::min(width, l.size() - b)))) : std::string());
+      }
+      if (l.size() > 80 && !trim(l.substr(80)).empty()) throw at("characters beyond column 80 of a fixed-field line");
+    }
+    const bool continuation = first.empty() || first[0] == '+' || first[0] == '*';
+    if (continuation) {
+      if (cards.empty()) throw at("a continuation line without a card before it");
+      cards.back().f.insert(cards.back().f.end(), data.begin(), data.end());
+    } else {
+      Card c;
+      c.name = first.back() == '*' ? first.substr(0, first.size() - 1) : first;
+      c.f = std::move(data);
+      c.line = line_no;
+      cards.push_back(std::move(c));
+    }
+  }
+  if (!bulk) throw FormatError(file, "", "BEGIN BULK without bulk data after it");
+  return cards;
+}
+
+// The fields of one card, read with the card's name, line and id in every message.
+class Fields {
+ public:
+  Fields(const std::string& file, const Card& c) : file_(file), c_(c) {}
+
+  [[noreturn]] void fail(const std::string& what) const {
+    std::string id = c_.f.empty() ? std::string() : " " + c_.f[0];
+    throw FormatError(file_, "line " + std::to_string(c_.line) + " (" + c_.name + id + ")", what);
+  }
+  // Field k of the card as the Quick Reference numbers it (2 = the first data field).
+  const std::string& raw(std::size_t k) const {
+    static const std::string blank;
+    return k - 2 < c_.f.size() ? c_.f[k - 2] : blank;
+  }
+  bool blank(std::size_t k) const { return raw(k).empty(); }
+  // Field k as the Quick Reference Guide shows it: field 2..9 of the card's first line, or of
+  // its n-th continuation line (8 data fields a line).
+  static std::string at(std::size_t k) {
+    const std::size_t line = (k - 2) / 8, field = (k - 2) % 8 + 2;
+    return line == 0 ? "field " + std::to_string(field)
+                     : "continuation " + std::to_string(line) + ", field " + std::to_string(field);
+  }
+
+  long long integer(std::size_t k, const char* what) const {
+    const std::string& s = raw(k);
+    long long v = 0;
+    const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size())
+      fail(at(k) + " (" + what + "): expected an integer, found '" + s + "'");
+    return v;
+  }
+  std::size_t id(std::size_t k, const char* what) const {
+    const long long v = integer(k, what);
+    if (v < 1) fail(at(k) + " (" + what + "): expected a positive id, found " + raw(k));
+    return static_cast<std::size_t>(v);
+  }
+  long long integer_or(std::size_t k, const char* what, long long dflt) const { return blank(k) ? dflt : integer(k, what); }
+
+  // Nastran reals: 1.5E-3, 1.5D-3, 1.5-3 (an exponent without E), 7.+4, .5; integers too.
+  double real(std::size_t k, const char* what) const {
+    std::string s = raw(k);
+    for (char& ch : s)
+      if (ch == 'D') ch = 'E';
+    if (s.find('E') == std::string::npos)
+      for (std::size_t i = 1; i < s.size(); ++i)
+        if ((s[i] == '+' || s[i] == '-') && s[i - 1] != 'E') {
+          s = s.substr(0, i) + 'E' + s.substr(i);
+          break;
+        }
+    const char* b = s.data();
+    if (!s.empty() && s[0] == '+') ++b;
+    double v = 0;
+    const auto r = std::from_chars(b, s.data() + s.size(), v);
+    if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v))
+      fail(at(k) + " (" + what + "): expected a number, found '" + raw(k) + "'");
+    return v;
+  }
+  std::optional<double> real_opt(std::size_t k, const char* what) const {
+    return blank(k) ? std::nullopt : std::optional<double>(real(k, what));
+  }
+  double real_or(std::size_t k, const char* what, double dflt) const { return blank(k) ? dflt : real(k, what); }
+
+  // Fields that would change the model: refused unless blank (or zero).
+  void require_blank(std::size_t first, std::size_t last, const char* why) const {
+    for (std::size_t k = first; k <= last; ++k)
+      if (!blank(k)) fail(at(k) + " ('" + raw(k) + "') is not supported: " + why);
+  }
+  void require_zero(std::size_t k, const char* what) const {
+    if (!blank(k) && real(k, what) != 0.0) fail(at(k) + " (" + what + ") is not supported unless 0");
+  }
+  std::size_t size() const { return c_.f.size() + 1; }  // the last field number
+  int line() const { return c_.line; }
+
+ private:
+  const std::string& file_;
+  const Card& c_;
+};
+
+struct ElementCard {
+  const char* name;
+  ElementType linear, quadratic;  // by node count: 4/10, 8/20, or one type
+  int nodes_linear, nodes_quadratic;
+  std::vector<int> order;         // gmsh node k = Nastran node order[k], quadratic type
+  DeckSection::Kind kind;
+};
+
+// Nastran's node orders (Quick Reference Guide, CTETRA and CHEXA) in terms of gmsh's: the
+// corners agree; CTETRA's edges G5..G10 are (1,2) (2,3) (3,1) (1,4) (2,4) (3,4), gmsh's 4..9
+// (0,1) (1,2) (2,0) (3,0) (3,2) (3,1); CHEXA's G9..G20 run round the bottom face, up the
+// vertical edges, round the top face, gmsh's 8..19 by first corner (0,1) (0,3) (0,4) (1,2)
+// (1,5) (2,3) (2,6) (3,7) (4,5) (4,7) (5,6) (6,7).
+const std::vector<ElementCard>& element_cards() {
+  static const std::vector<ElementCard> cards = {
+      {"CTETRA", ElementType::Tet4, ElementType::Tet10, 4, 10, {0, 1, 2, 3, 4, 5, 6, 7, 9, 8}, DeckSection::Kind::Solid},
+      {"CHEXA", ElementType::Hex8, ElementType::Hex20, 8, 20,
+       {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 12, 9, 13, 10, 14, 15, 16, 19, 17, 18}, DeckSection::Kind::Solid},
+      {"CTRIA3", ElementType::Tri3, ElementType::Tri3, 3, 3, {0, 1, 2}, DeckSection::Kind::Shell},
+      {"CQUAD4", ElementType::Quad4, ElementType::Quad4, 4, 4, {0, 1, 2, 3}, DeckSection::Kind::Shell},
+      {"CBAR", ElementType::Line2, ElementType::Line2, 2, 2, {0, 1}, DeckSection::Kind::Beam},
+  };
+  return cards;
+}
+
+struct Property {
+  DeckSection::Kind kind;
+  const Card* card;
+  std::size_t mid;
+  double thickness = 0;
+  BeamProps beam;
+};
+
+struct Bar {
+  std::size_t ga;
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  std::size_t g0 = 0;  // orientation by a grid instead of v
+};
+
+struct Bulk {
+  DeckMesh mesh;
+  std::vector<std::size_t> element_pid;  // per mesh.elements
+  std::vector<const Card*> element_card;
+  std::map<std::size_t, Bar> bars;       // by element index
+  std::map<std::size_t, Property> properties;
+  std::map<std::size_t, const Card*> materials;
+  std::vector<Card> cards;
+};
+
+// The grid ids of a SET1/SPC1 list from field `first` on: ids and "id1 THRU id2".
+std::vector<std::size_t> grid_list(const Fields& f, std::size_t first) {
+  std::vector<std::size_t> ids;
+  for (std::size_t k = first; k <= f.size(); ++k) {
+    if (f.blank(k)) continue;
+    if (f.raw(k) == "THRU") {
+      if (ids.empty() || k + 1 > f.size()) f.fail(Fields::at(k) + ": THRU needs an id before and after it");
+      const std::size_t a = ids.back(), b = f.id(k + 1, "the last id of THRU");
+      if (b < a || b - a > 100000000) f.fail(Fields::at(k + 1) + ": THRU ends below its start");
+      for (std::size_t i = a + 1; i <= b; ++i) ids.push_back(i);
+      ++k;
+    } else {
+      ids.push_back(f.id(k, "a grid id"));
+    }
+  }
+  return ids;
+}
+
+Bulk parse(const std::string& file) {
+  Bulk b;
+  b.mesh.file = file;
+  b.cards = read_cards(file, formats::read_text_file(file));
+  std::map<std::string, std::size_t> set_index;  // node set name -> index in mesh.node_sets
+  std::map<std::size_t, std::size_t> pid_set;    // pid -> index in mesh.element_sets
+  const std::set<std::string> passed_over = {"EIGRL", "EIGR", "SPC", "SPCADD", "FORCE", "MOMENT", "GRAV", "LOAD"};
+  // Parameters of output and of the solution's bookkeeping; every other PARAM is refused.
+  const std::set<std::string> harmless_params = {"POST", "PRGPST", "OGEOM", "AUTOSPC", "GRDPNT", "NOCOMPS", "MAXRATIO"};
+  for (const Card& c : b.cards) {
+    const Fields f(file, c);
+    const auto element = std::find_if(element_cards().begin(), element_cards().end(),
+                                      [&](const ElementCard& e) { return c.name == e.name; });
+    if (c.name == "GRID") {
+      const std::size_t id = f.id(2, "ID");
+      if (f.integer_or(3, "CP", 0) != 0) f.fail("field 3 (CP): coordinate systems are not supported (CP = 0 or blank)");
+      if (f.integer_or(7, "CD", 0) != 0) f.fail("field 7 (CD): coordinate systems are not supported (CD = 0 or blank)");
+      f.require_blank(8, 8, "permanent constraints (PS): hold nodes through an interface of the part file");
+      b.mesh.node_ids.push_back(id);
+      for (std::size_t k = 4; k <= 6; ++k) b.mesh.xyz.push_back(f.real_or(k, "X", 0.0));
+      b.mesh.node_lines.push_back(c.line);
+      f.require_blank(10, f.size(), "GRID has 9 fields");
+    } else if (element != element_cards().end()) {
+      const std::size_t eid = f.id(2, "EID"), pid = f.id(3, "PID");
+      const std::size_t first = 4;
+      int n = 0;
+      std::vector<std::size_t> g;
+      if (element->kind == DeckSection::Kind::Solid) {
+        // Grids up to the last non-blank field; the linear or the complete quadratic element.
+        for (std::size_t k = first; k < first + static_cast<std::size_t>(element->nodes_quadratic); ++k)
+          if (!f.blank(k)) n = static_cast<int>(k - first + 1);
+        if (n != element->nodes_linear && n != element->nodes_quadratic)
+          f.fail(std::string(element->name) + " with " + std::to_string(n) + " grids: ffr takes " +
+                 std::to_string(element->nodes_linear) + " or all " + std::to_string(element->nodes_quadratic));
+        f.require_blank(first + static_cast<std::size_t>(element->nodes_quadratic), f.size(), "beyond the element's grids");
+      } else {
+        n = element->nodes_linear;
+      }
+      for (int i = 0; i < n; ++i) g.push_back(f.id(first + static_cast<std::size_t>(i), "a grid id"));
+      if (c.name == "CTRIA3") {
+        f.require_zero(8, "ZOFFS");
+        f.require_blank(9, f.size(), "varying thickness (TFLAG, T1..T3)");
+      } else if (c.name == "CQUAD4") {
+        f.require_zero(9, "ZOFFS");
+        f.require_blank(10, f.size(), "varying thickness (TFLAG, T1..T4)");
+      } else if (c.name == "CBAR") {
+        Bar bar{g[0]};
+        if (f.raw(6).find('.') == std::string::npos && f.blank(7) && f.blank(8) && !f.blank(6)) {
+          bar.g0 = f.id(6, "G0");
+        } else {
+          bar.v = Eigen::Vector3d(f.real_or(6, "X1", 0), f.real_or(7, "X2", 0), f.real_or(8, "X3", 0));
+          if (bar.v.norm() == 0) f.fail("fields 6-8 (X1, X2, X3): the orientation vector is zero");
+        }
+        const std::string offt = f.raw(9);
+        if (!offt.empty() && offt != "GGG") f.fail("field 9 (OFFT): only GGG (or blank) is supported");
+        f.require_blank(10, 11, "pin flags (PA, PB)");
+        for (std::size_t k = 12; k <= 17; ++k) f.require_zero(k, "an offset");
+        f.require_blank(18, f.size(), "CBAR has 17 fields");
+        b.bars[b.mesh.elements.size()] = bar;
+      }
+      const ElementType type = n == element->nodes_linear ? element->linear : element->quadratic;
+      b.mesh.elements.push_back(DeckMesh::Element{eid, type, b.mesh.conn.size(), c.line});
+      for (int k = 0; k < n; ++k)
+        b.mesh.conn.push_back(g[static_cast<std::size_t>(n == element->nodes_quadratic ? element->order[static_cast<std::size_t>(k)] : k)]);
+      b.element_pid.push_back(pid);
+      b.element_card.push_back(&c);
+      auto [it, fresh] = pid_set.try_emplace(pid, b.mesh.element_sets.size());
+      if (fresh) b.mesh.element_sets.push_back({"pid" + std::to_string(pid), {}, "property " + std::to_string(pid)});
+      b.mesh.element_sets[it->second].ids.push_back(eid);
+    } else if (c.name == "MAT1") {
+      const std::size_t mid = f.id(2, "MID");
+      if (!b.materials.emplace(mid, &c).second) f.fail("MAT1 " + std::to_string(mid) + " defined twice");
+    } else if (c.name == "PSOLID" || c.name == "PSHELL" || c.name == "PBAR") {
+      Property pr{};
+      pr.card = &c;
+      const std::size_t pid = f.id(2, "PID");
+      pr.mid = f.id(3, "MID");
+      if (c.name == "PSOLID") {
+        pr.kind = DeckSection::Kind::Solid;
+        f.require_blank(5, 5, "an integration network (IN)");
+        f.require_blank(7, 7, "an integration scheme (ISOP)");
+        if (!f.blank(8) && f.raw(8) != "SMECH") f.fail("field 8 (FCTN): only SMECH (structural) is supported");
+        f.require_blank(9, f.size(), "PSOLID has 8 fields");
+      } else if (c.name == "PSHELL") {
+        pr.kind = DeckSection::Kind::Shell;
+        pr.thickness = f.real(4, "T");
+        if (!(pr.thickness > 0)) f.fail("field 4 (T): the thickness must be positive");
+        // ffr's shell: one isotropic material in membrane, bending and transverse shear,
+        // bending stiffness t^3/12, shear factor 5/6.
+        if (f.blank(5) || f.id(5, "MID2") != pr.mid) f.fail("field 5 (MID2): ffr's shells bend with the membrane's material (MID2 = MID1)");
+        if (std::abs(f.real_or(6, "12I/T**3", 1.0) - 1.0) > 1e-6) f.fail("field 6 (12I/T**3): only 1.0 (or blank) is supported");
+        if (!f.blank(7) && f.id(7, "MID3") != pr.mid) f.fail("field 7 (MID3): only MID1 (or blank) is supported");
+        if (std::abs(f.real_or(8, "TS/T", 5.0 / 6.0) - 5.0 / 6.0) > 1e-5)
+          f.fail("field 8 (TS/T): ffr's shells have the shear factor 5/6 (0.833333 or blank)");
+        f.require_zero(9, "NSM");
+        f.require_blank(12, f.size(), "a coupling material (MID4)");
+      } else {
+        pr.kind = DeckSection::Kind::Beam;
+        BeamProps& bp = pr.beam;
+        bp.A = f.real(4, "A");
+        // Nastran's I1 bends in plane 1 (the element's x-y plane): integral of y^2 dA, ffr's Iz.
+        bp.Iz = f.real(5, "I1");
+        bp.Iy = f.real(6, "I2");
+        bp.J = f.real(7, "J");
+        if (!(bp.A > 0 && bp.Iy > 0 && bp.Iz > 0 && bp.J > 0)) f.fail("A, I1, I2 and J must be positive");
+        f.require_zero(8, "NSM");
+        f.require_blank(9, 9, "");
+        // Fields 10-17: stress recovery points (output only).
+        if (auto k1 = f.real_opt(18, "K1")) bp.ky = *k1;
+        if (auto k2 = f.real_opt(19, "K2")) bp.kz = *k2;
+        if ((bp.ky && !(*bp.ky > 0)) || (bp.kz && !(*bp.kz > 0))) f.fail("continuation 2, fields 2, 3 (K1, K2): must be positive or blank");
+        f.require_zero(20, "I12");
+        f.require_blank(21, f.size(), "PBAR has 20 fields");
+      }
+      if (!b.properties.emplace(pid, pr).second) f.fail("property " + std::to_string(pid) + " defined twice");
+    } else if (c.name == "SET1" || c.name == "SPC1") {
+      const std::size_t sid = f.id(2, "SID");
+      const std::string name = (c.name == "SET1" ? "set" : "spc") + std::to_string(sid);
+      auto [it, fresh] = set_index.try_emplace(name, b.mesh.node_sets.size());
+      if (fresh) b.mesh.node_sets.push_back({name, {}, "line " + std::to_string(c.line) + " (" + c.name + " " + std::to_string(sid) + ")"});
+      const auto ids = grid_list(f, c.name == "SET1" ? 3 : 4);
+      auto& set = b.mesh.node_sets[it->second].ids;
+      set.insert(set.end(), ids.begin(), ids.end());
+    } else if (passed_over.count(c.name)) {
+      continue;
+    } else if (c.name == "PARAM") {
+      if (!harmless_params.count(f.raw(2)))
+        f.fail("PARAM " + f.raw(2) + " is not taken (ffr passes over only PARAM POST, PRGPST, OGEOM, AUTOSPC, GRDPNT, "
+                                      "NOCOMPS, MAXRATIO)");
+    } else if (c.name == "CBEAM" || c.name == "PBEAM") {
+      f.fail(c.name + " is not supported: give the beam as CBAR with PBAR");
+    } else if (c.name == "CONM1" || c.name == "CONM2") {
+      f.fail(c.name + " is not supported: give the mass in the part file's \"point_masses\"");
+    } else if (c.name == "RBE2" || c.name == "RBE3" || c.name == "RBAR") {
+      f.fail(c.name + " is not supported: give the coupling as an interface of the part file (rigid or averaged)");
+    } else if (c.name.rfind("CORD", 0) == 0) {
+      f.fail(c.name + ": coordinate systems are not supported");
+    } else if (c.name == "INCLUDE") {
+      f.fail("INCLUDE is not supported: give the included file's cards in the deck itself");
+    } else {
+      f.fail("card " + c.name + " is not supported (ffr reads GRID, CTETRA, CHEXA, CTRIA3, CQUAD4, CBAR, MAT1, PSOLID, "
+                                "PSHELL, PBAR, SET1, SPC1; it passes over EIGRL, EIGR, SPC, SPCADD, FORCE, MOMENT, GRAV, "
+                                "LOAD and some PARAMs)");
+    }
+  }
+  return b;
+}
+
+std::vector<DeckSection> sections(const Bulk& b) {
+  const std::string& file = b.mesh.file;
+  std::unordered_map<std::size_t, std::size_t> node_line;
+  for (std::size_t i = 0; i < b.mesh.node_ids.size(); ++i) node_line.emplace(b.mesh.node_ids[i], i);
+  std::vector<DeckSection> out;
+  std::set<std::size_t> done, failed;
+  for (std::size_t e = 0; e < b.element_pid.size(); ++e) {
+    const std::size_t pid = b.element_pid[e];
+    if (failed.count(pid)) continue;
+    try {
+      const Fields ef(file, *b.element_card[e]);
+      const auto p = b.properties.find(pid);
+      const auto kind = std::find_if(element_cards().begin(), element_cards().end(),
+                                     [&](const ElementCard& c) { return b.element_card[e]->name == c.name; })->kind;
+      const char* wanted = kind == DeckSection::Kind::Solid ? "PSOLID" : kind == DeckSection::Kind::Shell ? "PSHELL" : "PBAR";
+      if (p == b.properties.end()) ef.fail("field 3 (PID): no property " + std::to_string(pid) + " (" + wanted + ") in the deck");
+      if (p->second.kind != kind) ef.fail("field 3 (PID): property " + std::to_string(pid) + " is a " + p->second.card->name + ", expected a " + wanted);
+      if (!done.insert(pid).second && kind != DeckSection::Kind::Beam) continue;
+      const Property& pr = p->second;
+      const Fields pf(file, *pr.card);
+      DeckSection ds;
+      ds.kind = kind;
+      ds.group = "pid" + std::to_string(pid);
+      ds.where = "line " + std::to_string(pr.card->line) + " (" + pr.card->name + " " + std::to_string(pid) + ")";
+      if (kind == DeckSection::Kind::Beam) {
+        // One y axis per beam group: every bar of the property must point its v the same way.
+        const Bar& bar = b.bars.at(e);
+        Eigen::Vector3d v = bar.v;
+        if (bar.g0) {
+          const auto a = node_line.find(bar.ga), g = node_line.find(bar.g0);
+          if (a == node_line.end() || g == node_line.end()) ef.fail("fields 4, 6 (GA, G0): grid not defined");
+          v = Eigen::Map<const Eigen::Vector3d>(&b.mesh.xyz[3 * g->second]) - Eigen::Map<const Eigen::Vector3d>(&b.mesh.xyz[3 * a->second]);
+          if (v.norm() == 0) ef.fail("field 6 (G0): the orientation grid lies on GA");
+        }
+        v.normalize();
+        auto it = std::find_if(out.begin(), out.end(), [&](const DeckSection& s) { return s.group == ds.group; });
+        if (it != out.end()) {
+          if ((it->beam.y_axis - v).norm() > 1e-9)
+            ef.fail("the orientation vector differs from the first CBAR of property " + std::to_string(pid) +
+                    ": ffr takes one y axis per beam group (give bars of other orientations another PBAR)");
+          continue;
+        }
+        ds.beam = pr.beam;
+        ds.beam.y_axis = v;
+      }
+      const auto m = b.materials.find(pr.mid);
+      if (m == b.materials.end()) pf.fail("field 3 (MID): no MAT1 " + std::to_string(pr.mid) + " in the deck");
+      const Fields mf(file, *m->second);
+      const std::optional<double> E = mf.real_opt(3, "E"), G = mf.real_opt(4, "G"), nu = mf.real_opt(5, "NU");
+      // Two of E, G, NU give the third (E = 2 G (1 + NU)).
+      if (!!E + !!G + !!nu < 2) mf.fail("give two of E, G and NU");
+      ds.mat.E = E ? *E : 2 * *G * (1 + *nu);
+      ds.mat.nu = nu ? *nu : *E / (2 * *G) - 1;
+      if (E && G && nu && std::abs(*E - 2 * *G * (1 + *nu)) > 1e-6 * std::abs(*E))
+        mf.fail("E, G and NU disagree (E != 2 G (1 + NU)): give two of them");
+      const std::optional<double> rho = mf.real_opt(6, "RHO");
+      if (!rho) mf.fail("field 6 (RHO): no density (the reduction needs mass)");
+      ds.mat.rho = *rho;
+      mf.require_zero(9, "GE, structural damping: give damping in the part file");
+      ds.beam.group = ds.group;
+      ds.beam.mat = ds.mat;
+      ds.thickness = pr.thickness;
+      out.push_back(ds);
+    } catch (const FormatError& error) {
+      // The part file may give the property of this group itself: only then is it no error.
+      DeckSection ds;
+      ds.group = "pid" + std::to_string(pid);
+      ds.where = error.object();
+      ds.problem = error.detail();
+      out.erase(std::remove_if(out.begin(), out.end(), [&](const DeckSection& s) { return s.group == ds.group; }), out.end());
+      out.push_back(ds);
+      failed.insert(pid);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+bool is_bdf(const std::filesystem::path& file) {
+  const std::string e = upper(file.extension().string());
+  return e == ".BDF" || e == ".DAT" || e == ".NAS";
+}
+
+std::vector<DeckSection> read_bdf_sections(const std::string& file) { return sections(parse(file)); }
+
+Mesh read_bdf(const std::string& file, MeshReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // The properties are load_part's (read_bdf_sections): the part file may replace them.
+  return build_deck_mesh(parse(file).mesh, report, t0);
+}
+
+}  // namespace ffr::preproc::detail

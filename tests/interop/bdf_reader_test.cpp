@@ -1,0 +1,309 @@
+// Nastran bulk data (.bdf) as a part's geometry.
+//
+// References, none computed by ffr:
+//  - gmsh's own bulk-data writer (gmsh 4.8, `-format bdf`) in its three field formats (free,
+//    small and large field, `Mesh.BdfFieldFormat` 0, 1, 2) of one TET10 mesh: the nodes (to the
+//    digits each format prints) and the elements' nodes (in gmsh order, through the CTETRA
+//    order gmsh writes) equal those of the MSH 4.1 file of that mesh.
+//  - The same mesh written here in free field at full precision (GRID, CTETRA over two lines,
+//    SET1, PSOLID, MAT1 in the layouts of the MSC Nastran Quick Reference Guide) gives the same
+//    SID as the MSH file (formats::diff, rtol 1e-9), material taken from the deck.
+//  - A CBAR/PBAR cantilever against Euler-Bernoulli beam theory (first bending frequency
+//    (1.8751^2 / 2 pi) sqrt(E I / (rho A L^4))): I1 bends in the plane of the bar and its
+//    orientation vector v (Quick Reference Guide, PBAR and CBAR), I2 out of it.
+#include "ffr/formats/diff.hpp"
+#include "ffr/formats/h5.hpp"
+#include "ffr/formats/text_file.hpp"
+#include "ffr/preproc/mesh/gmsh_import.hpp"
+#include "ffr/preproc/pipeline.hpp"
+#include "mesh/bdf_reader.hpp"
+#include "support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+using namespace ffr;
+
+namespace {
+
+// gmsh's bulk data of `msh` in field format `format`, without the CTRIA6 cards gmsh writes for
+// the surface group (ffr takes no TRI6 shells) and their continuation lines.
+std::string gmsh_bdf(const std::filesystem::path& msh, const std::filesystem::path& bdf, int format) {
+  const auto r = test::run("gmsh " + msh.string() + " -0 -setnumber Mesh.BdfFieldFormat " + std::to_string(format) +
+                           " -format bdf -o " + bdf.string());
+  if (r.status != 0 || !std::filesystem::exists(bdf)) throw std::runtime_error("gmsh failed: " + r.output);
+  std::istringstream in(formats::read_text_file(bdf));
+  std::ostringstream out;
+  std::string line;
+  bool drop = false;
+  while (std::getline(in, line)) {
+    const bool continuation = line.empty() || line[0] == '+' || line[0] == '*' || line[0] == ' ' || line[0] == ',';
+    if (!continuation) drop = line.rfind("CTRIA6", 0) == 0;
+    if (!drop) out << line << "\n";
+  }
+  return out.str();
+}
+
+struct TetBar {
+  test::TempDir dir{"interop_bdf"};
+  preproc::Mesh msh;
+  TetBar() {
+    test::write_text(dir / "bar.geo", R"(SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 0.2, 0.02, 0.012};
+Physical Volume("body") = {1};
+Physical Surface("clamp") = Surface In BoundingBox{-1e-6, -1, -1, 1e-6, 1, 1};
+)");
+    test::gmsh_mesh(dir / "bar.geo", dir / "bar.msh", 0.006, 2);
+    preproc::PartSpec p;
+    p.geometry = dir / "bar.msh";
+    msh = preproc::load_mesh(p);
+  }
+  const preproc::ElementBlock& body() const {
+    for (const auto& b : msh.blocks)
+      if (b.group == "body") return b;
+    throw std::runtime_error("no body");
+  }
+  // The clamp's node tags as SET1 1 in free field, 8 a line.
+  std::string clamp_set() const {
+    std::ostringstream s;
+    s << "SET1,1";
+    int k = 2;  // the SID takes the first of the line's 8 data fields
+    for (const auto n : msh.node_groups.at("clamp")) {
+      if (k == 9) {
+        s << "\n+";
+        k = 1;
+      }
+      s << "," << msh.node_tag(n);
+      ++k;
+    }
+    s << "\n";
+    return s.str();
+  }
+};
+
+// element tag -> node tags in gmsh order, of every TET10 of the blocks of `group`.
+std::map<std::size_t, std::vector<std::size_t>> elements(const preproc::Mesh& m, const std::string& group) {
+  std::map<std::size_t, std::vector<std::size_t>> out;
+  for (const auto& b : m.blocks)
+    if (b.group == group && b.type == preproc::ElementType::Tet10)
+      for (preproc::Index e = 0; e < b.size(); ++e)
+        for (int i = 0; i < 10; ++i) out[m.element_tag(b, e)].push_back(m.node_tag(b.element(e)[i]));
+  return out;
+}
+
+}  // namespace
+
+TEST(BdfDeck, GmshBulkDataInThreeFieldFormats) {
+  TetBar bar;
+  const auto reference = elements(bar.msh, "body");
+  ASSERT_FALSE(reference.empty());
+  std::map<std::size_t, Eigen::Vector3d> x;
+  for (preproc::Index n = 0; n < bar.msh.num_nodes(); ++n) x[bar.msh.node_tag(n)] = bar.msh.x.row(n).transpose();
+  // Free and small field print 6 decimals, large field 9 significant digits.
+  const std::vector<std::pair<int, double>> formats = {{0, 5.1e-7}, {1, 5.1e-7}, {2, 5.1e-10}};
+  for (const auto& [format, tol] : formats) {
+    const auto file = bar.dir / ("f" + std::to_string(format) + ".bdf");
+    test::write_text(file, gmsh_bdf(bar.dir / "bar.msh", file, format));
+    const preproc::Mesh m = preproc::detail::read_bdf(file.string(), nullptr);
+    ASSERT_EQ(m.num_nodes(), bar.msh.num_nodes()) << "format " << format;
+    double worst = 0;
+    for (preproc::Index n = 0; n < m.num_nodes(); ++n)
+      worst = std::max(worst, (m.x.row(n).transpose() - x.at(m.node_tag(n))).cwiseAbs().maxCoeff());
+    EXPECT_LE(worst, tol) << "format " << format;
+    // gmsh writes the volume's physical tag as the property id.
+    EXPECT_EQ(elements(m, "pid1"), reference) << "format " << format;
+    EXPECT_EQ(elements(m, "all"), reference) << "format " << format;
+  }
+}
+
+namespace {
+
+// The mesh in free field at full precision: GRID, CTETRA (Nastran's G1..G10: gmsh's with its
+// last two edge nodes swapped, Quick Reference Guide CTETRA), over two lines.
+std::string free_field_deck(const preproc::Mesh& m, const preproc::ElementBlock& b) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "$ written by the test\nBEGIN BULK\n";
+  for (preproc::Index n = 0; n < m.num_nodes(); ++n)
+    s << "GRID," << m.node_tag(n) << ",," << m.x(n, 0) << "," << m.x(n, 1) << "," << m.x(n, 2) << "\n";
+  const int order[10] = {0, 1, 2, 3, 4, 5, 6, 7, 9, 8};
+  for (preproc::Index e = 0; e < b.size(); ++e) {
+    s << "CTETRA," << m.element_tag(b, e) << ",7";
+    for (int i = 0; i < 10; ++i) s << (i == 6 ? ",+C\n+C," : ",") << m.node_tag(b.element(e)[order[i]]);
+    s << "\n";
+  }
+  return s.str();
+}
+
+}  // namespace
+
+TEST(BdfDeck, FullPrecisionDeckGivesTheSameSidAsTheMsh) {
+  TetBar bar;
+  test::write_text(bar.dir / "bar.bdf", free_field_deck(bar.msh, bar.body()) + bar.clamp_set() +
+                                            "PSOLID,7,3\nMAT1,3,2.1+11,,0.3,7850.\nEIGRL,10,,,6\nENDDATA\n");
+  const auto reduce = [&](const std::string& json) {
+    test::write_text(bar.dir / "part.json", json);
+    return preproc::run_pipeline(preproc::load_part(bar.dir / "part.json"));
+  };
+  const formats::Sid a = reduce(R"({"geometry": "bar.msh", "visual": false,
+    "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],
+    "interfaces": [{"name": "root", "group": "clamp"}], "stiffening": true,
+    "reduction": {"method": "clamped", "interface": "root", "modes": 6}})");
+  const formats::Sid b = reduce(R"({"geometry": "bar.bdf", "visual": false,
+    "interfaces": [{"name": "root", "group": "set1"}], "stiffening": true,
+    "reduction": {"method": "clamped", "interface": "root", "modes": 6}})");
+  formats::DiffOptions o;
+  o.rtol = 1e-9;
+  const auto d = formats::diff(a, b, o);
+  std::string worst;
+  for (const auto& w : d.worst) worst += "\n  " + w.dataset + w.index + ": " + std::to_string(w.rel);
+  EXPECT_EQ(d.datasets_different, 0) << worst;
+  EXPECT_GT(d.datasets_compared, 30);  // the SID with its stiffening datasets
+  // The one difference: the group the interface was made from has the deck's name.
+  EXPECT_EQ(d.structural, (std::vector<std::string>{"/interfaces 'root': 'root, rigid, clamp' vs 'root, rigid, set1'"}));
+}
+
+// A cantilever of 40 CBARs along x, v = +y (small field, PBAR over three lines), clamped at
+// x = 0: the first bending mode in y (the plane of x and v) follows I1, the first in z I2.
+TEST(BdfDeck, BarSectionsBendAsTheQuickReferenceGuideSays) {
+  test::TempDir dir("interop_bar");
+  const double L = 1.0, A = 1e-4, I1 = 8e-10, I2 = 2e-10, E = 2.1e11, rho = 7850;
+  const int n = 40;
+  std::ostringstream s;
+  char buf[128];
+  for (int i = 0; i <= n; ++i) {
+    std::snprintf(buf, sizeof buf, "GRID    %-8d        %-8.5f0.      0.\n", i + 1, L * i / n);
+    s << buf;
+  }
+  for (int i = 0; i < n; ++i) {
+    std::snprintf(buf, sizeof buf, "CBAR    %-8d2       %-8d%-8d0.      1.      0.\n", 100 + i, i + 1, i + 2);
+    s << buf;
+  }
+  s << "PBAR    2       5       1.-4    8.-10   2.-10   5.-10\n+\n+\n";
+  s << "MAT1    5       2.1+11          .3      7850.\nSET1    9       1\n";
+  test::write_text(dir / "beam.bdf", s.str());
+  test::write_text(dir / "beam.json", R"({"geometry": "beam.bdf", "visual": false,
+    "interfaces": [{"name": "root", "group": "set9"}],
+    "reduction": {"method": "clamped", "interface": "root", "modes": 2}})");
+  const formats::Sid sid = preproc::run_pipeline(preproc::load_part(dir / "beam.json"));
+  const double beta = 1.8751040687119611;  // first root of cos(x) cosh(x) = -1
+  const auto f = [&](double I) { return beta * beta / (2 * M_PI) * std::sqrt(E * I / (rho * A * std::pow(L, 4))); };
+  ASSERT_EQ(sid.refmod.frequency_hz.size(), 2);
+  // Mode 1 (the lower, I2) moves in z, mode 2 (I1) in y: their momentum Ct.M0 says which.
+  EXPECT_NEAR(sid.refmod.frequency_hz(0) / f(I2), 1.0, 1e-4);
+  EXPECT_NEAR(sid.refmod.frequency_hz(1) / f(I1), 1.0, 1e-4);
+  EXPECT_GT(std::abs(sid.Ct.M0(0, 2)), 1e3 * std::abs(sid.Ct.M0(0, 1)));
+  EXPECT_GT(std::abs(sid.Ct.M0(1, 1)), 1e3 * std::abs(sid.Ct.M0(1, 2)));
+  std::printf("CBAR cantilever: f1 / f(I2) - 1 = %.2e, f2 / f(I1) - 1 = %.2e\n", sid.refmod.frequency_hz(0) / f(I2) - 1,
+              sid.refmod.frequency_hz(1) / f(I1) - 1);
+}
+
+namespace {
+
+const char* kTet = "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,0.,1.,0.\nGRID,4,,0.,0.,1.\n";
+const char* kProps = "PSOLID,1,2\nMAT1,2,2.1+11,,0.3,7850.\n";
+
+std::string refusal(const test::TempDir& dir, const std::string& deck, const std::string& group = "pid1") {
+  test::write_text(dir / "bad.bdf", deck);
+  test::write_text(dir / "bad.json", R"({"geometry": "bad.bdf", "visual": false,
+    "interfaces": [{"name": "i", "group": ")" + group + R"("}],
+    "reduction": {"method": "clamped", "interface": "i", "modes": 1}})");
+  try {
+    (void)preproc::run_pipeline(preproc::load_part(dir / "bad.json"));
+  } catch (const formats::FormatError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(BdfRefusals, EveryBadDeckNamesFileLineCardAndWhatWasExpected) {
+  test::TempDir dir("bdf_bad");
+  const std::string tet = std::string(kTet) + "CTETRA,1,1,1,2,3,4\n";
+  struct Case {
+    std::string deck, group, expected;
+  };
+  const std::vector<Case> cases = {
+      {tet + kProps + "CONM2,5,1,,2.0\n", "pid1", "bad.bdf: line 8 (CONM2 5): CONM2 is not supported: give the mass"},
+      {tet + kProps + "CPENTA,2,1,1,2,3,4,1,2\n", "pid1", "bad.bdf: line 8 (CPENTA 2): card CPENTA is not supported"},
+      {std::string(kTet) + "CTETRA,1,1,1,2,3,4,1,2\n" + kProps, "pid1",
+       "bad.bdf: line 5 (CTETRA 1): CTETRA with 6 grids: ffr takes 4 or all 10"},
+      {tet, "pid1", "bad.bdf: line 5 (CTETRA 1): field 3 (PID): no property 1 (PSOLID) in the deck"},
+      {tet + "PSHELL,1,2,0.01,2\nMAT1,2,2.1+11,,0.3,7850.\n", "pid1",
+       "bad.bdf: line 5 (CTETRA 1): field 3 (PID): property 1 is a PSHELL, expected a PSOLID"},
+      {tet + "PSOLID,1,2\n", "pid1", "bad.bdf: line 6 (PSOLID 1): field 3 (MID): no MAT1 2 in the deck"},
+      {tet + "PSOLID,1,2\nMAT1,2,2.1+11,,0.3\n", "pid1", "bad.bdf: line 7 (MAT1 2): field 6 (RHO): no density"},
+      {tet + "PSOLID,1,2\nMAT1,2,2.1+11\n", "pid1", "bad.bdf: line 7 (MAT1 2): give two of E, G and NU"},
+      {tet + "PSOLID,1,2\nMAT1,2,2.1x11,,0.3,7850.\n", "pid1", "bad.bdf: line 7 (MAT1 2): field 3 (E): expected a number, found '2.1X11'"},
+      {std::string(kTet) + "CTETRA,1,1,1,2,3,9\n" + kProps, "pid1", "bad.bdf: line 5: element 1: node 9 is not defined"},
+      {"GRID,1,5,0.,0.,0.\n" + tet + kProps, "pid1", "bad.bdf: line 1 (GRID 1): field 3 (CP): coordinate systems are not supported"},
+      {"+,1,2\n" + tet + kProps, "pid1", "bad.bdf: line 1: a continuation line without a card before it"},
+      {tet + kProps + "SET1,3,1,2,3,4,5,6,7,8,9,10\n", "pid1", "bad.bdf: line 8: a free-field line holds at most 8 data fields"},
+      {tet + kProps + "SET1,3,1,2,3,4,5,6,7,8\n", "pid1", "bad.bdf: line 8: field 10 of a free-field line is its continuation marker (blank, '+...' or '*...'), found '8'"},
+      {tet + kProps + "PARAM,WTMASS,0.00259\n", "pid1", "bad.bdf: line 8 (PARAM WTMASS): PARAM WTMASS is not taken"},
+      {tet + "PSOLID,1,2,,,,FULL\n" + "MAT1,2,2.1+11,,0.3,7850.\n", "pid1",
+       "bad.bdf: line 6 (PSOLID 1): field 7 ('FULL') is not supported: an integration scheme (ISOP)"},
+      {tet + kProps + "SET1,3,1,2,3,4,5,6,7\n+,8\n", "set3", "bad.bdf: line 8 (SET1 3): node 5 is not defined"},
+      {tet + kProps, "set4", "bad.json: interfaces[0].group: no group 'set4' in the mesh"},
+      {"BEGIN BULK\n" + tet + kProps + "ENDDATA\nGARBAGE\n", "nowhere", "no group 'nowhere'"},
+  };
+  for (const Case& c : cases) {
+    const std::string what = refusal(dir, c.deck, c.group);
+    EXPECT_NE(what.find(c.expected), std::string::npos) << "deck:\n" << c.deck << "\nmessage: " << what << "\nexpected: " << c.expected;
+  }
+}
+
+namespace {
+
+// element tag -> (type, node tags in gmsh order) of every element of the blocks of `group`.
+std::map<std::size_t, std::pair<std::string, std::vector<std::size_t>>> all_elements(const preproc::Mesh& m,
+                                                                                      const std::string& group) {
+  std::map<std::size_t, std::pair<std::string, std::vector<std::size_t>>> out;
+  for (const auto& b : m.blocks)
+    if (b.group == group)
+      for (preproc::Index e = 0; e < b.size(); ++e) {
+        auto& el = out[m.element_tag(b, e)];
+        el.first = preproc::name(b.type);
+        for (int i = 0; i < preproc::num_nodes(b.type); ++i) el.second.push_back(m.node_tag(b.element(e)[i]));
+      }
+  return out;
+}
+
+}  // namespace
+
+// gmsh's CHEXA (20 grids) and CQUAD4 cards land in gmsh's own HEX20 and QUAD4 node order.
+TEST(BdfDeck, GmshHex20AndQuadsLandInGmshOrder) {
+  test::TempDir dir("interop_bdf_hex");
+  test::write_text(dir / "hex.geo", R"(Point(1) = {0, 0, 0}; Point(2) = {0.2, 0, 0}; Line(1) = {1, 2};
+e[] = Extrude{0, 0.02, 0}{Line{1}; Layers{3}; Recombine;};
+v[] = Extrude{0, 0, 0.012}{Surface{e[1]}; Layers{2}; Recombine;};
+Transfinite Curve{1} = 13;
+Physical Volume("body") = {v[1]};
+)");
+  test::write_text(dir / "plate.geo", R"(SetFactory("OpenCASCADE");
+Rectangle(1) = {0, 0, 0, 0.3, 0.1};
+Recombine Surface{1};
+Physical Surface("skin") = {1};
+)");
+  const std::vector<std::pair<std::string, std::string>> cases = {{"hex", "-3 -order 2 -setnumber Mesh.SecondOrderIncomplete 1"},
+                                                                   {"plate", "-2 -clmax 0.02"}};
+  for (const auto& [name, opts] : cases) {
+    const auto geo = dir / (name + ".geo"), msh = dir / (name + ".msh"), bdf = dir / (name + ".bdf");
+    const auto r = test::run("gmsh " + opts + " -format msh41 " + geo.string() + " -o " + msh.string() + " && gmsh " + msh.string() +
+                             " -0 -setnumber Mesh.BdfFieldFormat 2 -format bdf -o " + bdf.string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    preproc::PartSpec p;
+    p.geometry = msh;
+    const preproc::Mesh a = preproc::load_mesh(p);
+    const preproc::Mesh b = preproc::detail::read_bdf(bdf.string(), nullptr);
+    const auto ea = all_elements(a, name == "hex" ? "body" : "skin"), eb = all_elements(b, "pid1");
+    ASSERT_FALSE(ea.empty());
+    EXPECT_EQ(ea.begin()->second.first, name == "hex" ? "HEX20" : "QUAD4");
+    EXPECT_EQ(ea, eb) << name;
+  }
+}
