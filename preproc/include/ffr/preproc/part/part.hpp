@@ -113,6 +113,8 @@ struct OutputNodeSpec {
 struct StressSpec {
   std::string group;     ///< a mesh physical group; empty with surface
   bool surface = false;  ///< the outer surface's solid nodes
+};
+
 /// Assembled stiffness and mass from another FE code instead of ffr's element matrices
 /// (PART_FILE.md, "Assembled matrices"). The deck of `geometry` gives the nodes, their
 /// coordinates, the sets and the elements that say which nodes carry DOFs.
