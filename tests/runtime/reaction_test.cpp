@@ -337,6 +337,51 @@ TEST(ElementForce, SpringAndBushingFollowTheirLaws) {
   for (int i = 3; i < 6; ++i) EXPECT_NEAR(Fb[i], 0, 1e-9);
 }
 
+// The element forces of the laws with tables, preloads and friction are the elements' own, by
+// statics and Coulomb's law: a 2 kg slider hanging from a spring with a force table and a
+// preload, and a 3 kg slider standing on a bushing with a table and a preload, both settled
+// statically (each element then carries its body's weight, whatever the split between table and
+// preload); a 1 kg slider pushed along a guide against a friction damper of 4 N, its end moving
+// away faster than the regularisation band: the damper pulls with exactly 4 N.
+TEST(ElementForce, TablesPreloadsAndFrictionAreTheElementsOwn) {
+  const char* sliders = R"(
+    "bodies": [{"name": "a", "type": "rigid", "mass": 2, "com": [0, 0, -1], "inertia": [[0.01, 0, 0], [0, 0.01, 0], [0, 0, 0.01]]},
+               {"name": "b", "type": "rigid", "mass": 3, "com": [2, 0, 0], "inertia": [[0.01, 0, 0], [0, 0.01, 0], [0, 0, 0.01]]}],
+    "joints": [{"name": "ga", "type": "prismatic", "body1": "ground", "body2": "a", "at": [0, 0, -1], "axis": [0, 0, 1]},
+               {"name": "gb", "type": "prismatic", "body1": "ground", "body2": "b", "at": [2, 0, 0], "axis": [0, 0, 1]}],
+    "forces": [{"name": "s", "type": "spring_damper", "body1": "ground", "at1": [0, 0, 0], "body2": "a", "preload": 5,
+                "force_table": {"x": [-1, 0, 0.02, 1], "value": [-800, 0, 10, 900]}},
+               {"name": "bu", "type": "bushing", "body1": "ground", "body2": "b", "at": [2, 0, 0],
+                "stiffness": [100, 100, 0, 10, 10, 10], "preload": {"force": [0, 0, -7], "torque": [0, 0, 0]},
+                "tables": {"z": {"x": [-1, 0, 1], "value": [-500, 0, 500]}}}],)";
+  const Model statics = test::model_from(std::string(R"({"gravity": [0, 0, -9.81],)") + sliders + R"(
+    "solver": {"analysis": "static"},
+    "outputs": [{"name": "Fs", "type": "element_force", "force": "s"}, {"name": "Fb", "type": "element_force", "force": "bu"}]})");
+  Data data(statics);
+  initialize(statics, data);
+  const auto Fs = output(statics, data, "Fs"), Fb = output(statics, data, "Fb");
+  std::printf("settled: spring tension %.9f N (weight %.9f), bushing force on the slider (%.2e, %.2e, %.9f) N (weight %.9f)\n", Fs[0],
+              2 * g, Fb[0], Fb[1], Fb[2], 3 * g);
+  EXPECT_NEAR(Fs[0], 2 * g, 1e-8);
+  EXPECT_NEAR(Fb[2], 3 * g, 1e-8);  // the bushing holds the slider up
+  for (int i : {0, 1, 3, 4, 5}) EXPECT_NEAR(Fb[static_cast<std::size_t>(i)], 0, 1e-8);
+
+  const Model friction = test::model_from(R"({
+    "bodies": [{"name": "m", "type": "rigid", "mass": 1, "com": [1, 0, 0], "inertia": [[0.01, 0, 0], [0, 0.01, 0], [0, 0, 0.01]],
+                "velocity": [2, 0, 0]}],
+    "joints": [{"name": "guide", "type": "prismatic", "body1": "ground", "body2": "m", "at": [1, 0, 0], "axis": [1, 0, 0]}],
+    "forces": [{"name": "f", "type": "friction_damper", "body1": "ground", "at1": [0, 0, 0], "body2": "m", "force": 4}],
+    "solver": {"end": 0.1, "step": 1e-3},
+    "outputs": [{"name": "F", "type": "element_force", "force": "f"}, {"name": "v", "type": "node_velocity", "body": "m"}]})");
+  Data fd(friction);
+  initialize(friction, fd);
+  for (int i = 0; i < 100; ++i) step(friction, fd);
+  const double F = output(friction, fd, "F")[0], v = output(friction, fd, "v")[0];
+  std::printf("sliding at %.6f m/s (Coulomb: 2 - 4 t = %.6f): friction force %.12f N\n", v, 2 - 4 * 0.1, F);
+  EXPECT_NEAR(v, 2 - 4 * 0.1, 1e-9);  // a constant 4 N deceleration of 1 kg
+  EXPECT_NEAR(F, 4, 1e-12);
+}
+
 // A bar turned by a motion at a constant 3 rad/s about a horizontal hinge (its frame at the
 // hinge, its centre of mass d = 0.5 m out along x; the angle about +y turns x towards -z): the
 // hinge's reaction is the bar's d'Alembert force and the motion's torque, by Newton-Euler for a
@@ -387,7 +432,7 @@ TEST(Reaction, DrivenHingeGivesTheDriveTorque) {
 // Bad output definitions are refused naming the field (ffr-sim: exit status 2, nothing written).
 TEST(Reaction, BadOutputsAreRefused) {
   const char* cases[][2] = {
-      {R"({"name": "o", "type": "element_force", "force": "nothing"})", "no spring_damper or bushing named 'nothing'"},
+      {R"({"name": "o", "type": "element_force", "force": "nothing"})", "no spring_damper, bushing or friction_damper named 'nothing'"},
       {R"({"name": "o", "type": "element_force", "force": "push"})", "is a point load"},
       {R"({"name": "o", "type": "node_velocity", "body": "b", "force": "s"})", "is a key of element_force outputs"},
       {R"({"name": "o", "type": "joint_reaction", "joint": "nothing"})", "unknown joint 'nothing'"},
