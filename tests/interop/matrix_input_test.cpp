@@ -9,6 +9,8 @@
 //  - a lumped mass (HRZ lumping of ccx's consistent mass, built here): the frequencies of a
 //    dense generalized eigen-solve of the same clamped K and M in this test (Eigen's
 //    GeneralizedSelfAdjointEigenSolver), an oracle sharing no code with the reducer;
+//  - the same own K and M written as Abaqus *MATRIX GENERATE output and as Nastran DMIG punch
+//    files (formats as their manuals give them, cited below): the SID of the deck, rtol 1e-9;
 //  - bad input: exit status 2 naming the file, the line and what was expected, no SID.
 #include "ffr/formats/diff.hpp"
 #include "ffr/formats/h5.hpp"
@@ -445,3 +447,165 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"unjoined", "K.mtx", "which no element of the deck joins"},
                       BadCase{"coupled", "M.mtx", "a translational mass Ms (x) I3 is expected"}),
     [](const auto& info) { return std::string(info.param.name); });
+
+// ---- Abaqus *MATRIX GENERATE output and Nastran DMIG: ffr's own K and M of the deck written in
+// those layouts give the SID of the deck (rtol 1e-9), as the Matrix Market route above.
+// Layouts: Abaqus Analysis User's Guide, "Generating matrices" (*MATRIX OUTPUT,
+// FORMAT=MATRIX INPUT: "row node, row DOF, column node, column DOF, value", the lower triangle);
+// MSC/NX Nastran Quick Reference Guide, DMIG (header "DMIG, NAME, 0, IFO, TIN, TOUT", columns
+// "DMIG, NAME, GJ, CJ, , G1, C1, A1, B1" with continuations G, C, A, B; large field: 16
+// characters a field, continuation lines starting with '*').
+namespace {
+// (row, col) entries of the lower (lower = true) or upper triangle of own's matrix, by DOF.
+std::vector<std::tuple<Eigen::Index, Eigen::Index, double>> triangle(const preproc::SparseMatrix& A, bool lower) {
+  std::vector<std::tuple<Eigen::Index, Eigen::Index, double>> t;
+  for (Eigen::Index c = 0; c < A.outerSize(); ++c)
+    for (preproc::SparseMatrix::InnerIterator it(A, c); it; ++it)
+      if (it.value() != 0 && (lower ? it.row() >= it.col() : it.row() <= it.col())) t.emplace_back(it.row(), it.col(), it.value());
+  return t;
+}
+
+void write_abaqus(const std::filesystem::path& p, const OwnMatrices& o, const preproc::SparseMatrix& A, const char* what) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "** ASSEMBLED " << what << " MATRIX, written by matrix_input_test\n** row node, row dof, column node, column dof, value\n";
+  for (const auto& [r, c, v] : triangle(A, true)) {
+    const auto& a = o.dof[static_cast<std::size_t>(r)];
+    const auto& b = o.dof[static_cast<std::size_t>(c)];
+    s << a.first << ", " << a.second << ", " << b.first << ", " << b.second << ", " << std::scientific << v << std::defaultfloat << "\n";
+  }
+  test::write_text(p, s.str());
+}
+
+// DMIG NAME as a punch file: large field (16 characters, 'D' exponents, 9 significant digits
+// fit) or free field (17 digits), one column card per DOF column, the upper triangle.
+void write_dmig(const std::filesystem::path& p, const OwnMatrices& o, const preproc::SparseMatrix& A, const std::string& name,
+                bool large) {
+  std::map<Eigen::Index, std::vector<std::pair<Eigen::Index, double>>> cols;
+  for (const auto& [r, c, v] : triangle(A, false)) cols[c].emplace_back(r, v);
+  std::ostringstream s;
+  auto f16 = [](const std::string& v) { return v + std::string(16 - std::min<std::size_t>(16, v.size()), ' '); };
+  auto f8 = [](const std::string& v) { return v + std::string(8 - std::min<std::size_t>(8, v.size()), ' '); };
+  auto dreal = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%16.9E", v);
+    std::string t = b;
+    t[t.find('E')] = 'D';
+    return t;
+  };
+  s << "$ DMIG " << name << " written by matrix_input_test\n";
+  if (large) s << f8("DMIG*") << f16(name) << f16("0") << f16("6") << f16("2") << "\n" << f8("*") << f16("0") << "\n";
+  else s << "DMIG," << name << ",0,6,2,0\n";
+  char buf[40];
+  for (const auto& [c, entries] : cols) {
+    const auto& gj = o.dof[static_cast<std::size_t>(c)];
+    if (large) s << f8("DMIG*") << f16(name) << f16(std::to_string(gj.first)) << f16(std::to_string(gj.second)) << f16("") << "\n";
+    else s << "DMIG," << name << "," << gj.first << "," << gj.second << ",";
+    for (std::size_t k = 0; k < entries.size(); ++k) {
+      const auto& gi = o.dof[static_cast<std::size_t>(entries[k].first)];
+      if (large) {
+        s << f8("*") << f16(std::to_string(gi.first)) << f16(std::to_string(gi.second)) << dreal(entries[k].second) << "\n";
+      } else {
+        std::snprintf(buf, sizeof buf, "%.17g", entries[k].second);
+        // Fields 6-9 of the first line, then 4 groups of (G, C, A, B) a continuation line.
+        s << "," << gi.first << "," << gi.second << "," << buf << ",";
+        if (k % 2 == 0) s << "\n";  // after field 9, and after fields 2-9 of each continuation
+        s << (k % 2 == 0 && k + 1 < entries.size() ? "+" : "");
+      }
+    }
+    if (!large) s << "\n";
+  }
+  test::write_text(p, s.str());
+}
+}  // namespace
+
+TEST(NodeDofMatrices, AbaqusMatrixGenerateGivesTheSidOfTheDeck) {
+  HexBar bar;
+  const OwnMatrices own = own_matrices(bar.part("deck.json", "craig_bampton"));
+  write_abaqus(bar.dir / "job_STIF1.mtx", own, own.K, "STIFFNESS");
+  write_abaqus(bar.dir / "job_MASS1.mtx", own, own.M, "MASS");
+  const formats::Sid deck = bar.reduce(bar.dir / "deck.json");
+  const formats::Sid abq =
+      bar.reduce(bar.part("abq.json", "craig_bampton", R"({"format": "abaqus", "K": "job_STIF1.mtx", "M": "job_MASS1.mtx"})"));
+  const double f = expect_same_sid(deck, abq, 1e-9);
+  EXPECT_EQ(abq.provenance.extra.at("matrices").rfind("abaqus: K job_STIF1.mtx", 0), 0u) << abq.provenance.extra.at("matrices");
+  std::printf("Abaqus *MATRIX GENERATE vs the deck: largest relative frequency difference %.2e\n", f);
+}
+
+TEST(NodeDofMatrices, NastranDmigGivesTheSidOfTheDeck) {
+  HexBar bar;
+  const OwnMatrices own = own_matrices(bar.part("deck.json", "clamped"));
+  // K in free field (17 digits) under a name of the part file's, M as a large-field punch
+  // (10 significant digits: compared at the rounding's level below).
+  write_dmig(bar.dir / "k.pch", own, own.K, "KSTIFF", false);
+  write_dmig(bar.dir / "m.pch", own, own.M, "MAAX", true);
+  const formats::Sid deck = bar.reduce(bar.dir / "deck.json");
+  const formats::Sid dmig = bar.reduce(
+      bar.part("dmig.json", "clamped", R"({"format": "dmig", "K": "k.pch", "M": "m.pch", "K_name": "KSTIFF"})"));
+  const double f = expect_same_sid(deck, dmig, 1e-7);
+  EXPECT_LE(f, 1e-9);
+  EXPECT_EQ(dmig.provenance.extra.at("matrices").rfind("dmig KSTIFF, MAAX: K k.pch", 0), 0u) << dmig.provenance.extra.at("matrices");
+  // Both in free field at 17 digits: the SID of the deck to 1e-9.
+  write_dmig(bar.dir / "m17.pch", own, own.M, "MAAX", false);
+  const formats::Sid dmig17 = bar.reduce(
+      bar.part("dmig17.json", "clamped", R"({"format": "dmig", "K": "k.pch", "M": "m17.pch", "K_name": "KSTIFF"})"));
+  const double f17 = expect_same_sid(deck, dmig17, 1e-9);
+  std::printf("DMIG vs the deck: largest relative frequency difference %.2e (large-field M), %.2e (free field)\n", f, f17);
+}
+
+// Bad input of both readers, each by ffr-reduce: exit 2, the file and the line named, no SID.
+TEST(NodeDofMatrices, BadInputExitsTwoNamingFileAndLine) {
+  HexBar bar;
+  const OwnMatrices own = own_matrices(bar.part("deck.json", "clamped"));
+  write_abaqus(bar.dir / "K.mtx", own, own.K, "STIFFNESS");
+  write_abaqus(bar.dir / "M.mtx", own, own.M, "MASS");
+  write_dmig(bar.dir / "K.pch", own, own.K, "KAAX", false);
+  write_dmig(bar.dir / "M.pch", own, own.M, "MAAX", false);
+  const std::string K = formats::read_text_file(bar.dir / "K.mtx"), Kp = formats::read_text_file(bar.dir / "K.pch");
+  const std::string tag = std::to_string(own.dof[0].first);
+  // The transpose of K's first off-diagonal entry, 1 % off.
+  std::string transposed_off_by_one_percent;
+  for (const auto& [r, c, v] : triangle(own.K, true))
+    if (r != c) {
+      const auto& a = own.dof[static_cast<std::size_t>(r)];
+      const auto& b = own.dof[static_cast<std::size_t>(c)];
+      std::ostringstream s;
+      s.precision(17);
+      s << b.first << ", " << b.second << ", " << a.first << ", " << a.second << ", " << 1.01 * v << "\n";
+      transposed_off_by_one_percent = s.str();
+      break;
+    }
+  struct Case {
+    std::string name, format, file, content, expected;
+  };
+  const std::vector<Case> cases{
+      {"abaqus_fields", "abaqus", "K.mtx", replace_line(K, 5, "1, 1, 1, 2.5e3"), "K.mtx: line 5: 'row node, row DOF"},
+      {"abaqus_number", "abaqus", "K.mtx", replace_line(K, 6, tag + ", 1, " + tag + ", 1, 1.0e+x"), "K.mtx: line 6: 'row node"},
+      {"abaqus_keyword", "abaqus", "K.mtx", replace_line(K, 3, "*MATRIX INPUT, NAME=K"), "K.mtx: line 3: keyword line"},
+      {"abaqus_rotation", "abaqus", "K.mtx", K + tag + ", 5, " + tag + ", 5, 1.0\n", "rotational DOF 5 of node " + tag},
+      {"abaqus_node", "abaqus", "K.mtx", K + "999999, 1, 999999, 1, 1.0\n", "node 999999 is not in the deck"},
+      {"abaqus_asymmetric", "abaqus", "K.mtx", K + transposed_off_by_one_percent, "not symmetric"},
+      {"dmig_header", "dmig", "K.pch", replace_line(Kp, 2, "$ no header"), "K.pch: line 3 (DMIG KAAX): a column of DMIG KAAX before its header"},
+      {"dmig_complex", "dmig", "K.pch", replace_line(Kp, 2, "DMIG,KAAX,0,6,3,0"), "K.pch: line 2 (DMIG KAAX): field 5 (TIN) is 3"},
+      {"dmig_card", "dmig", "K.pch", Kp + "GRID,1,,0.,0.,0.\n", "only DMIG cards are expected"},
+      {"dmig_number", "dmig", "K.pch", replace_line(Kp, 3, "DMIG,KAAX," + tag + ",1,," + tag + ",1,1.0+x"), "K.pch: line 3 (DMIG KAAX): field 8 (Ai): expected a number"},
+      {"dmig_name", "dmig", "K.pch", Kp, "no DMIG header card of matrix KXX"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    test::write_text(bar.dir / ("bad_" + c.file), c.content);
+    const bool abq = c.format == "abaqus";
+    const std::string kf = "bad_" + c.file, mf = abq ? "M.mtx" : "M.pch";
+    const std::string matrices = R"({"format": ")" + c.format + R"(", "K": ")" + kf + R"(", "M": ")" + mf + "\"" +
+                                 (c.name == "dmig_name" ? R"(, "K_name": "KXX")" : "") + "}";
+    const auto part = bar.part("bad.json", "clamped", matrices);
+    const auto out = bar.dir / "bad.sid.h5";
+    const auto r = test::run(test::bin("ffr-reduce").string() + " " + part.string() + " -o " + out.string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    std::string expected = c.expected;
+    if (expected.rfind("K.", 0) == 0) expected = "bad_" + expected;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
+    std::printf("%s: %s\n", c.name.c_str(), r.output.substr(0, 300).c_str());
+  }
+}
