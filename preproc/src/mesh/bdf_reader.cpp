@@ -5,6 +5,7 @@
 #include "ffr/formats/h5.hpp"
 #include "ffr/formats/text_file.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -71,6 +72,7 @@ struct Bulk {
   std::map<std::size_t, Bar> bars;       // by element index
   std::map<std::size_t, Property> properties;
   std::map<std::size_t, const Card*> materials;
+  std::vector<const Card*> conm2;
   std::vector<Card> cards;
 };
 
@@ -223,8 +225,10 @@ Bulk parse(const std::string& file) {
                                       "NOCOMPS, MAXRATIO)");
     } else if (c.name == "CBEAM" || c.name == "PBEAM") {
       f.fail(c.name + " is not supported: give the beam as CBAR with PBAR");
-    } else if (c.name == "CONM1" || c.name == "CONM2") {
-      f.fail(c.name + " is not supported: give the mass in the part file's \"point_masses\"");
+    } else if (c.name == "CONM2") {
+      b.conm2.push_back(&c);
+    } else if (c.name == "CONM1") {
+      f.fail("CONM1 (a 6 x 6 mass matrix) is not supported: give the mass as CONM2 or in the part file's \"point_masses\"");
     } else if (c.name == "RBE2" || c.name == "RBE3" || c.name == "RBAR") {
       f.fail(c.name + " is not supported: give the coupling as an interface of the part file (rigid or averaged)");
     } else if (c.name.rfind("CORD", 0) == 0) {
@@ -325,6 +329,47 @@ bool is_bdf(const std::filesystem::path& file) {
 }
 
 std::vector<DeckSection> read_bdf_sections(const std::string& file) { return sections(parse(file)); }
+
+std::vector<DeckPointMass> read_bdf_point_masses(const std::string& file) {
+  const Bulk b = parse(file);
+  std::map<std::size_t, std::size_t> grid;  // id -> index
+  for (std::size_t i = 0; i < b.mesh.node_ids.size(); ++i) grid.emplace(b.mesh.node_ids[i], i);
+  std::vector<DeckPointMass> out;
+  for (const Card* c : b.conm2) {
+    const Fields f(file, *c);
+    DeckPointMass m;
+    m.eid = f.id(2, "EID");
+    m.grid = f.id(3, "G");
+    const auto g = grid.find(m.grid);
+    if (g == grid.end()) f.fail(Fields::at(3) + " (G): grid " + std::to_string(m.grid) + " is not defined");
+    const Eigen::Vector3d x(b.mesh.xyz[3 * g->second], b.mesh.xyz[3 * g->second + 1], b.mesh.xyz[3 * g->second + 2]);
+    m.at = x;
+    const long long cid = f.integer_or(4, "CID", 0);
+    if (cid != 0 && cid != -1) f.fail(Fields::at(4) + " (CID): coordinate systems are not supported (0, blank or -1)");
+    m.mass = f.real(5, "M");
+    if (!(m.mass > 0)) f.fail(Fields::at(5) + " (M): a positive mass is expected");
+    const Eigen::Vector3d X(f.real_or(6, "X1", 0.0), f.real_or(7, "X2", 0.0), f.real_or(8, "X3", 0.0));
+    // CID = -1: X is the centre in the basic system; otherwise its offset from the grid.
+    m.offset = cid == -1 ? Eigen::Vector3d(X - x) : X;
+    f.require_blank(9, 9, "field 9 of CONM2 is blank");
+    // Quick Reference Guide, CONM2: the inertia about the centre is
+    // [I11 -I21 -I31; -I21 I22 -I32; -I31 -I32 I33].
+    const double I11 = f.real_or(10, "I11", 0), I21 = f.real_or(11, "I21", 0), I22 = f.real_or(12, "I22", 0),
+                 I31 = f.real_or(13, "I31", 0), I32 = f.real_or(14, "I32", 0), I33 = f.real_or(15, "I33", 0);
+    m.inertia << I11, -I21, -I31, -I21, I22, -I32, -I31, -I32, I33;
+    {
+      const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m.inertia).eigenvalues();
+      const double tol = 1e-12 * std::max(1.0, ev.cwiseAbs().maxCoeff());
+      if (ev.minCoeff() < -tol) f.fail("continuation 1 (I11 ... I33): the inertia must be positive semi-definite");
+      if (ev(0) + ev(1) < ev(2) - tol)
+        f.fail("continuation 1 (I11 ... I33): the principal moments violate the triangle inequality (not a physical body)");
+    }
+    f.require_blank(16, f.size(), "CONM2 has 15 fields");
+    m.where = "line " + std::to_string(c->line) + " (CONM2 " + std::to_string(m.eid) + ")";
+    out.push_back(m);
+  }
+  return out;
+}
 
 Mesh read_bdf(const std::string& file, MeshReport* report) {
   const auto t0 = std::chrono::steady_clock::now();

@@ -82,6 +82,17 @@ void add_deck_sections(PartSpec& p) {
     else if (s.kind == detail::DeckSection::Kind::Beam) p.beams.push_back(s.beam);
     else p.materials.push_back({s.group, s.mat});
   }
+  // Nastran's CONM2: attached masses on their grids (named conm2_<EID>), as "point_masses".
+  if (detail::is_bdf(p.geometry))
+    for (const auto& m : detail::read_bdf_point_masses(deck)) {
+      PointMassSpec s;
+      s.name = "conm2_" + std::to_string(m.eid);
+      s.at = m.at;
+      s.mass = m.mass;
+      s.com_offset = m.offset;
+      s.inertia = m.inertia;
+      p.point_masses.push_back(s);
+    }
 }
 
 Units read_units(const JsonNode& n) {
