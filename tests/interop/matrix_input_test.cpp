@@ -609,3 +609,120 @@ TEST(NodeDofMatrices, BadInputExitsTwoNamingFileAndLine) {
     std::printf("%s: %s\n", c.name.c_str(), r.output.substr(0, 300).c_str());
   }
 }
+
+// ---- Issue 39's check: one part meshed by gmsh, as its MSH file, as gmsh's .inp deck, as a
+// Nastran bulk-data deck (free field, 17 digits) and as ffr's assembled K and M of the deck in
+// Matrix Market (and as Abaqus *MATRIX GENERATE output and DMIG, the latter on the bulk data's
+// grids): the SIDs equal by ffr-diff (rtol 1e-9), the command-line tool outside scripts use. The groups are named as the bulk data names them (pid7, set1, set2) so that the
+// interfaces' descriptions agree too.
+TEST(SamePartFourWays, MshInpBdfAndMatricesGiveOneSid) {
+  test::TempDir dir("interop_chain");
+  test::write_text(dir / "bar.geo", R"(Point(1) = {0, 0, 0}; Point(2) = {0.2, 0, 0}; Line(1) = {1, 2};
+e[] = Extrude{0, 0.02, 0}{Line{1}; Layers{3}; Recombine;};
+v[] = Extrude{0, 0, 0.012}{Surface{e[1]}; Layers{2}; Recombine;};
+Transfinite Curve{1} = 13;
+Physical Volume("pid7") = {v[1]};
+Physical Surface("set1") = Surface In BoundingBox{-1e-6, -1, -1, 1e-6, 1, 1};
+Physical Surface("set2") = Surface In BoundingBox{0.2 - 1e-6, -1, -1, 0.2 + 1e-6, 1, 1};
+)");
+  test::gmsh_mesh(dir / "bar.geo", dir / "bar.msh", 0.006, 2);
+  const auto r = test::run("gmsh " + (dir / "bar.msh").string() + " -0 -setnumber Mesh.SaveGroupsOfNodes 1 -format inp -o " +
+                           (dir / "gmsh.inp").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  {
+    // gmsh's deck without its plane elements, with the steel of the part file.
+    std::istringstream in(formats::read_text_file(dir / "gmsh.inp"));
+    std::ostringstream out;
+    std::string line;
+    bool drop = false;
+    while (std::getline(in, line)) {
+      if (!line.empty() && line[0] == '*' && line.rfind("**", 0) != 0)
+        drop = (line.rfind("*ELEMENT", 0) == 0 && line.find("type=C3D") == std::string::npos) ||
+               (line.rfind("*ELSET", 0) == 0 && line.find("ELSET=pid7") == std::string::npos);
+      if (!drop) out << line << "\n";
+    }
+    test::write_text(dir / "bar.inp", out.str() + "*MATERIAL, NAME=STEEL\n*ELASTIC\n2.1e11, 0.3\n*DENSITY\n7850\n"
+                                                  "*SOLID SECTION, ELSET=pid7, MATERIAL=STEEL\n");
+  }
+  const std::string rest = R"(, "visual": false,
+    "interfaces": [{"name": "root", "group": "set1"}, {"name": "end", "group": "set2", "coupling": "averaged"}],
+    "reduction": {"method": "craig-bampton", "interfaces": ["root", "end"], "frame": "root", "modes": 4}})";
+  test::write_text(dir / "msh.json", R"({"geometry": "bar.msh", "materials": [{"group": "pid7", "E": 2.1e11, "nu": 0.3, "rho": 7850}])" + rest);
+  test::write_text(dir / "inp.json", R"({"geometry": "bar.inp")" + rest);
+  // The bulk data of the MSH's mesh: CHEXA in Nastran's node order (Quick Reference Guide,
+  // CHEXA: corners, then the bottom face's edges, the vertical edges, the top face's edges).
+  {
+    const preproc::Mesh m = preproc::load_mesh(preproc::load_part(dir / "msh.json"));
+    std::ostringstream s;
+    s.precision(17);
+    s << "BEGIN BULK\n";
+    for (preproc::Index n = 0; n < m.num_nodes(); ++n)
+      s << "GRID," << m.node_tag(n) << ",," << m.x(n, 0) << "," << m.x(n, 1) << "," << m.x(n, 2) << "\n";
+    const int nastran_of_gmsh[20] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 12, 9, 13, 10, 14, 15, 16, 19, 17, 18};
+    std::map<std::string, std::set<std::size_t>> sets;
+    for (const auto& b : m.blocks) {
+      if (b.type != preproc::ElementType::Hex20 || b.group != "pid7") continue;
+      for (preproc::Index e = 0; e < b.size(); ++e) {
+        std::size_t g[20];
+        for (int k = 0; k < 20; ++k) g[nastran_of_gmsh[k]] = m.node_tag(b.element(e)[k]);
+        s << "CHEXA," << m.element_tag(b, e) << ",7";
+        for (int k = 0; k < 20; ++k) s << (k == 6 || k == 14 ? "\n+," : ",") << g[k];
+        s << "\n";
+      }
+    }
+    for (preproc::Index n = 0; n < m.num_nodes(); ++n) {
+      if (std::abs(m.x(n, 0)) < 1e-9) sets["1"].insert(m.node_tag(n));
+      if (std::abs(m.x(n, 0) - 0.2) < 1e-9) sets["2"].insert(m.node_tag(n));
+    }
+    for (const auto& [id, tags] : sets) {
+      s << "SET1," << id;
+      int k = 1;
+      for (const auto t : tags) {
+        s << (k % 8 == 0 ? "\n+," : ",") << t;
+        ++k;
+      }
+      s << "\n";
+    }
+    s << "PSOLID,7,3\nMAT1,3,2.1+11,,0.3,7850.\nENDDATA\n";
+    test::write_text(dir / "bar.bdf", s.str());
+  }
+  test::write_text(dir / "bdf.json", R"({"geometry": "bar.bdf")" + rest);
+  // ffr's K and M of the .inp deck as Matrix Market, rows shuffled.
+  const OwnMatrices own = own_matrices(dir / "inp.json");
+  const auto perm = shuffled(own.K.rows());
+  write_mtx(dir / "K.mtx", own.K, perm);
+  write_mtx(dir / "M.mtx", own.M, perm);
+  write_dofs(dir / "dofs.txt", own, perm);
+  test::write_text(dir / "mtx.json", R"({"geometry": "bar.inp", "matrices": )" + std::string(kMtx) + rest);
+  // And the same K and M as Abaqus *MATRIX GENERATE output and as DMIG (free field, 17 digits).
+  write_abaqus(dir / "job_STIF1.mtx", own, own.K, "STIFFNESS");
+  write_abaqus(dir / "job_MASS1.mtx", own, own.M, "MASS");
+  test::write_text(dir / "abq.json", R"({"geometry": "bar.inp", "matrices": {"format": "abaqus", "K": "job_STIF1.mtx", "M": "job_MASS1.mtx"})" + rest);
+  write_dmig(dir / "k.pch", own, own.K, "KAAX", false);
+  write_dmig(dir / "m.pch", own, own.M, "MAAX", false);
+  test::write_text(dir / "dmig.json", R"({"geometry": "bar.bdf", "matrices": {"format": "dmig", "K": "k.pch", "M": "m.pch"})" + rest);
+
+  for (const char* name : {"msh", "inp", "bdf", "mtx", "abq", "dmig"}) {
+    const auto out = dir / (std::string(name) + ".sid.h5");
+    const auto red = test::run(test::bin("ffr-reduce").string() + " " + (dir / (std::string(name) + ".json")).string() + " -o " +
+                               out.string());
+    ASSERT_EQ(red.status, 0) << name << ":\n" << red.output;
+  }
+  for (const char* name : {"inp", "bdf", "mtx", "abq", "dmig"}) {
+    const auto d = test::run(test::bin("ffr-diff").string() + " " + (dir / "msh.sid.h5").string() + " " +
+                             (dir / (std::string(name) + ".sid.h5")).string() + " --rtol 1e-9");
+    EXPECT_EQ(d.status, 0) << "msh vs " << name << ":\n" << d.output;
+    std::printf("ffr-diff msh vs %s (rtol 1e-9): exit %d\n%s\n", name, d.status, d.output.substr(0, 600).c_str());
+  }
+  // The diff can fail: a deck with another Young's modulus differs.
+  {
+    std::string t = formats::read_text_file(dir / "bar.inp");
+    t.replace(t.find("2.1e11, 0.3"), 11, "2.0e11, 0.3");
+    test::write_text(dir / "soft.inp", t);
+  }
+  test::write_text(dir / "soft.json", R"({"geometry": "soft.inp")" + rest);
+  ASSERT_EQ(test::run(test::bin("ffr-reduce").string() + " " + (dir / "soft.json").string() + " -o " + (dir / "soft.sid.h5").string()).status, 0);
+  const auto d = test::run(test::bin("ffr-diff").string() + " " + (dir / "msh.sid.h5").string() + " " + (dir / "soft.sid.h5").string() +
+                           " --rtol 1e-9");
+  EXPECT_NE(d.status, 0) << d.output;
+}
