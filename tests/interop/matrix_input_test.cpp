@@ -714,6 +714,17 @@ Physical Surface("set2") = Surface In BoundingBox{0.2 - 1e-6, -1, -1, 0.2 + 1e-6
     EXPECT_EQ(d.status, 0) << "msh vs " << name << ":\n" << d.output;
     std::printf("ffr-diff msh vs %s (rtol 1e-9): exit %d\n%s\n", name, d.status, d.output.substr(0, 600).c_str());
   }
+  // A deck's CONM2 on top of assembled matrices is refused (the matrices' M must hold it).
+  {
+    std::string t = formats::read_text_file(dir / "bar.bdf");
+    t.insert(t.find("PSOLID"), "CONM2,900," + std::to_string(own.dof[0].first) + ",,1.5\n");
+    test::write_text(dir / "conm2.bdf", t);
+    test::write_text(dir / "conm2.json", R"({"geometry": "conm2.bdf", "matrices": {"format": "dmig", "K": "k.pch", "M": "m.pch"})" + rest);
+    const auto bad = test::run(test::bin("ffr-reduce").string() + " " + (dir / "conm2.json").string() + " -o " + (dir / "conm2.sid.h5").string());
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "conm2.sid.h5"));
+    EXPECT_NE(bad.output.find("conm2.json: matrices: the deck's CONM2 900 cannot be added to assembled matrices"), std::string::npos) << bad.output;
+  }
   // The diff can fail: a deck with another Young's modulus differs.
   {
     std::string t = formats::read_text_file(dir / "bar.inp");

@@ -329,6 +329,10 @@ MatrixInputSpec read_matrices(const JsonNode& n, const PartSpec& p) {
            "the elements");
   if (!p.preload.empty()) n.fail("a \"preload\" needs element stresses, which assembled matrices do not have");
   if (p.stress) n.fail("\"stress\" recovery needs ffr's own elements and material, which assembled matrices do not have");
+  for (const auto& pm : p.point_masses)
+    if (pm.name.rfind("conm2_", 0) == 0 && detail::is_bdf(p.geometry))
+      n.fail("the deck's CONM2 " + pm.name.substr(6) + " cannot be added to assembled matrices; the mass matrix must " +
+             "hold it (drop the CONM2 cards from the deck given as \"geometry\")");
   if (!p.point_masses.empty())
     n.fail("\"point_masses\" cannot be added to assembled matrices; put them into the mass matrix");
   return m;
