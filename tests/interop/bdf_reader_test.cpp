@@ -205,7 +205,8 @@ TEST(BdfDeck, BarSectionsBendAsTheQuickReferenceGuideSays) {
 // The same cantilever with a CONM2 on its tip grid, mass mu times the beam's: the first bending
 // frequency from the exact Euler-Bernoulli frequency equation of a cantilever with a tip mass,
 //   1 + cos(l) cosh(l) + mu l (cos(l) sinh(l) - sin(l) cosh(l)) = 0,  omega = l^2 sqrt(EI / (rho A L^4))
-// (Blevins, "Formulas for Natural Frequency and Mode Shape", table 8-8; solved by bisection here).
+// (the classical result for a cantilever with a tip mass, e.g. Blevins, "Formulas for Natural
+// Frequency and Mode Shape", chapter on beams with masses; solved by bisection here).
 TEST(BdfDeck, Conm2TipMassOnACantileverGivesTheExactFrequency) {
   test::TempDir dir("interop_conm2");
   const double L = 1.0, A = 1e-4, I2 = 2e-10, E = 2.1e11, rho = 7850, mu = 1.5;
