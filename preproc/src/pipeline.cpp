@@ -216,8 +216,12 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   p.mass_model["/integrals/rotary"] = "point rotary inertia carried by no material point (shell drilling)";
   p.extra["geometry"] = part.geometry.filename().string();
   if (from_files) {
-    p.extra["matrices"] = std::string(part.matrices.format == MatrixInputSpec::Format::Calculix ? "calculix" : "matrix_market") +
-                          ": K " + part.matrices.K.filename().string() + " (sha256 " + formats::sha256_file(part.matrices.K) +
+    using F = MatrixInputSpec::Format;
+    const F f = part.matrices.format;
+    const std::string format = f == F::Calculix ? "calculix" : f == F::Abaqus ? "abaqus"
+                               : f == F::Dmig   ? "dmig " + part.matrices.K_name + ", " + part.matrices.M_name
+                                                : "matrix_market";
+    p.extra["matrices"] = format + ": K " + part.matrices.K.filename().string() + " (sha256 " + formats::sha256_file(part.matrices.K) +
                           "), M " + part.matrices.M.filename().string() + " (sha256 " + formats::sha256_file(part.matrices.M) + ")";
     p.element_counts.clear();
   }

@@ -202,6 +202,53 @@ TEST(BdfDeck, BarSectionsBendAsTheQuickReferenceGuideSays) {
               sid.refmod.frequency_hz(1) / f(I1) - 1);
 }
 
+// The same cantilever with a CONM2 on its tip grid, mass mu times the beam's: the first bending
+// frequency from the exact Euler-Bernoulli frequency equation of a cantilever with a tip mass,
+//   1 + cos(l) cosh(l) + mu l (cos(l) sinh(l) - sin(l) cosh(l)) = 0,  omega = l^2 sqrt(EI / (rho A L^4))
+// (the classical result for a cantilever with a tip mass, e.g. Blevins, "Formulas for Natural
+// Frequency and Mode Shape", chapter on beams with masses; solved by bisection here).
+TEST(BdfDeck, Conm2TipMassOnACantileverGivesTheExactFrequency) {
+  test::TempDir dir("interop_conm2");
+  const double L = 1.0, A = 1e-4, I2 = 2e-10, E = 2.1e11, rho = 7850, mu = 1.5;
+  const double tip = mu * rho * A * L;
+  const int n = 40;
+  std::ostringstream s;
+  char buf[160];
+  for (int i = 0; i <= n; ++i) {
+    std::snprintf(buf, sizeof buf, "GRID    %-8d        %-8.5f0.      0.\n", i + 1, L * i / n);
+    s << buf;
+  }
+  for (int i = 0; i < n; ++i) {
+    std::snprintf(buf, sizeof buf, "CBAR    %-8d2       %-8d%-8d0.      1.      0.\n", 100 + i, i + 1, i + 2);
+    s << buf;
+  }
+  s << "PBAR    2       5       1.-4    8.-10   2.-10   5.-10\n+\n+\n";
+  s << "MAT1    5       2.1+11          .3      7850.\nSET1    9       1\n";
+  const std::string beam = s.str();
+  // Free field, the tip mass with a small inertia of its own (no offset: it moves with the grid).
+  std::snprintf(buf, sizeof buf, "CONM2,900,%d,,%.17g\n,1.e-9,,1.e-9,,,1.e-9\n", n + 1, tip);
+  test::write_text(dir / "beam.bdf", beam + buf);
+  test::write_text(dir / "beam.json", R"({"geometry": "beam.bdf", "visual": false,
+    "interfaces": [{"name": "root", "group": "set9"}],
+    "reduction": {"method": "clamped", "interface": "root", "modes": 1}})");
+  const formats::Sid sid = preproc::run_pipeline(preproc::load_part(dir / "beam.json"));
+  const auto g = [&](double l) { return 1 + std::cos(l) * std::cosh(l) + mu * l * (std::cos(l) * std::sinh(l) - std::sin(l) * std::cosh(l)); };
+  double a = 0.1, b = 1.8751040687119611;  // below the bare cantilever's first root
+  ASSERT_LT(g(a) * g(b), 0.0);
+  for (int k = 0; k < 200; ++k) {
+    const double m = 0.5 * (a + b);
+    (g(a) * g(m) <= 0 ? b : a) = m;
+  }
+  const double lambda = 0.5 * (a + b);
+  const double exact = lambda * lambda / (2 * M_PI) * std::sqrt(E * I2 / (rho * A * std::pow(L, 4)));
+  const double bare = 1.8751040687119611 * 1.8751040687119611 / (2 * M_PI) * std::sqrt(E * I2 / (rho * A * std::pow(L, 4)));
+  EXPECT_NEAR(sid.refmod.frequency_hz(0) / exact, 1.0, 1e-4);
+  EXPECT_LT(exact, 0.6 * bare);  // the mass matters: without it the check would fail
+  EXPECT_NEAR(sid.refmod.mass, rho * A * L + tip, 1e-9 * sid.refmod.mass);
+  std::printf("CONM2 tip mass (mu = %.1f): f1 = %.6f Hz, exact %.6f Hz, ratio - 1 = %.2e\n", mu, sid.refmod.frequency_hz(0),
+              exact, sid.refmod.frequency_hz(0) / exact - 1);
+}
+
 namespace {
 
 const char* kTet = "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,0.,1.,0.\nGRID,4,,0.,0.,1.\n";
@@ -229,7 +276,11 @@ TEST(BdfRefusals, EveryBadDeckNamesFileLineCardAndWhatWasExpected) {
     std::string deck, group, expected;
   };
   const std::vector<Case> cases = {
-      {tet + kProps + "CONM2,5,1,,2.0\n", "pid1", "bad.bdf: line 8 (CONM2 5): CONM2 is not supported: give the mass"},
+      {tet + kProps + "CONM1,5,1\n", "pid1", "bad.bdf: line 8 (CONM1 5): CONM1 (a 6 x 6 mass matrix) is not supported"},
+      {tet + kProps + "CONM2,5,9,,2.0\n", "pid1", "bad.bdf: line 8 (CONM2 5): field 3 (G): grid 9 is not defined"},
+      {tet + kProps + "CONM2,5,1,3,2.0\n", "pid1", "bad.bdf: line 8 (CONM2 5): field 4 (CID): coordinate systems are not supported"},
+      {tet + kProps + "CONM2,5,1,,-2.0\n", "pid1", "bad.bdf: line 8 (CONM2 5): field 5 (M): a positive mass is expected"},
+      {tet + kProps + "CONM2,5,1,,2.0\n,1.,,1.,,,5.\n", "pid1", "bad.bdf: line 8 (CONM2 5): continuation 1 (I11 ... I33): the principal moments violate"},
       {tet + kProps + "CPENTA,2,1,1,2,3,4,1,2\n", "pid1", "bad.bdf: line 8 (CPENTA 2): card CPENTA is not supported"},
       {std::string(kTet) + "CTETRA,1,1,1,2,3,4,1,2\n" + kProps, "pid1",
        "bad.bdf: line 5 (CTETRA 1): CTETRA with 6 grids: ffr takes 4 or all 10"},

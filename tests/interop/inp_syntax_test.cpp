@@ -167,7 +167,8 @@ TEST(InpRefusals, EveryBadDeckNamesFileLineAndWhatWasExpected) {
       {ok + "*CLOAD\n1, 1, 5.0\n", "body", "bad.inp: line 14 (*CLOAD): keyword *CLOAD is not supported"},
       {std::string(kTet) + "*ELEMENT, TYPE=C3D15, ELSET=body\n1, 1, 2, 3, 4\n" + kTetMaterial, "body",
        "bad.inp: line 6 (*ELEMENT, TYPE=C3D15, ELSET=body): element type C3D15 is not in ffr's element library (ffr reads C3D4, C3D10, C3D8I, C3D20, S3, S4, B31)"},
-      {std::string(kTet) + "*ELEMENT, TYPE=C3D8, ELSET=body\n1, 1, 2, 3, 4\n", "body", "give TYPE=C3D8I"},
+      {std::string(kTet) + "*ELEMENT, TYPE=C3D8, ELSET=body\n1, 1, 2, 3, 4\n", "body", "give TYPE=C3D8I to take ffr's brick"},
+      {std::string(kTet) + "*ELEMENT, TYPE=C3D8, ELSET=body\n1, 1, 2, 3, 4\n", "body", "or mesh the part with C3D20"},
       {std::string(kTet) + kTetElement + "*MATERIAL, NAME=STEEL\n*ELASTIC\n2.1e11, 0.3\n*DENSITY\n7850\n"
                                          "*SOLID SECTION, ELSET=nothere, MATERIAL=STEEL\n",
        "body", "bad.inp: line 13 (*SOLID SECTION, ELSET=nothere, MATERIAL=STEEL): no element set 'nothere' in the deck"},

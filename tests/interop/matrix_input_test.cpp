@@ -9,6 +9,8 @@
 //  - a lumped mass (HRZ lumping of ccx's consistent mass, built here): the frequencies of a
 //    dense generalized eigen-solve of the same clamped K and M in this test (Eigen's
 //    GeneralizedSelfAdjointEigenSolver), an oracle sharing no code with the reducer;
+//  - the same own K and M written as Abaqus *MATRIX GENERATE output and as Nastran DMIG punch
+//    files (formats as their manuals give them, cited below): the SID of the deck, rtol 1e-9;
 //  - bad input: exit status 2 naming the file, the line and what was expected, no SID.
 #include "ffr/formats/diff.hpp"
 #include "ffr/formats/h5.hpp"
@@ -445,3 +447,293 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"unjoined", "K.mtx", "which no element of the deck joins"},
                       BadCase{"coupled", "M.mtx", "a translational mass Ms (x) I3 is expected"}),
     [](const auto& info) { return std::string(info.param.name); });
+
+// ---- Abaqus *MATRIX GENERATE output and Nastran DMIG: ffr's own K and M of the deck written in
+// those layouts give the SID of the deck (rtol 1e-9), as the Matrix Market route above.
+// Layouts: Abaqus Analysis User's Guide, "Generating matrices" (*MATRIX OUTPUT,
+// FORMAT=MATRIX INPUT: "row node, row DOF, column node, column DOF, value", the lower triangle);
+// MSC/NX Nastran Quick Reference Guide, DMIG (header "DMIG, NAME, 0, IFO, TIN, TOUT", columns
+// "DMIG, NAME, GJ, CJ, , G1, C1, A1, B1" with continuations G, C, A, B; large field: 16
+// characters a field, continuation lines starting with '*').
+namespace {
+// (row, col) entries of the lower (lower = true) or upper triangle of own's matrix, by DOF.
+std::vector<std::tuple<Eigen::Index, Eigen::Index, double>> triangle(const preproc::SparseMatrix& A, bool lower) {
+  std::vector<std::tuple<Eigen::Index, Eigen::Index, double>> t;
+  for (Eigen::Index c = 0; c < A.outerSize(); ++c)
+    for (preproc::SparseMatrix::InnerIterator it(A, c); it; ++it)
+      if (it.value() != 0 && (lower ? it.row() >= it.col() : it.row() <= it.col())) t.emplace_back(it.row(), it.col(), it.value());
+  return t;
+}
+
+void write_abaqus(const std::filesystem::path& p, const OwnMatrices& o, const preproc::SparseMatrix& A, const char* what) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "** ASSEMBLED " << what << " MATRIX, written by matrix_input_test\n** row node, row dof, column node, column dof, value\n";
+  for (const auto& [r, c, v] : triangle(A, true)) {
+    const auto& a = o.dof[static_cast<std::size_t>(r)];
+    const auto& b = o.dof[static_cast<std::size_t>(c)];
+    s << a.first << ", " << a.second << ", " << b.first << ", " << b.second << ", " << std::scientific << v << std::defaultfloat << "\n";
+  }
+  test::write_text(p, s.str());
+}
+
+// DMIG NAME as a punch file: large field (16 characters, 'D' exponents, 9 significant digits
+// fit) or free field (17 digits), one column card per DOF column, the upper triangle.
+void write_dmig(const std::filesystem::path& p, const OwnMatrices& o, const preproc::SparseMatrix& A, const std::string& name,
+                bool large) {
+  std::map<Eigen::Index, std::vector<std::pair<Eigen::Index, double>>> cols;
+  for (const auto& [r, c, v] : triangle(A, false)) cols[c].emplace_back(r, v);
+  std::ostringstream s;
+  auto f16 = [](const std::string& v) { return v + std::string(16 - std::min<std::size_t>(16, v.size()), ' '); };
+  auto f8 = [](const std::string& v) { return v + std::string(8 - std::min<std::size_t>(8, v.size()), ' '); };
+  auto dreal = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%16.9E", v);
+    std::string t = b;
+    t[t.find('E')] = 'D';
+    return t;
+  };
+  s << "$ DMIG " << name << " written by matrix_input_test\n";
+  if (large) s << f8("DMIG*") << f16(name) << f16("0") << f16("6") << f16("2") << "\n" << f8("*") << f16("0") << "\n";
+  else s << "DMIG," << name << ",0,6,2,0\n";
+  char buf[40];
+  for (const auto& [c, entries] : cols) {
+    const auto& gj = o.dof[static_cast<std::size_t>(c)];
+    if (large) s << f8("DMIG*") << f16(name) << f16(std::to_string(gj.first)) << f16(std::to_string(gj.second)) << f16("") << "\n";
+    else s << "DMIG," << name << "," << gj.first << "," << gj.second << ",";
+    for (std::size_t k = 0; k < entries.size(); ++k) {
+      const auto& gi = o.dof[static_cast<std::size_t>(entries[k].first)];
+      if (large) {
+        s << f8("*") << f16(std::to_string(gi.first)) << f16(std::to_string(gi.second)) << dreal(entries[k].second) << "\n";
+      } else {
+        std::snprintf(buf, sizeof buf, "%.17g", entries[k].second);
+        // Fields 6-9 of the first line, then 4 groups of (G, C, A, B) a continuation line.
+        s << "," << gi.first << "," << gi.second << "," << buf << ",";
+        if (k % 2 == 0) s << "\n";  // after field 9, and after fields 2-9 of each continuation
+        s << (k % 2 == 0 && k + 1 < entries.size() ? "+" : "");
+      }
+    }
+    if (!large) s << "\n";
+  }
+  test::write_text(p, s.str());
+}
+}  // namespace
+
+TEST(NodeDofMatrices, AbaqusMatrixGenerateGivesTheSidOfTheDeck) {
+  HexBar bar;
+  const OwnMatrices own = own_matrices(bar.part("deck.json", "craig_bampton"));
+  write_abaqus(bar.dir / "job_STIF1.mtx", own, own.K, "STIFFNESS");
+  write_abaqus(bar.dir / "job_MASS1.mtx", own, own.M, "MASS");
+  const formats::Sid deck = bar.reduce(bar.dir / "deck.json");
+  const formats::Sid abq =
+      bar.reduce(bar.part("abq.json", "craig_bampton", R"({"format": "abaqus", "K": "job_STIF1.mtx", "M": "job_MASS1.mtx"})"));
+  const double f = expect_same_sid(deck, abq, 1e-9);
+  EXPECT_EQ(abq.provenance.extra.at("matrices").rfind("abaqus: K job_STIF1.mtx", 0), 0u) << abq.provenance.extra.at("matrices");
+  std::printf("Abaqus *MATRIX GENERATE vs the deck: largest relative frequency difference %.2e\n", f);
+}
+
+TEST(NodeDofMatrices, NastranDmigGivesTheSidOfTheDeck) {
+  HexBar bar;
+  const OwnMatrices own = own_matrices(bar.part("deck.json", "clamped"));
+  // K in free field (17 digits) under a name of the part file's, M as a large-field punch
+  // (10 significant digits: compared at the rounding's level below).
+  write_dmig(bar.dir / "k.pch", own, own.K, "KSTIFF", false);
+  write_dmig(bar.dir / "m.pch", own, own.M, "MAAX", true);
+  const formats::Sid deck = bar.reduce(bar.dir / "deck.json");
+  const formats::Sid dmig = bar.reduce(
+      bar.part("dmig.json", "clamped", R"({"format": "dmig", "K": "k.pch", "M": "m.pch", "K_name": "KSTIFF"})"));
+  const double f = expect_same_sid(deck, dmig, 1e-7);
+  EXPECT_LE(f, 1e-9);
+  EXPECT_EQ(dmig.provenance.extra.at("matrices").rfind("dmig KSTIFF, MAAX: K k.pch", 0), 0u) << dmig.provenance.extra.at("matrices");
+  // Both in free field at 17 digits: the SID of the deck to 1e-9.
+  write_dmig(bar.dir / "m17.pch", own, own.M, "MAAX", false);
+  const formats::Sid dmig17 = bar.reduce(
+      bar.part("dmig17.json", "clamped", R"({"format": "dmig", "K": "k.pch", "M": "m17.pch", "K_name": "KSTIFF"})"));
+  const double f17 = expect_same_sid(deck, dmig17, 1e-9);
+  std::printf("DMIG vs the deck: largest relative frequency difference %.2e (large-field M), %.2e (free field)\n", f, f17);
+}
+
+// Bad input of both readers, each by ffr-reduce: exit 2, the file and the line named, no SID.
+TEST(NodeDofMatrices, BadInputExitsTwoNamingFileAndLine) {
+  HexBar bar;
+  const OwnMatrices own = own_matrices(bar.part("deck.json", "clamped"));
+  write_abaqus(bar.dir / "K.mtx", own, own.K, "STIFFNESS");
+  write_abaqus(bar.dir / "M.mtx", own, own.M, "MASS");
+  write_dmig(bar.dir / "K.pch", own, own.K, "KAAX", false);
+  write_dmig(bar.dir / "M.pch", own, own.M, "MAAX", false);
+  const std::string K = formats::read_text_file(bar.dir / "K.mtx"), Kp = formats::read_text_file(bar.dir / "K.pch");
+  const std::string tag = std::to_string(own.dof[0].first);
+  // The transpose of K's first off-diagonal entry, 1 % off.
+  std::string transposed_off_by_one_percent;
+  for (const auto& [r, c, v] : triangle(own.K, true))
+    if (r != c) {
+      const auto& a = own.dof[static_cast<std::size_t>(r)];
+      const auto& b = own.dof[static_cast<std::size_t>(c)];
+      std::ostringstream s;
+      s.precision(17);
+      s << b.first << ", " << b.second << ", " << a.first << ", " << a.second << ", " << 1.01 * v << "\n";
+      transposed_off_by_one_percent = s.str();
+      break;
+    }
+  struct Case {
+    std::string name, format, file, content, expected;
+  };
+  const std::vector<Case> cases{
+      {"abaqus_fields", "abaqus", "K.mtx", replace_line(K, 5, "1, 1, 1, 2.5e3"), "K.mtx: line 5: 'row node, row DOF"},
+      {"abaqus_number", "abaqus", "K.mtx", replace_line(K, 6, tag + ", 1, " + tag + ", 1, 1.0e+x"), "K.mtx: line 6: 'row node"},
+      {"abaqus_keyword", "abaqus", "K.mtx", replace_line(K, 3, "*MATRIX INPUT, NAME=K"), "K.mtx: line 3: keyword line"},
+      {"abaqus_rotation", "abaqus", "K.mtx", K + tag + ", 5, " + tag + ", 5, 1.0\n", "rotational DOF 5 of node " + tag},
+      {"abaqus_node", "abaqus", "K.mtx", K + "999999, 1, 999999, 1, 1.0\n", "node 999999 is not in the deck"},
+      {"abaqus_asymmetric", "abaqus", "K.mtx", K + transposed_off_by_one_percent, "not symmetric"},
+      {"dmig_header", "dmig", "K.pch", replace_line(Kp, 2, "$ no header"), "K.pch: line 3 (DMIG KAAX): a column of DMIG KAAX before its header"},
+      {"dmig_complex", "dmig", "K.pch", replace_line(Kp, 2, "DMIG,KAAX,0,6,3,0"), "K.pch: line 2 (DMIG KAAX): field 5 (TIN) is 3"},
+      {"dmig_card", "dmig", "K.pch", Kp + "GRID,1,,0.,0.,0.\n", "only DMIG cards are expected"},
+      {"dmig_number", "dmig", "K.pch", replace_line(Kp, 3, "DMIG,KAAX," + tag + ",1,," + tag + ",1,1.0+x"), "K.pch: line 3 (DMIG KAAX): field 8 (Ai): expected a number"},
+      {"dmig_name", "dmig", "K.pch", Kp, "no DMIG header card of matrix KXX"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    test::write_text(bar.dir / ("bad_" + c.file), c.content);
+    const bool abq = c.format == "abaqus";
+    const std::string kf = "bad_" + c.file, mf = abq ? "M.mtx" : "M.pch";
+    const std::string matrices = R"({"format": ")" + c.format + R"(", "K": ")" + kf + R"(", "M": ")" + mf + "\"" +
+                                 (c.name == "dmig_name" ? R"(, "K_name": "KXX")" : "") + "}";
+    const auto part = bar.part("bad.json", "clamped", matrices);
+    const auto out = bar.dir / "bad.sid.h5";
+    const auto r = test::run(test::bin("ffr-reduce").string() + " " + part.string() + " -o " + out.string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    std::string expected = c.expected;
+    if (expected.rfind("K.", 0) == 0) expected = "bad_" + expected;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
+    std::printf("%s: %s\n", c.name.c_str(), r.output.substr(0, 300).c_str());
+  }
+}
+
+// ---- Issue 39's check: one part meshed by gmsh, as its MSH file, as gmsh's .inp deck, as a
+// Nastran bulk-data deck (free field, 17 digits) and as ffr's assembled K and M of the deck in
+// Matrix Market (and as Abaqus *MATRIX GENERATE output and DMIG, the latter on the bulk data's
+// grids): the SIDs equal by ffr-diff (rtol 1e-9), the command-line tool outside scripts use. The groups are named as the bulk data names them (pid7, set1, set2) so that the
+// interfaces' descriptions agree too.
+TEST(SamePartFourWays, MshInpBdfAndMatricesGiveOneSid) {
+  test::TempDir dir("interop_chain");
+  test::write_text(dir / "bar.geo", R"(Point(1) = {0, 0, 0}; Point(2) = {0.2, 0, 0}; Line(1) = {1, 2};
+e[] = Extrude{0, 0.02, 0}{Line{1}; Layers{3}; Recombine;};
+v[] = Extrude{0, 0, 0.012}{Surface{e[1]}; Layers{2}; Recombine;};
+Transfinite Curve{1} = 13;
+Physical Volume("pid7") = {v[1]};
+Physical Surface("set1") = Surface In BoundingBox{-1e-6, -1, -1, 1e-6, 1, 1};
+Physical Surface("set2") = Surface In BoundingBox{0.2 - 1e-6, -1, -1, 0.2 + 1e-6, 1, 1};
+)");
+  test::gmsh_mesh(dir / "bar.geo", dir / "bar.msh", 0.006, 2);
+  const auto r = test::run("gmsh " + (dir / "bar.msh").string() + " -0 -setnumber Mesh.SaveGroupsOfNodes 1 -format inp -o " +
+                           (dir / "gmsh.inp").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  {
+    // gmsh's deck without its plane elements, with the steel of the part file.
+    std::istringstream in(formats::read_text_file(dir / "gmsh.inp"));
+    std::ostringstream out;
+    std::string line;
+    bool drop = false;
+    while (std::getline(in, line)) {
+      if (!line.empty() && line[0] == '*' && line.rfind("**", 0) != 0)
+        drop = (line.rfind("*ELEMENT", 0) == 0 && line.find("type=C3D") == std::string::npos) ||
+               (line.rfind("*ELSET", 0) == 0 && line.find("ELSET=pid7") == std::string::npos);
+      if (!drop) out << line << "\n";
+    }
+    test::write_text(dir / "bar.inp", out.str() + "*MATERIAL, NAME=STEEL\n*ELASTIC\n2.1e11, 0.3\n*DENSITY\n7850\n"
+                                                  "*SOLID SECTION, ELSET=pid7, MATERIAL=STEEL\n");
+  }
+  const std::string rest = R"(, "visual": false,
+    "interfaces": [{"name": "root", "group": "set1"}, {"name": "end", "group": "set2", "coupling": "averaged"}],
+    "reduction": {"method": "craig-bampton", "interfaces": ["root", "end"], "frame": "root", "modes": 4}})";
+  test::write_text(dir / "msh.json", R"({"geometry": "bar.msh", "materials": [{"group": "pid7", "E": 2.1e11, "nu": 0.3, "rho": 7850}])" + rest);
+  test::write_text(dir / "inp.json", R"({"geometry": "bar.inp")" + rest);
+  // The bulk data of the MSH's mesh: CHEXA in Nastran's node order (Quick Reference Guide,
+  // CHEXA: corners, then the bottom face's edges, the vertical edges, the top face's edges).
+  {
+    const preproc::Mesh m = preproc::load_mesh(preproc::load_part(dir / "msh.json"));
+    std::ostringstream s;
+    s.precision(17);
+    s << "BEGIN BULK\n";
+    for (preproc::Index n = 0; n < m.num_nodes(); ++n)
+      s << "GRID," << m.node_tag(n) << ",," << m.x(n, 0) << "," << m.x(n, 1) << "," << m.x(n, 2) << "\n";
+    const int nastran_of_gmsh[20] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 12, 9, 13, 10, 14, 15, 16, 19, 17, 18};
+    std::map<std::string, std::set<std::size_t>> sets;
+    for (const auto& b : m.blocks) {
+      if (b.type != preproc::ElementType::Hex20 || b.group != "pid7") continue;
+      for (preproc::Index e = 0; e < b.size(); ++e) {
+        std::size_t g[20];
+        for (int k = 0; k < 20; ++k) g[nastran_of_gmsh[k]] = m.node_tag(b.element(e)[k]);
+        s << "CHEXA," << m.element_tag(b, e) << ",7";
+        for (int k = 0; k < 20; ++k) s << (k == 6 || k == 14 ? "\n+," : ",") << g[k];
+        s << "\n";
+      }
+    }
+    for (preproc::Index n = 0; n < m.num_nodes(); ++n) {
+      if (std::abs(m.x(n, 0)) < 1e-9) sets["1"].insert(m.node_tag(n));
+      if (std::abs(m.x(n, 0) - 0.2) < 1e-9) sets["2"].insert(m.node_tag(n));
+    }
+    for (const auto& [id, tags] : sets) {
+      s << "SET1," << id;
+      int k = 1;
+      for (const auto t : tags) {
+        s << (k % 8 == 0 ? "\n+," : ",") << t;
+        ++k;
+      }
+      s << "\n";
+    }
+    s << "PSOLID,7,3\nMAT1,3,2.1+11,,0.3,7850.\nENDDATA\n";
+    test::write_text(dir / "bar.bdf", s.str());
+  }
+  test::write_text(dir / "bdf.json", R"({"geometry": "bar.bdf")" + rest);
+  // ffr's K and M of the .inp deck as Matrix Market, rows shuffled.
+  const OwnMatrices own = own_matrices(dir / "inp.json");
+  const auto perm = shuffled(own.K.rows());
+  write_mtx(dir / "K.mtx", own.K, perm);
+  write_mtx(dir / "M.mtx", own.M, perm);
+  write_dofs(dir / "dofs.txt", own, perm);
+  test::write_text(dir / "mtx.json", R"({"geometry": "bar.inp", "matrices": )" + std::string(kMtx) + rest);
+  // And the same K and M as Abaqus *MATRIX GENERATE output and as DMIG (free field, 17 digits).
+  write_abaqus(dir / "job_STIF1.mtx", own, own.K, "STIFFNESS");
+  write_abaqus(dir / "job_MASS1.mtx", own, own.M, "MASS");
+  test::write_text(dir / "abq.json", R"({"geometry": "bar.inp", "matrices": {"format": "abaqus", "K": "job_STIF1.mtx", "M": "job_MASS1.mtx"})" + rest);
+  write_dmig(dir / "k.pch", own, own.K, "KAAX", false);
+  write_dmig(dir / "m.pch", own, own.M, "MAAX", false);
+  test::write_text(dir / "dmig.json", R"({"geometry": "bar.bdf", "matrices": {"format": "dmig", "K": "k.pch", "M": "m.pch"})" + rest);
+
+  for (const char* name : {"msh", "inp", "bdf", "mtx", "abq", "dmig"}) {
+    const auto out = dir / (std::string(name) + ".sid.h5");
+    const auto red = test::run(test::bin("ffr-reduce").string() + " " + (dir / (std::string(name) + ".json")).string() + " -o " +
+                               out.string());
+    ASSERT_EQ(red.status, 0) << name << ":\n" << red.output;
+  }
+  for (const char* name : {"inp", "bdf", "mtx", "abq", "dmig"}) {
+    const auto d = test::run(test::bin("ffr-diff").string() + " " + (dir / "msh.sid.h5").string() + " " +
+                             (dir / (std::string(name) + ".sid.h5")).string() + " --rtol 1e-9");
+    EXPECT_EQ(d.status, 0) << "msh vs " << name << ":\n" << d.output;
+    std::printf("ffr-diff msh vs %s (rtol 1e-9): exit %d\n%s\n", name, d.status, d.output.substr(0, 600).c_str());
+  }
+  // A deck's CONM2 on top of assembled matrices is refused (the matrices' M must hold it).
+  {
+    std::string t = formats::read_text_file(dir / "bar.bdf");
+    t.insert(t.find("PSOLID"), "CONM2,900," + std::to_string(own.dof[0].first) + ",,1.5\n");
+    test::write_text(dir / "conm2.bdf", t);
+    test::write_text(dir / "conm2.json", R"({"geometry": "conm2.bdf", "matrices": {"format": "dmig", "K": "k.pch", "M": "m.pch"})" + rest);
+    const auto bad = test::run(test::bin("ffr-reduce").string() + " " + (dir / "conm2.json").string() + " -o " + (dir / "conm2.sid.h5").string());
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "conm2.sid.h5"));
+    EXPECT_NE(bad.output.find("conm2.json: matrices: the deck's CONM2 900 cannot be added to assembled matrices"), std::string::npos) << bad.output;
+  }
+  // The diff can fail: a deck with another Young's modulus differs.
+  {
+    std::string t = formats::read_text_file(dir / "bar.inp");
+    t.replace(t.find("2.1e11, 0.3"), 11, "2.0e11, 0.3");
+    test::write_text(dir / "soft.inp", t);
+  }
+  test::write_text(dir / "soft.json", R"({"geometry": "soft.inp")" + rest);
+  ASSERT_EQ(test::run(test::bin("ffr-reduce").string() + " " + (dir / "soft.json").string() + " -o " + (dir / "soft.sid.h5").string()).status, 0);
+  const auto d = test::run(test::bin("ffr-diff").string() + " " + (dir / "msh.sid.h5").string() + " " + (dir / "soft.sid.h5").string() +
+                           " --rtol 1e-9");
+  EXPECT_NE(d.status, 0) << d.output;
+}

@@ -1,5 +1,7 @@
 #include "matrix_input.hpp"
 
+#include "node_dof_entries.hpp"
+
 #include "ffr/formats/h5.hpp"
 #include "ffr/formats/text_file.hpp"
 
@@ -8,6 +10,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <map>
 #include <sstream>
 #include <unordered_map>
 
@@ -87,7 +90,9 @@ void add_entry(FileMatrix& A, const std::filesystem::path& file, int line, long 
 
 // Sorts the entries into `upper`: a duplicate is refused; in general storage each off-diagonal
 // entry must come with its transpose, equal to 1e-9.
-void finish(FileMatrix& A, const std::filesystem::path& file, bool general) {
+// `either`: a symmetric matrix given by its lower triangle, its upper one or both (then
+// checked), as Abaqus's and Nastran's symmetric forms may hold it.
+void finish(FileMatrix& A, const std::filesystem::path& file, bool general, bool either = false) {
   auto& raw = A.raw;
   std::sort(raw.begin(), raw.end(), [](const FileMatrix::Raw& x, const FileMatrix::Raw& y) {
     return x.r != y.r ? x.r < y.r : x.c != y.c ? x.c < y.c : x.line < y.line;
@@ -100,7 +105,7 @@ void finish(FileMatrix& A, const std::filesystem::path& file, bool general) {
     std::size_t e = k + 1;
     while (e < raw.size() && raw[e].r == raw[k].r && raw[e].c == raw[k].c) ++e;
     const auto& x = raw[k];
-    const bool pair_ok = general && x.r != x.c && e - k == 2 && raw[k].lower != raw[k + 1].lower;
+    const bool pair_ok = (general || either) && x.r != x.c && e - k == 2 && raw[k].lower != raw[k + 1].lower;
     if (e - k > 1 && !pair_ok)
       fail(file, raw[k + 1].line, where(raw[k + 1]) + " given twice (first on line " + std::to_string(x.line) + ")");
     if (pair_ok) {
@@ -192,13 +197,19 @@ struct DofRow {
   int component = 0;
 };
 
+struct RowSpec {
+  long long tag, component;
+  int line;
+  const std::filesystem::path* file = nullptr;  ///< where the line is, if not the DOF map's
+};
+
+// The rows (node tag, component 1..6, the line naming it) against the deck: each a translation
+// of a node of the deck's solid elements, once, and every such DOF given.
+std::vector<DofRow> check_rows(const std::filesystem::path& file, const std::vector<RowSpec>& spec, const FeModel& model);
+
 std::vector<DofRow> read_dof_map(const std::filesystem::path& file, bool calculix, const FeModel& model) {
   const Lines L(file);
-  const Mesh& mesh = *model.mesh;
-  std::unordered_map<std::size_t, Index> by_tag;
-  for (Index n = 0; n < mesh.num_nodes(); ++n) by_tag.emplace(mesh.node_tag(n), n);
-  std::vector<DofRow> rows;
-  std::vector<int> seen(static_cast<std::size_t>(model.mesh_dofs()), 0);
+  std::vector<RowSpec> spec;
   for (std::size_t k = 0; k < L.lines.size(); ++k) {
     const int line = static_cast<int>(k + 1);
     std::string s(L.lines[k]);
@@ -211,6 +222,19 @@ std::vector<DofRow> read_dof_map(const std::filesystem::path& file, bool calculi
     if (f.size() != 2 || !to_long(f[0], tag) || !to_long(f[1], c))
       fail(file, line, std::string(calculix ? "'node.direction'" : "'node component'") + " expected, got '" +
                            std::string(L.lines[k]) + "'");
+    spec.push_back({tag, c, line});
+  }
+  return check_rows(file, spec, model);
+}
+
+std::vector<DofRow> check_rows(const std::filesystem::path& map_file, const std::vector<RowSpec>& spec, const FeModel& model) {
+  const Mesh& mesh = *model.mesh;
+  std::unordered_map<std::size_t, Index> by_tag;
+  for (Index n = 0; n < mesh.num_nodes(); ++n) by_tag.emplace(mesh.node_tag(n), n);
+  std::vector<DofRow> rows;
+  std::vector<int> seen(static_cast<std::size_t>(model.mesh_dofs()), 0);
+  for (const auto& [tag, c, line, in] : spec) {
+    const std::filesystem::path& file = in ? *in : map_file;
     if (c < 1 || c > 6) fail(file, line, "component " + std::to_string(c) + " (1, 2, 3: translations x, y, z)");
     if (c > 3)
       fail(file, line, "rotational DOF " + std::to_string(c) + " of node " + std::to_string(tag) +
@@ -233,11 +257,46 @@ std::vector<DofRow> read_dof_map(const std::filesystem::path& file, bool calculi
       int c = 0;
       bool itf = false;
       model.dof_owner(d, n, c, itf);
-      fail(file, 0, "node " + std::to_string(mesh.node_tag(n)) + " component " + std::to_string(c + 1) +
+      fail(map_file, 0, "node " + std::to_string(mesh.node_tag(n)) + " component " + std::to_string(c + 1) +
                         " of the deck's elements has no row in the DOF map (" + std::to_string(rows.size()) +
                         " rows for the elements' " + std::to_string(model.mesh_dofs()) + " DOFs)");
     }
   return rows;
+}
+
+// K and M given by node and DOF (Abaqus, DMIG): the rows are the node DOFs either names, in
+// (node, DOF) order, checked against the deck as a DOF map is; each file's entries become a
+// symmetric matrix on them (one triangle or both, `square`: both, checked).
+struct NodeDofMatrices {
+  std::vector<DofRow> map;
+  FileMatrix K, M;
+};
+NodeDofMatrices node_dof_matrices(const FeModel& model, const std::filesystem::path& kfile, const std::vector<NodeDofEntry>& k,
+                                  const std::filesystem::path& mfile, const std::vector<NodeDofEntry>& m, bool square) {
+  std::map<std::pair<long long, long long>, std::pair<int, const std::filesystem::path*>> first;  // (node, DOF) -> line, file
+  for (const auto* e : {&k, &m})
+    for (const auto& x : *e) {
+      const auto* f = e == &k ? &kfile : &mfile;
+      first.emplace(std::pair(x.row_node, x.row_dof), std::pair(x.line, f));
+      first.emplace(std::pair(x.col_node, x.col_dof), std::pair(x.line, f));
+    }
+  std::map<std::pair<long long, long long>, Index> row;
+  std::vector<RowSpec> spec;
+  for (const auto& [key, where] : first) {
+    row.emplace(key, static_cast<Index>(row.size()));
+    spec.push_back({key.first, key.second, where.first, where.second});
+  }
+  NodeDofMatrices out;
+  out.map = check_rows(kfile, spec, model);
+  auto fill = [&](FileMatrix& A, const std::filesystem::path& file, const std::vector<NodeDofEntry>& e) {
+    A.n = static_cast<Index>(row.size());
+    for (const auto& x : e)
+      add_entry(A, file, x.line, row.at({x.row_node, x.row_dof}) + 1, row.at({x.col_node, x.col_dof}) + 1, x.value);
+    finish(A, file, square, !square);
+  };
+  fill(out.K, kfile, k);
+  fill(out.M, mfile, m);
+  return out;
 }
 
 // K's structure against the deck's elements: every node pair K couples must share an element
@@ -304,11 +363,27 @@ MatrixInput read_matrix_input(const FeModel& model, const PartSpec& part) {
       throw FormatError(part.file.string(), "matrices",
                         "the deck has shell or beam elements (rotational DOFs): assembled matrices are taken for solids' "
                         "nodes only (three translations a node)");
-  const bool ccx = spec.format == MatrixInputSpec::Format::Calculix;
-  const std::vector<DofRow> map = read_dof_map(spec.dofs, ccx, model);
-  const Index nf = static_cast<Index>(map.size());
-  const FileMatrix Kf = ccx ? read_calculix(spec.K, nf) : read_matrix_market(spec.K, nf);
-  const FileMatrix Mf = ccx ? read_calculix(spec.M, nf) : read_matrix_market(spec.M, nf);
+  using F = MatrixInputSpec::Format;
+  std::vector<DofRow> map;
+  FileMatrix Kf, Mf;
+  if (spec.format == F::Abaqus || spec.format == F::Dmig) {
+    bool square = false;
+    const auto k = spec.format == F::Abaqus ? read_abaqus_matrix(spec.K) : read_dmig_matrix(spec.K, spec.K_name, square);
+    bool square_m = false;
+    const auto m = spec.format == F::Abaqus ? read_abaqus_matrix(spec.M) : read_dmig_matrix(spec.M, spec.M_name, square_m);
+    if (square != square_m)
+      fail(spec.M, 0, "DMIG " + spec.M_name + " and " + spec.K_name + " differ in their form (IFO 1 and 6); one form for both is expected");
+    auto nd = node_dof_matrices(model, spec.K, k, spec.M, m, square);
+    map = std::move(nd.map);
+    Kf = std::move(nd.K);
+    Mf = std::move(nd.M);
+  } else {
+    const bool ccx = spec.format == F::Calculix;
+    map = read_dof_map(spec.dofs, ccx, model);
+    const Index nf = static_cast<Index>(map.size());
+    Kf = ccx ? read_calculix(spec.K, nf) : read_matrix_market(spec.K, nf);
+    Mf = ccx ? read_calculix(spec.M, nf) : read_matrix_market(spec.M, nf);
+  }
   check_structure(model, spec, Kf, map);
 
   // M = Ms (x) I3: no entry couples two components, and the three components' entries of a

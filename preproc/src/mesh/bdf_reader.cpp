@@ -1,8 +1,11 @@
 #include "bdf_reader.hpp"
 
+#include "bdf_cards.hpp"
+
 #include "ffr/formats/h5.hpp"
 #include "ffr/formats/text_file.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -21,200 +24,7 @@ namespace {
 
 using formats::FormatError;
 
-std::string upper(std::string_view s) {
-  std::string u(s);
-  for (char& c : u) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return u;
-}
-
-std::string trim(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return std::string(s);
-}
-
-// A card: its name (without the large-field '*') and its data fields, field 2 of the first
-// line at index 0, 8 fields per small-field line and per two large-field lines, as the
-// Nastran Quick Reference Guide numbers them.
-struct Card {
-  std::string name;
-  std::vector<std::string> f;
-  int line = 0;
-};
-
-// Small-field (8 characters), large-field (16, the name ending in '*', continuation lines
-// starting with '*') and free-field (commas) lines; '$' starts a comment; a line whose first
-// field is blank or starts with '+' or '*' continues the card before it.
-std::vector<Card> read_cards(const std::string& file, const std::string& text) {
-  std::vector<Card> cards;
-  // Executive and case control before BEGIN BULK select the solution: passed over.
-  bool bulk = true;
-  {
-    std::size_t p = 0;
-    while (p < text.size()) {
-      const std::size_t e = text.find('\n', p);
-      const std::string l = upper(trim(std::string_view(text).substr(p, e == std::string::npos ? std::string::npos : e - p)));
-      if (l.rfind("BEGIN", 0) == 0 && l.find("BULK") != std::string::npos) {
-        bulk = false;
-        break;
-      }
-      p = e == std::string::npos ? text.size() : e + 1;
-    }
-  }
-  std::size_t p = 0;
-  int line_no = 0;
-  while (p < text.size()) {
-    const std::size_t e = text.find('\n', p);
-    std::string raw = text.substr(p, e == std::string::npos ? std::string::npos : e - p);
-    p = e == std::string::npos ? text.size() : e + 1;
-    ++line_no;
-    if (const auto c = raw.find('$'); c != std::string::npos) raw.erase(c);
-    // Tabs to the next multiple of 8 columns.
-    std::string l;
-    for (char c : raw) {
-      if (c == '\r') continue;
-      if (c == '\t') l.append(8 - l.size() % 8, ' ');
-      else l += c;
-    }
-    const std::string t = upper(trim(l));
-    if (t.empty()) continue;
-    if (!bulk) {
-      if (t.rfind("BEGIN", 0) == 0 && t.find("BULK") != std::string::npos) bulk = true;
-      continue;
-    }
-    if (t.rfind("ENDDATA", 0) == 0) break;
-    const auto at = [&](const std::string& what) { return FormatError(file, "line " + std::to_string(line_no), what); };
-
-    std::string first;
-    std::vector<std::string> data;
-    if (l.find(',') != std::string::npos) {
-      std::vector<std::string> parts;
-      std::size_t b = 0;
-      for (;;) {
-        const std::size_t c = l.find(',', b);
-        parts.push_back(upper(trim(std::string_view(l).substr(b, c == std::string::npos ? std::string::npos : c - b))));
-        if (c == std::string::npos) break;
-        b = c + 1;
-      }
-      first = parts[0];
-      const bool large = (!first.empty() && first.back() == '*') || (!first.empty() && first[0] == '*');
-      const std::size_t per_line = large ? 4 : 8;
-      data.assign(parts.begin() + 1, parts.end());
-      // A last field beyond the line's data fields is its continuation marker.
-      if (data.size() == per_line + 1) {
-        // Never a data field: a number there would be lost.
-        if (!data.back().empty() && data.back()[0] != '+' && data.back()[0] != '*')
-          throw at("field 10 of a free-field line is its continuation marker (blank, '+...' or '*...'), found '" +
-                   data.back() + "': " + std::to_string(per_line) + " data fields a line");
-        data.pop_back();
-      }
-      if (data.size() > per_line)
-        throw at("a free-field line holds at most " + std::to_string(per_line) +
-                 " data fields and a continuation marker; found " + std::to_string(data.size()));
-      data.resize(per_line);
-    } else {
-      first = upper(trim(l.substr(0, std::min<std::size_t>(8, l.size()))));
-      const bool large = (!first.empty() && first.back() == '*') || (!first.empty() && first[0] == '*');
-      const std::size_t width = large ? 16 : 8, count = large ? 4 : 8;
-      for (std::size_t k = 0; k < count; ++k) {
-        const std::size_t b = 8 + k * width;
-        data.push_back(b < l.size() ? upper(trim(l.substr(b, std::min(width, l.size() - b)))) : std::string());
-      }
-      if (l.size() > 80 && !trim(l.substr(80)).empty()) throw at("characters beyond column 80 of a fixed-field line");
-    }
-    const bool continuation = first.empty() || first[0] == '+' || first[0] == '*';
-    if (continuation) {
-      if (cards.empty()) throw at("a continuation line without a card before it");
-      cards.back().f.insert(cards.back().f.end(), data.begin(), data.end());
-    } else {
-      Card c;
-      c.name = first.back() == '*' ? first.substr(0, first.size() - 1) : first;
-      c.f = std::move(data);
-      c.line = line_no;
-      cards.push_back(std::move(c));
-    }
-  }
-  if (!bulk) throw FormatError(file, "", "BEGIN BULK without bulk data after it");
-  return cards;
-}
-
-// The fields of one card, read with the card's name, line and id in every message.
-class Fields {
- public:
-  Fields(const std::string& file, const Card& c) : file_(file), c_(c) {}
-
-  [[noreturn]] void fail(const std::string& what) const {
-    std::string id = c_.f.empty() ? std::string() : " " + c_.f[0];
-    throw FormatError(file_, "line " + std::to_string(c_.line) + " (" + c_.name + id + ")", what);
-  }
-  // Field k of the card as the Quick Reference numbers it (2 = the first data field).
-  const std::string& raw(std::size_t k) const {
-    static const std::string blank;
-    return k - 2 < c_.f.size() ? c_.f[k - 2] : blank;
-  }
-  bool blank(std::size_t k) const { return raw(k).empty(); }
-  // Field k as the Quick Reference Guide shows it: field 2..9 of the card's first line, or of
-  // its n-th continuation line (8 data fields a line).
-  static std::string at(std::size_t k) {
-    const std::size_t line = (k - 2) / 8, field = (k - 2) % 8 + 2;
-    return line == 0 ? "field " + std::to_string(field)
-                     : "continuation " + std::to_string(line) + ", field " + std::to_string(field);
-  }
-
-  long long integer(std::size_t k, const char* what) const {
-    const std::string& s = raw(k);
-    long long v = 0;
-    const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size())
-      fail(at(k) + " (" + what + "): expected an integer, found '" + s + "'");
-    return v;
-  }
-  std::size_t id(std::size_t k, const char* what) const {
-    const long long v = integer(k, what);
-    if (v < 1) fail(at(k) + " (" + what + "): expected a positive id, found " + raw(k));
-    return static_cast<std::size_t>(v);
-  }
-  long long integer_or(std::size_t k, const char* what, long long dflt) const { return blank(k) ? dflt : integer(k, what); }
-
-  // Nastran reals: 1.5E-3, 1.5D-3, 1.5-3 (an exponent without E), 7.+4, .5; integers too.
-  double real(std::size_t k, const char* what) const {
-    std::string s = raw(k);
-    for (char& ch : s)
-      if (ch == 'D') ch = 'E';
-    if (s.find('E') == std::string::npos)
-      for (std::size_t i = 1; i < s.size(); ++i)
-        if ((s[i] == '+' || s[i] == '-') && s[i - 1] != 'E') {
-          s = s.substr(0, i) + 'E' + s.substr(i);
-          break;
-        }
-    const char* b = s.data();
-    if (!s.empty() && s[0] == '+') ++b;
-    double v = 0;
-    const auto r = std::from_chars(b, s.data() + s.size(), v);
-    if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v))
-      fail(at(k) + " (" + what + "): expected a number, found '" + raw(k) + "'");
-    return v;
-  }
-  std::optional<double> real_opt(std::size_t k, const char* what) const {
-    return blank(k) ? std::nullopt : std::optional<double>(real(k, what));
-  }
-  double real_or(std::size_t k, const char* what, double dflt) const { return blank(k) ? dflt : real(k, what); }
-
-  // Fields that would change the model: refused unless blank (or zero).
-  void require_blank(std::size_t first, std::size_t last, const char* why) const {
-    for (std::size_t k = first; k <= last; ++k)
-      if (!blank(k)) fail(at(k) + " ('" + raw(k) + "') is not supported: " + why);
-  }
-  void require_zero(std::size_t k, const char* what) const {
-    if (!blank(k) && real(k, what) != 0.0) fail(at(k) + " (" + what + ") is not supported unless 0");
-  }
-  std::size_t size() const { return c_.f.size() + 1; }  // the last field number
-  int line() const { return c_.line; }
-
- private:
-  const std::string& file_;
-  const Card& c_;
-};
+std::string upper(std::string_view s) { return bdf_upper(s); }
 
 struct ElementCard {
   const char* name;
@@ -262,6 +72,7 @@ struct Bulk {
   std::map<std::size_t, Bar> bars;       // by element index
   std::map<std::size_t, Property> properties;
   std::map<std::size_t, const Card*> materials;
+  std::vector<const Card*> conm2;
   std::vector<Card> cards;
 };
 
@@ -414,8 +225,10 @@ Bulk parse(const std::string& file) {
                                       "NOCOMPS, MAXRATIO)");
     } else if (c.name == "CBEAM" || c.name == "PBEAM") {
       f.fail(c.name + " is not supported: give the beam as CBAR with PBAR");
-    } else if (c.name == "CONM1" || c.name == "CONM2") {
-      f.fail(c.name + " is not supported: give the mass in the part file's \"point_masses\"");
+    } else if (c.name == "CONM2") {
+      b.conm2.push_back(&c);
+    } else if (c.name == "CONM1") {
+      f.fail("CONM1 (a 6 x 6 mass matrix) is not supported: give the mass as CONM2 or in the part file's \"point_masses\"");
     } else if (c.name == "RBE2" || c.name == "RBE3" || c.name == "RBAR") {
       f.fail(c.name + " is not supported: give the coupling as an interface of the part file (rigid or averaged)");
     } else if (c.name.rfind("CORD", 0) == 0) {
@@ -516,6 +329,47 @@ bool is_bdf(const std::filesystem::path& file) {
 }
 
 std::vector<DeckSection> read_bdf_sections(const std::string& file) { return sections(parse(file)); }
+
+std::vector<DeckPointMass> read_bdf_point_masses(const std::string& file) {
+  const Bulk b = parse(file);
+  std::map<std::size_t, std::size_t> grid;  // id -> index
+  for (std::size_t i = 0; i < b.mesh.node_ids.size(); ++i) grid.emplace(b.mesh.node_ids[i], i);
+  std::vector<DeckPointMass> out;
+  for (const Card* c : b.conm2) {
+    const Fields f(file, *c);
+    DeckPointMass m;
+    m.eid = f.id(2, "EID");
+    m.grid = f.id(3, "G");
+    const auto g = grid.find(m.grid);
+    if (g == grid.end()) f.fail(Fields::at(3) + " (G): grid " + std::to_string(m.grid) + " is not defined");
+    const Eigen::Vector3d x(b.mesh.xyz[3 * g->second], b.mesh.xyz[3 * g->second + 1], b.mesh.xyz[3 * g->second + 2]);
+    m.at = x;
+    const long long cid = f.integer_or(4, "CID", 0);
+    if (cid != 0 && cid != -1) f.fail(Fields::at(4) + " (CID): coordinate systems are not supported (0, blank or -1)");
+    m.mass = f.real(5, "M");
+    if (!(m.mass > 0)) f.fail(Fields::at(5) + " (M): a positive mass is expected");
+    const Eigen::Vector3d X(f.real_or(6, "X1", 0.0), f.real_or(7, "X2", 0.0), f.real_or(8, "X3", 0.0));
+    // CID = -1: X is the centre in the basic system; otherwise its offset from the grid.
+    m.offset = cid == -1 ? Eigen::Vector3d(X - x) : X;
+    f.require_blank(9, 9, "field 9 of CONM2 is blank");
+    // Quick Reference Guide, CONM2: the inertia about the centre is
+    // [I11 -I21 -I31; -I21 I22 -I32; -I31 -I32 I33].
+    const double I11 = f.real_or(10, "I11", 0), I21 = f.real_or(11, "I21", 0), I22 = f.real_or(12, "I22", 0),
+                 I31 = f.real_or(13, "I31", 0), I32 = f.real_or(14, "I32", 0), I33 = f.real_or(15, "I33", 0);
+    m.inertia << I11, -I21, -I31, -I21, I22, -I32, -I31, -I32, I33;
+    {
+      const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m.inertia).eigenvalues();
+      const double tol = 1e-12 * std::max(1.0, ev.cwiseAbs().maxCoeff());
+      if (ev.minCoeff() < -tol) f.fail("continuation 1 (I11 ... I33): the inertia must be positive semi-definite");
+      if (ev(0) + ev(1) < ev(2) - tol)
+        f.fail("continuation 1 (I11 ... I33): the principal moments violate the triangle inequality (not a physical body)");
+    }
+    f.require_blank(16, f.size(), "CONM2 has 15 fields");
+    m.where = "line " + std::to_string(c->line) + " (CONM2 " + std::to_string(m.eid) + ")";
+    out.push_back(m);
+  }
+  return out;
+}
 
 Mesh read_bdf(const std::string& file, MeshReport* report) {
   const auto t0 = std::chrono::steady_clock::now();

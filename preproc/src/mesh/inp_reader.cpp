@@ -51,7 +51,9 @@ const std::vector<DeckType>& deck_types() {
 std::string refusal(const std::string& type) {
   if (type == "C3D8")
     return "C3D8 (full-integration trilinear brick) is not ffr's HEX8, which is the incompatible-mode brick "
-           "C3D8I; give TYPE=C3D8I to accept that element";
+           "C3D8I: give TYPE=C3D8I to take ffr's brick (softer than C3D8 in bending, so the "
+           "frequencies differ from the C3D8 model's), or mesh the part with C3D20 (quadratic bricks, which ffr "
+           "integrates as CalculiX does) to keep the FE code's results";
   if (type == "C3D8R" || type == "C3D20R" || type == "S4R" || type == "C3D10M" || type == "C3D10T")
     return type + " (reduced or modified integration) is not in ffr's element library";
   return "element type " + type + " is not in ffr's element library";

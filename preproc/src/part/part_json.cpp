@@ -82,6 +82,17 @@ void add_deck_sections(PartSpec& p) {
     else if (s.kind == detail::DeckSection::Kind::Beam) p.beams.push_back(s.beam);
     else p.materials.push_back({s.group, s.mat});
   }
+  // Nastran's CONM2: attached masses on their grids (named conm2_<EID>), as "point_masses".
+  if (detail::is_bdf(p.geometry))
+    for (const auto& m : detail::read_bdf_point_masses(deck)) {
+      PointMassSpec s;
+      s.name = "conm2_" + std::to_string(m.eid);
+      s.at = m.at;
+      s.mass = m.mass;
+      s.com_offset = m.offset;
+      s.inertia = m.inertia;
+      p.point_masses.push_back(s);
+    }
 }
 
 Units read_units(const JsonNode& n) {
@@ -275,12 +286,24 @@ const InterfaceSpec* PartSpec::find_interface(const std::string& name) const {
 // "matrices": K and M from another FE code. What needs element stresses or ffr's element
 // kernels is refused here, by the field that asks for it.
 MatrixInputSpec read_matrices(const JsonNode& n, const PartSpec& p) {
-  n.allow_only({"K", "M", "format", "dofs"});
+  n.allow_only({"K", "M", "format", "dofs", "K_name", "M_name"});
   MatrixInputSpec m;
   const std::string f = n.at("format").string();
   if (f == "matrix_market") m.format = MatrixInputSpec::Format::MatrixMarket;
   else if (f == "calculix") m.format = MatrixInputSpec::Format::Calculix;
-  else n.at("format").fail("unknown matrix format '" + f + "' (matrix_market, calculix)");
+  else if (f == "abaqus") m.format = MatrixInputSpec::Format::Abaqus;
+  else if (f == "dmig") m.format = MatrixInputSpec::Format::Dmig;
+  else n.at("format").fail("unknown matrix format '" + f + "' (matrix_market, calculix, abaqus, dmig)");
+  // Abaqus and DMIG entries name their node and DOF: no DOF map.
+  const bool by_node = m.format == MatrixInputSpec::Format::Abaqus || m.format == MatrixInputSpec::Format::Dmig;
+  if (by_node && n.has("dofs")) n.at("dofs").fail("not used with format '" + f + "': its entries name their nodes and DOFs");
+  for (const char* key : {"K_name", "M_name"})
+    if (n.has(key)) {
+      if (m.format != MatrixInputSpec::Format::Dmig) n.at(key).fail("only for format 'dmig' (the DMIG matrix's name)");
+      const std::string v = n.at(key).string();
+      if (v.empty() || v.size() > 8) n.at(key).fail("a DMIG name of 1 to 8 characters is expected");
+      (key[0] == 'K' ? m.K_name : m.M_name) = v;
+    }
   const auto dir = p.file.parent_path();
   auto file = [&](const char* key, std::filesystem::path& out) {
     const JsonNode k = n.at(key);
@@ -298,7 +321,7 @@ MatrixInputSpec read_matrices(const JsonNode& n, const PartSpec& p) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(m.dofs, ec))
       n.fail("no \"dofs\" given and no " + m.dofs.string() + " beside K (CalculiX writes job.dof with job.sti)");
-  } else n.at("dofs");  // required: fails naming the field
+  } else if (!by_node) n.at("dofs");  // required: fails naming the field
   if (!detail::is_inp(p.geometry) && !detail::is_bdf(p.geometry))
     n.fail("assembled matrices need the nodes of an FE deck as \"geometry\" (.inp, .bdf/.dat/.nas)");
   if (p.stiffening)
@@ -306,6 +329,10 @@ MatrixInputSpec read_matrices(const JsonNode& n, const PartSpec& p) {
            "the elements");
   if (!p.preload.empty()) n.fail("a \"preload\" needs element stresses, which assembled matrices do not have");
   if (p.stress) n.fail("\"stress\" recovery needs ffr's own elements and material, which assembled matrices do not have");
+  for (const auto& pm : p.point_masses)
+    if (pm.name.rfind("conm2_", 0) == 0 && detail::is_bdf(p.geometry))
+      n.fail("the deck's CONM2 " + pm.name.substr(6) + " cannot be added to assembled matrices; the mass matrix must " +
+             "hold it (drop the CONM2 cards from the deck given as \"geometry\")");
   if (!p.point_masses.empty())
     n.fail("\"point_masses\" cannot be added to assembled matrices; put them into the mass matrix");
   return m;

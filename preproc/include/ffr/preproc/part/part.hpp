@@ -119,10 +119,11 @@ struct StressSpec {
 /// (PART_FILE.md, "Assembled matrices"). The deck of `geometry` gives the nodes, their
 /// coordinates, the sets and the elements that say which nodes carry DOFs.
 struct MatrixInputSpec {
-  enum class Format { MatrixMarket, Calculix };
+  enum class Format { MatrixMarket, Calculix, Abaqus, Dmig };
   Format format = Format::MatrixMarket;
   std::filesystem::path K, M;  ///< resolved against the part file's folder
   std::filesystem::path dofs;  ///< row i of K and M = line i: "node component" (CalculiX: node.component)
+  std::string K_name = "KAAX", M_name = "MAAX";  ///< DMIG: the matrices' names in K and M
   bool given() const { return !K.empty(); }
 };
 
