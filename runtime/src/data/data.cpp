@@ -104,10 +104,7 @@ Data::Data(const Model& model) : state(model), start(model) {
   fK = fC = fH = MatrixXd::Zero(pair_max, pair_max);
   int joint_pair = 0;
   for (const auto& j : model.joints) joint_pair = std::max(joint_pair, pair(j.m1, j.m2));
-  for (const auto& b : model.blocks)  // a coupler's row: the bodies of its two joints
-    if (b.kind == BlockKind::Coupler)
-      joint_pair = std::max(joint_pair, (b.body1 == kGround ? 0 : model.bodies[b.body1].ncoord()) +
-                                            (b.body2 == kGround ? 0 : model.bodies[b.body2].ncoord()));
+  // (a coupler's Hessian is its two joints', each over its own pair: coupler_hessian)
   cH = MatrixXd::Zero(joint_pair, joint_pair);
   cg = Eigen::Matrix<double, 4, Eigen::Dynamic>::Zero(4, joint_pair);
   cl = VectorXd::Zero(6);

@@ -187,7 +187,8 @@ void motion_hessian(const Model& model, Data& data, const Motion& mo, double lam
 }
 
 // A coupler's row w (theta1 - ratio theta2): the two coordinates' Hessians (an angle's carries
-// the model length itself, coordinate_hessian).
+// the model length itself, coordinate_hessian), each over its own joint's two bodies (the
+// coupler may touch three: two shafts in a moving carrier).
 void coupler_hessian(const Model& model, Data& data, const ConstraintBlock& b, double lam, Target& T) {
   const Coupler& c = model.couplers[b.index];
   const double w = c.c1 == JointCoordinate::Angle ? 1.0 : 1.0 / model.length;  // the row's w over the length
@@ -196,10 +197,16 @@ void coupler_hessian(const Model& model, Data& data, const ConstraintBlock& b, d
   const double scales[2] = {w, -w * c.ratio};
   for (int k = 0; k < 2; ++k) {
     const Joint& j = model.joints[joints[k]];
-    const auto side = [&](int marker) { return model.markers[marker].body == b.body2 && b.body2 != kGround ? 2 : 1; };
+    Target Tk = T;
+    const int bs[3] = {kGround, model.markers[j.m1].body, model.markers[j.m2].body};
+    for (int side = 1; side <= 2; ++side) {
+      const bool h = integrated(data, bs[side]);
+      Tk.off[side] = h ? model.bodies[bs[side]].offset : 0;
+      Tk.nb[side] = h ? unknown_columns(model, data, bs[side]) : 0;
+    }
     // coordinate_hessian scales an angle by the length and leaves a displacement as it is.
     const double s = coords[k] == JointCoordinate::Angle ? scales[k] : scales[k] * model.length;
-    coordinate_hessian(model, data, joints[k], coords[k], lam * s, T, side(j.m1), side(j.m2));
+    coordinate_hessian(model, data, joints[k], coords[k], lam * s, Tk, 1, 2);
   }
 }
 

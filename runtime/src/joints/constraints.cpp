@@ -165,8 +165,12 @@ void motion_row(const Model& model, const Data& data, int m, double t, Rows& r) 
   r.gamma(0) = scale * (v.bias - target(2));
 }
 
-// A coupler's row w (theta1 - ratio theta2): the two coordinates' rows added.
-void coupler_row(const Model& model, const Data& data, const ConstraintBlock& b, Rows& r) {
+detail::JacobianBlock block_columns(const Model& model, Data& data, const ConstraintBlock& b, int body);
+
+// A coupler's row w (theta1 - ratio theta2): the two coordinates' rows added, each joint's
+// gradient into its own two bodies' columns (the block may touch three bodies: two shafts in a
+// moving carrier).
+void coupler_row(const Model& model, Data& data, const ConstraintBlock& b, Rows& r) {
   const Coupler& c = model.couplers[b.index];
   const double w = c.c1 == JointCoordinate::Angle ? model.length : 1.0;
   r.Phi(0) = r.Phit(0) = r.gamma(0) = 0;
@@ -175,8 +179,9 @@ void coupler_row(const Model& model, const Data& data, const ConstraintBlock& b,
   const double scales[2] = {w, -w * c.ratio};
   for (int k = 0; k < 2; ++k) {
     const Joint& j = model.joints[joints[k]];
-    const auto side = [&](int marker) { return model.markers[marker].body == b.body2 && b.body2 != kGround ? 2 : 1; };
-    const auto v = coordinate(model, data, joints[k], coords[k], r.jacobian ? &r : nullptr, 0, scales[k], side(j.m1), side(j.m2));
+    Rows rk{r.Phi, r.Phit, r.gamma, block_columns(model, data, b, model.markers[j.m1].body),
+            block_columns(model, data, b, model.markers[j.m2].body), r.jacobian, 0};
+    const auto v = coordinate(model, data, joints[k], coords[k], r.jacobian ? &rk : nullptr, 0, scales[k], 1, 2);
     r.Phi(0) += scales[k] * v.value;
     r.Phit(0) += scales[k] * v.given;
     r.gamma(0) += scales[k] * v.bias;
@@ -278,7 +283,6 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
   for (int bi = 0; bi < data.nblocks; ++bi) {
     const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
     const auto J1 = block_columns(model, data, b, b.body1);
-    const auto J2 = block_columns(model, data, b, b.body2);
     double* w = data.penalty_rows.data();
     for (int r = 0; r < b.rows; ++r) w[r] = f * alpha(b.row0 + r);
     // Side a's rows weighted once (buf), then its products with each side's columns from
@@ -296,19 +300,21 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
       add(J1, o, o, 3, 9, 9);
       continue;
     }
-    // A joint within one body has its rows once in Phiq: its term is that block's alone.
-    const bool h1 = integrated(data, b.body1), h2 = integrated(data, b.body2) && b.body2 != b.body1;
-    const int o1 = h1 ? model.bodies[b.body1].offset : 0, n1 = h1 ? unknown_columns(model, data, b.body1) : 0;
-    const int o2 = h2 ? model.bodies[b.body2].offset : 0, n2 = h2 ? unknown_columns(model, data, b.body2) : 0;
-    if (h1) {
-      weigh(J1, 0, n1);
-      add(J1, o1, o1, 0, n1, n1);
-      if (h2) add(J2, o1, o2, 0, n1, n2);
+    // The block's distinct integrated bodies (a joint's two, a coupler's up to three): the
+    // rows of a joint within one body are in Phiq once, so each body counts once.
+    int bodies[3], nbod = 0;
+    for (int body : {b.body1, b.body2, b.body3}) {
+      if (!integrated(data, body)) continue;
+      bool seen = false;
+      for (int k = 0; k < nbod; ++k) seen = seen || bodies[k] == body;
+      if (!seen) bodies[nbod++] = body;
     }
-    if (h2) {
-      weigh(J2, 0, n2);
-      add(J2, o2, o2, 0, n2, n2);
-      if (h1) add(J1, o2, o1, 0, n2, n1);
+    for (int ia = 0; ia < nbod; ++ia) {
+      const int oa = model.bodies[bodies[ia]].offset, na = unknown_columns(model, data, bodies[ia]);
+      weigh(block_columns(model, data, b, bodies[ia]), 0, na);
+      for (int ib = 0; ib < nbod; ++ib)
+        add(block_columns(model, data, b, bodies[ib]), oa, model.bodies[bodies[ib]].offset, 0, na,
+            unknown_columns(model, data, bodies[ib]));
     }
   }
 }

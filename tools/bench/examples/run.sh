@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Real-time factor of the examples: simulated machine time over the wall time of ffr-sim's time
-# loop (its integration_seconds: no loading, no writing), on one core, best of N runs, with the
-# model's size. Each example's run.sh is run once first (it reduces its parts and writes its
-# model); then ffr-sim is timed on that model.
+# Real-time factor of the examples (the precision chamber; the washing machine's 10 s spin-up):
+# simulated machine time over the wall time of ffr-sim's time loop (its integration_seconds: no
+# loading, no writing), on one core, best of N runs, with the model's size. Each example's run.sh
+# is run once first (it reduces its parts and writes its model); then ffr-sim is timed on that
+# model.
 # Usage: tools/bench/examples/run.sh [RUNS]   (default 5); binaries from build/bin or $FFR_BIN.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -27,3 +28,5 @@ bench() {  # NAME DIR END: times DIR/model.json, prints one line of the table
 
 FFR_BIN=$bin bash "$root/meshes/precision_chamber/run.sh" "$work/precision_chamber" 2.0 > /dev/null
 bench precision_chamber "$work/precision_chamber" 2.0
+FFR_BIN=$bin bash "$root/meshes/washing_machine/run.sh" "$work/washing_machine" 10.0 > /dev/null
+bench washing_machine "$work/washing_machine" 10.0

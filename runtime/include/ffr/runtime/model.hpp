@@ -278,8 +278,9 @@ struct Output {
   int element = -1;                     ///< index into Model::springs, bushings or friction_dampers
 };
 
-/// Constraint equations come in blocks that touch at most two bodies, so the Jacobian is stored
-/// per block (rows x body coordinates) and the tangent is assembled from small products.
+/// Constraint equations come in blocks that touch at most two bodies (a coupler's row three: its
+/// two joints' bodies), whose columns of the dense Jacobian they fill; the tangent is assembled
+/// from small products over the pairs of a block's bodies.
 enum class BlockKind { RigidBody, Joint, Motion, Coupler };
 struct ConstraintBlock {
   BlockKind kind = BlockKind::Joint;
@@ -291,6 +292,9 @@ struct ConstraintBlock {
   /// which hold while the frames are known (held_by_lock, see order_blocks).
   int first = 0;
   bool held_by_lock = false;
+  /// A coupler's third body (a belt between two shafts turning in a moving body): its two
+  /// joints' bodies besides the ground are body1, body2, body3 in the order met.
+  int body3 = kGround;
 };
 
 /// The step's integration scheme (FORMULATION.md section 9, scheme.hpp).

@@ -1,0 +1,95 @@
+#!/usr/bin/env python3
+"""Writes model.json: the washing machine of 'Flexible multibody simulation of a washing
+machine' type models (elastic tub on springs and friction dampers in a cabinet on four feet).
+Usage: make_model.py [END_TIME] > model.json
+
+Global axes: x along the drum's axis (front +x), z up; the floor is z = 0. The tub's mesh
+(tub.geo: rear wall at x = 0, open front at x = 0.35) is placed with its axis at height 0.45.
+The drum is driven by its speed (a speed motion on its bearing in the tub); the motor's rotor
+follows through the belt, a coupler of ratio 11.25 between the rotor's shaft and the bearing
+(both turning in the moving tub)."""
+import json
+import sys
+
+end = float(sys.argv[1]) if len(sys.argv) > 1 else 10.0
+RATIO = 11.25
+TUB = (-0.175, 0.0, 0.45)  # position of the tub's mesh frame
+RPM = 3.141592653589793 / 30
+
+
+def tub(p):  # a point given in the tub's mesh frame, globally
+    return [round(p[i] + TUB[i], 6) for i in range(3)]
+
+
+# Drum speed [rpm] over time [s]: washing at 50 rpm, distribution at 90 rpm, then through the
+# suspension's resonances (2-6 Hz, 120-360 rpm) up to the 1400 rpm spin, held.
+profile = [(0.0, 0.0), (1.0, 50.0), (3.0, 50.0), (4.0, 90.0), (5.0, 90.0), (9.0, 1400.0), (10.0, 1400.0)]
+speed_t = [t for t, _ in profile]
+drum_speed = [round(v * RPM, 9) for _, v in profile]
+
+bodies = [
+    {"name": "cabinet", "type": "rigid", "mass": 30.0, "com": [0, 0, 0.42],
+     "inertia": [[2.71, 0, 0], [0, 2.71, 0], [0, 0, 1.8]],
+     "comment": "rigid: panels 0.6 x 0.6 x 0.85 m, 30 kg"},
+    {"name": "tub", "type": "flexible", "sid": "tub.sid.h5", "position": list(TUB)},
+    {"name": "drum", "type": "rigid", "mass": 7.5, "com": [0, 0.0167, 0.45],
+     "inertia": [[0.45, 0, 0], [0, 0.28, 0], [0, 0, 0.28]],
+     "comment": "7 kg drum (radius 0.25 m) with a 0.5 kg unbalance at its radius, initially at +y"},
+    {"name": "rotor", "type": "rigid", "mass": 1.2, "com": tub([0.175, 0, -0.37]),
+     "inertia": [[0.002, 0, 0], [0, 0.003, 0], [0, 0, 0.003]]},
+]
+joints = [
+    {"name": "bearing", "type": "revolute", "body1": "tub", "node1": "hub", "body2": "drum", "axis": [1, 0, 0]},
+    {"name": "motor_shaft", "type": "revolute", "body1": "tub", "node1": "motor", "offset1": [0, 0, -0.07],
+     "body2": "rotor", "axis": [1, 0, 0]},
+    {"name": "belt", "type": "coupler", "joint1": "motor_shaft", "joint2": "bearing", "ratio": RATIO},
+]
+# Three springs from the cabinet top to the tub, preloaded to carry the tub about where it is
+# drawn (left/right a quarter of its weight each at 20 degrees, front a half); the static
+# equilibrium settles the rest.
+springs = [("spring_left", [0.0875, 0.15, 0.2598], [-0.0875, 0.2, 0.85], 116.0),
+           ("spring_right", [0.0875, -0.15, 0.2598], [-0.0875, -0.2, 0.85], 116.0),
+           ("spring_front", [0.2625, 0, 0.3], [0.0875, 0, 0.85], 219.0)]
+forces = [{"name": n, "type": "spring_damper", "body1": "cabinet", "at1": top, "body2": "tub", "node2": n,
+           "k": 5000.0, "c": 20.0, "preload": pre} for n, _, top, pre in springs]
+# Two friction dampers from the tub's bottom to the cabinet floor, each with its rubber bearing
+# in series.
+for n, y in (("damper_left", 0.22), ("damper_right", -0.22)):
+    forces.append({"name": n, "type": "friction_damper", "body1": "cabinet", "at1": [0, y, 0.02],
+                   "body2": "tub", "node2": n, "force": 80.0, "series_stiffness": 3.0e4})
+# The door gasket: stiffening radially (a table per radial axis), linear axially and in rotation.
+gasket = {"x": [-0.03, -0.01, 0.0, 0.01, 0.03], "value": [-240.0, -30.0, 0.0, 30.0, 240.0]}
+forces.append({"name": "gasket", "type": "bushing", "body1": "cabinet", "body2": "tub", "node2": "rim",
+               "stiffness": [3000.0, 0, 0, 20.0, 20.0, 20.0], "damping": [30.0, 30.0, 30.0, 0.2, 0.2, 0.2],
+               "tables": {"y": gasket, "z": gasket}})
+# Four rubber feet on the floor.
+feet = []
+for n, x, y in (("foot_front_left", 0.27, 0.27), ("foot_front_right", 0.27, -0.27),
+                ("foot_rear_left", -0.27, 0.27), ("foot_rear_right", -0.27, -0.27)):
+    forces.append({"name": n, "type": "bushing", "body1": "ground", "body2": "cabinet", "at": [x, y, 0.0],
+                   "stiffness": [1.0e5, 1.0e5, 4.0e5, 0, 0, 0], "damping": [300.0, 300.0, 800.0, 0, 0, 0]})
+    feet.append(n)
+
+model = {
+    "comment": "Washing machine: elastic tub (shell, motor and counterweight attached) on three springs and two "
+               "friction dampers in a rigid cabinet on four feet; drum with an unbalance spun up to 1400 rpm. "
+               "Written by make_model.py.",
+    "gravity": [0, 0, -9.81],
+    "bodies": bodies,
+    "joints": joints,
+    "forces": forces,
+    "motions": [{"joint": "bearing", "speed": {"t": speed_t, "value": drum_speed}}],
+    # h = 0.25 ms: the rotor spins at up to 1650 rad/s, 0.41 rad a step (at 0.5 ms, 0.82 rad a step,
+    # the trapezoidal rule's error in the fast rotor's gyroscopic coupling tilted the tub by 7 degrees).
+    "solver": {"end": end, "step": 2.5e-4, "output_every": 20, "initial_equilibrium": True},
+    "outputs": [{"name": "drum_speed", "type": "joint_rate", "joint": "bearing"},
+                {"name": "rotor_speed", "type": "joint_rate", "joint": "motor_shaft"},
+                {"name": "drum_omega", "type": "body_angular_velocity", "body": "drum"},
+                {"name": "rotor_omega", "type": "body_angular_velocity", "body": "rotor"},
+                {"name": "hub", "type": "node_position", "body": "tub", "node": "hub"},
+                {"name": "rim", "type": "node_position", "body": "tub", "node": "rim"},
+                {"name": "energy", "type": "energy"}]
+               + [{"name": n, "type": "element_force", "force": n} for n in feet],
+}
+json.dump(model, sys.stdout, indent=1)
+sys.stdout.write("\n")

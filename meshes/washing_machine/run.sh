@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# The washing machine: reduce its tub (ffr-reduce), settle it statically and spin the drum up
+# from washing speed through the suspension's resonances to 1400 rpm (ffr-sim), plot the tub's
+# orbit and the foot forces over the drum speed (plot.py, SVG) and check the results (check.py).
+# Usage: run.sh [OUT_DIR [END_TIME]]   defaults: ./out and 10 s; the test runs 0.3 s.
+# The binaries come from build/bin, or from $FFR_BIN.
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+bin=${FFR_BIN:-$here/../../build/bin}
+out=${1:-$here/out}
+end=${2:-10.0}
+mkdir -p "$out"
+cp "$here/tub.geo" "$here/tub.json" "$out/"
+echo "== reduce the tub: 2 mm steel shell with motor and counterweight, 10 free modes with stiffening"
+"$bin/ffr-reduce" "$out/tub.json" -o "$out/tub.sid.h5" --quiet
+echo "== simulate ${end} s: settle on springs, dampers and feet, then the drum-speed profile to 1400 rpm"
+python3 "$here/make_model.py" "$end" > "$out/model.json"
+"$bin/ffr-sim" "$out/model.json" -o "$out/machine.h5" --csv "$out/machine.csv" --quiet
+echo "== plot the tub's orbit and the foot forces over drum speed"
+python3 "$here/plot.py" "$out/machine.csv" "$out"
+python3 "$here/check.py" "$out/machine.csv" "$end"
+echo "outputs in $out: tub.sid.h5, model.json, machine.h5/.csv, orbit.svg, foot_forces.svg"
