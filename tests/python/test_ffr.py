@@ -375,8 +375,8 @@ class StressTest(unittest.TestCase):
                                    "node2": "root"}],
                        "solver": {"end": 0.01, "step": 0.001},
                        "outputs": [{"name": "q", "type": "modal_coordinates", "body": "bar"}]}, f)
-        cls.run = os.path.join(cls.dir, "run.h5")
-        r = tool("ffr-sim", cls.model, "-o", cls.run, "--quiet")
+        cls.results = os.path.join(cls.dir, "run.h5")
+        r = tool("ffr-sim", cls.model, "-o", cls.results, "--quiet")
         if r.returncode != 0:
             raise RuntimeError("ffr-sim failed: " + r.stderr)
 
@@ -385,11 +385,11 @@ class StressTest(unittest.TestCase):
         shutil.rmtree(cls.dir, ignore_errors=True)
 
     def test_same_numbers_as_ffr_info(self):
-        r = tool("ffr-info", self.run, "--stress", "bar", "--json")
+        r = tool("ffr-info", self.results, "--stress", "bar", "--json")
         self.assertEqual(r.returncode, 0, r.stderr)
         ref = json.loads(r.stdout)
         for model in (None, self.model):
-            s = ffr.stress(self.run, "bar", model=model)
+            s = ffr.stress(self.results, "bar", model=model)
             self.assertTrue(same_bits(s["time"], np.array(ref["time"])))
             self.assertTrue(same_bits(s["nodes"], np.array([n["node"] for n in ref["nodes"]], dtype=np.int64)))
             self.assertTrue(same_bits(s["position"], np.array([n["position"] for n in ref["nodes"]])))
@@ -407,16 +407,16 @@ class StressTest(unittest.TestCase):
         np.testing.assert_allclose(s["von_mises"], vm, rtol=1e-9, atol=1e-9 * s["von_mises"].max())
 
     def test_bad_arguments(self):
-        r = tool("ffr-info", self.run, "--stress", "wheel")
+        r = tool("ffr-info", self.results, "--stress", "wheel")
         self.assertEqual(r.returncode, 2)
         with self.assertRaises(ffr.InputError) as e:
-            ffr.stress(self.run, "wheel")
+            ffr.stress(self.results, "wheel")
         self.assertIn("no body named 'wheel'", str(e.exception))
         self.assertEqual(r.stderr.strip(), "ffr-info: error: " + str(e.exception))
         with self.assertRaisesRegex(TypeError, "body must be a str"):
-            ffr.stress(self.run, 3)
+            ffr.stress(self.results, 3)
         with self.assertRaisesRegex(TypeError, "model must be a path"):
-            ffr.stress(self.run, "bar", model=3)
+            ffr.stress(self.results, "bar", model=3)
         with self.assertRaises(ffr.InputError):
             ffr.stress(os.path.join(self.dir, "missing.h5"), "bar")
 
