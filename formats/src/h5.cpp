@@ -1,7 +1,7 @@
 #include "ffr/formats/h5.hpp"
 
 #include "ffr/formats/content_checksum.hpp"
-#include "stale_temp.hpp"
+#include "ffr/formats/stale_temp.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "stale_temp.hpp"
+#include "ffr/formats/stale_temp.hpp"
 
 #include <cerrno>
 #include <charconv>
@@ -95,7 +95,9 @@ bool is_stale_temporary(const std::string& target_filename, const std::string& n
   return started > 0 && started > mtime_s + 2.0;
 }
 
-int remove_stale_temporaries(const std::filesystem::path& target) {
+namespace {
+
+int remove_stale(const std::filesystem::path& target, bool folders) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
@@ -107,13 +109,19 @@ int remove_stale_temporaries(const std::filesystem::path& target) {
     const std::string name = it->path().filename().string();
     if (name.compare(0, prefix.size(), prefix) != 0) continue;
     struct stat sb;
-    if (::lstat(it->path().c_str(), &sb) != 0 || !S_ISREG(sb.st_mode)) continue;
+    if (::lstat(it->path().c_str(), &sb) != 0 || !(folders ? S_ISDIR(sb.st_mode) : S_ISREG(sb.st_mode))) continue;
     const double mtime = static_cast<double>(sb.st_mtim.tv_sec) + 1e-9 * static_cast<double>(sb.st_mtim.tv_nsec);
     if (!is_stale_temporary(file, name, mtime)) continue;
     std::error_code rm;
-    if (fs::remove(it->path(), rm)) ++removed;
+    if (folders ? fs::remove_all(it->path(), rm) > 0 : fs::remove(it->path(), rm)) ++removed;
   }
   return removed;
 }
+
+}  // namespace
+
+int remove_stale_temporaries(const std::filesystem::path& target) { return remove_stale(target, false); }
+
+int remove_stale_temporary_folders(const std::filesystem::path& target) { return remove_stale(target, true); }
 
 }  // namespace ffr::formats::h5::detail

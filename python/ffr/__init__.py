@@ -22,7 +22,7 @@ from . import _ffr
 from ._ffr import Error, InputError, NotFoundError, SolverError
 
 __version__ = _ffr.__version__
-__all__ = ["reduce", "read_sid", "read_results", "Simulation", "H5Data",
+__all__ = ["reduce", "read_sid", "read_results", "stress", "Simulation", "H5Data",
            "Error", "InputError", "SolverError", "NotFoundError"]
 
 
@@ -90,6 +90,21 @@ def read_sid(path):
 def read_results(path):
     """A results file of ffr-sim: {"time": [nt], "outputs": {name: [nt, k]}, "steps", ...}."""
     return _ffr.read_results(_path(path, "ffr.read_results", "path"))
+
+
+def stress(results_path, body, model=None):
+    """Modal stress recovery of a run, the numbers of `ffr-info --stress RESULTS.h5 BODY --json`.
+
+    sigma(t) = sum_k q_k(t) S_k at the nodes of BODY's SID /stress group, q the run's
+    modal_coordinates output of BODY. model: the model file of the run (default: the one the
+    run names). Returns {"time": [nt], "nodes": [Ns] node tags, "position": [Ns, 3],
+    "von_mises": [nt, Ns], "principal": [nt, Ns, 3] (descending), "body", "sid", "output",
+    "selection"}; stresses in the SID's units (Pa).
+    """
+    if not isinstance(body, str):
+        raise TypeError(f"ffr.stress: body must be a str, not {type(body).__name__}")
+    model = "" if model is None else _path(model, "ffr.stress", "model")
+    return _ffr.stress(_path(results_path, "ffr.stress", "results_path"), body, model)
 
 
 class Simulation:

@@ -8,6 +8,7 @@
 #include "ffr/cli/process_threads.hpp"
 #include "ffr/formats/results_io.hpp"
 #include "ffr/formats/sid_io.hpp"
+#include "ffr/formats/stress_history.hpp"
 #include "ffr/formats/validate.hpp"
 #include "ffr/preproc/part/part.hpp"
 #include "ffr/preproc/pipeline.hpp"
@@ -122,6 +123,36 @@ py::dict read_results(const std::string& path) {
   return out;
 }
 
+// ffr.stress(): the stress history of formats::recover_stress, the same numbers as
+// `ffr-info --stress --json` (one implementation for both).
+py::dict stress(const std::string& path, const std::string& body, const std::string& model) {
+  const formats::StressHistory h = translated([&] { return formats::recover_stress(path, body, model); });
+  const auto nt = static_cast<py::ssize_t>(h.time.size()), ns = static_cast<py::ssize_t>(h.node.size());
+  py::array_t<double> t(nt), position({ns, py::ssize_t{3}}), vm({nt, ns}), principal({nt, ns, py::ssize_t{3}});
+  py::array_t<std::int64_t> nodes(ns);
+  for (py::ssize_t i = 0; i < nt; ++i) t.mutable_at(i) = h.time[i];
+  for (py::ssize_t j = 0; j < ns; ++j) {
+    nodes.mutable_at(j) = h.node[static_cast<std::size_t>(j)];
+    for (py::ssize_t c = 0; c < 3; ++c) position.mutable_at(j, c) = h.position(j, c);
+    const auto& P = h.principal[static_cast<std::size_t>(j)];
+    for (py::ssize_t i = 0; i < nt; ++i) {
+      vm.mutable_at(i, j) = h.von_mises(i, j);
+      for (py::ssize_t c = 0; c < 3; ++c) principal.mutable_at(i, j, c) = P(i, c);
+    }
+  }
+  py::dict out;
+  out["body"] = h.body;
+  out["sid"] = h.sid.string();
+  out["output"] = h.output;
+  out["selection"] = h.selection;
+  out["time"] = t;
+  out["nodes"] = nodes;
+  out["position"] = position;
+  out["von_mises"] = vm;
+  out["principal"] = principal;
+  return out;
+}
+
 PyObject* new_exception(py::module_& m, const char* name, PyObject* bases, const char* doc) {
   PyObject* type = PyErr_NewExceptionWithDoc((std::string("ffr.") + name).c_str(), doc, bases, nullptr);
   if (!type) throw py::error_already_set();
@@ -148,5 +179,6 @@ PYBIND11_MODULE(_ffr, m) {
   m.def("read_sid", &read_sid, py::arg("path"));
   m.def("read_h5", &read_h5_tree, py::arg("path"));
   m.def("read_results", &read_results, py::arg("path"));
+  m.def("stress", &stress, py::arg("path"), py::arg("body"), py::arg("model"));
   bind_simulation(m);
 }

@@ -26,7 +26,8 @@ motions; flexible bodies from SID files) and writes the requested outputs to OUT
       --vtk RUN.pvd   also write a ParaView collection: one frame RUN_frames/frame_NNNNNN.vtu
                       per output sample with every flexible body's deformed outer surface
                       (the SID's /visual; point data displacement, and von_mises where the
-                      SID has a /stress group) and every rigid body as its inertia box
+                      SID has a /stress group) and every rigid body as the STL surface
+                      of its "visual" key, else as its inertia box
   -q, --quiet         no progress and no notes on stderr
   -h, --help          this text
       --version       the version

@@ -1,9 +1,13 @@
 // ffr-sim --vtk: the ParaView collection of a run (vtk_series.hpp says what is in it).
 #include "vtk_series.hpp"
 
+#include "stl_reader.hpp"
+
 #include "ffr/formats/h5.hpp"
+#include "ffr/formats/json_input.hpp"
 #include "ffr/formats/modal_stress.hpp"
 #include "ffr/formats/sid_io.hpp"
+#include "ffr/formats/stale_temp.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -12,9 +16,9 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <random>
 #include <regex>
 #include <sstream>
-#include <unistd.h>
 
 namespace ffr::vtk {
 
@@ -67,6 +71,33 @@ std::string number(double x) {
   return buf;
 }
 
+// A rigid body's surface from its "visual" STL file (global, initial configuration) in its frame.
+void given_surface(const runtime::Body& b, const fs::path& stl, BodyView& v) {
+  SurfaceMesh m = read_stl(stl);
+  v.vertices.resize(m.vertices.rows(), 3);
+  for (Eigen::Index p = 0; p < m.vertices.rows(); ++p)
+    v.vertices.row(p) = (b.A0.transpose() * (m.vertices.row(p).transpose() - b.r0)).transpose();
+  v.triangles = std::move(m.triangles);
+}
+
+// The "visual" files of the model file's rigid bodies, by body name, resolved against its folder.
+// The runtime's parser has checked the key (a string naming an .stl file on a rigid body); the
+// runtime itself never reads it, so the model keeps no trace of it.
+std::map<std::string, fs::path> visual_files(const fs::path& model_file) {
+  std::map<std::string, fs::path> out;
+  const auto doc = formats::JsonDocument::load(model_file);
+  for (const auto& b : doc.root().at("bodies").items())
+    if (b.has("visual")) out[b.at("name").string()] = model_file.parent_path() / b.at("visual").string();
+  return out;
+}
+
+// The temporary name of a frames folder or collection of this process (stale_temp.hpp: a
+// killed run's ones are found and removed by the next run).
+fs::path temporary(const fs::path& target) {
+  std::random_device rd;
+  return formats::h5::detail::temporary_name(target, (static_cast<unsigned long long>(rd()) << 32) ^ rd());
+}
+
 bool is_frame_name(const std::string& s) { return std::regex_match(s, std::regex("frame_[0-9]{6,}\\.vtu")); }
 
 }  // namespace
@@ -97,7 +128,11 @@ Series::Series(const fs::path& pvd, const fs::path& model_file, runtime::Model& 
         throw std::invalid_argument("--vtk " + pvd.string() + ": " + s.frames.string() + " holds " +
                                     e.path().filename().string() + ", which is not a frame; it would be replaced");
   }
-  s.temp = dir / ("." + pvd.stem().string() + "_frames.tmp-" + std::to_string(::getpid()));
+  // Frames folders and collections of earlier runs killed before their end.
+  formats::h5::detail::remove_stale_temporary_folders(s.frames);
+  formats::h5::detail::remove_stale_temporaries(s.pvd);
+  s.temp = temporary(s.frames);
+  const auto visuals = visual_files(model_file);
 
   s.user_outputs = model.outputs.size();
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
@@ -133,6 +168,8 @@ Series::Series(const fs::path& pvd, const fs::path& model_file, runtime::Model& 
       q.size = b.nq;
       v.q_output = model.outputs.size();
       model.outputs.push_back(q);
+    } else if (const auto it = visuals.find(b.name); it != visuals.end()) {
+      given_surface(b, it->second, v);
     } else {
       inertia_box(b, v);
     }
@@ -232,10 +269,7 @@ void Series::commit() {
   std::error_code ec;
   fs::remove_all(s.frames, ec);  // only frames of an earlier run (checked before the run)
   fs::rename(s.temp, s.frames);
-  std::string tmp_name = s.pvd.filename().string();  // built by appending: GCC 12 warns falsely on "." + string
-  tmp_name.insert(0, 1, '.');
-  tmp_name += ".tmp-" + std::to_string(::getpid());
-  const fs::path tmp = s.pvd.parent_path() / tmp_name;
+  const fs::path tmp = temporary(s.pvd);
   {
     std::ofstream f(tmp);
     f << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n<Collection>\n";

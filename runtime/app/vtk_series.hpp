@@ -2,13 +2,16 @@
 // ffr-sim --vtk RUN.pvd: a ParaView collection of the run, one .vtu (VTK XML unstructured grid,
 // ASCII) per output sample, holding every flexible body's deformed outer surface (the SID's
 // /visual triangles) and every rigid body as its inertia box (the uniform box of the same mass
-// and second moments about the centre of mass, on the principal axes). Point data:
+// and second moments about the centre of mass, on the principal axes), or by the STL surface
+// its model-file key "visual" names (stl_reader.hpp). Point data:
 // `displacement` (the elastic displacement A Phi q, global) and, when a body's SID has a /stress
 // group, `von_mises` (sigma = sum_k q_k S_k at the surface vertices that are stress nodes; NaN at
 // the others and on rigid bodies). Cell data `body`: the body's index in the model file.
 //
 // The frames go to the folder RUN_frames/ beside RUN.pvd: written into a temporary folder and
-// renamed into place after the run, so a failed run leaves no frame and no .pvd.
+// renamed into place after the run, so a failed run leaves no frame and no .pvd. The temporary
+// names are formats' (stale_temp.hpp: host and process id), so a run killed before its end
+// leaves a folder the next run of the same collection removes.
 #include "ffr/runtime/model.hpp"
 #include "ffr/runtime/outputs.hpp"
 

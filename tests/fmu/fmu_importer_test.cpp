@@ -137,12 +137,18 @@ struct Fmu {
     sym(version, "fmi2GetVersion");
   }
 
-  fmi2Component start(double t0, double t1) {
+  // Instantiated and initialized; `parameters` are set in initialization mode (FMI 2.0 section 4.2.4).
+  fmi2Component start(double t0, double t1, const std::map<std::string, double>& parameters = {}) {
     static const fmi2CallbackFunctions callbacks{logger, nullptr, nullptr, nullptr, nullptr};
     const std::string uri = "file://" + (dir / "resources").string();
     fmi2Component c = instantiate("importer", fmi2CoSimulation, guid.c_str(), uri.c_str(), &callbacks, fmi2False, fmi2False);
     if (!c) return nullptr;
-    if (setup(c, fmi2False, 0.0, t0, fmi2True, t1) != fmi2OK || enter_init(c) != fmi2OK || exit_init(c) != fmi2OK) {
+    bool ok = setup(c, fmi2False, 0.0, t0, fmi2True, t1) == fmi2OK && enter_init(c) == fmi2OK;
+    for (const auto& [name, value] : parameters) {
+      const fmi2ValueReference vr = refs.at(name);
+      ok = ok && set_real(c, &vr, 1, &value) == fmi2OK;
+    }
+    if (!ok || exit_init(c) != fmi2OK) {
       free_instance(c);
       return nullptr;
     }
@@ -266,6 +272,73 @@ TEST_F(FmuTest, FourBarAgreesWithFfrSimAndRestoresState) {
   static const fmi2CallbackFunctions callbacks{logger, nullptr, nullptr, nullptr, nullptr};
   const std::string uri = "file://" + (fmu.dir / "resources").string();
   EXPECT_EQ(fmu.instantiate("x", fmi2CoSimulation, "{other}", uri.c_str(), &callbacks, 0, 0), nullptr);
+}
+
+// The parameter solver.step: set to 0.5 ms before initialization, the FMU's crank angle at every
+// 1 ms communication point equals ffr-sim's on the four-bar model file holding "step": 0.0005
+// (reference: ffr-sim's results of that file), and differs from the 1 ms run (the step changed).
+TEST_F(FmuTest, StepParameterChangesTheStepAsInTheModelFile) {
+  auto model = nlohmann::json::parse(read(kModels / "four_bar.json"));
+  model["solver"]["end"] = 0.5;
+  std::ofstream(dir_ / "four_bar.json") << model.dump();
+  model["solver"]["step"] = 0.0005;
+  std::ofstream(dir_ / "half.json") << model.dump();
+  for (const char* m : {"four_bar", "half"}) {
+    const auto r = sh((kBin / "ffr-sim").string() + " " + q(dir_ / (std::string(m) + ".json")) + " -o " +
+                      q(dir_ / (std::string(m) + ".h5")) + " --quiet");
+    ASSERT_EQ(r.status, 0) << r.output;
+  }
+  const auto ref = ffr::formats::read_results(dir_ / "half.h5");
+  const auto coarse = ffr::formats::read_results(dir_ / "four_bar.h5");
+  ASSERT_EQ(ref.time.size(), 1001);
+  ASSERT_EQ(coarse.time.size(), 501);
+  const auto p = sh((kBin / "ffr-fmu").string() + " " + q(dir_ / "four_bar.json") + " -o " + q(dir_ / "fb.fmu"));
+  ASSERT_EQ(p.status, 0) << p.output;
+  Fmu fmu;
+  fmu.load(dir_ / "fb.fmu", dir_ / "unpacked");
+  ASSERT_NE(fmu.lib, nullptr);
+  ASSERT_EQ(fmu.causality.at("solver.step"), "parameter");
+  EXPECT_NE(read(dir_ / "unpacked" / "modelDescription.xml").find("variability=\"fixed\" initial=\"exact\"><Real start=\"0.001\""),
+            std::string::npos);
+
+  fmi2Component c = fmu.start(0.0, 0.5, {{"solver.step", 0.0005}});
+  ASSERT_NE(c, nullptr) << (g_log.empty() ? "" : g_log.back());
+  EXPECT_EQ(fmu.get(c, "solver.step"), 0.0005);
+  const double h = 1e-3;
+  double worst = 0, change = 0;
+  for (int k = 1; k <= 500; ++k) {
+    ASSERT_EQ(fmu.do_step(c, (k - 1) * h, h, fmi2False), fmi2OK) << k << ": " << (g_log.empty() ? "" : g_log.back());
+    ASSERT_NEAR(ref.time(2 * k), k * h, 1e-12);
+    const double a = fmu.get(c, "crank_angle");
+    worst = std::max(worst, std::abs(a - ref.find("crank_angle")->values(2 * k, 0)));
+    change = std::max(change, std::abs(a - coarse.find("crank_angle")->values(k, 0)));
+  }
+  EXPECT_EQ(worst, 0.0) << "largest difference of the crank angle to ffr-sim's with step 0.0005";
+  EXPECT_GT(change, 1e-9) << "the parameter did not change the step";
+  std::printf("solver.step = 0.5 ms: largest difference to ffr-sim with that step %.3g, to the 1 ms run %.3g\n", worst,
+              change);
+  // A fixed parameter: refused once initialized, the value unchanged.
+  const fmi2ValueReference vr = fmu.refs.at("solver.step");
+  const double other = 0.001;
+  g_log.clear();
+  EXPECT_EQ(fmu.set_real(c, &vr, 1, &other), fmi2Error);
+  ASSERT_FALSE(g_log.empty());
+  EXPECT_NE(g_log.back().find("before fmi2ExitInitializationMode"), std::string::npos) << g_log.back();
+  EXPECT_EQ(fmu.get(c, "solver.step"), 0.0005);
+  fmu.free_instance(c);
+
+  // A step of which the communication step is no whole number: refused at fmi2DoStep.
+  c = fmu.start(0.0, 0.5, {{"solver.step", 0.0004}});
+  ASSERT_NE(c, nullptr) << (g_log.empty() ? "" : g_log.back());
+  g_log.clear();
+  EXPECT_EQ(fmu.do_step(c, 0.0, h, fmi2False), fmi2Error);
+  ASSERT_FALSE(g_log.empty());
+  EXPECT_NE(g_log.back().find("whole number"), std::string::npos) << g_log.back();
+  EXPECT_EQ(fmu.do_step(c, 0.0, 0.002, fmi2False), fmi2OK);  // 5 steps of 0.4 ms
+  fmu.free_instance(c);
+  // Not a step: refused when set.
+  EXPECT_EQ(fmu.start(0.0, 0.5, {{"solver.step", -1.0}}), nullptr);
+  EXPECT_EQ(fmu.start(0.0, 0.5, {{"solver.step", 0.0}}), nullptr);
 }
 
 // A flexible body (the SID, written by ffr-synth, travels in resources/) and a named point

@@ -349,5 +349,77 @@ class SimulationTest(Workdir):
             ffr.Simulation(self.file("missing.json"))
 
 
+class StressTest(unittest.TestCase):
+    """ffr.stress against `ffr-info --stress --json` on the same run: every number bit for bit
+    (the JSON holds each double's shortest round-trip digits), and von Mises against the
+    principal stresses by the textbook identity sigma_vm^2 = ((s1-s2)^2 + (s2-s3)^2 + (s3-s1)^2)/2."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.mkdtemp(prefix="ffr-python-stress-")
+        with open(os.path.join(cls.dir, "bar.geo"), "w") as f:
+            f.write('SetFactory("OpenCASCADE");\nBox(1) = {0, 0, 0, 0.2, 0.02, 0.012};\n'
+                    'Physical Volume("body") = {1};\n'
+                    'Physical Surface("clamp") = Surface In BoundingBox{-1e-6, -1, -1, 1e-6, 1, 1};\n')
+        part = {"geometry": "bar.geo", "mesh": {"size": 0.008, "order": 2},
+                "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],
+                "interfaces": [{"name": "root", "group": "clamp"}],
+                "reduction": {"method": "clamped", "interface": "root", "modes": 4},
+                "stress": {"surface": True}}
+        ffr.reduce(part, os.path.join(cls.dir, "bar.sid.h5"), base_dir=cls.dir)
+        cls.model = os.path.join(cls.dir, "model.json")
+        with open(cls.model, "w") as f:
+            json.dump({"gravity": [0, 0, -9.81],
+                       "bodies": [{"name": "bar", "type": "flexible", "sid": "bar.sid.h5"}],
+                       "joints": [{"name": "clamp", "type": "fixed", "body1": "ground", "body2": "bar",
+                                   "node2": "root"}],
+                       "solver": {"end": 0.01, "step": 0.001},
+                       "outputs": [{"name": "q", "type": "modal_coordinates", "body": "bar"}]}, f)
+        cls.results = os.path.join(cls.dir, "run.h5")
+        r = tool("ffr-sim", cls.model, "-o", cls.results, "--quiet")
+        if r.returncode != 0:
+            raise RuntimeError("ffr-sim failed: " + r.stderr)
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.dir, ignore_errors=True)
+
+    def test_same_numbers_as_ffr_info(self):
+        r = tool("ffr-info", self.results, "--stress", "bar", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        ref = json.loads(r.stdout)
+        for model in (None, self.model):
+            s = ffr.stress(self.results, "bar", model=model)
+            self.assertTrue(same_bits(s["time"], np.array(ref["time"])))
+            self.assertTrue(same_bits(s["nodes"], np.array([n["node"] for n in ref["nodes"]], dtype=np.int64)))
+            self.assertTrue(same_bits(s["position"], np.array([n["position"] for n in ref["nodes"]])))
+            self.assertTrue(same_bits(s["von_mises"], np.array([n["von_mises"] for n in ref["nodes"]]).T))
+            self.assertTrue(same_bits(s["principal"],
+                                      np.array([n["principal"] for n in ref["nodes"]]).transpose(1, 0, 2)))
+            self.assertEqual((s["body"], s["output"], s["selection"]), (ref["body"], ref["output"], ref["selection"]))
+        nt, ns = s["von_mises"].shape
+        self.assertEqual(nt, 11)
+        self.assertGreater(ns, 10)
+        self.assertGreater(s["von_mises"][-1].max(), 1e3)  # gravity bends the bar: not a zero field
+        p = s["principal"]
+        self.assertTrue(np.all(p[..., 0] >= p[..., 1]) and np.all(p[..., 1] >= p[..., 2]))
+        vm = np.sqrt(((p[..., 0] - p[..., 1]) ** 2 + (p[..., 1] - p[..., 2]) ** 2 + (p[..., 2] - p[..., 0]) ** 2) / 2)
+        np.testing.assert_allclose(s["von_mises"], vm, rtol=1e-9, atol=1e-9 * s["von_mises"].max())
+
+    def test_bad_arguments(self):
+        r = tool("ffr-info", self.results, "--stress", "wheel")
+        self.assertEqual(r.returncode, 2)
+        with self.assertRaises(ffr.InputError) as e:
+            ffr.stress(self.results, "wheel")
+        self.assertIn("no body named 'wheel'", str(e.exception))
+        self.assertEqual(r.stderr.strip(), "ffr-info: error: " + str(e.exception))
+        with self.assertRaisesRegex(TypeError, "body must be a str"):
+            ffr.stress(self.results, 3)
+        with self.assertRaisesRegex(TypeError, "model must be a path"):
+            ffr.stress(self.results, "bar", model=3)
+        with self.assertRaises(ffr.InputError):
+            ffr.stress(os.path.join(self.dir, "missing.h5"), "bar")
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -11,7 +11,14 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <fstream>
+#include <iostream>
 #include <cctype>
 #include <map>
 #include <memory>
@@ -324,4 +331,188 @@ TEST(VtkSeries, ForeignFramesFolderAndWrongNameAreRefused) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_FALSE(std::filesystem::exists(run.dir / "run_frames" / "frame_000099.vtu"));
   EXPECT_TRUE(std::filesystem::exists(run.dir / "run_frames" / "frame_000000.vtu"));
+}
+
+// ---- rigid bodies drawn by a given STL surface; stale temporary frames folders -------------
+namespace {
+
+// A tetrahedron with corners p + {0, 0.25 e_x, 0.125 e_y, 0.5 e_z} as an ASCII STL text
+// (`corrupt` 1: cut inside a facet, 2: a facet of zero area).
+std::string ascii_tetrahedron(const Eigen::Vector3d& p, int corrupt = 0) {
+  const Eigen::Vector3d c[4] = {p, p + Eigen::Vector3d(0.25, 0, 0), p + Eigen::Vector3d(0, 0.125, 0), p + Eigen::Vector3d(0, 0, 0.5)};
+  static const int kFacets[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  std::ostringstream o;
+  o.precision(17);
+  o << "solid tet\n";
+  for (int f = 0; f < 4; ++f) {
+    o << "  facet normal 0 0 0\n    outer loop\n";
+    for (int j = 0; j < 3; ++j) {
+      const Eigen::Vector3d& x = c[corrupt == 2 && f == 1 && j == 2 ? 1 : kFacets[f][j]];
+      o << "      vertex " << x.x() << ' ' << x.y() << ' ' << x.z() << '\n';
+      if (corrupt == 1 && f == 2 && j == 1) return o.str() + "      vertex 0 0";
+    }
+    o << "    endloop\n  endfacet\n";
+  }
+  return o.str() + "endsolid tet\n";
+}
+
+// The same as a binary STL (80-byte header, facet count, 50 bytes per facet: normal, corners
+// as little-endian floats, attribute count), written here apart from the reader.
+std::string binary_tetrahedron(const Eigen::Vector3f& p) {
+  const Eigen::Vector3f c[4] = {p, p + Eigen::Vector3f(0.25f, 0, 0), p + Eigen::Vector3f(0, 0.125f, 0), p + Eigen::Vector3f(0, 0, 0.5f)};
+  static const int kFacets[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  std::string b(80, ' ');
+  b.replace(0, 5, "solid");  // a binary file may begin like an ASCII one: its size decides
+  const std::uint32_t n = 4;
+  b.append(reinterpret_cast<const char*>(&n), 4);
+  for (const auto& f : kFacets) {
+    const float normal[3] = {0, 0, 0};
+    b.append(reinterpret_cast<const char*>(normal), 12);
+    for (int j = 0; j < 3; ++j) b.append(reinterpret_cast<const char*>(c[f[j]].data()), 12);
+    b.append(2, '\0');
+  }
+  return b;
+}
+
+// Two free rigid bodies without gravity: "spin" turns at 2 rad/s about its principal axis z
+// through its centre of mass (0.4, 0, 0), drawn by the ASCII tetrahedron; "still" rests at
+// (0, 0.5, 0), drawn by the binary one.
+struct RigidScene {
+  test::TempDir dir{"vtk_stl"};
+  explicit RigidScene(const std::string& spin_visual = "tet.stl") {
+    test::write_text(dir / "tet.stl", ascii_tetrahedron(Eigen::Vector3d(0.4, 0, 0)));
+    std::ofstream(dir / "tet_binary.stl", std::ios::binary) << binary_tetrahedron(Eigen::Vector3f(0, 0.5f, 0));
+    test::write_text(dir / "model.json", R"({"bodies": [
+      {"name": "spin", "type": "rigid", "mass": 2, "com": [0.4, 0, 0], "inertia": [[0.01, 0, 0], [0, 0.02, 0], [0, 0, 0.025]],
+       "angular_velocity": [0, 0, 2], "visual": ")" + spin_visual + R"("},
+      {"name": "still", "type": "rigid", "mass": 1, "com": [0, 0.5, 0], "inertia": [[0.01, 0, 0], [0, 0.01, 0], [0, 0, 0.01]],
+       "visual": "tet_binary.stl"}],
+      "solver": {"end": 0.5, "step": 0.001, "output_every": 50},
+      "outputs": [{"name": "w", "type": "body_angular_velocity", "body": "spin"}]})");
+  }
+  test::RunResult sim() const {
+    return test::run("cd " + dir.path().string() + " && " + test::bin("ffr-sim").string() +
+                     " model.json -o run.h5 --vtk run.pvd --quiet");
+  }
+};
+
+// The largest distance from each expected point to the nearest point of body `b` in the frame,
+// and the number of that body's points and cells.
+double distance_to(const Frame& f, double b, const std::vector<Eigen::Vector3d>& expected, std::size_t& points, long long& cells) {
+  std::vector<long long> mine;
+  cells = 0;
+  for (long long c = 0; c < f.nc; ++c)
+    if (f.body[static_cast<std::size_t>(c)] == b) {
+      ++cells;
+      for (int j = 0; j < 3; ++j) mine.push_back(static_cast<long long>(f.connectivity[static_cast<std::size_t>(3 * c + j)]));
+    }
+  std::sort(mine.begin(), mine.end());
+  mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+  points = mine.size();
+  double worst = 0;
+  for (const auto& x : expected) {
+    double best = 1e300;
+    for (long long p : mine) best = std::min(best, (Eigen::Vector3d(f.points[3 * p], f.points[3 * p + 1], f.points[3 * p + 2]) - x).norm());
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+std::string host_tag() {
+  char buf[256] = {};
+  if (::gethostname(buf, sizeof buf - 1) != 0 || !buf[0]) return "host";
+  std::string h;
+  for (const char* c = buf; *c && h.size() < 64; ++c) h += (std::isalnum(static_cast<unsigned char>(*c)) || *c == '.' || *c == '_') ? *c : '_';
+  return h;
+}
+
+}  // namespace
+
+// Reference: rigid rotation about a principal axis through the centre of mass, x(t) = c + R_z(w t)
+// (x0 - c) for the free body turning at w = 2 rad/s (Euler's equations: a principal axis is a
+// steady rotation); the resting body stays at its STL corners, read back through floats exactly.
+TEST(VtkSeries, RigidBodiesDrawnByTheirStlSurfaces) {
+  if (!std::filesystem::exists(test::bin("ffr-sim"))) GTEST_SKIP() << "ffr-sim missing";
+  RigidScene run;
+  const auto r = run.sim();
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto pvd = Parser(formats::read_text_file(run.dir / "run.pvd")).document();
+  const auto sets = pvd->child("Collection")->all("DataSet");
+  ASSERT_EQ(sets.size(), 11u);
+  const Eigen::Vector3d c(0.4, 0, 0);
+  const Eigen::Vector3d tet[4] = {Eigen::Vector3d::Zero(), Eigen::Vector3d(0.25, 0, 0), Eigen::Vector3d(0, 0.125, 0),
+                                  Eigen::Vector3d(0, 0, 0.5)};
+  double worst_spin = 0, worst_still = 0;
+  for (const Element* set : sets) {
+    const double t = std::stod(set->attrs.at("timestep"));
+    const Frame f = read_frame(run.dir / set->attrs.at("file"));
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(2 * t, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    std::vector<Eigen::Vector3d> spin, still;
+    for (const auto& x : tet) {
+      spin.push_back(c + R * x);
+      still.push_back(Eigen::Vector3d(0, 0.5, 0) + x);
+    }
+    std::size_t points = 0;
+    long long cells = 0;
+    worst_spin = std::max(worst_spin, distance_to(f, 0, spin, points, cells));
+    EXPECT_EQ(points, 4u);  // the corners shared by the facets merged
+    EXPECT_EQ(cells, 4);
+    worst_still = std::max(worst_still, distance_to(f, 1, still, points, cells));
+    EXPECT_EQ(points, 4u);
+    EXPECT_EQ(cells, 4);
+  }
+  std::cout << "[ vtk ] STL surfaces: spinning body within " << worst_spin << " m of the rigid rotation, resting body within "
+            << worst_still << " m\n";
+  EXPECT_LT(worst_spin, 1e-6);
+  EXPECT_LT(worst_still, 1e-12);
+}
+
+TEST(VtkSeries, BadStlIsRefusedBeforeTheRun) {
+  if (!std::filesystem::exists(test::bin("ffr-sim"))) GTEST_SKIP() << "ffr-sim missing";
+  const std::pair<std::string, std::string> cases[] = {{"missing.stl", "missing.stl: cannot open the STL file"},
+                                                       {"cut.stl", "cut.stl: facet 2: the file ends inside the facet"},
+                                                       {"flat.stl", "flat.stl: facet 1: the facet has zero area"},
+                                                       {"tet.obj", "must name an STL file"}};
+  for (const auto& [file, message] : cases) {
+    RigidScene run(file);
+    test::write_text(run.dir / "cut.stl", ascii_tetrahedron(Eigen::Vector3d::Zero(), 1));
+    test::write_text(run.dir / "flat.stl", ascii_tetrahedron(Eigen::Vector3d::Zero(), 2));
+    const auto r = run.sim();
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+    for (const char* f : {"run.pvd", "run_frames", "run.h5"}) EXPECT_FALSE(std::filesystem::exists(run.dir / f)) << f;
+  }
+}
+
+// A run killed while writing its frames leaves `.run_frames.tmp-HOST-PID-HEX`; the next run of
+// the same collection removes those whose process is gone, and keeps a live process's and
+// another host's (formats' rule for temporary files, stale_temp.hpp).
+TEST(VtkSeries, StaleFramesFoldersOfKilledRunsAreRemoved) {
+  if (!std::filesystem::exists(test::bin("ffr-sim"))) GTEST_SKIP() << "ffr-sim missing";
+  RigidScene run;
+  const pid_t child = ::fork();  // a process id that is certainly gone
+  if (child == 0) ::_exit(0);
+  ASSERT_GT(child, 0);
+  ::waitpid(child, nullptr, 0);
+  const std::string host = host_tag(), dead = std::to_string(child), alive = std::to_string(::getpid());
+  const std::vector<std::string> stale = {".run_frames.tmp-" + host + "-" + dead + "-1a2b"};
+  const std::vector<std::string> kept = {".run_frames.tmp-" + host + "-" + alive + "-1a2b",
+                                         ".run_frames.tmp-otherhost-" + dead + "-1a2b", ".other_frames.tmp-" + host + "-" + dead + "-1"};
+  for (const auto& d : stale) {
+    std::filesystem::create_directories(run.dir / d);
+    test::write_text(run.dir / d / "frame_000000.vtu", "half a frame");
+  }
+  for (const auto& d : kept) std::filesystem::create_directories(run.dir / d);
+  test::write_text(run.dir / (".run.pvd.tmp-" + host + "-" + dead + "-ff"), "half a collection");
+  const auto r = run.sim();
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const auto& d : stale) EXPECT_FALSE(std::filesystem::exists(run.dir / d)) << d;
+  EXPECT_FALSE(std::filesystem::exists(run.dir / (".run.pvd.tmp-" + host + "-" + dead + "-ff")));
+  for (const auto& d : kept) EXPECT_TRUE(std::filesystem::exists(run.dir / d)) << d;
+  EXPECT_TRUE(std::filesystem::exists(run.dir / "run_frames" / "frame_000010.vtu"));
+  // Nothing of this run's own is left behind.
+  for (const auto& e : std::filesystem::directory_iterator(run.dir.path())) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(".run", 0) == 0) EXPECT_NE(std::find(kept.begin(), kept.end(), name), kept.end()) << name;
+  }
 }

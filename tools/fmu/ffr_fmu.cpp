@@ -33,6 +33,9 @@ resources/, and modelDescription.xml with
   inputs   "<joint>.value", ".rate", ".acceleration" for every motion (used instead of the
            table from the first time one is set); "<name>[i]" for every named point_force or
            point_torque at a node or a frame origin (added to its table, global components)
+  parameter "solver.step" (fixed-step models): the integrator's step, settable until
+           fmi2ExitInitializationMode (the model is then run with that step, as ffr-sim runs
+           the model file with it)
 The communication step must be a whole number of the model's steps (solver.step). The FMU
 supports fmi2GetFMUstate / fmi2SetFMUstate and their serialization. It needs the HDF5 library
 of the machine that runs it (Debian: libhdf5-103).
@@ -110,9 +113,14 @@ std::string model_description(const ffr::runtime::Model& model, const std::strin
   for (std::size_t i = 0; i < vars.size(); ++i) {
     const auto& v = vars[i];
     const bool out = v.kind == ffr::fmu::Variable::Kind::Output;
+    const bool parameter = v.kind == ffr::fmu::Variable::Kind::Parameter;
     x += "    <ScalarVariable name=\"" + xml(v.name) + "\" valueReference=\"" + std::to_string(i) +
-         "\" description=\"" + xml(v.description) + "\" causality=\"" + (out ? "output" : "input") +
-         "\" variability=\"continuous\">" + (out ? "<Real/>" : "<Real start=\"0\"/>") + "</ScalarVariable>\n";
+         "\" description=\"" + xml(v.description) + "\" causality=\"" +
+         (out ? "output" : parameter ? "parameter" : "input") + "\" variability=\"" +
+         (parameter ? "fixed\" initial=\"exact" : "continuous") + "\">" +
+         (out ? std::string("<Real/>")
+              : parameter ? "<Real start=\"" + number(s.step) + "\" min=\"0\"/>" : std::string("<Real start=\"0\"/>")) +
+         "</ScalarVariable>\n";
     if (out) outputs.push_back(i + 1);
   }
   x += "  </ModelVariables>\n  <ModelStructure>\n";

@@ -6,6 +6,8 @@
 #include "sim_handle.hpp"
 #include "variables.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -26,7 +28,8 @@ using ffr::fmu::Variable;
 struct Instance {
   std::string name;
   fmi2CallbackFunctions callbacks;
-  std::string model_path;
+  std::string folder;      ///< the resources folder
+  std::string model_path;  ///< its model.json
   ffr_sim* sim = nullptr;
   std::vector<Variable> vars;
   std::vector<double> inputs;        ///< per variable (inputs only are used)
@@ -34,6 +37,8 @@ struct Instance {
   std::vector<double> output_buffer;
   bool terminated = false;
   bool has_loads = false;  ///< some inputs are point loads (summed per slot at each step)
+  bool initialized = false;  ///< after fmi2ExitInitializationMode: parameters are fixed
+  int step_parameter = -1;   ///< the value reference of solver.step, -1 if none (adaptive steps)
   ~Instance() { ffr_close(sim); }
 };
 
@@ -124,6 +129,37 @@ fmi2Status apply_inputs(Instance* c) {
 
 Instance* as(fmi2Component c) { return static_cast<Instance*>(c); }
 
+// The values of a new instance: inputs 0, solver.step the model file's.
+void reset_values(Instance* c) {
+  std::fill(c->inputs.begin(), c->inputs.end(), 0.0);
+  std::fill(c->motion_set.begin(), c->motion_set.end(), 0);
+  if (c->step_parameter >= 0) c->inputs[c->step_parameter] = c->sim->model.settings.step;
+  c->terminated = false;
+  c->initialized = false;
+}
+
+// solver.step set to another value than the model file's: the model is opened again from its
+// text with that step, so that the run is the one of ffr-sim on the model file holding it
+// (the parser checks the step against the output interval and the rest as it does there).
+fmi2Status apply_step_parameter(Instance* c) {
+  if (c->step_parameter < 0 || c->inputs[c->step_parameter] == c->sim->model.settings.step) return fmi2OK;
+  std::string text;
+  try {
+    std::ifstream f(c->model_path, std::ios::binary);
+    nlohmann::json model = nlohmann::json::parse(f);
+    model["solver"]["step"] = c->inputs[c->step_parameter];
+    text = model.dump();
+  } catch (const std::exception& e) {
+    return error(c, "fmi2ExitInitializationMode: " + c->model_path + ": " + e.what());
+  }
+  ffr_sim* sim = nullptr;
+  if (ffr_open_json(text.c_str(), c->folder.c_str(), c->model_path.c_str(), &sim) != FFR_OK)
+    return error(c, "solver.step = " + std::to_string(c->inputs[c->step_parameter]) + " refused: " + ffr_last_error());
+  ffr_close(c->sim);
+  c->sim = sim;
+  return fmi2OK;
+}
+
 }  // namespace
 
 FFR_FMI_EXPORT const char* fmi2GetTypesPlatform(void) { return "default"; }
@@ -139,7 +175,7 @@ FFR_FMI_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type f
   if (!functions || !functions->logger) return nullptr;
   std::unique_ptr<Instance> c;
   try {
-    c.reset(new Instance{instanceName ? instanceName : "", *functions, {}, nullptr, {}, {}, {}, {}, false, false});
+    c.reset(new Instance{instanceName ? instanceName : "", *functions, {}, {}, nullptr, {}, {}, {}, {}, false, false, false, -1});
     if (fmuType != fmi2CoSimulation) {
       error(c.get(), "this FMU is for co-simulation only (fmuType fmi2CoSimulation)");
       return nullptr;
@@ -152,6 +188,7 @@ FFR_FMI_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type f
                          (fmuResourceLocation ? fmuResourceLocation : "(null)") + " right?");
       return nullptr;
     }
+    c->folder = folder;
     c->model_path = folder + "/model.json";
     if (ffr_open(c->model_path.c_str(), &c->sim) != FFR_OK) {
       error(c.get(), ffr_last_error());
@@ -159,8 +196,12 @@ FFR_FMI_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type f
     }
     c->vars = ffr::fmu::variables(c->sim->model);
     c->inputs.assign(c->vars.size(), 0.0);
-    for (const auto& v : c->vars) c->has_loads = c->has_loads || v.kind == Variable::Kind::Load;
+    for (std::size_t i = 0; i < c->vars.size(); ++i) {
+      c->has_loads = c->has_loads || c->vars[i].kind == Variable::Kind::Load;
+      if (c->vars[i].kind == Variable::Kind::Parameter) c->step_parameter = static_cast<int>(i);
+    }
     c->motion_set.assign(c->sim->model.motions.size(), 0);
+    reset_values(c.get());
     int largest = 1;
     for (const auto& o : c->sim->model.outputs) largest = std::max(largest, o.size);
     c->output_buffer.assign(largest, 0.0);
@@ -190,9 +231,13 @@ FFR_FMI_EXPORT fmi2Status fmi2EnterInitializationMode(fmi2Component c) { return 
 FFR_FMI_EXPORT fmi2Status fmi2ExitInitializationMode(fmi2Component comp) {
   Instance* c = as(comp);
   if (!c) return fmi2Error;
+  if (c->initialized) return error(c, "fmi2ExitInitializationMode: the instance is initialized already");
+  if (apply_step_parameter(c) != fmi2OK) return fmi2Error;
+  c->initialized = true;
   bool any = false;
   for (std::size_t i = 0; i < c->vars.size(); ++i)
-    any = any || (c->vars[i].kind != Variable::Kind::Output && c->inputs[i] != 0.0);
+    any = any || ((c->vars[i].kind == Variable::Kind::Motion || c->vars[i].kind == Variable::Kind::Load) &&
+                  c->inputs[i] != 0.0);
   for (char m : c->motion_set) any = any || m;
   if (!any) return fmi2OK;
   if (apply_inputs(c) != fmi2OK) return fmi2Error;
@@ -212,9 +257,7 @@ FFR_FMI_EXPORT fmi2Status fmi2Reset(fmi2Component comp) {
   ffr_close(c->sim);
   c->sim = nullptr;
   if (ffr_open(c->model_path.c_str(), &c->sim) != FFR_OK) return error(c, ffr_last_error());
-  std::fill(c->inputs.begin(), c->inputs.end(), 0.0);
-  std::fill(c->motion_set.begin(), c->motion_set.end(), 0);
-  c->terminated = false;
+  reset_values(c);
   return fmi2OK;
 }
 
@@ -247,6 +290,10 @@ FFR_FMI_EXPORT fmi2Status fmi2SetReal(fmi2Component comp, const fmi2ValueReferen
     const Variable& v = c->vars[vr[i]];
     if (v.kind == Variable::Kind::Output) return error(c, "fmi2SetReal: " + v.name + " is an output");
     if (!std::isfinite(value[i])) return error(c, "fmi2SetReal: " + v.name + " must be finite");
+    if (v.kind == Variable::Kind::Parameter && c->initialized)
+      return error(c, "fmi2SetReal: " + v.name + " is a fixed parameter: set it before fmi2ExitInitializationMode");
+    if (v.kind == Variable::Kind::Parameter && !(value[i] > 0))
+      return error(c, "fmi2SetReal: " + v.name + " must be positive, not " + std::to_string(value[i]));
   }
   for (size_t i = 0; i < nvr; ++i) {
     c->inputs[vr[i]] = value[i];
@@ -390,6 +437,7 @@ FFR_FMI_EXPORT fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real t, fmi2Real h,
   Instance* c = as(comp);
   if (!c) return fmi2Error;
   if (c->terminated) return error(c, "fmi2DoStep after fmi2Terminate");
+  if (!c->initialized) return error(c, "fmi2DoStep before fmi2ExitInitializationMode");
   double now = 0, step = 0;
   ffr_time(c->sim, &now);
   ffr_step_size(c->sim, &step);
@@ -401,7 +449,7 @@ FFR_FMI_EXPORT fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real t, fmi2Real h,
   if (!(h > 0) || n < 1 || std::abs(n * step - h) > 1e-9 * h || n > 2e9)
     return error(c, "fmi2DoStep: the communication step " + std::to_string(h) +
                         " s is not a whole number of the model's steps of " + std::to_string(step) +
-                        " s (solver.step of " + c->model_path + "): choose a multiple");
+                        " s (solver.step of " + c->model_path + " or the parameter solver.step): choose a multiple");
   if (apply_inputs(c) != fmi2OK) return fmi2Error;
   if (ffr_step(c->sim, static_cast<int>(n)) != FFR_OK) return error(c, ffr_last_error());
   return fmi2OK;

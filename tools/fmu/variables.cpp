@@ -34,6 +34,9 @@ std::vector<Variable> variables(const runtime::Model& model) {
                    std::string(load.torque ? "torque" : "force") + " added to " + load.name + "'s table (global)",
                    Variable::Kind::Load, static_cast<int>(l), k});
   }
+  if (!model.settings.adaptive)
+    v.push_back({"solver.step", "the integrator's step [s] (solver.step of the model file); a communication step is a "
+                 "whole number of it", Variable::Kind::Parameter, 0, 0});
   return v;
 }
 

@@ -7,6 +7,8 @@
 //            coordinate from the first time the importer sets one of them, instead of the table);
 //            every named point_force / point_torque at a node or a body's frame origin:
 //            "<name>[i]", i = 0..2, global components added to its table's value.
+//   parameter: "solver.step", the integrator's step (fixed-step models only), settable until
+//            fmi2ExitInitializationMode; the instance then runs the model with that step.
 #include "ffr/runtime/model.hpp"
 
 #include <string>
@@ -15,11 +17,11 @@
 namespace ffr::fmu {
 
 struct Variable {
-  enum class Kind { Output, Motion, Load };
+  enum class Kind { Output, Motion, Load, Parameter };
   std::string name;
   std::string description;
   Kind kind = Kind::Output;
-  int index = 0;      ///< the output, motion or point load
+  int index = 0;      ///< the output, motion or point load (0 for the parameter)
   int component = 0;  ///< of the output; 0 value, 1 rate, 2 acceleration of a motion; of the load
 };
 

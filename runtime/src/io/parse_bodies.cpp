@@ -6,6 +6,7 @@
 
 #include <Eigen/SVD>
 
+#include <cctype>
 #include <cstdio>
 #include <set>
 
@@ -73,7 +74,16 @@ void parse_bodies(const Field& root, ParseContext& ctx) {
     if (!names.insert(name).second) b.at("name").fail("duplicate body name '" + name + "'" + (name == "ground" ? " (ground always exists)" : ""));
     const std::string type = b.at("type").string();
     if (type == "rigid") {
-      b.allow_only({"name", "type", "mass", "com", "inertia", "position", "orientation", "velocity", "angular_velocity"});
+      b.allow_only({"name", "type", "mass", "com", "inertia", "position", "orientation", "velocity", "angular_velocity",
+                    "visual"});
+      // The surface ffr-sim --vtk draws (the integration never reads it): checked here for its form.
+      if (auto v = b.find("visual")) {
+        const std::string file = v->string();
+        const auto dot = file.rfind('.');
+        std::string ext = dot == std::string::npos ? "" : file.substr(dot);
+        for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+        if (ext != ".stl") v->fail("must name an STL file (.stl, ASCII or binary), not '" + file + "'");
+      }
       const double mass = b.at("mass").positive();
       const auto pos = b.find("position");
       const auto com = b.find("com");

@@ -1,5 +1,6 @@
 #pragma once
-// The temporary names of AtomicFile (h5.hpp) and the removal of stale ones.
+// The temporary names of AtomicFile (h5.hpp) and the removal of stale ones; also used for
+// temporary folders of the same naming (ffr-sim --vtk's frames folder).
 //
 // A writer killed between creating its temporary file and renaming it (kill -9, a power cut)
 // leaves the file behind. Every name is new (two writers of one target must not share one), so
@@ -19,6 +20,10 @@ std::filesystem::path temporary_name(const std::filesystem::path& target, unsign
 /// Removes the stale temporary files of `target`'s writers (see above); returns how many.
 /// Errors (an unreadable folder, a file removed meanwhile) are ignored: the clean-up is a courtesy.
 int remove_stale_temporaries(const std::filesystem::path& target);
+
+/// The same for temporary folders named by temporary_name(target, ...) (not symbolic links):
+/// each stale one is removed with its content; returns how many.
+int remove_stale_temporary_folders(const std::filesystem::path& target);
 
 /// Whether a temporary file named `name`, last written at `mtime_s` (seconds since the epoch),
 /// is stale for this host (exposed for the tests).
