@@ -20,23 +20,8 @@ std::string model(const std::string& bodies, const std::string& rest = "") {
          R"(, "solver": {"end": 1, "step": 0.001}})";
 }
 
-// The message of the ModelError thrown while parsing `json` (in dir), or "" if none.
-std::string error_of(const std::string& json, const std::filesystem::path& dir = {}) {
-  try {
-    test::model_from(json, dir);
-  } catch (const ModelError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-void expect_error(const std::string& json, const std::string& field, const std::string& what,
-                  const std::filesystem::path& dir = {}) {
-  const std::string msg = error_of(json, dir);
-  EXPECT_NE(msg.find("test-model.json"), std::string::npos) << msg;
-  EXPECT_NE(msg.find(field), std::string::npos) << "field '" << field << "' not in: " << msg;
-  EXPECT_NE(msg.find(what), std::string::npos) << "'" << what << "' not in: " << msg;
-}
+using test::error_of;
+using test::expect_error;
 
 }  // namespace
 

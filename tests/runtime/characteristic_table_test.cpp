@@ -16,21 +16,8 @@ using namespace ffr::runtime;
 
 namespace {
 
-std::string error_of(const std::string& json) {
-  try {
-    test::model_from(json);
-  } catch (const ModelError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-void expect_error(const std::string& json, const std::string& field, const std::string& what) {
-  const std::string msg = error_of(json);
-  EXPECT_NE(msg.find("test-model.json"), std::string::npos) << msg;
-  EXPECT_NE(msg.find(field), std::string::npos) << "field '" << field << "' not in: " << msg;
-  EXPECT_NE(msg.find(what), std::string::npos) << "'" << what << "' not in: " << msg;
-}
+using test::error_of;
+using test::expect_error;
 
 // A 1 kg mass at the origin on a vertical prismatic joint, g = 9.81, hanging from the ground at
 // z = 1 by `spring` (JSON keys after the ends).

@@ -23,21 +23,8 @@ using namespace ffr::runtime;
 
 namespace {
 
-std::string error_of(const std::string& json) {
-  try {
-    test::model_from(json);
-  } catch (const ModelError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-void expect_error(const std::string& json, const std::string& field, const std::string& what) {
-  const std::string msg = error_of(json);
-  EXPECT_NE(msg.find("test-model.json"), std::string::npos) << msg;
-  EXPECT_NE(msg.find(field), std::string::npos) << "field '" << field << "' not in: " << msg;
-  EXPECT_NE(msg.find(what), std::string::npos) << "'" << what << "' not in: " << msg;
-}
+using test::error_of;
+using test::expect_error;
 
 // Shaft a (I_zz = 0.2) turns in the ground about z; b is a disk (I_zz = 0.05) on `joint_b` (its
 // JSON), coupled by "belt" {joint1: b, joint2: a, ratio}; a torque 1.3 N m on a.

@@ -45,21 +45,8 @@ std::string oscillator(double x0, double k, const std::string& friction, double 
 
 double position(const Data& data) { return data.state.q(0); }  // the mass's frame origin, x
 
-std::string error_of(const std::string& json) {
-  try {
-    test::model_from(json);
-  } catch (const ModelError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-void expect_error(const std::string& json, const std::string& field, const std::string& what) {
-  const std::string msg = error_of(json);
-  EXPECT_NE(msg.find("test-model.json"), std::string::npos) << msg;
-  EXPECT_NE(msg.find(field), std::string::npos) << "field '" << field << "' not in: " << msg;
-  EXPECT_NE(msg.find(what), std::string::npos) << "'" << what << "' not in: " << msg;
-}
+using test::error_of;
+using test::expect_error;
 
 }  // namespace
 
@@ -103,7 +90,9 @@ TEST(FrictionDamper, CoulombOscillatorDenHartog) {
   const double x_stop = -(x0 - 5 * 2 * F / k);
   const double creep = vtol * k * std::abs(x_stop) / F * (3.0 - 5 * M_PI / w);
   for (std::size_t i = 0; i < t.size(); ++i) {
-    if (t[i] > 5 * M_PI / w + 0.02) ASSERT_NEAR(x[i], x_stop, 2e-5 + creep) << "at t = " << t[i];
+    if (t[i] > 5 * M_PI / w + 0.02) {
+      ASSERT_NEAR(x[i], x_stop, 2e-5 + creep) << "at t = " << t[i];
+    }
   }
   EXPECT_LT(std::abs(k * x.back()), F);
   // The energy balance: what the spring and the mass lost, the damper dissipated (the

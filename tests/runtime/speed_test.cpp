@@ -17,21 +17,8 @@ using namespace ffr::runtime;
 
 namespace {
 
-std::string error_of(const std::string& json) {
-  try {
-    test::model_from(json);
-  } catch (const ModelError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-void expect_error(const std::string& json, const std::string& field, const std::string& what) {
-  const std::string msg = error_of(json);
-  EXPECT_NE(msg.find("test-model.json"), std::string::npos) << msg;
-  EXPECT_NE(msg.find(field), std::string::npos) << "field '" << field << "' not in: " << msg;
-  EXPECT_NE(msg.find(what), std::string::npos) << "'" << what << "' not in: " << msg;
-}
+using test::error_of;
+using test::expect_error;
 
 // A drum (rigid, off-centre mass under gravity, so the drive carries a load) on a revolute joint
 // about z, its speed 0 -> 10 rad/s over 1 s, held to 2 s, down to 0 at 4 s.

@@ -1,5 +1,7 @@
 #include "support.hpp"
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -29,6 +31,23 @@ void write_text(const std::filesystem::path& p, const std::string& text) {
 
 Model model_from(const std::string& json, const std::filesystem::path& dir) {
   return parse_model(json, dir.empty() ? std::filesystem::current_path() : dir, "test-model.json");
+}
+
+std::string error_of(const std::string& json, const std::filesystem::path& dir) {
+  try {
+    model_from(json, dir);
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void expect_error(const std::string& json, const std::string& field, const std::string& what,
+                  const std::filesystem::path& dir) {
+  const std::string msg = error_of(json, dir);
+  EXPECT_NE(msg.find("test-model.json"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(field), std::string::npos) << "field '" << field << "' not in: " << msg;
+  EXPECT_NE(msg.find(what), std::string::npos) << "'" << what << "' not in: " << msg;
 }
 
 std::string compound_pendulum_json(const std::string& solver, double rate) {

@@ -33,6 +33,13 @@ double compound_pendulum_oracle(double end, double rate = 0, double* theta_dot =
 /// Parses a model from JSON text with relative paths resolved in `dir`.
 Model model_from(const std::string& json, const std::filesystem::path& dir = {});
 
+/// The message of the ModelError thrown while parsing `json` (in dir), or "" if none.
+std::string error_of(const std::string& json, const std::filesystem::path& dir = {});
+/// Expects parsing `json` to be refused with a message naming the file (test-model.json), the
+/// field and what is wrong.
+void expect_error(const std::string& json, const std::string& field, const std::string& what,
+                  const std::filesystem::path& dir = {});
+
 /// What a run of build/bin/ffr-sim gave: its exit status (-1 if it did not exit) and its
 /// stdout and stderr together.
 struct SimRun {

@@ -23,21 +23,8 @@ Table table1(std::vector<double> t, std::vector<double> v, Interpolation k) {
   return Table(Eigen::Map<Eigen::VectorXd>(t.data(), t.size()), Eigen::Map<Eigen::VectorXd>(v.data(), v.size()), k);
 }
 
-std::string error_of(const std::string& json) {
-  try {
-    test::model_from(json);
-  } catch (const ModelError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-void expect_error(const std::string& json, const std::string& field, const std::string& what) {
-  const std::string msg = error_of(json);
-  EXPECT_NE(msg.find("test-model.json"), std::string::npos) << msg;
-  EXPECT_NE(msg.find(field), std::string::npos) << "field '" << field << "' not in: " << msg;
-  EXPECT_NE(msg.find(what), std::string::npos) << "'" << what << "' not in: " << msg;
-}
+using test::error_of;
+using test::expect_error;
 
 }  // namespace
 
