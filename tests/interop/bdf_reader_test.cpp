@@ -17,6 +17,7 @@
 #include "ffr/preproc/mesh/gmsh_import.hpp"
 #include "ffr/preproc/pipeline.hpp"
 #include "mesh/bdf_reader.hpp"
+#include "deck_refusal.hpp"
 #include "support.hpp"
 
 #include <gtest/gtest.h>
@@ -255,16 +256,7 @@ const char* kTet = "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,0.,1.,0.\nGRID,4
 const char* kProps = "PSOLID,1,2\nMAT1,2,2.1+11,,0.3,7850.\n";
 
 std::string refusal(const test::TempDir& dir, const std::string& deck, const std::string& group = "pid1") {
-  test::write_text(dir / "bad.bdf", deck);
-  test::write_text(dir / "bad.json", R"({"geometry": "bad.bdf", "visual": false,
-    "interfaces": [{"name": "i", "group": ")" + group + R"("}],
-    "reduction": {"method": "clamped", "interface": "i", "modes": 1}})");
-  try {
-    (void)preproc::run_pipeline(preproc::load_part(dir / "bad.json"));
-  } catch (const formats::FormatError& e) {
-    return e.what();
-  }
-  return "";
+  return test::deck_refusal(dir, "bad.bdf", deck, group);
 }
 
 }  // namespace

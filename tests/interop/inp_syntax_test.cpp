@@ -9,6 +9,7 @@
 #include "ffr/preproc/pipeline.hpp"
 #include "mesh/bdf_reader.hpp"
 #include "mesh/inp_reader.hpp"
+#include "deck_refusal.hpp"
 #include "support.hpp"
 
 #include <gtest/gtest.h>
@@ -140,19 +141,8 @@ const char* kTet = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n";
 const char* kTetElement = "*ELEMENT, TYPE=C3D4, ELSET=body\n1, 1, 2, 3, 4\n";
 const char* kTetMaterial = "*MATERIAL, NAME=STEEL\n*ELASTIC\n2.1e11, 0.3\n*DENSITY\n7850\n*SOLID SECTION, ELSET=body, MATERIAL=STEEL\n";
 
-// The message of the FormatError the pipeline throws on `deck` (with a part file taking its
-// materials from the deck, and an interface on `group`), or "" if it throws none.
 std::string refusal(const test::TempDir& dir, const std::string& deck, const std::string& group = "body") {
-  test::write_text(dir / "bad.inp", deck);
-  test::write_text(dir / "bad.json", R"({"geometry": "bad.inp", "visual": false,
-    "interfaces": [{"name": "i", "group": ")" + group + R"("}],
-    "reduction": {"method": "clamped", "interface": "i", "modes": 1}})");
-  try {
-    (void)preproc::run_pipeline(preproc::load_part(dir / "bad.json"));
-  } catch (const formats::FormatError& e) {
-    return e.what();
-  }
-  return "";
+  return test::deck_refusal(dir, "bad.inp", deck, group);
 }
 
 }  // namespace
