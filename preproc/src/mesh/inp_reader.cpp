@@ -199,9 +199,11 @@ class Parser {
   // Only the listed parameters (and flags) are understood; any other would change what the
   // keyword means, so it is refused rather than ignored.
   void allow(const Keyword& kw, std::initializer_list<const char*> params, std::initializer_list<const char*> flags = {}) const {
-    for (const auto& [k, v] : kw.params)
+    for (const auto& entry : kw.params) {
+      const std::string& k = entry.first;  // not a structured binding: clang 14 cannot capture one
       if (std::none_of(params.begin(), params.end(), [&](const char* p) { return k == p; }))
         fail(kw, "parameter " + k + "= of *" + kw.name + " is not supported");
+    }
     for (const auto& k : kw.flags)
       if (std::none_of(flags.begin(), flags.end(), [&](const char* p) { return k == p; }))
         fail(kw, "parameter " + k + " of *" + kw.name + " is not supported");

@@ -28,7 +28,6 @@ void predict_frames(const Model& model, Data& data) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     if (!data.integrated[i]) continue;  // a driven body is placed by drive_bodies
     const int o = model.bodies[i].offset;
-    BodyData& bd = data.bodies[i];
     const Matrix3d A = frame(data.q0, o);
     // Global angular velocity and acceleration from the body-frame ones (A^T A_dot = omega~ and,
     // A_dot^T A_dot being symmetric, alpha~ = skew(A^T A_ddot)).
