@@ -119,6 +119,18 @@ void write_sids(const test::TempDir& dir) {
   test::write_sid_file(flap, dir / "lumpy.sid.h5");
 }
 
+// The allocations of `steps` steps, each recorded, after one step that leaves nothing to size.
+long allocations_of_recorded_steps(const Model& model, Data& data, int steps) {
+  Recorder rec(model, 1000);
+  step(model, data);
+  const long before = g_allocations.load();
+  for (int i = 0; i < steps; ++i) {
+    step(model, data);
+    rec.record(model, data);
+  }
+  return g_allocations.load() - before;
+}
+
 }  // namespace
 
 TEST(Allocation, StepsAllocateNothing) {
@@ -224,17 +236,10 @@ TEST(Allocation, CouplersFrictionAndTablesAllocateNothing) {
 })", dir.path);
   Data data(model);
   initialize(model, data);
-  Recorder rec(model, 1000);
-  step(model, data);
-  const long before = g_allocations.load();
-  for (int i = 0; i < 150; ++i) {
-    step(model, data);
-    rec.record(model, data);
-  }
-  const long after = g_allocations.load();
-  std::printf("150 steps with couplers, friction and tables: %ld allocations; dissipated %.6g J\n", after - before,
+  const long allocations = allocations_of_recorded_steps(model, data, 150);
+  std::printf("150 steps with couplers, friction and tables: %ld allocations; dissipated %.6g J\n", allocations,
               energy(model, data).dissipated);
-  EXPECT_EQ(after - before, 0);
+  EXPECT_EQ(allocations, 0);
   EXPECT_GT(energy(model, data).dissipated, 0);
 }
 
@@ -260,15 +265,8 @@ TEST(Allocation, CouplerInAMovingCarrierAllocatesNothing) {
 })");
   Data data(model);
   initialize(model, data);
-  Recorder rec(model, 1000);
-  step(model, data);
-  const long before = g_allocations.load();
-  for (int i = 0; i < 150; ++i) {
-    step(model, data);
-    rec.record(model, data);
-  }
-  const long after = g_allocations.load();
-  std::printf("150 steps with a coupler over three bodies: %ld allocations\n", after - before);
-  EXPECT_EQ(after - before, 0);
+  const long allocations = allocations_of_recorded_steps(model, data, 150);
+  std::printf("150 steps with a coupler over three bodies: %ld allocations\n", allocations);
+  EXPECT_EQ(allocations, 0);
   EXPECT_GT(joint_coordinate_rate(model, data, 2, JointCoordinate::Angle), 0.1);  // it turned
 }

@@ -7,8 +7,32 @@
 #include <algorithm>
 
 namespace ffr::runtime {
+namespace {
 
-void evaluate_output(const Model& model, Data& data, const Output& o, double* out) {
+// Outputs that read the frames' and markers' kinematics (update_bodies, update_markers). These
+// are recomputed from the state before such outputs are written: the state may have changed
+// since the last evaluation (the projections after a step, a restored state).
+bool reads_kinematics(const Output& o) {
+  switch (o.type) {
+    case OutputType::JointCoordinate:
+    case OutputType::JointRate:
+    case OutputType::JointReaction:
+    case OutputType::NodeVelocity:
+    case OutputType::BodyAngularVelocity:
+    case OutputType::ElementForce:
+      return true;
+    default:
+      return false;
+  }
+}
+
+void update_kinematics(const Model& model, Data& data) {
+  update_bodies(model, data);
+  update_markers(model, data);
+}
+
+// Output `o` from the current state, its kinematics made current by the caller.
+void write_output(const Model& model, Data& data, const Output& o, double* out) {
   switch (o.type) {
     case OutputType::NodeDeformation: {
       const Body& b = model.bodies[o.body];
@@ -32,18 +56,12 @@ void evaluate_output(const Model& model, Data& data, const Output& o, double* ou
       break;
     }
     case OutputType::JointCoordinate:
-      update_bodies(model, data);
-      update_markers(model, data);
       for (std::size_t i = 0; i < o.coords.size(); ++i) out[i] = joint_coordinate(model, data, o.joint, o.coords[i]);
       break;
     case OutputType::JointRate:
-      update_bodies(model, data);
-      update_markers(model, data);
       for (std::size_t i = 0; i < o.coords.size(); ++i) out[i] = joint_coordinate_rate(model, data, o.joint, o.coords[i]);
       break;
     case OutputType::JointReaction: {
-      update_bodies(model, data);
-      update_markers(model, data);
       const Vector6d w = joint_reaction(model, data, o.joint);
       for (int i = 0; i < 6; ++i) out[i] = w(i);
       break;
@@ -51,7 +69,6 @@ void evaluate_output(const Model& model, Data& data, const Output& o, double* ou
     case OutputType::NodeVelocity: {
       // v = r0_dot + A_dot xbar + A Phi_p y_dot (xbar = the deformed local point).
       const Body& b = model.bodies[o.body];
-      update_bodies(model, data);
       const BodyData& bd = data.bodies[o.body];
       Vector3d x = o.point;
       Vector3d v = data.state.qd.segment<3>(b.offset);
@@ -64,15 +81,12 @@ void evaluate_output(const Model& model, Data& data, const Output& o, double* ou
       break;
     }
     case OutputType::BodyAngularVelocity: {
-      update_bodies(model, data);
       const BodyData& bd = data.bodies[o.body];
       const Vector3d w = bd.A * bd.omega;
       for (int i = 0; i < 3; ++i) out[i] = w(i);
       break;
     }
     case OutputType::ElementForce:
-      update_bodies(model, data);
-      update_markers(model, data);
       element_force(model, data, o.element_kind, o.element, out);
       break;
     case OutputType::Energy: {
@@ -84,6 +98,13 @@ void evaluate_output(const Model& model, Data& data, const Output& o, double* ou
       break;
     }
   }
+}
+
+}  // namespace
+
+void evaluate_output(const Model& model, Data& data, const Output& o, double* out) {
+  if (reads_kinematics(o)) update_kinematics(model, data);
+  write_output(model, data, o, out);
 }
 
 Recorder::Recorder(const Model& model, std::int64_t max_rows) {
@@ -99,9 +120,11 @@ Recorder::Recorder(const Model& model, std::int64_t max_rows) {
 void Recorder::record(const Model& model, Data& data) {
   if (rows_ >= t_.size()) return;
   t_(rows_) = data.state.t;
+  // The kinematics once for all outputs of the sample.
+  if (std::any_of(model.outputs.begin(), model.outputs.end(), reads_kinematics)) update_kinematics(model, data);
   for (std::size_t i = 0; i < model.outputs.size(); ++i) {
     // Rows of a column-major matrix are strided: evaluate into a contiguous buffer first.
-    evaluate_output(model, data, model.outputs[i], row_.data());
+    write_output(model, data, model.outputs[i], row_.data());
     v_[i].row(rows_) = row_.head(model.outputs[i].size).transpose();
   }
   ++rows_;

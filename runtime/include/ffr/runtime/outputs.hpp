@@ -23,8 +23,8 @@ void evaluate_output(const Model& model, Data& data, const Output& o, double* ou
 /// prescribed on it, from the multipliers data.reaction_lambda (FORMULATION.md 13). Needs update_markers.
 Vector6d joint_reaction(const Model& model, const Data& data, int joint);
 
-/// A force element's force in the current state: a spring_damper's tension (one value, positive
-/// pulling its ends together), a bushing's force and torque on body2 (six values, global
+/// A force element's force in the current state: a spring_damper's tension or a friction_damper's
+/// force (one value, positive pulling its ends together), a bushing's force and torque on body2 (six values, global
 /// components, the torque about its point). Needs update_markers.
 void element_force(const Model& model, const Data& data, ForceElementKind kind, int index, double* out);
 
