@@ -290,7 +290,12 @@ TEST(BdfRefusals, EveryBadDeckNamesFileLineCardAndWhatWasExpected) {
       {tet + kProps + "SET1,3,1,2,3,4,5,6,7,8\n", "pid1", "bad.bdf: line 8: field 10 of a free-field line is its continuation marker (blank, '+...' or '*...'), found '8'"},
       {tet + kProps + "PARAM,WTMASS,0.00259\n", "pid1", "bad.bdf: line 8 (PARAM WTMASS): PARAM WTMASS is not taken"},
       {tet + "PSOLID,1,2,,,,FULL\n" + "MAT1,2,2.1+11,,0.3,7850.\n", "pid1",
-       "bad.bdf: line 6 (PSOLID 1): field 7 ('FULL') is not supported: an integration scheme (ISOP)"},
+       "bad.bdf: line 6 (PSOLID 1): fields 5, 7 (IN, ISOP) = '', 'FULL': ffr takes both blank"},
+      {tet + "PSOLID,1,2,,3,,FULL\n" + "MAT1,2,2.1+11,,0.3,7850.\n", "pid1",
+       "bad.bdf: line 6 (PSOLID 1): fields 5, 7 (IN, ISOP) = '3', 'FULL': ffr takes both blank"},
+      {tet + "PSOLID,1,2,,2,,FULL\n" + "MAT1,2,2.1+11,,0.3,7850.\n", "pid1",
+       "bad.bdf: line 5 (CTETRA 1): field 3 (PID): PSOLID 1 (line 6) has IN = 2, ISOP = FULL, which chooses the 8-grid "
+       "CHEXA's integration; ffr integrates CTETRA with 4 grids by its own rule"},
       {tet + kProps + "SET1,3,1,2,3,4,5,6,7\n+,8\n", "set3", "bad.bdf: line 8 (SET1 3): node 5 is not defined"},
       {tet + kProps, "set4", "bad.json: interfaces[0].group: no group 'set4' in the mesh"},
       {"BEGIN BULK\n" + tet + kProps + "ENDDATA\nGARBAGE\n", "nowhere", "no group 'nowhere'"},

@@ -57,6 +57,7 @@ struct Property {
   std::size_t mid;
   double thickness = 0;
   BeamProps beam;
+  Hex8Formulation hex8 = Hex8Formulation::Incompatible;  // PSOLID: its 8-grid CHEXAs
 };
 
 struct Bar {
@@ -173,8 +174,18 @@ Bulk parse(const std::string& file) {
       pr.mid = f.id(3, "MID");
       if (c.name == "PSOLID") {
         pr.kind = DeckSection::Kind::Solid;
-        f.require_blank(5, 5, "an integration network (IN)");
-        f.require_blank(7, 7, "an integration scheme (ISOP)");
+        // IN and ISOP choose the 8-grid CHEXA's formulation (Quick Reference Guide, PSOLID):
+        // blank (or BUBBLE, REDUCED), Nastran's default, the bubble-function brick, which ffr
+        // takes as its incompatible-mode HEX8; IN = 2 (TWO) with ISOP = FULL (1), the plain
+        // isoparametric brick with 2x2x2 Gauss points, ffr's full-integration HEX8 (C3D8).
+        const std::string in = f.raw(5), isop = f.raw(7);
+        if ((in == "2" || in == "TWO") && (isop == "FULL" || isop == "1")) {
+          pr.hex8 = Hex8Formulation::FullIntegration;
+        } else if (!((in.empty() || in == "BUBBLE" || in == "0") && (isop.empty() || isop == "REDUCED" || isop == "0"))) {
+          f.fail("fields 5, 7 (IN, ISOP) = '" + in + "', '" + isop +
+                 "': ffr takes both blank (Nastran's default bubble-function CHEXA, ffr's incompatible-mode HEX8; "
+                 "also IN = BUBBLE, ISOP = REDUCED) or IN = 2 with ISOP = FULL (the full-integration CHEXA)");
+        }
         if (!f.blank(8) && f.raw(8) != "SMECH") f.fail("field 8 (FCTN): only SMECH (structural) is supported");
         f.require_blank(9, f.size(), "PSOLID has 8 fields");
       } else if (c.name == "PSHELL") {
@@ -373,8 +384,25 @@ std::vector<DeckPointMass> read_bdf_point_masses(const std::string& file) {
 
 Mesh read_bdf(const std::string& file, MeshReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
-  // The properties are load_part's (read_bdf_sections): the part file may replace them.
-  return build_deck_mesh(parse(file).mesh, report, t0);
+  // The properties are load_part's (read_bdf_sections): the part file may replace them. The
+  // formulation of an 8-grid CHEXA is the element's, so it stays with the deck's PSOLID.
+  Bulk b = parse(file);
+  for (std::size_t e = 0; e < b.mesh.elements.size(); ++e) {
+    const auto p = b.properties.find(b.element_pid[e]);
+    if (p == b.properties.end() || p->second.kind != DeckSection::Kind::Solid ||
+        p->second.hex8 != Hex8Formulation::FullIntegration)
+      continue;
+    DeckMesh::Element& el = b.mesh.elements[e];
+    if (el.type != ElementType::Hex8)
+      Fields(file, *b.element_card[e])
+          .fail("field 3 (PID): PSOLID " + std::to_string(b.element_pid[e]) + " (line " +
+                std::to_string(p->second.card->line) +
+                ") has IN = 2, ISOP = FULL, which chooses the 8-grid CHEXA's integration; ffr integrates " +
+                b.element_card[e]->name + " with " + std::to_string(num_nodes(el.type)) +
+                " grids by its own rule: give it a PSOLID with IN and ISOP blank");
+    el.hex8 = Hex8Formulation::FullIntegration;
+  }
+  return build_deck_mesh(b.mesh, report, t0);
 }
 
 }  // namespace ffr::preproc::detail
