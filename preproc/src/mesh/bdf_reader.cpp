@@ -1,5 +1,6 @@
 #include "bdf_reader.hpp"
 
+#include "bdf_beam.hpp"
 #include "bdf_cards.hpp"
 
 #include "ffr/formats/h5.hpp"
@@ -47,6 +48,7 @@ const std::vector<ElementCard>& element_cards() {
       {"CTRIA3", ElementType::Tri3, ElementType::Tri3, 3, 3, {0, 1, 2}, DeckSection::Kind::Shell},
       {"CQUAD4", ElementType::Quad4, ElementType::Quad4, 4, 4, {0, 1, 2, 3}, DeckSection::Kind::Shell},
       {"CBAR", ElementType::Line2, ElementType::Line2, 2, 2, {0, 1}, DeckSection::Kind::Beam},
+      {"CBEAM", ElementType::Line2, ElementType::Line2, 2, 2, {0, 1}, DeckSection::Kind::Beam},
   };
   return cards;
 }
@@ -140,7 +142,9 @@ Bulk parse(const std::string& file) {
       } else if (c.name == "CQUAD4") {
         f.require_zero(9, "ZOFFS");
         f.require_blank(10, f.size(), "varying thickness (TFLAG, T1..T4)");
-      } else if (c.name == "CBAR") {
+      } else if (c.name == "CBAR" || c.name == "CBEAM") {
+        // CBAR and CBEAM share fields 2-17 (Quick Reference Guide): the orientation as X1..X3
+        // or G0, OFFT (CBEAM: OFFT/BIT, BIT only for p-elements), pin flags, offsets.
         Bar bar{g[0]};
         if (f.raw(6).find('.') == std::string::npos && f.blank(7) && f.blank(8) && !f.blank(6)) {
           bar.g0 = f.id(6, "G0");
@@ -149,10 +153,17 @@ Bulk parse(const std::string& file) {
           if (bar.v.norm() == 0) f.fail("fields 6-8 (X1, X2, X3): the orientation vector is zero");
         }
         const std::string offt = f.raw(9);
-        if (!offt.empty() && offt != "GGG") f.fail("field 9 (OFFT): only GGG (or blank) is supported");
+        if (!offt.empty() && offt != "GGG")
+          f.fail(c.name == "CBAR" ? "field 9 (OFFT): only GGG (or blank) is supported"
+                                  : "field 9 (OFFT/BIT): only OFFT = GGG (or blank) is supported");
         f.require_blank(10, 11, "pin flags (PA, PB)");
         for (std::size_t k = 12; k <= 17; ++k) f.require_zero(k, "an offset");
-        f.require_blank(18, f.size(), "CBAR has 17 fields");
+        if (c.name == "CBEAM") {
+          f.require_blank(18, 19, "warping scalar points (SA, SB): ffr's beams do not warp");
+          f.require_blank(20, f.size(), "CBEAM has 19 fields");
+        } else {
+          f.require_blank(18, f.size(), "CBAR has 17 fields");
+        }
         b.bars[b.mesh.elements.size()] = bar;
       }
       const ElementType type = n == element->nodes_linear ? element->linear : element->quadratic;
@@ -167,7 +178,7 @@ Bulk parse(const std::string& file) {
     } else if (c.name == "MAT1") {
       const std::size_t mid = f.id(2, "MID");
       if (!b.materials.emplace(mid, &c).second) f.fail("MAT1 " + std::to_string(mid) + " defined twice");
-    } else if (c.name == "PSOLID" || c.name == "PSHELL" || c.name == "PBAR") {
+    } else if (c.name == "PSOLID" || c.name == "PSHELL" || c.name == "PBAR" || c.name == "PBEAM") {
       Property pr{};
       pr.card = &c;
       const std::size_t pid = f.id(2, "PID");
@@ -201,6 +212,9 @@ Bulk parse(const std::string& file) {
           f.fail("field 8 (TS/T): ffr's shells have the shear factor 5/6 (0.833333 or blank)");
         f.require_zero(9, "NSM");
         f.require_blank(12, f.size(), "a coupling material (MID4)");
+      } else if (c.name == "PBEAM") {
+        pr.kind = DeckSection::Kind::Beam;
+        pr.beam = read_pbeam(f);
       } else {
         pr.kind = DeckSection::Kind::Beam;
         BeamProps& bp = pr.beam;
@@ -234,8 +248,6 @@ Bulk parse(const std::string& file) {
       if (!harmless_params.count(f.raw(2)))
         f.fail("PARAM " + f.raw(2) + " is not taken (ffr passes over only PARAM POST, PRGPST, OGEOM, AUTOSPC, GRDPNT, "
                                       "NOCOMPS, MAXRATIO)");
-    } else if (c.name == "CBEAM" || c.name == "PBEAM") {
-      f.fail(c.name + " is not supported: give the beam as CBAR with PBAR");
     } else if (c.name == "CONM2") {
       b.conm2.push_back(&c);
     } else if (c.name == "CONM1") {
@@ -247,8 +259,8 @@ Bulk parse(const std::string& file) {
     } else if (c.name == "INCLUDE") {
       f.fail("INCLUDE is not supported: give the included file's cards in the deck itself");
     } else {
-      f.fail("card " + c.name + " is not supported (ffr reads GRID, CTETRA, CHEXA, CTRIA3, CQUAD4, CBAR, MAT1, PSOLID, "
-                                "PSHELL, PBAR, SET1, SPC1; it passes over EIGRL, EIGR, SPC, SPCADD, FORCE, MOMENT, GRAV, "
+      f.fail("card " + c.name + " is not supported (ffr reads GRID, CTETRA, CHEXA, CTRIA3, CQUAD4, CBAR, CBEAM, MAT1, "
+                                "PSOLID, PSHELL, PBAR, PBEAM, SET1, SPC1, CONM2; it passes over EIGRL, EIGR, SPC, SPCADD, FORCE, MOMENT, GRAV, "
                                 "LOAD and some PARAMs)");
     }
   }
@@ -269,9 +281,13 @@ std::vector<DeckSection> sections(const Bulk& b) {
       const auto p = b.properties.find(pid);
       const auto kind = std::find_if(element_cards().begin(), element_cards().end(),
                                      [&](const ElementCard& c) { return b.element_card[e]->name == c.name; })->kind;
-      const char* wanted = kind == DeckSection::Kind::Solid ? "PSOLID" : kind == DeckSection::Kind::Shell ? "PSHELL" : "PBAR";
+      const std::string& card = b.element_card[e]->name;
+      const std::string wanted = kind == DeckSection::Kind::Solid ? "PSOLID"
+                                 : kind == DeckSection::Kind::Shell ? "PSHELL"
+                                 : card == "CBEAM"                  ? "PBEAM"
+                                                                    : "PBAR";
       if (p == b.properties.end()) ef.fail("field 3 (PID): no property " + std::to_string(pid) + " (" + wanted + ") in the deck");
-      if (p->second.kind != kind) ef.fail("field 3 (PID): property " + std::to_string(pid) + " is a " + p->second.card->name + ", expected a " + wanted);
+      if (p->second.card->name != wanted) ef.fail("field 3 (PID): property " + std::to_string(pid) + " is a " + p->second.card->name + ", expected a " + wanted);
       if (!done.insert(pid).second && kind != DeckSection::Kind::Beam) continue;
       const Property& pr = p->second;
       const Fields pf(file, *pr.card);
@@ -293,8 +309,8 @@ std::vector<DeckSection> sections(const Bulk& b) {
         auto it = std::find_if(out.begin(), out.end(), [&](const DeckSection& s) { return s.group == ds.group; });
         if (it != out.end()) {
           if ((it->beam.y_axis - v).norm() > 1e-9)
-            ef.fail("the orientation vector differs from the first CBAR of property " + std::to_string(pid) +
-                    ": ffr takes one y axis per beam group (give bars of other orientations another PBAR)");
+            ef.fail("the orientation vector differs from the first " + card + " of property " + std::to_string(pid) +
+                    ": ffr takes one y axis per beam group (give " + card + "s of other orientations another " + wanted + ")");
           continue;
         }
         ds.beam = pr.beam;
