@@ -51,7 +51,8 @@ BeamProps read_pbeam(const Fields& f) {
   }
   // K1, K2: blank is 1.0 for PBEAM (unlike PBAR, where blank is rigid in shear); 0.0 rigid.
   const double k1 = f.real_or(k, "K1", 1.0), k2 = f.real_or(k + 1, "K2", 1.0);
-  if (k1 < 0 || k2 < 0) f.fail(Fields::at(k) + ", " + Fields::at(k + 1) + " (K1, K2): must be positive, 0 (rigid in shear) or blank");
+  if (k1 < 0 || k2 < 0)
+    f.fail(Fields::at(k) + ", " + Fields::at(k + 1) + " (K1, K2): must be positive, 0 (rigid in shear) or blank");
   if (k1 > 0) bp.ky = k1;
   if (k2 > 0) bp.kz = k2;
   f.require_zero(k + 2, "S1, shear relief of a tapered beam");

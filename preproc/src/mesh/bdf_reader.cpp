@@ -260,8 +260,8 @@ Bulk parse(const std::string& file) {
       f.fail("INCLUDE is not supported: give the included file's cards in the deck itself");
     } else {
       f.fail("card " + c.name + " is not supported (ffr reads GRID, CTETRA, CHEXA, CTRIA3, CQUAD4, CBAR, CBEAM, MAT1, "
-                                "PSOLID, PSHELL, PBAR, PBEAM, SET1, SPC1, CONM2; it passes over EIGRL, EIGR, SPC, SPCADD, FORCE, MOMENT, GRAV, "
-                                "LOAD and some PARAMs)");
+                                "PSOLID, PSHELL, PBAR, PBEAM, SET1, SPC1, CONM2; it passes over EIGRL, EIGR, SPC, "
+                                "SPCADD, FORCE, MOMENT, GRAV, LOAD and some PARAMs)");
     }
   }
   return b;
@@ -409,6 +409,7 @@ Mesh read_bdf(const std::string& file, MeshReport* report) {
         p->second.hex8 != Hex8Formulation::FullIntegration)
       continue;
     DeckMesh::Element& el = b.mesh.elements[e];
+    if (dimension(el.type) != 3) continue;  // a bar or shell on a PSOLID: sections() names it
     if (el.type != ElementType::Hex8)
       Fields(file, *b.element_card[e])
           .fail("field 3 (PID): PSOLID " + std::to_string(b.element_pid[e]) + " (line " +
