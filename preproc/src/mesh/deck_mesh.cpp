@@ -52,7 +52,7 @@ Mesh build_deck_mesh(const DeckMesh& d, MeshReport* report, std::chrono::steady_
     for (const std::size_t e : elements) {
       const DeckMesh::Element& el = d.elements[e];
       const Hex8Formulation hex8 = el.type == ElementType::Hex8 ? el.hex8 : Hex8Formulation::Incompatible;
-      auto [it, fresh] = block_of_type.try_emplace({el.type, hex8}, mesh.blocks.size());
+      auto [it, fresh] = block_of_type.try_emplace(std::make_pair(el.type, hex8), mesh.blocks.size());
       if (fresh) mesh.blocks.push_back(ElementBlock{el.type, name, {}, {}, hex8});
       ElementBlock& b = mesh.blocks[it->second];
       b.tags.push_back(el.id);
