@@ -65,9 +65,14 @@ std::size_t Mesh::node_tag(Index n) const {
   return node_tags.empty() ? static_cast<std::size_t>(n + 1) : node_tags[static_cast<std::size_t>(n)];
 }
 
+std::string block_type_name(const ElementBlock& b) {
+  if (b.type == ElementType::Hex8 && b.hex8 == Hex8Formulation::FullIntegration) return "HEX8_FULL";
+  return name(b.type);
+}
+
 std::map<std::string, Index> element_counts(const Mesh& mesh) {
   std::map<std::string, std::set<std::size_t>> tags;
-  for (const auto& b : mesh.blocks) tags[name(b.type)].insert(b.tags.begin(), b.tags.end());
+  for (const auto& b : mesh.blocks) tags[block_type_name(b)].insert(b.tags.begin(), b.tags.end());
   std::map<std::string, Index> counts;
   for (const auto& [t, s] : tags) counts[t] = static_cast<Index>(s.size());
   return counts;

@@ -252,11 +252,126 @@ TEST(BdfDeck, Conm2TipMassOnACantileverGivesTheExactFrequency) {
 
 namespace {
 
+// The 40-element cantilever of the CBAR tests along x (v = +y, clamped at grid 1 through SET1
+// 9), its elements given by `card` ("CBAR" or "CBEAM") on property 2, `property` the property's
+// lines and MAT1 5 steel.
+std::string cantilever(const std::string& card, const std::string& property) {
+  const int n = 40;
+  std::ostringstream s;
+  char buf[128];
+  for (int i = 0; i <= n; ++i) {
+    std::snprintf(buf, sizeof buf, "GRID    %-8d        %-8.5f0.      0.\n", i + 1, static_cast<double>(i) / n);
+    s << buf;
+  }
+  for (int i = 0; i < n; ++i) {
+    std::snprintf(buf, sizeof buf, "%-8s%-8d2       %-8d%-8d0.      1.      0.\n", card.c_str(), 100 + i, i + 1, i + 2);
+    s << buf;
+  }
+  return s.str() + property + "MAT1    5       2.1+11          .3      7850.\nSET1    9       1\n";
+}
+
+formats::Sid reduce_cantilever(const test::TempDir& dir, const std::string& name, const std::string& deck, int modes) {
+  test::write_text(dir / (name + ".bdf"), deck);
+  test::write_text(dir / (name + ".json"), R"({"geometry": ")" + name + R"(.bdf", "visual": false,
+    "interfaces": [{"name": "root", "group": "set9"}],
+    "reduction": {"method": "clamped", "interface": "root", "modes": )" + std::to_string(modes) + "}}");
+  return preproc::run_pipeline(preproc::load_part(dir / (name + ".json")));
+}
+
+void expect_same_sid(const formats::Sid& a, const formats::Sid& b, const std::string& what) {
+  formats::DiffOptions o;
+  o.rtol = 1e-9;
+  const auto d = formats::diff(a, b, o);
+  std::string worst;
+  for (const auto& w : d.worst) worst += "\n  " + w.dataset + w.index + ": " + std::to_string(w.a) + " vs " + std::to_string(w.b);
+  for (const auto& st : d.structural) worst += "\n  " + st;
+  EXPECT_TRUE(d.equivalent) << what << ": " << d.datasets_different << " datasets differ:" << worst;
+  EXPECT_GT(d.datasets_compared, 10) << what;
+}
+
+// A root of 1 + cos(x) cosh(x) (the clamped-free Euler-Bernoulli beam's frequency equation) in
+// [a, b], by bisection.
+double cantilever_root(double a, double b) {
+  const auto g = [](double x) { return 1 + std::cos(x) * std::cosh(x); };
+  if (g(a) * g(b) > 0) throw std::runtime_error("no sign change");
+  for (int k = 0; k < 200; ++k) {
+    const double m = 0.5 * (a + b);
+    (g(a) * g(m) <= 0 ? b : a) = m;
+  }
+  return 0.5 * (a + b);
+}
+
+// PBEAM 2: end A's line with `section` (A, I1, I2, I12, J in small field), the line of its
+// stress points, then `tail` (stations, K1 ... N2(B)).
+std::string pbeam(const std::string& section, const std::string& tail) { return "PBEAM   2       5       " + section + "\n+\n" + tail; }
+const char* kSection = "1.-4    8.-10   2.-10           5.-10";
+
+}  // namespace
+
+// A cantilever of 40 CBEAMs, PBEAM with K1 = K2 = 0 (rigid in shear: Euler-Bernoulli; Quick
+// Reference Guide, PBEAM), against the Euler-Bernoulli clamped-free frequencies
+// f_n = (beta_n L)^2 / (2 pi L^2) sqrt(E I / (rho A)), beta_n L the roots of
+// 1 + cos(beta L) cosh(beta L) = 0: 1.8751 and 4.6941 (Blevins, "Formulas for Natural Frequency
+// and Mode Shape", table of single-span beams, clamped-free; found by bisection here), the
+// first two in each plane: I2 moves the beam in z, I1 in y (the plane of x and v). ffr's beam
+// carries the section's rotary inertia, which Euler-Bernoulli theory leaves out: it lowers f_n
+// by the order of (beta_n r)^2 / 2, r^2 = I / A: about 1e-5 on this slender section (L / r =
+// 1118); 40 cubic elements add less than 1e-6: hence 3e-5. And the same cantilever of CBARs with PBAR
+// (K1, K2 blank: rigid in shear) gives the same SID.
+TEST(BdfDeck, CbeamCantileverIsEulerBernoulliAndTheCbarSid) {
+  test::TempDir dir("interop_cbeam");
+  const double A = 1e-4, I1 = 8e-11, I2 = 2e-11, E = 2.1e11, rho = 7850;
+  const double b1 = cantilever_root(1.5, 2.5), b2 = cantilever_root(4.5, 5.0);
+  ASSERT_NEAR(b1, 1.8751, 1e-4);
+  ASSERT_NEAR(b2, 4.6941, 1e-4);
+  const auto f = [&](double beta, double I) { return beta * beta / (2 * M_PI) * std::sqrt(E * I / (rho * A)); };
+  const formats::Sid beam =
+      reduce_cantilever(dir, "beam", cantilever("CBEAM", pbeam("1.-4    8.-11   2.-11           5.-11", "+       0.      0.\n")), 4);
+  // In order: z (I2) 1st, y (I1) 1st, z 2nd, y 2nd (1.29, 2.59, 8.11, 16.2 Hz).
+  const double expected[4] = {f(b1, I2), f(b1, I1), f(b2, I2), f(b2, I1)};
+  const int axis[4] = {2, 1, 2, 1};
+  ASSERT_EQ(beam.refmod.frequency_hz.size(), 4);
+  for (Eigen::Index k = 0; k < 4; ++k) {
+    EXPECT_NEAR(beam.refmod.frequency_hz(k) / expected[k], 1.0, 3e-5) << "mode " << k + 1;
+    // The mode's momentum (Ct.M0) lies along its axis.
+    EXPECT_GT(std::abs(beam.Ct.M0(k, axis[k])), 1e3 * std::abs(beam.Ct.M0(k, 3 - axis[k]))) << "mode " << k + 1;
+    std::printf("CBEAM cantilever mode %d: %.6f Hz, Euler-Bernoulli %.6f Hz, ratio - 1 = %.2e\n", static_cast<int>(k + 1),
+                beam.refmod.frequency_hz(k), expected[k], beam.refmod.frequency_hz(k) / expected[k] - 1);
+  }
+  const formats::Sid bar =
+      reduce_cantilever(dir, "bar", cantilever("CBAR", "PBAR    2       5       1.-4    8.-11   2.-11   5.-11\n"), 4);
+  expect_same_sid(beam, bar, "CBEAM/PBEAM vs CBAR/PBAR");
+}
+
+// PBEAM's defaults and stations: K1, K2 blank are 1.0 (PBAR with K1 = K2 = 1.0 gives the same
+// SID); stations that repeat end A's section, or leave it blank, are the constant section
+// (YESA and NO stations without their line of stress points, a YES station with it).
+TEST(BdfDeck, PbeamDefaultsAndConstantStations) {
+  test::TempDir dir("interop_pbeam");
+  const formats::Sid bar = reduce_cantilever(
+      dir, "bar", cantilever("CBAR", "PBAR    2       5       1.-4    8.-10   2.-10   5.-10\n+\n+       1.      1.\n"), 4);
+  const formats::Sid plain = reduce_cantilever(dir, "plain", cantilever("CBEAM", pbeam(kSection, "")), 4);
+  expect_same_sid(plain, bar, "PBEAM with K1, K2 blank vs PBAR with K1 = K2 = 1.0");
+  const std::string stations = "+       YESA    .25\n"
+                               "+       YES     .5      1.-4            2.-10   0.\n+       .01     .01\n"
+                               "+       NO      1.      1.0E-4  8.0E-10 2.0E-10         5.0E-10 0.\n"
+                               "+       1.      1.      0.      0.      0.      0.      0.      0.\n";
+  const formats::Sid tapered_not = reduce_cantilever(dir, "stations", cantilever("CBEAM", pbeam(kSection, stations)), 4);
+  expect_same_sid(tapered_not, bar, "PBEAM with constant stations vs PBAR");
+}
+namespace {
+
 const char* kTet = "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,0.,1.,0.\nGRID,4,,0.,0.,1.\n";
 const char* kProps = "PSOLID,1,2\nMAT1,2,2.1+11,,0.3,7850.\n";
 
 std::string refusal(const test::TempDir& dir, const std::string& deck, const std::string& group = "pid1") {
   return test::deck_refusal(dir, "bad.bdf", deck, group);
+}
+
+// One CBEAM (line 3) between two grids, its property (line 4) and MAT1 5, grid 1 in SET1 9.
+const char* kPbeam = "PBEAM,2,5,1.-4,8.-10,2.-10,,5.-10\n";
+std::string beam(const std::string& element, const std::string& property) {
+  return "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\n" + element + property + "MAT1,5,2.1+11,,0.3,7850.\nSET1,9,1\n";
 }
 
 }  // namespace
@@ -290,14 +405,78 @@ TEST(BdfRefusals, EveryBadDeckNamesFileLineCardAndWhatWasExpected) {
       {tet + kProps + "SET1,3,1,2,3,4,5,6,7,8\n", "pid1", "bad.bdf: line 8: field 10 of a free-field line is its continuation marker (blank, '+...' or '*...'), found '8'"},
       {tet + kProps + "PARAM,WTMASS,0.00259\n", "pid1", "bad.bdf: line 8 (PARAM WTMASS): PARAM WTMASS is not taken"},
       {tet + "PSOLID,1,2,,,,FULL\n" + "MAT1,2,2.1+11,,0.3,7850.\n", "pid1",
-       "bad.bdf: line 6 (PSOLID 1): field 7 ('FULL') is not supported: an integration scheme (ISOP)"},
+       "bad.bdf: line 6 (PSOLID 1): fields 5, 7 (IN, ISOP) = '', 'FULL': ffr takes both blank"},
+      {tet + "PSOLID,1,2,,3,,FULL\n" + "MAT1,2,2.1+11,,0.3,7850.\n", "pid1",
+       "bad.bdf: line 6 (PSOLID 1): fields 5, 7 (IN, ISOP) = '3', 'FULL': ffr takes both blank"},
+      {tet + "PSOLID,1,2,,2,,FULL\n" + "MAT1,2,2.1+11,,0.3,7850.\n", "pid1",
+       "bad.bdf: line 5 (CTETRA 1): field 3 (PID): PSOLID 1 (line 6) has IN = 2, ISOP = FULL, which chooses the 8-grid "
+       "CHEXA's integration; ffr integrates CTETRA with 4 grids by its own rule"},
       {tet + kProps + "SET1,3,1,2,3,4,5,6,7\n+,8\n", "set3", "bad.bdf: line 8 (SET1 3): node 5 is not defined"},
       {tet + kProps, "set4", "bad.json: interfaces[0].group: no group 'set4' in the mesh"},
       {"BEGIN BULK\n" + tet + kProps + "ENDDATA\nGARBAGE\n", "nowhere", "no group 'nowhere'"},
+      // CBEAM and PBEAM: what ffr's beam does not have, named by card, line and field.
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n,1\n", kPbeam), "set9",
+       "bad.bdf: line 3 (CBEAM 1): continuation 1, field 2 ('1') is not supported: pin flags (PA, PB)"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n,,,0.1\n", kPbeam), "set9",
+       "bad.bdf: line 3 (CBEAM 1): continuation 1, field 4 (an offset) is not supported unless 0"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n,\n,7\n", kPbeam), "set9",
+       "bad.bdf: line 3 (CBEAM 1): continuation 2, field 2 ('7') is not supported: warping scalar points (SA, SB)"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.,GOO\n", kPbeam), "set9",
+       "bad.bdf: line 3 (CBEAM 1): field 9 (OFFT/BIT): only OFFT = GGG (or blank) is supported"},
+      {beam("CBEAM,1,2,1,2,0.,0.,0.\n", kPbeam), "set9",
+       "bad.bdf: line 3 (CBEAM 1): fields 6-8 (X1, X2, X3): the orientation vector is zero"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n", "PBAR,2,5,1.-4,8.-10,2.-10,5.-10\n"), "set9",
+       "bad.bdf: line 3 (CBEAM 1): field 3 (PID): property 2 is a PBAR, expected a PBEAM"},
+      {beam("CBAR,1,2,1,2,0.,1.,0.\n", kPbeam), "set9",
+       "bad.bdf: line 3 (CBAR 1): field 3 (PID): property 2 is a PBEAM, expected a PBAR"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n", "PBEAM,2,5,1.-4,8.-10,2.-10,,5.-10\n,\n,NO,1.,2.-4\n"), "set9",
+       "bad.bdf: line 4 (PBEAM 2): continuation 2, field 4 (A at X/XB = 1.): '2.-4' differs from end A's: tapered beams are not supported"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n", "PBEAM,2,5,1.-4,8.-10,2.-10,,5.-10\n,\n,YESA,0.5,,,3.-10\n"), "set9",
+       "continuation 2, field 6 (I2 at X/XB = 0.5): '3.-10' differs from end A's: tapered beams are not supported"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n", "PBEAM,2,5,1.-4,8.-10,2.-10,,5.-10\n,\n,NO,1.5\n"), "set9",
+       "bad.bdf: line 4 (PBEAM 2): continuation 2, field 3 (X/XB): a station lies in (0, 1]"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n", "PBEAM,2,5,1.-4,8.-10,2.-10,1.-10,5.-10\n"), "set9",
+       "bad.bdf: line 4 (PBEAM 2): field 7 (I12: give the section in its principal axes) is not supported unless 0"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n", "PBEAM,2,5,1.-4,8.-10,2.-10\n"), "set9",
+       "bad.bdf: line 4 (PBEAM 2): fields 4-6, 8 (A, I1, I2, J): must be positive"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n", "PBEAM,2,5,1.-4,8.-10,2.-10,,5.-10,0.1\n"), "set9",
+       "bad.bdf: line 4 (PBEAM 2): field 9 (NSM, non-structural mass) is not supported unless 0"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n", "PBEAM,2,5,1.-4,8.-10,2.-10,,5.-10\n,\n,,,,,,,1.-12\n"), "set9",
+       "bad.bdf: line 4 (PBEAM 2): continuation 2, field 8 (CW(A), warping: ffr's beams do not warp) is not supported unless 0"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n", "PBEAM,2,5,1.-4,8.-10,2.-10,,5.-10\n,\n,\n,,,,,0.01\n"), "set9",
+       "bad.bdf: line 4 (PBEAM 2): continuation 3, field 6 (N1, N2: an offset of the neutral axis) is not supported unless 0"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n", "PBEAM,2,5,1.-4,8.-10,2.-10,,5.-10\n,\n,-1.\n"), "set9",
+       "bad.bdf: line 4 (PBEAM 2): continuation 2, field 2, continuation 2, field 3 (K1, K2): must be positive, 0 (rigid in shear) or blank"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n", "PBEAM,2,5,1.-4,8.-10,2.-10,,5.-10\n,\n,MAYBE,1.\n"), "set9",
+       "bad.bdf: line 4 (PBEAM 2): continuation 2, field 2 (K1): expected a number, found 'MAYBE'"},
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n", "PBEAM,2,5,1.-4,8.-10,2.-10,,5.-10\n,\n,\n,\n,1.\n"), "set9",
+       "bad.bdf: line 4 (PBEAM 2): continuation 4, field 2 ('1.') is not supported: PBEAM ends with the line of M1(A) ... N2(B)"},
+      // A CHEXA of a PSOLID with IN = 2, ISOP = FULL that is degenerate: refused as any element.
+      {"GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,1.,1.,0.\nGRID,4,,0.,1.,0.\nCHEXA,1,1,1,2,3,4,1,2\n,3,4\n"
+       "PSOLID,1,2,,2,,FULL\nMAT1,2,2.1+11,,0.3,7850.\n",
+       "pid1", "bad.bdf: element 1 (HEX8, group pid1): HEX8 element is degenerate"},
   };
   for (const Case& c : cases) {
     const std::string what = refusal(dir, c.deck, c.group);
     EXPECT_NE(what.find(c.expected), std::string::npos) << "deck:\n" << c.deck << "\nmessage: " << what << "\nexpected: " << c.expected;
+  }
+}
+
+// The command line: a tapered PBEAM and a CHEXA whose PSOLID asks for an integration ffr does
+// not have, each exit status 2, the message naming file, line, card and field on stderr, no SID.
+TEST(BdfRefusals, CommandLineExitsWithTwoAndWritesNothing) {
+  test::TempDir dir("bdf_cli");
+  const std::vector<std::pair<std::string, std::string>> decks = {
+      {beam("CBEAM,1,2,1,2,0.,1.,0.\n", "PBEAM,2,5,1.-4,8.-10,2.-10,,5.-10\n,\n,NO,1.,2.-4\n"),
+       "bad.bdf: line 4 (PBEAM 2): continuation 2, field 4 (A at X/XB = 1.)"},
+      {std::string(kTet) + "CTETRA,1,1,1,2,3,4\nPSOLID,1,2,,3,,FULL\nMAT1,2,2.1+11,,0.3,7850.\n",
+       "bad.bdf: line 6 (PSOLID 1): fields 5, 7 (IN, ISOP)"}};
+  for (const auto& [deck, expected] : decks) {
+    (void)refusal(dir, deck, deck.find("CBEAM") != std::string::npos ? "set9" : "pid1");
+    const auto r = test::run(test::bin("ffr-reduce").string() + " " + (dir / "bad.json").string() + " -o " + (dir / "bad.sid.h5").string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.sid.h5"));
   }
 }
 

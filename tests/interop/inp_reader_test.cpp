@@ -30,7 +30,7 @@ namespace {
 
 // The deck gmsh writes of `msh` (the identical mesh: no re-meshing), with the node sets of
 // the physical groups, and without gmsh's plane elements (CPS*, which ffr does not take) and
-// their element sets; `c3d8` renames gmsh's C3D8 to the incompatible-mode C3D8I.
+// their element sets; `c3d8i` renames gmsh's C3D8 to the incompatible-mode C3D8I.
 std::string gmsh_deck(const std::filesystem::path& msh, const std::filesystem::path& inp, bool c3d8i = false) {
   const auto r = test::run("gmsh " + msh.string() + " -0 -setnumber Mesh.SaveGroupsOfNodes 1 -format inp -o " + inp.string());
   if (r.status != 0 || !std::filesystem::exists(inp)) throw std::runtime_error("gmsh failed: " + r.output);
@@ -59,8 +59,8 @@ struct Bar {
   test::TempDir dir{"interop_inp"};
   std::string deck;
   // A 0.2 x 0.02 x 0.012 bar, clamped at x = 0: tetrahedra of the given order, or (hex) a
-  // structured HEX8/HEX20 grid.
-  Bar(int order, bool hex) {
+  // structured HEX8/HEX20 grid, its linear bricks C3D8I or (c3d8i false) gmsh's C3D8.
+  Bar(int order, bool hex, bool c3d8i = true) {
     if (hex)
       test::write_text(dir / "bar.geo", R"(Point(1) = {0, 0, 0}; Point(2) = {0.2, 0, 0}; Line(1) = {1, 2};
 e[] = Extrude{0, 0.02, 0}{Line{1}; Layers{3}; Recombine;};
@@ -76,7 +76,7 @@ Physical Volume("body") = {1};
 Physical Surface("clamp") = Surface In BoundingBox{-1e-6, -1, -1, 1e-6, 1, 1};
 )");
     test::gmsh_mesh(dir / "bar.geo", dir / "bar.msh", order == 1 ? 0.004 : 0.006, order);
-    deck = gmsh_deck(dir / "bar.msh", dir / "gmsh.inp", hex);
+    deck = gmsh_deck(dir / "bar.msh", dir / "gmsh.inp", hex && c3d8i);
   }
   formats::Sid reduce(const std::string& geometry, const std::string& materials, const std::string& extra = "") {
     test::write_text(dir / "part.json", R"({"geometry": ")" + geometry + R"(", )" + materials + R"(
@@ -123,22 +123,27 @@ TEST(InpDeck, DeckMaterialStandsInForThePartFiles) {
 
 // CalculiX on the deck ffr-reduce reads (material and section from the deck, the clamp held in
 // a *STEP ffr passes over) against ffr's clamped modes. C3D20 integrates stiffness and mass
-// with 27 points, exactly as ffr's HEX20 on this box: 1e-6 (ccx prints 7 digits). CalculiX's
-// C3D10 integrates with 4 points (CalculiX manual, C3D10), which is not exact for the
-// quadratic tetrahedron's mass, where ffr's is: its frequencies sit 2.5e-6 off here, hence
-// 1e-5. (ffr's TET4 and HEX8 are not CalculiX's C3D4 and C3D8I in dynamics: 1.6 % and 2.5 %
-// apart on this bar, so no element-level comparison is made with them here.)
+// with 27 points, exactly as ffr's HEX20 on this box: 1e-6 (ccx prints 7 digits). C3D8 is the
+// trilinear brick with 2x2x2 Gauss points for stiffness and mass (CalculiX manual, "Eight-node
+// brick element (C3D8)"), exact on this box's rectangular bricks, as ffr's full-integration
+// HEX8 (2x2x2 stiffness, 3x3x3 mass): 1e-6. CalculiX's C3D10 integrates with 4 points
+// (CalculiX manual, C3D10), which is not exact for the quadratic tetrahedron's mass, where
+// ffr's is: its frequencies sit 2.5e-6 off here, hence 1e-5. (ffr's TET4 and incompatible-mode
+// HEX8 are not CalculiX's C3D4 and C3D8I in dynamics: 1.6 % and 2.5 % apart on this bar, so no
+// element-level comparison is made with them here.)
 struct CcxCase {
   int order;
   bool hex;
   double tol;
   const char* name;
+  bool c3d8i = true;
 };
 class InpCalculix : public ::testing::TestWithParam<CcxCase> {};
 
 TEST_P(InpCalculix, FrequenciesOfTheDeck) {
   const CcxCase c = GetParam();
-  Bar bar(c.order, c.hex);
+  Bar bar(c.order, c.hex, c.c3d8i);
+  if (c.hex && c.order == 1) ASSERT_NE(bar.deck.find("type=C3D8,"), std::string::npos);
   test::write_text(bar.dir / "job.inp", bar.deck + kDeckSteel + "*STEP\n*BOUNDARY\nclamp, 1, 3\n*FREQUENCY\n6\n*END STEP\n");
   const formats::Sid sid = bar.reduce("job.inp", "");
   const auto r = test::run("cd " + bar.dir.path().string() + " && OMP_NUM_THREADS=1 ccx -i job");
@@ -156,7 +161,8 @@ TEST_P(InpCalculix, FrequenciesOfTheDeck) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Elements, InpCalculix,
-                         ::testing::Values(CcxCase{2, true, 1e-6, "C3D20"}, CcxCase{2, false, 1e-5, "C3D10"}),
+                         ::testing::Values(CcxCase{2, true, 1e-6, "C3D20"}, CcxCase{2, false, 1e-5, "C3D10"},
+                                           CcxCase{1, true, 1e-6, "C3D8", false}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 // A QUAD4 plate: gmsh's deck with its plane elements (CPS4) declared as the shells they are
@@ -235,4 +241,110 @@ Physical Point("root") = {1};
     return preproc::run_pipeline(preproc::load_part(dir / "part.json"));
   };
   expect_same_sid(reduce("spar.msh"), reduce("spar.inp"));
+}
+
+// C3D8 and C3D8I in one deck: every other brick of the bar's C3D8 block declared C3D8I. The
+// reader keeps the two in blocks of their own, each with its elements, and the reduction uses
+// both kernels. Reference: the incompatible-mode stiffness is the full-integration one less the
+// condensed term K_ua K_aa^-1 K_au (positive semi-definite; Taylor, Beresford & Wilson 1976),
+// and both share the trilinear consistent mass, so by the Courant–Fischer minimax principle
+// each frequency of the mixed bar lies between the all-C3D8I and the all-C3D8 bar's. A reader
+// or assembly that took one kernel for both would land on one of the two bounds.
+TEST(InpDeck, C3D8AndC3D8IMixInOneDeck) {
+  Bar bar(1, true, false);
+  std::istringstream in(bar.deck);
+  std::ostringstream full, incompatible, mixed;
+  std::string line, even;
+  bool bricks = false;
+  while (std::getline(in, line)) {
+    const bool keyword = !line.empty() && line[0] == '*';
+    if (keyword && bricks) mixed << "*ELEMENT, type=C3D8I, ELSET=Volume1\n" << even;
+    if (keyword) bricks = line.find("type=C3D8,") != std::string::npos;
+    std::string as_i = line;
+    if (bricks && keyword) as_i.replace(as_i.find("type=C3D8,"), 10, "type=C3D8I,");
+    full << line << "\n";
+    incompatible << as_i << "\n";
+    if (bricks && !keyword && std::stoul(line.substr(0, line.find(','))) % 2 == 0) even += line + "\n";
+    else mixed << line << "\n";
+  }
+  ASSERT_FALSE(even.empty());
+  test::write_text(bar.dir / "mixed.inp", mixed.str() + kDeckSteel);
+  test::write_text(bar.dir / "full.inp", full.str() + kDeckSteel);
+  test::write_text(bar.dir / "incompatible.inp", incompatible.str() + kDeckSteel);
+
+  const preproc::Mesh mesh = preproc::detail::read_inp((bar.dir / "mixed.inp").string(), nullptr);
+  int blocks = 0;
+  for (const auto& b : mesh.blocks) {
+    if (b.group != "body") continue;
+    ++blocks;
+    ASSERT_EQ(b.type, preproc::ElementType::Hex8);
+    const bool want_full = b.hex8 == preproc::Hex8Formulation::FullIntegration;
+    for (const std::size_t tag : b.tags) EXPECT_EQ(tag % 2 == 1, want_full) << "element " << tag;
+  }
+  EXPECT_EQ(blocks, 2);
+  EXPECT_EQ(preproc::element_counts(mesh).count("HEX8_FULL"), 1u);
+
+  const formats::Sid f_mix = bar.reduce("mixed.inp", ""), f_full = bar.reduce("full.inp", ""),
+                     f_inc = bar.reduce("incompatible.inp", "");
+  for (Eigen::Index k = 0; k < 6; ++k) {
+    const double lo = f_inc.refmod.frequency_hz(k), hi = f_full.refmod.frequency_hz(k), m = f_mix.refmod.frequency_hz(k);
+    // The full-integration bar is stiffer (shear locking: 33 % in the first bending mode here,
+    // 0.3 % in the fifth); the mixed one strictly inside.
+    std::printf("mode %d: C3D8I %.2f Hz < mixed %.2f Hz < C3D8 %.2f Hz\n", static_cast<int>(k + 1), lo, m, hi);
+    EXPECT_GT(hi, lo * 1.001) << "mode " << k + 1;
+    EXPECT_GT(m, lo + 0.05 * (hi - lo)) << "mode " << k + 1 << ": " << lo << " < " << m << " < " << hi;
+    EXPECT_LT(m, hi - 0.05 * (hi - lo)) << "mode " << k + 1 << ": " << lo << " < " << m << " < " << hi;
+  }
+  EXPECT_EQ(f_full.provenance.element_counts.count("HEX8_FULL"), 1u);
+  EXPECT_EQ(f_inc.provenance.element_counts.count("HEX8_FULL"), 0u);
+  EXPECT_NE(f_full.provenance.mesh_sha256, f_inc.provenance.mesh_sha256);
+}
+
+// Nastran's CHEXA with 8 grids and PSOLID IN = 2, ISOP = FULL (the isoparametric brick with
+// 2x2x2 Gauss points, Quick Reference Guide, PSOLID) is C3D8: gmsh's bulk data of the bar's
+// HEX8 mesh (large field, 9 digits) against CalculiX's C3D8 on gmsh's .inp deck of that mesh.
+TEST(BdfCalculix, ChexaWithFullIntegrationIsCalculixsC3D8) {
+  Bar bar(1, true, false);
+  test::write_text(bar.dir / "job.inp", bar.deck + kDeckSteel + "*STEP\n*BOUNDARY\nclamp, 1, 3\n*FREQUENCY\n6\n*END STEP\n");
+  const auto r = test::run("cd " + bar.dir.path().string() + " && OMP_NUM_THREADS=1 ccx -i job");
+  const std::vector<double> ccx = calculix::read_frequencies(bar.dir / "job.dat");
+  ASSERT_EQ(ccx.size(), 6u) << r.output.substr(0, 2000);
+
+  const auto g = test::run("gmsh " + (bar.dir / "bar.msh").string() + " -0 -setnumber Mesh.BdfFieldFormat 2 -format bdf -o " +
+                           (bar.dir / "gmsh.bdf").string());
+  ASSERT_EQ(g.status, 0) << g.output;
+  // Without the clamp's CQUAD4s (gmsh's surface group); the clamp's grids as SET1 9.
+  std::istringstream in(formats::read_text_file(bar.dir / "gmsh.bdf"));
+  std::ostringstream deck;
+  std::string line;
+  bool drop = false;
+  int hexes = 0;
+  while (std::getline(in, line)) {
+    const bool continuation = line.empty() || line[0] == '+' || line[0] == '*' || line[0] == ' ' || line[0] == ',';
+    if (!continuation) drop = line.rfind("CQUAD4", 0) == 0 || line.rfind("ENDDATA", 0) == 0;
+    if (!continuation && line.rfind("CHEXA", 0) == 0) ++hexes;
+    if (!drop) deck << line << "\n";
+  }
+  ASSERT_GT(hexes, 0);
+  preproc::PartSpec p;
+  p.geometry = bar.dir / "bar.msh";
+  const preproc::Mesh msh = preproc::load_mesh(p);
+  for (const preproc::Index n : msh.node_groups.at("clamp")) deck << "SET1,9," << msh.node_tag(n) << "\n";
+  // gmsh writes the volume's physical tag, 1, as the property id.
+  deck << "PSOLID,1,3,,2,,FULL\nMAT1,3,2.1+11,,0.3,7850.\nENDDATA\n";
+  test::write_text(bar.dir / "bar.bdf", deck.str());
+  test::write_text(bar.dir / "part.json", R"({"geometry": "bar.bdf", "visual": false,
+    "interfaces": [{"name": "root", "group": "set9"}],
+    "reduction": {"method": "clamped", "interface": "root", "modes": 6}})");
+  const formats::Sid sid = preproc::run_pipeline(preproc::load_part(bar.dir / "part.json"));
+  EXPECT_EQ(sid.provenance.element_counts.count("HEX8_FULL"), 1u);
+  double worst = 0;
+  for (Eigen::Index k = 0; k < 6; ++k) {
+    const double rel = sid.refmod.frequency_hz(k) / ccx[static_cast<std::size_t>(k)] - 1.0;
+    worst = std::max(worst, std::abs(rel));
+    EXPECT_LE(std::abs(rel), 1e-6) << "mode " << k + 1 << ": " << sid.refmod.frequency_hz(k) << " Hz (ffr) vs "
+                                   << ccx[static_cast<std::size_t>(k)] << " Hz (CalculiX)";
+  }
+  RecordProperty("worst_relative_difference", std::to_string(worst));
+  std::printf("CHEXA, PSOLID IN = 2, ISOP = FULL: largest relative difference of the 6 frequencies to CalculiX's C3D8 %.2e\n", worst);
 }

@@ -156,9 +156,14 @@ TEST(InpRefusals, EveryBadDeckNamesFileLineAndWhatWasExpected) {
   const std::vector<Case> cases = {
       {ok + "*CLOAD\n1, 1, 5.0\n", "body", "bad.inp: line 14 (*CLOAD): keyword *CLOAD is not supported"},
       {std::string(kTet) + "*ELEMENT, TYPE=C3D15, ELSET=body\n1, 1, 2, 3, 4\n" + kTetMaterial, "body",
-       "bad.inp: line 6 (*ELEMENT, TYPE=C3D15, ELSET=body): element type C3D15 is not in ffr's element library (ffr reads C3D4, C3D10, C3D8I, C3D20, S3, S4, B31)"},
-      {std::string(kTet) + "*ELEMENT, TYPE=C3D8, ELSET=body\n1, 1, 2, 3, 4\n", "body", "give TYPE=C3D8I to take ffr's brick"},
-      {std::string(kTet) + "*ELEMENT, TYPE=C3D8, ELSET=body\n1, 1, 2, 3, 4\n", "body", "or mesh the part with C3D20"},
+       "bad.inp: line 6 (*ELEMENT, TYPE=C3D15, ELSET=body): element type C3D15 is not in ffr's element library (ffr reads C3D4, C3D10, C3D8I, C3D8, C3D20, S3, S4, B31)"},
+      {std::string(kTet) + "*ELEMENT, TYPE=C3D8, ELSET=body\n1, 1, 2, 3, 4\n", "body",
+       "bad.inp: line 7: element 1: C3D8 has 8 nodes, found 4"},
+      {"*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n5, 0, 0, 0\n6, 1, 0, 0\n7, 1, 1, 0\n8, 0, 1, 0\n"
+       "*ELEMENT, TYPE=C3D8, ELSET=body\n1, 1, 2, 3, 4, 5, 6, 7, 8\n" + std::string(kTetMaterial), "body",
+       "bad.inp: element 1 (HEX8, group body): HEX8 element is degenerate (zero volume)"},
+      {std::string(kTet) + "*ELEMENT, TYPE=C3D8R, ELSET=body\n1, 1, 2, 3, 4, 1, 2, 3, 4\n", "body",
+       "bad.inp: line 6 (*ELEMENT, TYPE=C3D8R, ELSET=body): C3D8R (reduced or modified integration) is not in ffr's element library"},
       {std::string(kTet) + kTetElement + "*MATERIAL, NAME=STEEL\n*ELASTIC\n2.1e11, 0.3\n*DENSITY\n7850\n"
                                          "*SOLID SECTION, ELSET=nothere, MATERIAL=STEEL\n",
        "body", "bad.inp: line 13 (*SOLID SECTION, ELSET=nothere, MATERIAL=STEEL): no element set 'nothere' in the deck"},

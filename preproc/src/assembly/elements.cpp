@@ -68,7 +68,7 @@ ElementMatrices element_matrices(const FeModel& model, const ElementRef& ref) {
       case ElementKind::Solid:
         // Solids need no samples: their inertia integrals follow exactly from the scalar mass
         // matrix Ms (see invariants.hpp), which saves a third of the kernel time on HEX20.
-        return solid_element(blk.type, xe, part.materials[pb.property].mat, SolidOptions{true, false});
+        return solid_element(blk.type, xe, part.materials[pb.property].mat, solid_options(blk, false));
       case ElementKind::Shell: {
         const ShellSection sec = detail::shell_section(part.shells[pb.property]);
         return detail::composite(blk.type, xe, 6, [&](ElementType t, const Eigen::MatrixX3d& x) { return shell_element(t, x, sec); });

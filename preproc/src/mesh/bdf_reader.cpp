@@ -1,5 +1,6 @@
 #include "bdf_reader.hpp"
 
+#include "bdf_beam.hpp"
 #include "bdf_cards.hpp"
 
 #include "ffr/formats/h5.hpp"
@@ -47,6 +48,7 @@ const std::vector<ElementCard>& element_cards() {
       {"CTRIA3", ElementType::Tri3, ElementType::Tri3, 3, 3, {0, 1, 2}, DeckSection::Kind::Shell},
       {"CQUAD4", ElementType::Quad4, ElementType::Quad4, 4, 4, {0, 1, 2, 3}, DeckSection::Kind::Shell},
       {"CBAR", ElementType::Line2, ElementType::Line2, 2, 2, {0, 1}, DeckSection::Kind::Beam},
+      {"CBEAM", ElementType::Line2, ElementType::Line2, 2, 2, {0, 1}, DeckSection::Kind::Beam},
   };
   return cards;
 }
@@ -57,6 +59,7 @@ struct Property {
   std::size_t mid;
   double thickness = 0;
   BeamProps beam;
+  Hex8Formulation hex8 = Hex8Formulation::Incompatible;  // PSOLID: its 8-grid CHEXAs
 };
 
 struct Bar {
@@ -139,7 +142,9 @@ Bulk parse(const std::string& file) {
       } else if (c.name == "CQUAD4") {
         f.require_zero(9, "ZOFFS");
         f.require_blank(10, f.size(), "varying thickness (TFLAG, T1..T4)");
-      } else if (c.name == "CBAR") {
+      } else if (c.name == "CBAR" || c.name == "CBEAM") {
+        // CBAR and CBEAM share fields 2-17 (Quick Reference Guide): the orientation as X1..X3
+        // or G0, OFFT (CBEAM: OFFT/BIT, BIT only for p-elements), pin flags, offsets.
         Bar bar{g[0]};
         if (f.raw(6).find('.') == std::string::npos && f.blank(7) && f.blank(8) && !f.blank(6)) {
           bar.g0 = f.id(6, "G0");
@@ -148,10 +153,17 @@ Bulk parse(const std::string& file) {
           if (bar.v.norm() == 0) f.fail("fields 6-8 (X1, X2, X3): the orientation vector is zero");
         }
         const std::string offt = f.raw(9);
-        if (!offt.empty() && offt != "GGG") f.fail("field 9 (OFFT): only GGG (or blank) is supported");
+        if (!offt.empty() && offt != "GGG")
+          f.fail(c.name == "CBAR" ? "field 9 (OFFT): only GGG (or blank) is supported"
+                                  : "field 9 (OFFT/BIT): only OFFT = GGG (or blank) is supported");
         f.require_blank(10, 11, "pin flags (PA, PB)");
         for (std::size_t k = 12; k <= 17; ++k) f.require_zero(k, "an offset");
-        f.require_blank(18, f.size(), "CBAR has 17 fields");
+        if (c.name == "CBEAM") {
+          f.require_blank(18, 19, "warping scalar points (SA, SB): ffr's beams do not warp");
+          f.require_blank(20, f.size(), "CBEAM has 19 fields");
+        } else {
+          f.require_blank(18, f.size(), "CBAR has 17 fields");
+        }
         b.bars[b.mesh.elements.size()] = bar;
       }
       const ElementType type = n == element->nodes_linear ? element->linear : element->quadratic;
@@ -166,15 +178,25 @@ Bulk parse(const std::string& file) {
     } else if (c.name == "MAT1") {
       const std::size_t mid = f.id(2, "MID");
       if (!b.materials.emplace(mid, &c).second) f.fail("MAT1 " + std::to_string(mid) + " defined twice");
-    } else if (c.name == "PSOLID" || c.name == "PSHELL" || c.name == "PBAR") {
+    } else if (c.name == "PSOLID" || c.name == "PSHELL" || c.name == "PBAR" || c.name == "PBEAM") {
       Property pr{};
       pr.card = &c;
       const std::size_t pid = f.id(2, "PID");
       pr.mid = f.id(3, "MID");
       if (c.name == "PSOLID") {
         pr.kind = DeckSection::Kind::Solid;
-        f.require_blank(5, 5, "an integration network (IN)");
-        f.require_blank(7, 7, "an integration scheme (ISOP)");
+        // IN and ISOP choose the 8-grid CHEXA's formulation (Quick Reference Guide, PSOLID):
+        // blank (or BUBBLE, REDUCED), Nastran's default, the bubble-function brick, which ffr
+        // takes as its incompatible-mode HEX8; IN = 2 (TWO) with ISOP = FULL (1), the plain
+        // isoparametric brick with 2x2x2 Gauss points, ffr's full-integration HEX8 (C3D8).
+        const std::string in = f.raw(5), isop = f.raw(7);
+        if ((in == "2" || in == "TWO") && (isop == "FULL" || isop == "1")) {
+          pr.hex8 = Hex8Formulation::FullIntegration;
+        } else if (!((in.empty() || in == "BUBBLE" || in == "0") && (isop.empty() || isop == "REDUCED" || isop == "0"))) {
+          f.fail("fields 5, 7 (IN, ISOP) = '" + in + "', '" + isop +
+                 "': ffr takes both blank (Nastran's default bubble-function CHEXA, ffr's incompatible-mode HEX8; "
+                 "also IN = BUBBLE, ISOP = REDUCED) or IN = 2 with ISOP = FULL (the full-integration CHEXA)");
+        }
         if (!f.blank(8) && f.raw(8) != "SMECH") f.fail("field 8 (FCTN): only SMECH (structural) is supported");
         f.require_blank(9, f.size(), "PSOLID has 8 fields");
       } else if (c.name == "PSHELL") {
@@ -190,6 +212,9 @@ Bulk parse(const std::string& file) {
           f.fail("field 8 (TS/T): ffr's shells have the shear factor 5/6 (0.833333 or blank)");
         f.require_zero(9, "NSM");
         f.require_blank(12, f.size(), "a coupling material (MID4)");
+      } else if (c.name == "PBEAM") {
+        pr.kind = DeckSection::Kind::Beam;
+        pr.beam = read_pbeam(f);
       } else {
         pr.kind = DeckSection::Kind::Beam;
         BeamProps& bp = pr.beam;
@@ -223,8 +248,6 @@ Bulk parse(const std::string& file) {
       if (!harmless_params.count(f.raw(2)))
         f.fail("PARAM " + f.raw(2) + " is not taken (ffr passes over only PARAM POST, PRGPST, OGEOM, AUTOSPC, GRDPNT, "
                                       "NOCOMPS, MAXRATIO)");
-    } else if (c.name == "CBEAM" || c.name == "PBEAM") {
-      f.fail(c.name + " is not supported: give the beam as CBAR with PBAR");
     } else if (c.name == "CONM2") {
       b.conm2.push_back(&c);
     } else if (c.name == "CONM1") {
@@ -236,9 +259,9 @@ Bulk parse(const std::string& file) {
     } else if (c.name == "INCLUDE") {
       f.fail("INCLUDE is not supported: give the included file's cards in the deck itself");
     } else {
-      f.fail("card " + c.name + " is not supported (ffr reads GRID, CTETRA, CHEXA, CTRIA3, CQUAD4, CBAR, MAT1, PSOLID, "
-                                "PSHELL, PBAR, SET1, SPC1; it passes over EIGRL, EIGR, SPC, SPCADD, FORCE, MOMENT, GRAV, "
-                                "LOAD and some PARAMs)");
+      f.fail("card " + c.name + " is not supported (ffr reads GRID, CTETRA, CHEXA, CTRIA3, CQUAD4, CBAR, CBEAM, MAT1, "
+                                "PSOLID, PSHELL, PBAR, PBEAM, SET1, SPC1, CONM2; it passes over EIGRL, EIGR, SPC, "
+                                "SPCADD, FORCE, MOMENT, GRAV, LOAD and some PARAMs)");
     }
   }
   return b;
@@ -258,9 +281,13 @@ std::vector<DeckSection> sections(const Bulk& b) {
       const auto p = b.properties.find(pid);
       const auto kind = std::find_if(element_cards().begin(), element_cards().end(),
                                      [&](const ElementCard& c) { return b.element_card[e]->name == c.name; })->kind;
-      const char* wanted = kind == DeckSection::Kind::Solid ? "PSOLID" : kind == DeckSection::Kind::Shell ? "PSHELL" : "PBAR";
+      const std::string& card = b.element_card[e]->name;
+      const std::string wanted = kind == DeckSection::Kind::Solid ? "PSOLID"
+                                 : kind == DeckSection::Kind::Shell ? "PSHELL"
+                                 : card == "CBEAM"                  ? "PBEAM"
+                                                                    : "PBAR";
       if (p == b.properties.end()) ef.fail("field 3 (PID): no property " + std::to_string(pid) + " (" + wanted + ") in the deck");
-      if (p->second.kind != kind) ef.fail("field 3 (PID): property " + std::to_string(pid) + " is a " + p->second.card->name + ", expected a " + wanted);
+      if (p->second.card->name != wanted) ef.fail("field 3 (PID): property " + std::to_string(pid) + " is a " + p->second.card->name + ", expected a " + wanted);
       if (!done.insert(pid).second && kind != DeckSection::Kind::Beam) continue;
       const Property& pr = p->second;
       const Fields pf(file, *pr.card);
@@ -282,8 +309,8 @@ std::vector<DeckSection> sections(const Bulk& b) {
         auto it = std::find_if(out.begin(), out.end(), [&](const DeckSection& s) { return s.group == ds.group; });
         if (it != out.end()) {
           if ((it->beam.y_axis - v).norm() > 1e-9)
-            ef.fail("the orientation vector differs from the first CBAR of property " + std::to_string(pid) +
-                    ": ffr takes one y axis per beam group (give bars of other orientations another PBAR)");
+            ef.fail("the orientation vector differs from the first " + card + " of property " + std::to_string(pid) +
+                    ": ffr takes one y axis per beam group (give " + card + "s of other orientations another " + wanted + ")");
           continue;
         }
         ds.beam = pr.beam;
@@ -373,8 +400,26 @@ std::vector<DeckPointMass> read_bdf_point_masses(const std::string& file) {
 
 Mesh read_bdf(const std::string& file, MeshReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
-  // The properties are load_part's (read_bdf_sections): the part file may replace them.
-  return build_deck_mesh(parse(file).mesh, report, t0);
+  // The properties are load_part's (read_bdf_sections): the part file may replace them. The
+  // formulation of an 8-grid CHEXA is the element's, so it stays with the deck's PSOLID.
+  Bulk b = parse(file);
+  for (std::size_t e = 0; e < b.mesh.elements.size(); ++e) {
+    const auto p = b.properties.find(b.element_pid[e]);
+    if (p == b.properties.end() || p->second.kind != DeckSection::Kind::Solid ||
+        p->second.hex8 != Hex8Formulation::FullIntegration)
+      continue;
+    DeckMesh::Element& el = b.mesh.elements[e];
+    if (dimension(el.type) != 3) continue;  // a bar or shell on a PSOLID: sections() names it
+    if (el.type != ElementType::Hex8)
+      Fields(file, *b.element_card[e])
+          .fail("field 3 (PID): PSOLID " + std::to_string(b.element_pid[e]) + " (line " +
+                std::to_string(p->second.card->line) +
+                ") has IN = 2, ISOP = FULL, which chooses the 8-grid CHEXA's integration; ffr integrates " +
+                b.element_card[e]->name + " with " + std::to_string(num_nodes(el.type)) +
+                " grids by its own rule: give it a PSOLID with IN and ISOP blank");
+    el.hex8 = Hex8Formulation::FullIntegration;
+  }
+  return build_deck_mesh(b.mesh, report, t0);
 }
 
 }  // namespace ffr::preproc::detail

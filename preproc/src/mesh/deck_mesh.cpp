@@ -7,6 +7,7 @@
 #include <map>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 
 namespace ffr::preproc::detail {
 
@@ -46,12 +47,13 @@ Mesh build_deck_mesh(const DeckMesh& d, MeshReport* report, std::chrono::steady_
   }
 
   const auto add_group = [&](const std::string& name, const std::vector<std::size_t>& elements) {
-    std::map<ElementType, std::size_t> block_of_type;
+    std::map<std::pair<ElementType, Hex8Formulation>, std::size_t> block_of_type;
     std::vector<Index>& set = mesh.node_groups[name];
     for (const std::size_t e : elements) {
       const DeckMesh::Element& el = d.elements[e];
-      auto [it, fresh] = block_of_type.try_emplace(el.type, mesh.blocks.size());
-      if (fresh) mesh.blocks.push_back(ElementBlock{el.type, name, {}, {}});
+      const Hex8Formulation hex8 = el.type == ElementType::Hex8 ? el.hex8 : Hex8Formulation::Incompatible;
+      auto [it, fresh] = block_of_type.try_emplace(std::make_pair(el.type, hex8), mesh.blocks.size());
+      if (fresh) mesh.blocks.push_back(ElementBlock{el.type, name, {}, {}, hex8});
       ElementBlock& b = mesh.blocks[it->second];
       b.tags.push_back(el.id);
       for (int i = 0; i < num_nodes(el.type); ++i) {

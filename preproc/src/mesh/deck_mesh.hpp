@@ -35,6 +35,7 @@ struct DeckMesh {
     ElementType type;
     std::size_t first;  ///< into conn: the element's node ids, gmsh order
     int line;
+    Hex8Formulation hex8 = Hex8Formulation::Incompatible;  ///< HEX8: C3D8I or C3D8
   };
   std::vector<Element> elements;
   std::vector<std::size_t> conn;
@@ -50,7 +51,8 @@ struct DeckMesh {
 };
 
 /// The Mesh of the deck: nodes numbered as gmsh_import numbers them (node_order.hpp), one
-/// block per element set and element type (in the order the types first occur in the set),
+/// block per element set and element type (in the order the types first occur in the set; the
+/// two HEX8 formulations are two types here),
 /// then the group "all" of every element of the highest dimension unless has_all, and a node
 /// group per element set (its elements' nodes) and node set (joined with a group of the same
 /// name). Throws formats::FormatError naming the file and line of an id defined twice or used

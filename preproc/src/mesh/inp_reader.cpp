@@ -25,6 +25,7 @@ struct DeckType {
   const char* name;
   ElementType type;
   std::vector<int> order;
+  Hex8Formulation hex8 = Hex8Formulation::Incompatible;
 };
 
 const std::vector<DeckType>& deck_types() {
@@ -33,8 +34,11 @@ const std::vector<DeckType>& deck_types() {
       // Corners and the base edges agree; the edges to the apex differ: gmsh 8 = (2,3) and
       // 9 = (1,3), Abaqus 9 = (1,3) and 10 = (2,3) (0-based corners, 1-based Abaqus nodes).
       {"C3D10", ElementType::Tet10, {0, 1, 2, 3, 4, 5, 6, 7, 9, 8}},
-      // ffr's HEX8 is the incompatible-mode brick (C3D8I); C3D8 is refused (see refusal()).
+      // The two trilinear bricks, one node order: C3D8I with incompatible modes (ffr's default
+      // HEX8), C3D8 fully integrated with 2x2x2 Gauss points (CalculiX manual, "Eight-node brick
+      // element (C3D8)"), each kept in blocks of its own.
       {"C3D8I", ElementType::Hex8, {0, 1, 2, 3, 4, 5, 6, 7}},
+      {"C3D8", ElementType::Hex8, {0, 1, 2, 3, 4, 5, 6, 7}, Hex8Formulation::FullIntegration},
       // gmsh's edge nodes 8..19 are the edges (0,1) (0,3) (0,4) (1,2) (1,5) (2,3) (2,6) (3,7)
       // (4,5) (4,7) (5,6) (6,7); Abaqus's 9..20 run (1,2) (2,3) (3,4) (4,1) (5,6) (6,7) (7,8)
       // (8,5) (1,5) (2,6) (3,7) (4,8).
@@ -49,11 +53,6 @@ const std::vector<DeckType>& deck_types() {
 // Why a known element type of the Abaqus library is not taken, where a reason is more useful
 // than the list of types.
 std::string refusal(const std::string& type) {
-  if (type == "C3D8")
-    return "C3D8 (full-integration trilinear brick) is not ffr's HEX8, which is the incompatible-mode brick "
-           "C3D8I: give TYPE=C3D8I to take ffr's brick (softer than C3D8 in bending, so the "
-           "frequencies differ from the C3D8 model's), or mesh the part with C3D20 (quadratic bricks, which ffr "
-           "integrates as CalculiX does) to keep the FE code's results";
   if (type == "C3D8R" || type == "C3D20R" || type == "S4R" || type == "C3D10M" || type == "C3D10T")
     return type + " (reduced or modified integration) is not in ffr's element library";
   return "element type " + type + " is not in ffr's element library";
@@ -322,7 +321,7 @@ class Parser {
     const auto finish = [&]() {
       std::vector<std::size_t> deck_nodes(entries.begin() + 1, entries.end());
       if (mesh_) {
-        deck_.mesh.elements.push_back(DeckMesh::Element{entries[0], t->type, deck_.mesh.conn.size(), first_line});
+        deck_.mesh.elements.push_back(DeckMesh::Element{entries[0], t->type, deck_.mesh.conn.size(), first_line, t->hex8});
         for (std::size_t i = 0; i < nn; ++i) deck_.mesh.conn.push_back(deck_nodes[static_cast<std::size_t>(t->order[i])]);
       }
       if (set) set->ids.push_back(entries[0]);

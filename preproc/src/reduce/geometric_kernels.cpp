@@ -11,14 +11,14 @@ namespace {
 // K_G of a solid at its mass-rule points, for the linear stress of d_e evaluated at the same
 // points (as solid_stress does at the stiffness points: HEX8's incompatible modes included).
 Eigen::MatrixXd solid_geometric_cubic(ElementType t, const Eigen::MatrixX3d& xe, const Material& mat,
-                                      const Eigen::VectorXd& d_e) {
+                                      const Eigen::VectorXd& d_e, const SolidOptions& opt) {
   check_solid_material(mat);
   const SolidShape& s = solid_shape(t);
   check_geometry(s, xe);
   const int nn = s.nodes, ng = s.mass_rule.size();
   const Lame L = lame(mat);
   const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> U(d_e.data(), nn, 3);
-  const bool bubbles = t == ElementType::Hex8 && SolidOptions{}.hex8_incompatible;
+  const bool bubbles = t == ElementType::Hex8 && opt.hex8_incompatible;
   Eigen::Matrix3d Ua = Eigen::Matrix3d::Zero(), J0inv = Eigen::Matrix3d::Identity();
   double detJ0 = 1;
   if (bubbles) {
@@ -62,8 +62,8 @@ ElementMatrices geometric_element(const FeModel& model, const ElementRef& ref, c
   switch (pb.kind) {
     case ElementKind::Solid:
       em.K = rule == GeometricRule::Cubic
-                 ? solid_geometric_cubic(blk.type, xe, model.part->materials[pb.property].mat, d)
-                 : solid_geometric_stiffness(blk.type, xe, model.part->materials[pb.property].mat, d);
+                 ? solid_geometric_cubic(blk.type, xe, model.part->materials[pb.property].mat, d, solid_options(blk))
+                 : solid_geometric_stiffness(blk.type, xe, model.part->materials[pb.property].mat, d, solid_options(blk));
       break;
     case ElementKind::Shell: {
       const ShellSection sec = shell_section(model.part->shells[pb.property]);

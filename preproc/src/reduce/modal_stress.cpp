@@ -126,7 +126,7 @@ formats::ModalStress recover_modal_stress(const FeModel& model, const Eigen::Mat
       for (Index k = 0; k < nq; ++k) {
         for (int a = 0; a < nn; ++a)
           for (int i = 0; i < 3; ++i) d(3 * a + i) = Phi(model.dof(c[a], i), k);
-        const Eigen::MatrixXd nodal = solid_stress(blk.type, xe, mat, d).sigma * X.transpose();  // 6 x nn
+        const Eigen::MatrixXd nodal = solid_stress(blk.type, xe, mat, d, solid_options(blk)).sigma * X.transpose();  // 6 x nn
         auto& m = out.modes[static_cast<std::size_t>(k)];
         for (int a = 0; a < nn; ++a) {
           const Index s = slot[static_cast<std::size_t>(c[a])];

@@ -9,7 +9,8 @@
 // any shape so the element passes the patch test. They are integrated with 2x2x2 Gauss and
 // condensed statically, so K stays 24 x 24 and is free of shear locking in bending. The mass
 // uses the compatible (trilinear) field only. SolidOptions::hex8_incompatible = false gives
-// the plain trilinear element (full 2x2x2 integration), which locks in bending.
+// the plain trilinear element (full 2x2x2 integration), which locks in bending: Abaqus's and
+// CalculiX's C3D8, chosen per mesh block (ElementBlock::hex8, solid_options()).
 //
 // Stress and strain use Voigt order (xx, yy, zz, xy, yz, xz) with tensor shear components
 // (sigma_xy, not 2 eps_xy) for stress.
@@ -25,6 +26,12 @@ struct SolidOptions {
   bool hex8_incompatible = true;  ///< HEX8: incompatible modes (true) or plain trilinear
   bool mass_samples = true;       ///< fill ElementMatrices::samples (M is always computed)
 };
+
+/// The options of the elements of mesh block `b`: HEX8 formulated as the block says
+/// (ElementBlock::hex8: an FE deck's C3D8 or C3D8I).
+inline SolidOptions solid_options(const ElementBlock& b, bool mass_samples = true) {
+  return SolidOptions{b.hex8 == Hex8Formulation::Incompatible, mass_samples};
+}
 
 /// Stiffness, consistent mass and exact mass samples of one solid element. The samples are
 /// the points of the type's mass rule: w = rho detJ weight, c = x(xi), N = [N_a I3]_a (3 x 3nn).

@@ -30,11 +30,20 @@ const char* name(ElementType t);  ///< "TET10", "QUAD4", ...
 ElementType from_gmsh(int gmsh_type);
 int to_gmsh(ElementType t);
 
+/// How the elements of a HEX8 block are formulated (every other type has one formulation).
+/// An FE deck names it per element (Abaqus/CalculiX C3D8I or C3D8, Nastran's PSOLID ISOP), so
+/// it is carried per block, and the deck readers put the two in separate blocks.
+enum class Hex8Formulation {
+  Incompatible,     ///< incompatible modes (Taylor, Beresford & Wilson 1976): C3D8I; ffr's default
+  FullIntegration,  ///< plain trilinear brick, 2x2x2 Gauss: C3D8 (locks in bending)
+};
+
 struct ElementBlock {
   ElementType type = ElementType::Tet4;
   std::string group;              ///< physical group name the elements belong to
   std::vector<Index> conn;        ///< size() * num_nodes(type) indices into Mesh::x, gmsh order
   std::vector<std::size_t> tags;  ///< gmsh element tags, for error messages (may be empty)
+  Hex8Formulation hex8 = Hex8Formulation::Incompatible;  ///< HEX8 blocks only
   Index size() const { return static_cast<Index>(conn.size()) / ffr::preproc::num_nodes(type); }
   const Index* element(Index e) const { return conn.data() + e * ffr::preproc::num_nodes(type); }
 };
@@ -56,8 +65,12 @@ struct Mesh {
   std::size_t node_tag(Index n) const;
 };
 
-/// Element type name ("TET10", ...) -> elements of that type over all blocks, each counted once
-/// (an element can be in two groups: "all" and a named one), for the mesh report.
+/// The type name of a block's elements: name(type), and "HEX8_FULL" for a full-integration HEX8.
+std::string block_type_name(const ElementBlock& b);
+
+/// Element type name (block_type_name: "TET10", "HEX8_FULL", ...) -> elements of that type over
+/// all blocks, each counted once (an element can be in two groups: "all" and a named one), for
+/// the mesh report.
 std::map<std::string, Index> element_counts(const Mesh& mesh);
 
 
