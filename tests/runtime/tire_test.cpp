@@ -1,0 +1,336 @@
+// Tyres on roads (MODEL_FILE.md "Roads" and "Forces", FORMULATION.md section 8, tyres) against
+// references computed here by hand:
+//  - statics of a wheel on a flat road (Hooke: deflection m g / k) and on a uniform incline (the
+//    normal force's vertical part carries the weight: N = m g / cos(theta), its horizontal part
+//    m g tan(theta) taken by the guide);
+//  - rolling without slip (kinematics of a disc rolling on a plane: v = omega r, r the distance of
+//    the centre from the road) for a wheel left free to spin, started without spin;
+//  - Coulomb's law of sliding friction (F = mu N) for a locked wheel dragged over the road, the
+//    drag read both from the tyre and from the force the prescribed motion needs;
+//  - the exact tangent against central differences of the generalized forces;
+//  - bad input refused naming the file and field, and ffr-sim's exit status 2.
+#include "support.hpp"
+#include "synthetic_bodies.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace ffr::runtime;
+
+namespace {
+
+constexpr double g = 9.81;
+
+std::string num(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+std::vector<double> output(const Model& model, Data& data, const char* name) {
+  const int i = model.find_output(name);
+  EXPECT_GE(i, 0) << name;
+  std::vector<double> v(static_cast<std::size_t>(model.outputs[static_cast<std::size_t>(i)].size));
+  evaluate_output(model, data, model.outputs[static_cast<std::size_t>(i)], v.data());
+  return v;
+}
+
+// A 20 kg wheel on a vertical guide over a road through (s, height) = (-10, h0 - 10 slope) and
+// (10, h0 + 10 slope), its centre `z0` above the origin; tyre of radius 0.3 m, k = 2e5 N/m.
+std::string wheel_on_guide(double h0, double slope, double z0) {
+  return R"({
+    "gravity": [0, 0, -9.81],
+    "roads": [{"name": "r", "direction": [1, 0, 0], "s": [-10, 10], "height": [)" + num(h0 - 10 * slope) + ", " +
+         num(h0 + 10 * slope) + R"(]}],
+    "bodies": [{"name": "wheel", "type": "rigid", "mass": 20, "com": [0, 0, )" + num(z0) + R"(],
+                "inertia": [[0.5, 0, 0], [0, 0.8, 0], [0, 0, 0.5]]}],
+    "joints": [{"name": "guide", "type": "prismatic", "body1": "ground", "body2": "wheel", "at": [0, 0, )" + num(z0) +
+         R"(], "axis": [0, 0, 1]}],
+    "forces": [{"name": "tyre", "type": "tire", "body": "wheel", "axis": [0, 1, 0], "radius": 0.3,
+                "vertical_stiffness": 2e5, "vertical_damping": 500, "longitudinal_stiffness": 1e5,
+                "cornering_stiffness": 5e4, "friction": 0.9, "road": "r"}],
+    "solver": {"analysis": "static"},
+    "outputs": [{"name": "c", "type": "node_position", "body": "wheel"},
+                {"name": "tyre", "type": "element_force", "force": "tyre"},
+                {"name": "guide", "type": "joint_reaction", "joint": "guide"}]
+  })";
+}
+
+}  // namespace
+
+// Hooke: the wheel settles m g / k into a flat road 0.1 m high, the tyre then carrying its weight.
+TEST(Tire, StaticDeflectionIsWeightOverStiffness) {
+  const double m = 20, k = 2e5, R = 0.3, h0 = 0.1;
+  const Model model = test::model_from(wheel_on_guide(h0, 0, h0 + R - 0.001));
+  Data data(model);
+  initialize(model, data);
+  const double z = output(model, data, "c")[2];
+  const auto ty = output(model, data, "tyre");
+  std::printf("flat road: centre %.12f m (h + R - m g / k = %.12f), Fn %.9f N (m g = %.9f), deflection %.3e (m g / k %.3e)\n", z,
+              h0 + R - m * g / k, ty[2], m * g, ty[5], m * g / k);
+  EXPECT_NEAR(z, h0 + R - m * g / k, 1e-10);
+  EXPECT_NEAR(ty[2], m * g, 1e-6);
+  EXPECT_NEAR(ty[5], m * g / k, 1e-12);
+  EXPECT_NEAR(ty[0], 0, 1e-9);  // at rest: no slip, no horizontal force
+  EXPECT_NEAR(ty[1], 0, 1e-9);
+}
+
+// A uniform incline of slope 0.2: the road pushes along its normal n = (-sin, 0, cos) theta, so
+// N cos(theta) = m g, the deflection is N / k along n and the centre sits (R - N / k) / cos(theta)
+// above the road point under it; the guide takes N sin(theta) = m g tan(theta) sideways.
+TEST(Tire, StaticDeflectionOnAnIncline) {
+  const double m = 20, k = 2e5, R = 0.3, slope = 0.2, h0 = 0.05;
+  const double cs = 1 / std::sqrt(1 + slope * slope);
+  const Model model = test::model_from(wheel_on_guide(h0, slope, h0 + R / cs - 0.001));
+  Data data(model);
+  initialize(model, data);
+  const double N = m * g / cs;
+  const double z = output(model, data, "c")[2];
+  const auto ty = output(model, data, "tyre");
+  const auto guide = output(model, data, "guide");
+  std::printf("incline: centre %.12f m (%.12f), Fn %.9f N (m g / cos %.9f), guide %.9f N (m g tan %.9f)\n", z,
+              h0 + (R - N / k) / cs, ty[2], N, guide[0], m * g * slope);
+  EXPECT_NEAR(z, h0 + (R - N / k) / cs, 1e-10);
+  EXPECT_NEAR(ty[2], N, 1e-6);
+  EXPECT_NEAR(ty[5], N / k, 1e-12);
+  EXPECT_NEAR(guide[0], m * g * slope, 1e-6);  // the ground pushes the wheel up the slope's rise (+x)
+}
+
+namespace {
+
+// A cart driven along x at 10 m/s carries a wheel (radius 0.3 m, I = 1.2 kg m^2 about its axle y)
+// 0.29 m above a flat road: the tyre is pressed 0.01 m, Fn = 2000 N. `wheel_joint` is the wheel's
+// joint to the cart (revolute: free to spin; fixed: locked).
+std::string dragged_wheel(const std::string& wheel_joint) {
+  return R"({
+    "gravity": [0, 0, -9.81],
+    "roads": [{"name": "flat", "direction": [1, 0, 0], "s": [-10, 100], "height": [0, 0]}],
+    "bodies": [
+      {"name": "cart", "type": "rigid", "mass": 10, "com": [0, 0, 0.29], "inertia": [[1, 0, 0], [0, 1, 0], [0, 0, 1]],
+       "velocity": [10, 0, 0]},
+      {"name": "wheel", "type": "rigid", "mass": 15, "com": [0, 0, 0.29], "inertia": [[0.7, 0, 0], [0, 1.2, 0], [0, 0, 0.7]],
+       "velocity": [10, 0, 0]}],
+    "joints": [
+      {"name": "track", "type": "prismatic", "body1": "ground", "body2": "cart", "at": [0, 0, 0.29], "axis": [1, 0, 0]},
+      {"name": "axle", "type": ")" + wheel_joint + R"(", "body1": "cart", "body2": "wheel", "at": [0, 0, 0.29], "axis": [0, 1, 0]}],
+    "motions": [{"joint": "track", "speed": {"t": [0, 1], "value": [10, 10]}}],
+    "forces": [{"name": "tyre", "type": "tire", "body": "wheel", "center": [0, 0, 0.29], "axis": [0, 1, 0], "radius": 0.3,
+                "vertical_stiffness": 2e5, "vertical_damping": 1000, "longitudinal_stiffness": 1e5,
+                "cornering_stiffness": 5e4, "friction": 0.9, "road": "flat"}],
+    "solver": {"end": 0.5, "step": 1e-3},
+    "outputs": [{"name": "spin", "type": "body_angular_velocity", "body": "wheel"},
+                {"name": "tyre", "type": "element_force", "force": "tyre"},
+                {"name": "track", "type": "joint_reaction", "joint": "track"}]
+  })";
+}
+
+}  // namespace
+
+// Started without spin, the wheel is dragged sliding (Fx = -mu Fn, Coulomb) until its spin
+// reaches rolling without slip, omega = v / r with r = 0.29 m the centre's height over the road
+// (the contact point is on the road: the loaded radius), where it stays with Fx = 0.
+TEST(Tire, FreeWheelRollsWithoutSlip) {
+  const double V = 10, r = 0.29, Fn = 2e5 * 0.01, mu = 0.9;
+  const Model model = test::model_from(dragged_wheel("revolute"));
+  Data data(model);
+  initialize(model, data);
+  double Fx_early = 0, omega_early = 0;
+  for (std::int64_t i = 0; i < step_count(model); ++i) {
+    step(model, data);
+    if (i == 9) {
+      Fx_early = output(model, data, "tyre")[0];
+      omega_early = output(model, data, "spin")[1];
+    }
+  }
+  const auto ty = output(model, data, "tyre");
+  const double omega = output(model, data, "spin")[1];
+  std::printf("t = 0.01 s: Fx %.6f N (-mu Fn = %.6f), omega %.4f rad/s; t = 0.5 s: omega %.12f rad/s (v / r = %.12f), Fx %.3e N, "
+              "slip %.3e, Fn %.6f N\n",
+              Fx_early, -mu * Fn, omega_early, omega, V / r, ty[0], ty[3], ty[2]);
+  EXPECT_NEAR(Fx_early, -mu * Fn, 1e-6 * Fn);  // sliding: saturated
+  EXPECT_LT(omega_early, 0.5 * V / r);
+  EXPECT_NEAR(omega, V / r, 1e-9 * V / r);
+  EXPECT_NEAR(ty[0], 0, 1e-6 * Fn);
+  EXPECT_NEAR(ty[3], 0, 1e-9);
+  EXPECT_NEAR(ty[2], Fn, 1e-6 * Fn);
+}
+
+// Locked to the cart, the wheel slides at 10 m/s: the road drags it back with mu Fn (Coulomb), and
+// the prescribed motion has to push the cart forward with that force.
+TEST(Tire, LockedWheelDragsWithMuTimesLoad) {
+  const double Fn = 2e5 * 0.01, mu = 0.9;
+  const Model model = test::model_from(dragged_wheel("fixed"));
+  Data data(model);
+  initialize(model, data);
+  for (std::int64_t i = 0; i < 100; ++i) step(model, data);
+  const auto ty = output(model, data, "tyre");
+  const auto track = output(model, data, "track");
+  std::printf("locked wheel: Fx %.9f N (-mu Fn = %.9f), slip %.9f, Fn %.6f; the motion pushes with %.9f N\n", ty[0], -mu * Fn, ty[3],
+              ty[2], track[0]);
+  EXPECT_NEAR(ty[0], -mu * Fn, 1e-6 * Fn);
+  EXPECT_NEAR(ty[3], -1, 1e-4);  // kappa = -v / sqrt(v^2 + v_tol^2): fully sliding
+  EXPECT_NEAR(ty[2], Fn, 1e-6 * Fn);
+  EXPECT_NEAR(track[0], mu * Fn, 1e-6 * Fn);
+}
+
+namespace {
+
+// Two tyres at a generic state, both inside the friction circle (on it the tangent takes the
+// secant slope on purpose: FORMULATION.md section 8, tyres): one on a node of a flexible body over
+// a curved road, one on a rigid wheel over a straight sloped road.
+std::string tangent_model() {
+  std::string s = "[", h = "[";
+  for (int i = 0; i <= 40; ++i) {
+    const double x = -2 + 0.1 * i;
+    s += (i ? ", " : "") + num(x);
+    h += (i ? ", " : "") + num(0.05 * std::sin(2.1 * x));
+  }
+  return R"({
+  "gravity": [0, 0, -9.81],
+  "roads": [{"name": "wavy", "direction": [0.6, 0.8, 0], "s": )" + s + R"(], "height": )" + h + R"(], "interpolation": "spline"},
+            {"name": "ramp", "direction": [1, 0, 0], "s": [-5, 5], "height": [-0.5, 0.5]}],
+  "bodies": [
+    {"name": "flex", "type": "flexible", "sid": "lumpy.sid.h5", "position": [0.1, 0.2, 0.3],
+     "orientation": [[0.36, 0.48, -0.8], [-0.8, 0.6, 0], [0.48, 0.64, 0.6]], "modal_coordinates": [0.01, -0.02, 0.015]},
+    {"name": "wheel", "type": "rigid", "mass": 2.0, "com": [0.5, 0.1, 0.2],
+     "inertia": [[0.02, 0.001, 0], [0.001, 0.03, 0.002], [0, 0.002, 0.025]], "position": [0.4, 0, 0.1]}
+  ],
+  "forces": [
+    {"name": "t1", "type": "tire", "body": "flex", "node": "B", "axis": [0.2, 1, 0.1], "radius": 0.8, "vertical_stiffness": 1e3,
+     "vertical_damping": 20, "longitudinal_stiffness": 500, "cornering_stiffness": 400, "friction": 30, "velocity_tolerance": 0.5, "road": "wavy"},
+    {"name": "t2", "type": "tire", "body": "wheel", "center": [0.5, 0.1, 0.2], "axis": [0.1, 1, 0.2], "radius": 0.5,
+     "vertical_stiffness": 1e3, "vertical_damping": 30, "longitudinal_stiffness": 20, "cornering_stiffness": 15,
+     "friction": 1.0, "road": "ramp"}
+  ],
+  "solver": {"end": 1.0, "step": 1e-3},
+  "outputs": [{"name": "t1", "type": "element_force", "force": "t1"}, {"name": "t2", "type": "element_force", "force": "t2"}]
+})";
+}
+
+template <class F>
+MatrixXd central_differences(const F& f, const VectorXd& x, double eps) {
+  MatrixXd D;
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    VectorXd a = x, b = x;
+    a(i) += eps;
+    b(i) -= eps;
+    const VectorXd col = (f(a) - f(b)) / (2 * eps);
+    if (i == 0) D.resize(col.size(), x.size());
+    D.col(i) = col;
+  }
+  return D;
+}
+
+double rel_err(const MatrixXd& a, const MatrixXd& b) { return (a - b).cwiseAbs().maxCoeff() / std::max(1.0, b.cwiseAbs().maxCoeff()); }
+
+}  // namespace
+
+TEST(Tire, TangentsMatchFiniteDifferences) {
+  test::TempDir dir("tire_jac");
+  test::write_sid_file(test::lumpy_body(3), dir / "lumpy.sid.h5");
+  const Model model = test::model_from(tangent_model(), dir.path);
+  Data data(model);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  VectorXd q = data.state.q, qd = data.state.qd;
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
+    q(i) += 0.02 * u(rng);
+    qd(i) = u(rng);
+  }
+  auto set = [&](const VectorXd& a, const VectorXd& b) {
+    data.state.q = a;
+    data.state.qd = b;
+    update_bodies(model, data);
+    update_markers(model, data);
+  };
+  auto forces = [&](const VectorXd& a, const VectorXd& b) {
+    set(a, b);
+    generalized_forces(model, data, 0.1);
+    return VectorXd(data.Q);
+  };
+  set(q, qd);
+  const auto t1 = output(model, data, "t1"), t2 = output(model, data, "t2");
+  std::printf("t1: F = (%.4g, %.4g, %.4g), slips %.4g %.4g, deflection %.4g\nt2: F = (%.4g, %.4g, %.4g), slips %.4g %.4g, deflection %.4g\n",
+              t1[0], t1[1], t1[2], t1[3], t1[4], t1[5], t2[0], t2[1], t2[2], t2[3], t2[4], t2[5]);
+  // Both in contact, with slip forces well inside the circle.
+  ASSERT_GT(t1[2], 0);
+  ASSERT_GT(t2[2], 0);
+  EXPECT_LT(std::hypot(t1[0], t1[1]), 0.9 * 30 * t1[2]);
+  EXPECT_GT(std::hypot(t1[0], t1[1]), 0.1 * t1[2]);
+  EXPECT_LT(std::hypot(t2[0], t2[1]), 0.9 * t2[2]);
+  set(q, qd);
+  generalized_forces(model, data, 0.1);
+  force_tangents(model, data, 0.1);
+  const MatrixXd K = data.K, C = data.C;
+  const MatrixXd Kfd = -central_differences([&](const VectorXd& z) { return forces(z, qd); }, q, 1e-6);
+  const MatrixXd Cfd = -central_differences([&](const VectorXd& zd) { return forces(q, zd); }, qd, 1e-6);
+  std::printf("K: %.2e (max |K| %.2e), C: %.2e (max |C| %.2e)\n", rel_err(K, Kfd), K.cwiseAbs().maxCoeff(), rel_err(C, Cfd),
+              C.cwiseAbs().maxCoeff());
+  EXPECT_LT(rel_err(K, Kfd), 1e-6);
+  EXPECT_LT(rel_err(C, Cfd), 1e-6);
+}
+
+namespace {
+
+// A valid model with one tyre; `road` and `tire` replace the roads list and the tyre's keys.
+std::string tire_model(const std::string& roads, const std::string& tire, const std::string& gravity = "[0, 0, -9.81]") {
+  return R"({"gravity": )" + gravity + R"(, "roads": )" + roads + R"(,
+    "bodies": [{"name": "wheel", "type": "rigid", "mass": 20, "com": [0, 0, 0.3], "inertia": [[0.5, 0, 0], [0, 0.8, 0], [0, 0, 0.5]]}],
+    "forces": [{"type": "tire", "body": "wheel", )" + tire + R"(}],
+    "solver": {"end": 1, "step": 1e-3}})";
+}
+const std::string kRoad = R"([{"name": "r", "direction": [1, 0, 0], "s": [0, 10], "height": [0, 0]}])";
+const std::string kTire = R"("axis": [0, 1, 0], "radius": 0.3, "vertical_stiffness": 2e5, "road": "r")";
+
+}  // namespace
+
+TEST(Tire, BadInputIsRefusedNamingTheField) {
+  ASSERT_EQ(test::error_of(tire_model(kRoad, kTire)), "");
+  // The reference model parses; each case changes one thing.
+  test::expect_error(tire_model(kRoad, R"("axis": [0, 1, 0], "radius": 0.3, "vertical_stiffness": 2e5)"), "forces[0].road",
+                     "missing required field");
+  test::expect_error(tire_model(kRoad, R"("axis": [0, 1, 0], "radius": 0.3, "vertical_stiffness": 2e5, "road": "nope")"),
+                     "forces[0].road", "unknown road 'nope' (roads: r)");
+  test::expect_error(tire_model("[]", kTire), "forces[0].road", "the model has no \"roads\"");
+  test::expect_error(tire_model(R"([{"name": "r", "direction": [1, 0, 0], "s": [0, 10, 10], "height": [0, 0, 1]}])", kTire), "roads[0].s",
+                     "must be strictly increasing (entry 2)");
+  test::expect_error(tire_model(R"([{"name": "r", "direction": [1, 0, 0], "s": [0, 10], "height": [0, 0, 1]}])", kTire),
+                     "roads[0].height", "has 3 entries but s has 2");
+  test::expect_error(tire_model(R"([{"name": "r", "direction": [1, 0, 0.5], "s": [0, 10], "height": [0, 0]}])", kTire),
+                     "roads[0].direction", "must be horizontal");
+  test::expect_error(tire_model(kRoad, kTire, "[0, 0, 0]"), "roads[0]", "nonzero \"gravity\"");
+  test::expect_error(tire_model(R"([{"name": "r", "direction": [1, 0, 0], "s": [0, 10], "height": [0, 1e999]}])", kTire), "1e999",
+                     "not a finite number");
+  test::expect_error(tire_model(R"([{"name": "r", "direction": [1, 0, 0], "s": [0, 10], "height": [0, 0], "interpolation": "linear"}])", kTire),
+                     "roads[0].interpolation", "linear is not accepted for a road");
+  test::expect_error(tire_model(kRoad, R"("axis": [0, 1, 0], "radius": -0.3, "vertical_stiffness": 2e5, "road": "r")"),
+                     "forces[0].radius", "expected a positive number, found -0.3");
+  test::expect_error(tire_model(kRoad, R"("axis": [0, 1, 0], "radius": 0.3, "vertical_stiffness": 0, "road": "r")"),
+                     "forces[0].vertical_stiffness", "expected a positive number");
+  test::expect_error(tire_model(kRoad, R"("axis": [0, 0, 1], "radius": 0.3, "vertical_stiffness": 2e5, "road": "r")"),
+                     "forces[0].axis", "lies flat on the road");
+  test::expect_error(tire_model(kRoad, kTire + R"(, "friction": 0.8)"), "forces[0].friction",
+                     "applies only with a longitudinal_stiffness or cornering_stiffness");
+  test::expect_error(tire_model(kRoad, kTire + R"(, "longitudinal_stiffness": 1e5)"), "forces[0].friction", "missing required field");
+  test::expect_error(tire_model(kRoad, kTire + R"(, "pressure": 2)"), "forces[0].pressure", "unknown field");
+  test::expect_error(tire_model(R"([{"name": "r", "direction": [1, 0, 0], "s": [0, 10], "height": [0, 0]},
+                                    {"name": "r", "direction": [0, 1, 0], "s": [0, 10], "height": [0, 0]}])", kTire),
+                     "roads[1].name", "duplicate road name 'r'");
+}
+
+// ffr-sim: exit status 2, the file and the field named, no results written.
+TEST(Tire, FfrSimExitsWithStatus2OnABadRoad) {
+  test::TempDir dir("tire_cli");
+  test::write_text(dir / "m.json", tire_model(R"([{"name": "r", "direction": [1, 0, 0], "s": [5, 0], "height": [0, 0]}])", kTire));
+  const auto r = test::run_ffr_sim((dir / "m.json").string() + " -o " + (dir / "out.h5").string());
+  std::printf("status %d: %s\n", r.status, r.output.c_str());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("m.json"), std::string::npos);
+  EXPECT_NE(r.output.find("roads[0].s"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
+}
