@@ -103,20 +103,22 @@ TEST(Tire, StaticDeflectionOnAnIncline) {
 
 namespace {
 
-// A cart driven along x at 10 m/s carries a wheel (radius 0.3 m, I = 1.2 kg m^2 about its axle y)
-// 0.29 m above a flat road: the tyre is pressed 0.01 m, Fn = 2000 N. `wheel_joint` is the wheel's
-// joint to the cart (revolute: free to spin; fixed: locked).
-std::string dragged_wheel(const std::string& wheel_joint) {
+// A cart driven at 10 m/s along (cos beta, sin beta, 0) carries a wheel (radius 0.3 m, I = 1.2 kg m^2
+// about its axle y) 0.29 m above a flat road: the tyre is pressed 0.01 m, Fn = 2000 N.
+// `wheel_joint` is the wheel's joint to the cart (revolute: free to spin; fixed: locked).
+std::string dragged_wheel(const std::string& wheel_joint, double beta = 0) {
+  const std::string v = "[" + num(10 * std::cos(beta)) + ", " + num(10 * std::sin(beta)) + ", 0]";
+  const std::string axis = "[" + num(std::cos(beta)) + ", " + num(std::sin(beta)) + ", 0]";
   return R"({
     "gravity": [0, 0, -9.81],
     "roads": [{"name": "flat", "direction": [1, 0, 0], "s": [-10, 100], "height": [0, 0]}],
     "bodies": [
       {"name": "cart", "type": "rigid", "mass": 10, "com": [0, 0, 0.29], "inertia": [[1, 0, 0], [0, 1, 0], [0, 0, 1]],
-       "velocity": [10, 0, 0]},
+       "velocity": )" + v + R"(},
       {"name": "wheel", "type": "rigid", "mass": 15, "com": [0, 0, 0.29], "inertia": [[0.7, 0, 0], [0, 1.2, 0], [0, 0, 0.7]],
-       "velocity": [10, 0, 0]}],
+       "velocity": )" + v + R"(}],
     "joints": [
-      {"name": "track", "type": "prismatic", "body1": "ground", "body2": "cart", "at": [0, 0, 0.29], "axis": [1, 0, 0]},
+      {"name": "track", "type": "prismatic", "body1": "ground", "body2": "cart", "at": [0, 0, 0.29], "axis": )" + axis + R"(},
       {"name": "axle", "type": ")" + wheel_joint + R"(", "body1": "cart", "body2": "wheel", "at": [0, 0, 0.29], "axis": [0, 1, 0]}],
     "motions": [{"joint": "track", "speed": {"t": [0, 1], "value": [10, 10]}}],
     "forces": [{"name": "tyre", "type": "tire", "body": "wheel", "center": [0, 0, 0.29], "axis": [0, 1, 0], "radius": 0.3,
@@ -176,6 +178,34 @@ TEST(Tire, LockedWheelDragsWithMuTimesLoad) {
   EXPECT_NEAR(ty[3], -1, 1e-4);  // kappa = -v / sqrt(v^2 + v_tol^2): fully sliding
   EXPECT_NEAR(ty[2], Fn, 1e-6 * Fn);
   EXPECT_NEAR(track[0], mu * Fn, 1e-6 * Fn);
+}
+
+// The same wheel free to spin, its cart driven at beta = 0.02 rad to the wheel's plane: it rolls
+// at omega r = V cos(beta) (no longitudinal slip), and its slip angle is the angle between its
+// plane and its velocity (rolling kinematics), tan(alpha) = -V sin(beta) / sqrt((V cos(beta))^2 +
+// v_tol^2), which gives the side force C_alpha tan(alpha) of the linear cornering law (H. B.
+// Pacejka, "Tire and Vehicle Dynamics" (3rd ed., 2012), section 1.2: F_y = C_F_alpha alpha in
+// the linear range, here in tan(alpha)); the cart's guide holds it.
+TEST(Tire, CorneringWheelSideForce) {
+  const double V = 10, r = 0.29, beta = 0.02, C = 5e4, vtol = 0.1;
+  const Model model = test::model_from(dragged_wheel("revolute", beta));
+  Data data(model);
+  initialize(model, data);
+  for (std::int64_t i = 0; i < step_count(model); ++i) step(model, data);
+  const auto ty = output(model, data, "tyre");
+  const auto track = output(model, data, "track");
+  const double omega = output(model, data, "spin")[1];
+  const double tan_alpha = -V * std::sin(beta) / std::hypot(V * std::cos(beta), vtol);
+  std::printf("cornering: omega %.9f (V cos(beta) / r = %.9f), alpha %.9f rad (%.9f), Fy %.6f N (C tan(alpha) = %.6f), Fx %.2e; "
+              "guide (%.6f, %.6f) N\n",
+              omega, V * std::cos(beta) / r, ty[4], std::atan(tan_alpha), ty[1], C * tan_alpha, ty[0], track[0], track[1]);
+  EXPECT_NEAR(omega, V * std::cos(beta) / r, 1e-9 * V / r);
+  EXPECT_NEAR(ty[4], std::atan(tan_alpha), 1e-9);
+  EXPECT_NEAR(ty[1], C * tan_alpha, 1e-6 * std::abs(C * tan_alpha));
+  EXPECT_NEAR(ty[0], 0, 1e-6 * ty[2]);  // (what Newton's tolerance leaves: 1e-5 N)
+  // The tyre pushes the wheel by Fy along the axle (y); the ground holds the cart against it.
+  EXPECT_NEAR(track[0], 0, 1e-6 * ty[2]);
+  EXPECT_NEAR(track[1], -C * tan_alpha, 1e-6 * std::abs(C * tan_alpha));
 }
 
 namespace {
