@@ -7,6 +7,9 @@
 //    the centre from the road) for a wheel left free to spin, started without spin;
 //  - Coulomb's law of sliding friction (F = mu N) for a locked wheel dragged over the road, the
 //    drag read both from the tyre and from the force the prescribed motion needs;
+//  - the slip angle of a wheel driven at an angle to its plane (kinematics) and its side force;
+//  - a wheel rolling down an incline (the rolling disc's acceleration) and a wheel bouncing on
+//    its tyre (energy conservation with the tyre's potential, the peak force from the energy);
 //  - the exact tangent against central differences of the generalized forces;
 //  - bad input refused naming the file and field, and ffr-sim's exit status 2.
 #include "support.hpp"
@@ -206,6 +209,88 @@ TEST(Tire, CorneringWheelSideForce) {
   // The tyre pushes the wheel by Fy along the axle (y); the ground holds the cart against it.
   EXPECT_NEAR(track[0], 0, 1e-6 * ty[2]);
   EXPECT_NEAR(track[1], -C * tan_alpha, 1e-6 * std::abs(C * tan_alpha));
+}
+
+// Rolling down an incline of slope 0.1: a carrier slides along the slope on a guide parallel to it
+// and holds the wheel's axle at rho = 0.29 m from the road plane (Fn = k (R - rho) = 2000 N). Only
+// the tyre's longitudinal force turns the wheel, so the rolling disc's law holds (Newton-Euler for
+// rolling without slip, e.g. J. L. Meriam and L. G. Kraige, "Engineering Mechanics: Dynamics",
+// rolling wheel on an incline): (M + I / rho^2) a = M g sin(theta), M the translating mass; from
+// rest the carrier covers a t^2 / 2. Generalized-alpha (rho_inf = 0.5): see the force's check.
+TEST(Tire, RollsDownAnInclineLikeARollingDisc) {
+  const double slope = 0.1, th = std::atan(slope), rho = 0.29, mc = 10, mw = 15, I = 1.2, T = 1.0;
+  const Vector3d along(std::cos(th), 0, std::sin(th)), normal(-std::sin(th), 0, std::cos(th));
+  const Vector3d c0 = rho * normal;  // the axle above the road point at s = 0 (height 0)
+  auto v3 = [](const Vector3d& v) { return "[" + num(v(0)) + ", " + num(v(1)) + ", " + num(v(2)) + "]"; };
+  const Model model = test::model_from(R"({
+    "gravity": [0, 0, -9.81],
+    "roads": [{"name": "hill", "direction": [1, 0, 0], "s": [-20, 20], "height": [-2, 2]}],
+    "bodies": [
+      {"name": "cart", "type": "rigid", "mass": 10, "com": )" + v3(c0) + R"(, "inertia": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]},
+      {"name": "wheel", "type": "rigid", "mass": 15, "com": )" + v3(c0) + R"(, "inertia": [[0.7, 0, 0], [0, 1.2, 0], [0, 0, 0.7]]}],
+    "joints": [
+      {"name": "slope", "type": "prismatic", "body1": "ground", "body2": "cart", "at": )" + v3(c0) + R"(, "axis": )" + v3(along) + R"(},
+      {"name": "axle", "type": "revolute", "body1": "cart", "body2": "wheel", "at": )" + v3(c0) + R"(, "axis": [0, 1, 0]}],
+    "forces": [{"name": "tyre", "type": "tire", "body": "wheel", "axis": [0, 1, 0], "radius": 0.3,
+                "vertical_stiffness": 2e5, "longitudinal_stiffness": 1e6, "cornering_stiffness": 5e5, "friction": 0.9, "road": "hill"}],
+    "solver": {"end": 1.0, "step": 1e-3, "integrator": "generalized_alpha", "spectral_radius": 0.5},
+    "outputs": [{"name": "x", "type": "joint_coordinate", "joint": "slope"}, {"name": "tyre", "type": "element_force", "force": "tyre"},
+                {"name": "spin", "type": "body_angular_velocity", "body": "wheel"}]
+  })");
+  Data data(model);
+  initialize(model, data);
+  for (std::int64_t i = 0; i < step_count(model); ++i) step(model, data);
+  const double M = mc + mw, a = M * 9.81 * std::sin(th) / (M + I / (rho * rho));
+  const double x = output(model, data, "x")[0], omega = output(model, data, "spin")[1];
+  const auto ty = output(model, data, "tyre");
+  std::printf("incline: travelled %.9f m (a t^2 / 2 = %.9f, rel. %.2e), omega %.9f rad/s (-a t / rho = %.9f), Fx %.6f N "
+              "(I a / rho^2 = %.6f), Fn %.6f N\n",
+              x, -0.5 * a * T * T, x / (-0.5 * a * T * T) - 1, omega, -a * T / rho, ty[0], I * a / (rho * rho), ty[2]);
+  EXPECT_NEAR(x, -0.5 * a * T * T, 1e-5 * 0.5 * a * T * T);  // downhill: towards -x
+  EXPECT_NEAR(omega, -a * T / rho, 1e-5 * a * T / rho);
+  // The force that spins the wheel up, I alpha / rho. The slip force is a stiff damper on the
+  // sliding velocity (C_kappa / V h / m ~ 1e5 here): the trapezoidal rule leaves it ringing from
+  // step to step (the motion is right: the travel agrees to 6e-6 either way, the end-of-step Fx was
+  // 5.6 N), hence generalized-alpha, whose balance at its weighted instant leaves 2e-4.
+  EXPECT_NEAR(std::abs(ty[0]), I * a / (rho * rho), 5e-4 * I * a / (rho * rho));
+  EXPECT_NEAR(ty[2], 2e5 * 0.01, 1e-6 * 2e3);
+}
+
+// Without damping or slips the tyre is a unilateral spring with the potential 1/2 k delta^2: a
+// wheel dropped 5 cm onto it bounces, leaving and hitting the road, with its energy conserved
+// (Lagrange's equations with a potential; the trapezoidal rule conserves it to its error at the
+// contact's kink).
+TEST(Tire, BouncingWheelConservesEnergy) {
+  const Model model = test::model_from(R"({
+    "gravity": [0, 0, -9.81],
+    "roads": [{"name": "r", "direction": [1, 0, 0], "s": [-10, 10], "height": [0, 0]}],
+    "bodies": [{"name": "wheel", "type": "rigid", "mass": 20, "com": [0, 0, 0.35], "inertia": [[0.5, 0, 0], [0, 0.8, 0], [0, 0, 0.5]]}],
+    "joints": [{"name": "guide", "type": "prismatic", "body1": "ground", "body2": "wheel", "at": [0, 0, 0.35], "axis": [0, 0, 1]}],
+    "forces": [{"name": "tyre", "type": "tire", "body": "wheel", "axis": [0, 1, 0], "radius": 0.3, "vertical_stiffness": 2e5, "road": "r"}],
+    "solver": {"end": 1.0, "step": 1e-4},
+    "outputs": [{"name": "tyre", "type": "element_force", "force": "tyre"}]
+  })");
+  Data data(model);
+  initialize(model, data);
+  const double E0 = energy(model, data).total();
+  double worst = 0, fn_max = 0;
+  int landings = 0;
+  bool in_contact = false;
+  for (std::int64_t i = 0; i < step_count(model); ++i) {
+    step(model, data);
+    worst = std::max(worst, std::abs(energy(model, data).total() - E0));
+    const double fn = output(model, data, "tyre")[2];
+    fn_max = std::max(fn_max, fn);
+    if (fn > 0 && !in_contact) ++landings;
+    in_contact = fn > 0;
+  }
+  // Reference: the drop's energy m g h = 9.81 J; the peak force from 1/2 k d^2 - m g d = m g h.
+  const double m = 20, g = 9.81, k = 2e5, dmax = (m * g + std::sqrt(m * g * m * g + 2 * k * m * g * 0.05)) / k;
+  std::printf("bouncing: %d landings, energy drift %.3e J of %.3f J, peak Fn %.2f N (energy balance %.2f N)\n", landings, worst,
+              E0, fn_max, k * dmax);
+  EXPECT_GE(landings, 3);
+  EXPECT_LT(worst, 1e-3 * m * g * 0.05);
+  EXPECT_NEAR(fn_max, k * dmax, 1e-2 * k * dmax);
 }
 
 namespace {
