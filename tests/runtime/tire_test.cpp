@@ -104,6 +104,36 @@ TEST(Tire, StaticDeflectionOnAnIncline) {
   EXPECT_NEAR(guide[0], m * g * slope, 1e-6);  // the ground pushes the wheel up the slope's rise (+x)
 }
 
+// At rest the tyres have no horizontal stiffness (their horizontal forces come from sliding): a
+// car body held by nothing but its four tyres has no determined static equilibrium in the road's
+// plane, and the static analysis says so instead of returning an arbitrary one (FORMULATION.md
+// section 12).
+TEST(Tire, StaticEquilibriumOnTyresAloneIsRefused) {
+  std::string tyres;
+  const double corners[4][2] = {{1.2, 0.7}, {1.2, -0.7}, {-1.2, 0.7}, {-1.2, -0.7}};
+  for (int i = 0; i < 4; ++i)
+    tyres += std::string(i ? ", " : "") + R"({"type": "tire", "body": "car", "center": [)" + num(corners[i][0]) + ", " + num(corners[i][1]) +
+             R"(, 0.3], "axis": [0, 1, 0], "radius": 0.3, "vertical_stiffness": 2e5, "longitudinal_stiffness": 1e5,
+               "cornering_stiffness": 5e4, "friction": 0.9, "road": "r"})";
+  const Model model = test::model_from(R"({
+    "gravity": [0, 0, -9.81],
+    "roads": [{"name": "r", "direction": [1, 0, 0], "s": [-10, 10], "height": [0, 0]}],
+    "bodies": [{"name": "car", "type": "rigid", "mass": 800, "com": [0.1, 0, 0.5], "inertia": [[300, 0, 0], [0, 1000, 0], [0, 0, 1100]]}],
+    "forces": [)" + tyres + R"(],
+    "solver": {"analysis": "static"}
+  })");
+  Data data(model);
+  std::string msg;
+  try {
+    initialize(model, data);
+  } catch (const SolverError& e) {
+    msg = e.what();
+  }
+  std::printf("%s\n", msg.c_str());
+  EXPECT_NE(msg.find("static equilibrium"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("singular"), std::string::npos) << msg;
+}
+
 namespace {
 
 // A cart driven at 10 m/s along (cos beta, sin beta, 0) carries a wheel (radius 0.3 m, I = 1.2 kg m^2
