@@ -10,10 +10,13 @@
 //  - the slip angle of a wheel driven at an angle to its plane (kinematics) and its side force;
 //  - a wheel rolling down an incline (the rolling disc's acceleration) and a wheel bouncing on
 //    its tyre (energy conservation with the tyre's potential, the peak force from the energy);
+//  - a tyre on a flexible body's node against linear statics from the SID's members;
 //  - the exact tangent against central differences of the generalized forces;
 //  - bad input refused naming the file and field, and ffr-sim's exit status 2.
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
+
+#include "ffr/formats/synthetic.hpp"
 
 #include <gtest/gtest.h>
 
@@ -132,6 +135,65 @@ TEST(Tire, StaticEquilibriumOnTyresAloneIsRefused) {
   std::printf("%s\n", msg.c_str());
   EXPECT_NE(msg.find("static equilibrium"), std::string::npos) << msg;
   EXPECT_NE(msg.find("singular"), std::string::npos) << msg;
+}
+
+// A tyre on a node of a flexible body: a clamped Euler-Bernoulli chain (1.2 m, EI = 400 N m^2 in
+// z, 24 modes; formats/synthetic.hpp) whose tip node carries a tyre pressed 1 cm into a flat road.
+// Linear statics from the SID's own members: the tip rises by w = phi_B q (phi_B the tip's
+// vertical mode slice) and the tyre pushes with P = k (delta0 - w), so
+//   (Ke + k phi_B^T phi_B) q = Ct g + k delta0 phi_B^T,
+// solved here; the tyre's force against P and, as a sanity bound, the tip against two springs in
+// series (Roark's tip-loaded cantilever, 3 E I / l^3, in series with k; Roark's Formulas for Stress
+// and Strain, 7th ed., Table 8.1 case 1a) plus the gravity sag.
+TEST(Tire, OnAFlexibleBodysNodeLinearStatics) {
+  test::TempDir dir("tire_node");
+  ffr::formats::synthetic::ChainParams p;
+  p.points = 41;
+  p.length = 1.2;
+  p.mass = 3.6;
+  p.EA = 1e8;
+  p.EIy = 400;
+  p.EIz = 4000;
+  p.clamped = true;
+  p.modes = 24;
+  const auto chain = ffr::formats::synthetic::spring_chain(p);
+  test::write_sid_file(chain.sid, dir / "chain.sid.h5");
+  const double k = 1000, delta0 = 0.01, R = 0.3;
+  const Model model = test::model_from(R"({
+    "gravity": [0, 0, -9.81],
+    "roads": [{"name": "r", "direction": [1, 0, 0], "s": [-10, 10], "height": [)" + num(delta0 - R) + ", " + num(delta0 - R) + R"(]}],
+    "bodies": [{"name": "beam", "type": "flexible", "sid": "chain.sid.h5"}],
+    "joints": [{"name": "clamp", "type": "fixed", "body1": "ground", "body2": "beam"}],
+    "forces": [{"name": "tyre", "type": "tire", "body": "beam", "node": "B", "axis": [0, 1, 0], "radius": 0.3,
+                "vertical_stiffness": 1000, "road": "r"}],
+    "solver": {"analysis": "static"},
+    "outputs": [{"name": "q", "type": "modal_coordinates", "body": "beam"}, {"name": "tyre", "type": "element_force", "force": "tyre"},
+                {"name": "tip", "type": "node_deformation", "body": "beam", "node": "B"}]
+  })", dir.path);
+  Data data(model);
+  initialize(model, data);
+  int b = -1;
+  for (std::size_t i = 0; i < chain.sid.nodes.size(); ++i)
+    if (chain.sid.nodes[i].name == "B") b = static_cast<int>(i);
+  ASSERT_GE(b, 0);
+  const Eigen::VectorXd phi = chain.sid.nodes[static_cast<std::size_t>(b)].phi.row(2).transpose();
+  const Eigen::MatrixXd A = chain.sid.Ke + k * phi * phi.transpose();
+  const Eigen::VectorXd ref = A.ldlt().solve(chain.sid.Ct.M0 * Eigen::Vector3d(0, 0, -9.81) + k * delta0 * phi);
+  const auto q = output(model, data, "q");
+  double worst = 0;
+  for (Eigen::Index i = 0; i < ref.size(); ++i) worst = std::max(worst, std::abs(q[static_cast<std::size_t>(i)] - ref(i)));
+  const double w = phi.dot(ref), P = k * (delta0 - w);
+  const auto ty = output(model, data, "tyre");
+  const double tip = output(model, data, "tip")[2];
+  // Two springs in series, less the sag under the chain's own weight (w_g = m g l^3 / (8 E I)).
+  const double kb = 3 * 400 / std::pow(1.2, 3), sag = 3.6 * 9.81 * std::pow(1.2, 3) / (8 * 400);
+  const double w_roark = (k * (delta0 + sag) / (k + kb)) - sag;
+  std::printf("tyre at a node: modal worst %.3e of %.3e; tip %.9f m (SID statics %.9f, Roark in series %.6f); Fn %.9f N (%.9f)\n",
+              worst, ref.cwiseAbs().maxCoeff(), tip, w, w_roark, ty[2], P);
+  EXPECT_LT(worst, 1e-8 * ref.cwiseAbs().maxCoeff());
+  EXPECT_NEAR(tip, w, 1e-9);
+  EXPECT_NEAR(ty[2], P, 1e-6 * P);
+  EXPECT_NEAR(tip, w_roark, 0.02 * std::abs(w_roark));  // lumping and 24 modes
 }
 
 namespace {
