@@ -89,8 +89,8 @@ TEST(QuarterCar, SteadyAmplitudeOnASineRoadIsTheBaseExcitationTransmissibility) 
               X, Xref, qc.transmissibility(), X / Xref - 1, mean, mean_ref, fn_min);
   ASSERT_GT(fn_min, 0);  // the tyre stays on the road: the linear oscillator holds
   EXPECT_NEAR(X / Xref, 1, 2e-3);
-  // The mean sits higher by about R slope^2 / 2 on average (the contact normal tilts with the
-  // road's slope: FORMULATION.md section 8, tyres), 2e-5 m here.
+  // The mean sits higher by a term of order R slope^2 (the contact normal tilts with the road's
+  // slope: FORMULATION.md section 8, tyres; quasi-statically R slope_max^2 / 4 = 1.9e-5 m here).
   EXPECT_NEAR(mean, mean_ref, 1e-2 * qc.Y);
 }
 
