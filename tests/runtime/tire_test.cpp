@@ -526,6 +526,8 @@ TEST(Tire, BadInputIsRefusedNamingTheField) {
   test::expect_error(tire_model(kRoad, kTire + R"(, "longitudinal_stiffness": 1e5)"), "forces[0].friction", "missing required field");
   test::expect_error(tire_model(kRoad, kTire + R"(, "pressure": 2)"), "forces[0].pressure", "unknown field");
   test::expect_error(tire_model(kRoad, kTire + R"(, "center": [0, 0, -0.3])"), "forces[0].center", "0.300000 m below the road 'r'");
+  test::expect_error(tire_model(R"([{"name": "r", "direction": [1, 0, 0], "s": [0, 10], "height": [0.5, 0.5]}])", kTire), "forces[0]",
+                     "0.200000 m below the road 'r' at set-up (the centre is the body's frame origin");
   test::expect_error(tire_model(R"([{"name": "r", "direction": [1, 0, 0], "s": [0, 10], "height": [0, 0]},
                                     {"name": "r", "direction": [0, 1, 0], "s": [0, 10], "height": [0, 0]}])", kTire),
                      "roads[1].name", "duplicate road name 'r'");

@@ -188,9 +188,12 @@ void parse_forces(const Field& root, ParseContext& ctx) {
       // A centre at or below the road is a misplaced wheel (a sign or a unit), not a deflection.
       const Road& rd = m.roads[static_cast<std::size_t>(ty.road)];
       const double above = a.point.dot(rd.up) - rd.profile.value(a.point.dot(rd.direction), 0);
-      if (!(above > 0))
-        f.at(a.node >= 0 ? "node" : "center")
-            .fail("the wheel centre is " + std::to_string(-above) + " m below the road '" + rd.name + "' at set-up");
+      if (!(above > 0)) {
+        const std::string what = "the wheel centre is " + std::to_string(-above) + " m below the road '" + rd.name + "' at set-up";
+        if (f.has("node")) f.at("node").fail(what);
+        if (f.has("center")) f.at("center").fail(what);
+        f.fail(what + " (the centre is the body's frame origin: give \"center\")");
+      }
       ty.marker = add_marker(m, a, triad(axis));
       m.tires.push_back(ty);
     } else if (type == "point_force" || type == "point_torque") {
