@@ -8,6 +8,7 @@
 //  - Coulomb's law of sliding friction (F = mu N) for a locked wheel dragged over the road, the
 //    drag read both from the tyre and from the force the prescribed motion needs;
 //  - the slip angle of a wheel driven at an angle to its plane (kinematics) and its side force;
+//  - a locked wheel parked on an incline creeping at the speed its regularisation predicts;
 //  - a wheel rolling down an incline (the rolling disc's acceleration) and a wheel bouncing on
 //    its tyre (energy conservation with the tyre's potential, the peak force from the energy);
 //  - a tyre on a flexible body's node against linear statics from the SID's members;
@@ -346,6 +347,37 @@ TEST(Tire, RollsDownAnInclineLikeARollingDisc) {
   // 5.6 N), hence generalized-alpha, whose balance at its weighted instant leaves 2e-4.
   EXPECT_NEAR(std::abs(ty[0]), I * a / (rho * rho), 5e-4 * I * a / (rho * rho));
   EXPECT_NEAR(ty[2], 2e5 * 0.01, 1e-6 * 2e3);
+}
+
+// Parked on the incline with the wheel locked, the tyre holds the weight's downhill part F through
+// its speed regularisation alone: sliding at v, the force is C v / sqrt(v^2 + v_tol^2), so the
+// wheel creeps at v = v_tol F / sqrt(C^2 - F^2) (FORMULATION.md section 8, tyres; solved here).
+TEST(Tire, ParkedOnAnInclineCreepsAtTheRegularisationsSpeed) {
+  const double slope = 0.1, th = std::atan(slope), rho = 0.29, M = 25, C = 1e5, vtol = 0.1;
+  const Vector3d along(std::cos(th), 0, std::sin(th)), normal(-std::sin(th), 0, std::cos(th));
+  const Vector3d c0 = rho * normal;
+  auto v3 = [](const Vector3d& v) { return "[" + num(v(0)) + ", " + num(v(1)) + ", " + num(v(2)) + "]"; };
+  const Model model = test::model_from(R"({
+    "gravity": [0, 0, -9.81],
+    "roads": [{"name": "hill", "direction": [1, 0, 0], "s": [-20, 20], "height": [-2, 2]}],
+    "bodies": [
+      {"name": "cart", "type": "rigid", "mass": 10, "com": )" + v3(c0) + R"(, "inertia": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]},
+      {"name": "wheel", "type": "rigid", "mass": 15, "com": )" + v3(c0) + R"(, "inertia": [[0.7, 0, 0], [0, 1.2, 0], [0, 0, 0.7]]}],
+    "joints": [
+      {"name": "slope", "type": "prismatic", "body1": "ground", "body2": "cart", "at": )" + v3(c0) + R"(, "axis": )" + v3(along) + R"(},
+      {"name": "brake", "type": "fixed", "body1": "cart", "body2": "wheel", "at": )" + v3(c0) + R"(, "axis": [0, 1, 0]}],
+    "forces": [{"name": "tyre", "type": "tire", "body": "wheel", "axis": [0, 1, 0], "radius": 0.3, "vertical_stiffness": 2e5,
+                "longitudinal_stiffness": 1e5, "cornering_stiffness": 5e4, "friction": 0.9, "road": "hill"}],
+    "solver": {"end": 0.2, "step": 1e-3, "integrator": "generalized_alpha", "spectral_radius": 0.5},
+    "outputs": [{"name": "v", "type": "joint_rate", "joint": "slope"}]
+  })");
+  Data data(model);
+  initialize(model, data);
+  for (std::int64_t i = 0; i < step_count(model); ++i) step(model, data);
+  const double F = M * 9.81 * std::sin(th), v_ref = vtol * F / std::sqrt(C * C - F * F);
+  const double v = output(model, data, "v")[0];
+  std::printf("parked: creeps at %.9e m/s (v_tol F / sqrt(C^2 - F^2) = %.9e)\n", v, -v_ref);
+  EXPECT_NEAR(v, -v_ref, 1e-4 * v_ref);  // downhill: towards -x
 }
 
 // Without damping or slips the tyre is a unilateral spring with the potential 1/2 k delta^2: a
