@@ -243,6 +243,43 @@ TEST(Allocation, CouplersFrictionAndTablesAllocateNothing) {
   EXPECT_GT(energy(model, data).dissipated, 0);
 }
 
+// Tyres (tire.cpp): a rigid wheel rolling with slips over a PCHIP road, and a tyre on a node of a
+// flexible body (the node terms of its tangent), their contact outputs recorded.
+TEST(Allocation, TyresAllocateNothing) {
+  test::TempDir dir("alloc_tyres");
+  write_sids(dir);
+  const Model model = test::model_from(R"({
+  "gravity": [0, -9.81, 0],
+  "roads": [{"name": "bumpy", "direction": [1, 0, 0], "s": [-5, -1, 0, 0.5, 1, 2, 5], "height": [0, 0, 0.002, -0.002, 0.003, 0, 0]},
+            {"name": "low", "direction": [0, 0, 1], "s": [-5, 5], "height": [0.3, 0.3]}],
+  "bodies": [
+    {"name": "wheel", "type": "rigid", "mass": 15, "com": [0, 0.2993, 0], "inertia": [[0.7, 0, 0], [0, 0.7, 0], [0, 0, 1.2]],
+     "velocity": [3, 0, 0], "angular_velocity": [0, 0, -9]},
+    {"name": "flap", "type": "flexible", "sid": "lumpy.sid.h5", "position": [0, 0.5, 0]}
+  ],
+  "joints": [{"name": "hinge", "type": "spherical", "body1": "ground", "body2": "flap", "node2": "A"}],
+  "forces": [
+    {"name": "t1", "type": "tire", "body": "wheel", "axis": [0, 0, 1], "radius": 0.3, "vertical_stiffness": 2e5, "vertical_damping": 2000,
+     "longitudinal_stiffness": 1e5, "cornering_stiffness": 5e4, "friction": 0.9, "road": "bumpy"},
+    {"name": "t2", "type": "tire", "body": "flap", "node": "B", "axis": [0, 0, 1], "radius": 0.3, "vertical_stiffness": 100,
+     "vertical_damping": 1, "longitudinal_stiffness": 50, "cornering_stiffness": 50, "friction": 0.5, "road": "low"}
+  ],
+  "solver": {"end": 0.2, "step": 1e-3},
+  "outputs": [{"name": "t1", "type": "element_force", "force": "t1"}, {"name": "t2", "type": "element_force", "force": "t2"},
+              {"name": "energy", "type": "energy"}]
+})", dir.path);
+  Data data(model);
+  initialize(model, data);
+  const long allocations = allocations_of_recorded_steps(model, data, 150);
+  double t1[6], t2[6];
+  evaluate_output(model, data, model.outputs[0], t1);
+  evaluate_output(model, data, model.outputs[1], t2);
+  std::printf("150 steps with tyres: %ld allocations; Fn %.4g N and %.4g N\n", allocations, t1[2], t2[2]);
+  EXPECT_EQ(allocations, 0);
+  EXPECT_GT(t1[2], 0);  // both in contact: their force paths ran
+  EXPECT_GT(t2[2], 0);
+}
+
 // A coupler whose two joints move three bodies (a belt between two shafts in a turning,
 // integrated carrier): its row's Jacobian, penalty tangent and Hessian over three bodies.
 TEST(Allocation, CouplerInAMovingCarrierAllocatesNothing) {

@@ -432,7 +432,7 @@ TEST(Reaction, DrivenHingeGivesTheDriveTorque) {
 // Bad output definitions are refused naming the field (ffr-sim: exit status 2, nothing written).
 TEST(Reaction, BadOutputsAreRefused) {
   const char* cases[][2] = {
-      {R"({"name": "o", "type": "element_force", "force": "nothing"})", "no spring_damper, bushing or friction_damper named 'nothing'"},
+      {R"({"name": "o", "type": "element_force", "force": "nothing"})", "no spring_damper, bushing, friction_damper or tire named 'nothing'"},
       {R"({"name": "o", "type": "element_force", "force": "push"})", "is a point load"},
       {R"({"name": "o", "type": "node_velocity", "body": "b", "force": "s"})", "is a key of element_force outputs"},
       {R"({"name": "o", "type": "joint_reaction", "joint": "nothing"})", "unknown joint 'nothing'"},

@@ -30,6 +30,14 @@ void friction_tangents(const Model& model, const FrictionDamper& f, const Fricti
 double friction_energy(const Model& model, const FrictionDamper& f, const FrictionState& fs, const Data& data);
 void commit_friction(const Model& model, Data& data, double h);
 
+/// Tyres (tire.cpp): the contact forces into data.Q, their tangents into data.K, data.C; the
+/// contact quantities of the outputs (Fx, Fy, Fn in the contact frame, longitudinal slip, slip
+/// angle, deflection); the vertical spring's energy.
+void tire_forces(const Model& model, const Tire& ty, Data& data);
+void tire_tangents(const Model& model, const Tire& ty, Data& data);
+void tire_output(const Model& model, const Tire& ty, const Data& data, double* out);
+double tire_energy(const Model& model, const Tire& ty, const Data& data);
+
 /// A global force or torque at a marker (computed kinematics md).
 void marker_load(const Model& model, const Marker& mk, const MarkerData& md, const Vector3d& f, bool torque,
                  Data& data, bool add_q, bool tangents);

@@ -27,6 +27,11 @@ void generalized_forces(const Model& model, Data& data, double t) {
     detail::friction_forces(model, f, data.state.friction[i], data);
     at.add_to_interfaces(model, data);
   }
+  for (const Tire& ty : model.tires) {
+    const InterfaceLoadCapture at(model, data, ty.marker, -1);
+    detail::tire_forces(model, ty, data);
+    at.add_to_interfaces(model, data);
+  }
   detail::point_loads(model, data, t, true, false);
   detail::external_loads(model, data, true, false);
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
@@ -61,6 +66,7 @@ void force_tangents(const Model& model, Data& data, double t) {
   for (const Bushing& b : model.bushings) detail::bushing_forces(model, b, data, false, true);
   for (std::size_t i = 0; i < model.friction_dampers.size(); ++i)
     detail::friction_tangents(model, model.friction_dampers[i], data.state.friction[i], data);
+  for (const Tire& ty : model.tires) detail::tire_tangents(model, ty, data);
   detail::point_loads(model, data, t, false, true);
   detail::external_loads(model, data, false, true);
 }

@@ -174,7 +174,7 @@ Model parse_document(const formats::JsonDocument& doc, const std::filesystem::pa
   m.source = name;
   detail::ParseContext ctx{name, base_dir, m};
   const detail::Field root = doc.root();
-  root.allow_only({"format_version", "units", "gravity", "bodies", "joints", "forces", "motions", "solver", "outputs"});
+  root.allow_only({"format_version", "units", "gravity", "bodies", "joints", "forces", "motions", "solver", "outputs", "roads"});
   if (auto f = root.find("format_version"))
     if (f->small_integer() != 1) f->fail("unsupported format_version (this build reads 1)");
   if (auto f = root.find("units")) {
@@ -191,6 +191,7 @@ Model parse_document(const formats::JsonDocument& doc, const std::filesystem::pa
   detail::parse_solver(root, ctx);
   detail::parse_bodies(root, ctx);
   detail::parse_joints(root, ctx);
+  detail::parse_roads(root, ctx);
   detail::parse_forces(root, ctx);
   detail::check_bodies_can_turn(root, ctx);
   detail::parse_motions(root, ctx);

@@ -22,6 +22,8 @@ struct ParseContext {
 void parse_bodies(const Field& root, ParseContext& ctx);
 void parse_joints(const Field& root, ParseContext& ctx);
 void parse_forces(const Field& root, ParseContext& ctx);
+/// "roads" (parse_roads.cpp); before the forces, whose tires name them.
+void parse_roads(const Field& root, ParseContext& ctx);
 void parse_motions(const Field& root, ParseContext& ctx);
 void parse_outputs(const Field& root, ParseContext& ctx);
 void parse_solver(const Field& root, ParseContext& ctx);

@@ -1,6 +1,8 @@
-// "forces": spring-dampers, friction dampers, bushings, and point forces and torques from tables.
+// "forces": spring-dampers, friction dampers, bushings, tyres, and point forces and torques from tables.
 #include "ffr/runtime/kinematics.hpp"
 #include "parse.hpp"
+
+#include <cmath>
 
 namespace ffr::runtime::detail {
 namespace {
@@ -141,6 +143,59 @@ void parse_forces(const Field& root, ParseContext& ctx) {
       bu.m1 = add_marker(m, a1, E);
       bu.m2 = add_marker(m, a2, E);
       m.bushings.push_back(bu);
+    } else if (type == "tire") {
+      f.allow_only({"name", "type", "body", "center", "node", "axis", "radius", "vertical_stiffness", "vertical_damping",
+                    "longitudinal_stiffness", "cornering_stiffness", "friction", "velocity_tolerance", "road"});
+      Tire ty;
+      ty.name = element_name(f, i);
+      Attachment a;
+      a.body = body_ref(f.at("body"), m);
+      if (a.body == kGround) f.at("body").fail("a tire needs a moving body (its wheel)");
+      if (auto n = f.find("node")) {
+        if (f.has("center")) f.at("center").fail("give either center or node");
+        a.node = node_ref(*n, m, a.body);
+        a.point = node_position(m, a.body, a.node);
+      } else {
+        a.point = f.has("center") ? f.at("center").vec3() : m.bodies[a.body].r0;
+      }
+      const Field rf = f.at("road");
+      const std::string road = rf.string();
+      for (std::size_t k = 0; k < m.roads.size() && ty.road < 0; ++k)
+        if (m.roads[k].name == road) ty.road = static_cast<int>(k);
+      if (ty.road < 0) {
+        std::string known;
+        for (const Road& r : m.roads) known += (known.empty() ? "" : ", ") + r.name;
+        rf.fail("unknown road '" + road + "' (" + (known.empty() ? "the model has no \"roads\"" : "roads: " + known) + ")");
+      }
+      const Vector3d axis = unit_axis(f.at("axis"));
+      // The wheel must be able to roll on the road: a spin axis along its normal would lie flat.
+      if (std::abs(axis.dot(m.roads[static_cast<std::size_t>(ty.road)].up)) > 0.99)
+        f.at("axis").fail("is (nearly) vertical: a wheel spinning about it lies flat on the road");
+      ty.radius = f.at("radius").positive();
+      ty.vertical_stiffness = f.at("vertical_stiffness").positive();
+      if (auto c = f.find("vertical_damping")) ty.vertical_damping = c->non_negative();
+      if (auto k = f.find("longitudinal_stiffness")) ty.longitudinal_stiffness = k->non_negative();
+      if (auto k = f.find("cornering_stiffness")) ty.cornering_stiffness = k->non_negative();
+      // Friction and the speed regularisation act on the slip forces alone: without them they
+      // would be silently unused.
+      if (ty.longitudinal_stiffness > 0 || ty.cornering_stiffness > 0) {
+        ty.friction = f.at("friction").positive();
+        if (auto v = f.find("velocity_tolerance")) ty.velocity_tolerance = v->positive();
+      } else {
+        for (const char* k : {"friction", "velocity_tolerance"})
+          if (auto v = f.find(k)) v->fail("applies only with a longitudinal_stiffness or cornering_stiffness");
+      }
+      // A centre at or below the road is a misplaced wheel (a sign or a unit), not a deflection.
+      const Road& rd = m.roads[static_cast<std::size_t>(ty.road)];
+      const double above = a.point.dot(rd.up) - rd.profile.value(a.point.dot(rd.direction), 0);
+      if (!(above > 0)) {
+        const std::string what = "the wheel centre is " + std::to_string(-above) + " m below the road '" + rd.name + "' at set-up";
+        if (f.has("node")) f.at("node").fail(what);
+        if (f.has("center")) f.at("center").fail(what);
+        f.fail(what + " (the centre is the body's frame origin: give \"center\")");
+      }
+      ty.marker = add_marker(m, a, triad(axis));
+      m.tires.push_back(ty);
     } else if (type == "point_force" || type == "point_torque") {
       f.allow_only({"name", "type", "body", "node", "at", "table"});
       PointLoad l;
@@ -159,7 +214,7 @@ void parse_forces(const Field& root, ParseContext& ctx) {
       l.marker = add_marker(m, a, Matrix3d::Identity());
       m.loads.push_back(std::move(l));
     } else {
-      f.at("type").fail("unknown force type '" + type + "' (expected spring_damper, friction_damper, bushing, point_force or point_torque)");
+      f.at("type").fail("unknown force type '" + type + "' (expected spring_damper, friction_damper, bushing, tire, point_force or point_torque)");
     }
   }
 }

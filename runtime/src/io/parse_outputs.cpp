@@ -145,10 +145,16 @@ void parse_outputs(const Field& root, ParseContext& ctx) {
           o.element = static_cast<int>(k);
           o.size = 1;
         }
+      for (std::size_t k = 0; k < m.tires.size() && o.element < 0; ++k)
+        if (m.tires[k].name == n) {
+          o.element_kind = ForceElementKind::Tire;
+          o.element = static_cast<int>(k);
+          o.size = 6;
+        }
       if (o.element < 0) {
         for (const PointLoad& l : m.loads)
           if (l.name == n) ef.fail("'" + n + "' is a point load: its force is its table");
-        ef.fail("no spring_damper, bushing or friction_damper named '" + n + "'");
+        ef.fail("no spring_damper, bushing, friction_damper or tire named '" + n + "'");
       }
     } else if (type == "energy") {
       o.type = OutputType::Energy;

@@ -198,6 +198,7 @@ void mark_read_axes(Model& m) {
     use(bu.m1, {0, 1, 2});
     use(bu.m2, {0, 1, 2});
   }
+  for (const auto& ty : m.tires) use(ty.marker, {0, 1, 2});  // the spin axis and the wheel's angular velocity
 }
 
 }  // namespace

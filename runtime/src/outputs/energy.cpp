@@ -37,6 +37,7 @@ Energy energy(const Model& model, Data& data) {
   }
   for (const SpringDamper& s : model.springs) e.potential += detail::spring_energy(model, s, data);
   for (const Bushing& bu : model.bushings) e.potential += detail::bushing_energy(model, bu, data);
+  for (const Tire& ty : model.tires) e.potential += detail::tire_energy(model, ty, data);
   for (std::size_t i = 0; i < model.friction_dampers.size(); ++i) {
     e.potential += detail::friction_energy(model, model.friction_dampers[i], data.state.friction[i], data);
     e.dissipated += data.state.friction[i].dissipated;

@@ -98,6 +98,10 @@ void element_force(const Model& model, const Data& data, ForceElementKind kind, 
     out[0] = detail::spring_force(model, model.springs[e], data);  // tension, zero where the ends meet
     return;
   }
+  if (kind == ForceElementKind::Tire) {
+    detail::tire_output(model, model.tires[e], data, out);
+    return;
+  }
   if (kind == ForceElementKind::FrictionDamper) {
     out[0] = detail::friction_force(model, model.friction_dampers[e], data.state.friction[e], data);
     return;

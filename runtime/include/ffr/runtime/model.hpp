@@ -260,12 +260,38 @@ struct PointLoad {
   Table table;
 };
 
+/// A road (MODEL_FILE.md "Roads"): a height profile along a horizontal travel direction, the same
+/// across it. A point x of the road plane has s = x . direction and lies `height(s)` above the
+/// global origin along `up` (against gravity).
+struct Road {
+  std::string name;
+  Vector3d direction = Vector3d::UnitX();  ///< unit, normal to gravity
+  Vector3d up = Vector3d::UnitZ();         ///< unit, against gravity
+  Table profile;                           ///< s -> height, one component
+};
+
+/// A tyre (tire.cpp, FORMULATION.md section 8, tyres): a disc wheel of `radius` about the spin
+/// axis of its marker (axis e, at the wheel centre) in point contact with a road. Normal force
+/// k delta + c delta_dot in contact (never pulling); horizontal forces from the slips, saturated at
+/// friction times the normal force; without slip stiffnesses the normal force alone.
+struct Tire {
+  std::string name;
+  int marker = -1;                 ///< at the wheel centre; axis 0 the spin axis
+  int road = -1;                   ///< index into Model::roads
+  double radius = 0;
+  double vertical_stiffness = 0, vertical_damping = 0;  ///< [N/m], [N s/m]
+  double longitudinal_stiffness = 0;                    ///< [N per unit slip]; 0: none
+  double cornering_stiffness = 0;                       ///< [N/rad]; 0: none
+  double friction = 0;                                  ///< mu
+  double velocity_tolerance = 0.1;                      ///< [m/s]: the slips' speed regularisation
+};
+
 enum class OutputType {
   NodeDeformation, NodePosition, ModalCoordinates, JointCoordinate, Energy,
   JointRate, JointReaction, NodeVelocity, BodyAngularVelocity, ElementForce
 };
 /// Which list an element_force output reads (Output::element indexes it).
-enum class ForceElementKind { SpringDamper, Bushing, FrictionDamper };
+enum class ForceElementKind { SpringDamper, Bushing, FrictionDamper, Tire };
 
 struct Output {
   std::string name;
@@ -275,7 +301,7 @@ struct Output {
   std::vector<JointCoordinate> coords;  ///< for JointCoordinate and JointRate
   int size = 0;
   ForceElementKind element_kind = ForceElementKind::SpringDamper;  ///< for ElementForce
-  int element = -1;                     ///< index into Model::springs, bushings or friction_dampers
+  int element = -1;                     ///< index into Model::springs, bushings, friction_dampers or tires
 };
 
 /// Constraint equations come in blocks that touch at most two bodies (a coupler's row three: its
@@ -348,6 +374,8 @@ struct Model {
   std::vector<SpringDamper> springs;
   std::vector<Bushing> bushings;
   std::vector<PointLoad> loads;
+  std::vector<Road> roads;
+  std::vector<Tire> tires;
   std::vector<FrictionDamper> friction_dampers;
   std::vector<Output> outputs;
   SolverSettings settings;

@@ -25,7 +25,9 @@ Vector6d joint_reaction(const Model& model, const Data& data, int joint);
 
 /// A force element's force in the current state: a spring_damper's tension or a friction_damper's
 /// force (one value, positive pulling its ends together), a bushing's force and torque on body2 (six values, global
-/// components, the torque about its point). Needs update_markers.
+/// components, the torque about its point), a tire's contact forces and slips (six values: Fx, Fy, Fn
+/// along the contact frame's rolling, lateral and normal directions, the longitudinal slip, the
+/// slip angle [rad] and the deflection [m]; MODEL_FILE.md "Outputs"). Needs update_markers.
 void element_force(const Model& model, const Data& data, ForceElementKind kind, int index, double* out);
 
 /// Preallocated storage for every output at every recorded time.
