@@ -63,8 +63,9 @@ EigenOptions eigen_options(const ReductionSpec& spec, const PartSpec& part, doub
   o.nev = spec.modes > 0 ? spec.modes : 10;
   if (spec.max_frequency_hz) o.lambda_max = lambda_of_hz(*spec.max_frequency_hz, part);
   o.sigma = sigma;
-  o.backend = spec.backend == "arpack" ? EigenBackend::Arpack
+  o.backend = spec.backend == "arpack"  ? EigenBackend::Arpack
               : spec.backend == "block" ? EigenBackend::Block
+              : spec.backend == "slepc" ? EigenBackend::Slepc
                                         : EigenBackend::Spectra;
   o.factor = detail::eigen_factor_options(spec);
   return o;
@@ -244,6 +245,18 @@ SparseMatrix shifted_stiffness(const ConstrainedPencil& p, const SparseRef& M, d
   return C;
 }
 
+// The eigen-solver's modes as the basis, refused if some are mechanisms; Ke and Me of exactly
+// these vectors, from the eigen-solver's checks.
+void modes_from(const EigenSolver& solver, const FeModel& model, const PartSpec& part, const std::string& held,
+                ReductionResult& r, Eigen::MatrixXd& basis) {
+  check_no_zero_modes(model, solver.result().lambda, part, held);
+  basis = solver.result().X;
+  r.Ke = solver.result().XtKX;
+  r.Me = solver.result().XtMX;
+  r.lambda = solver.result().lambda;
+  r.types.assign(static_cast<std::size_t>(basis.cols()), formats::ModeType::Normal);
+}
+
 // Free or clamped: the lowest eigenpairs (lambda, x) of K x = lambda M x above the shift sigma
 // (below every wanted eigenvalue, so that K - sigma M is definite), with the rigid-body modes
 // deflated for a free body. The modes are the basis; Ke = X^T K X, Me = X^T M X.
@@ -264,8 +277,29 @@ void eigenmode_basis(const FeModel& model, const Assembled& fe, const Constraine
     log.message(std::string(free ? "free-free" : "clamped") + " eigen-solve: " + std::to_string(t.num_ind()) + " DOF, " +
                 (spec.max_frequency_hz ? "up to " + std::to_string(*spec.max_frequency_hz) + " Hz"
                                        : std::to_string(o.nev) + " modes") +
-                ", " + spec.backend + ", " + spec.factorization + " factorization");
+                ", " + spec.backend + ", " + (spec.backend == "slepc" ? std::string("MUMPS") : spec.factorization) +
+                " factorization");
   const double t_constraints = lap(clock);
+  if (o.backend == EigenBackend::Slepc) {
+    // SLEPc factorizes K - sigma M itself (MUMPS, distributed over the ranks): no factor here.
+    EigenSolver solver(o);
+    attach_progress(solver, log);
+    solver.compute(p.K, M);
+    if (log.message) {
+      std::ostringstream line;
+      line.precision(3);
+      line << "timing: constraints " << t_constraints << " s, SLEPc Krylov-Schur with its MUMPS factorization "
+           << solver.info().lanczos_seconds << " s (" << solver.info().iterations << " restarts), checks "
+           << solver.info().verify_seconds << " s";
+      log.message(line.str());
+    }
+    record(r, solver);
+    modes_from(solver, model, part, free ? "beyond the six rigid-body modes" : "with the interface held", r, basis);
+    r.reference = free ? "free" : "clamped:" + spec.interface;
+    params = {{"method", free ? "free" : "clamped"}, {"shift", sigma}, {"backend", r.backend}};
+    if (!free) params["interface"] = spec.interface;
+    return;
+  }
   SparseMatrix C = shifted_stiffness(p, M, sigma);
   // Analysed first and the factor's size reported, so a factor that will not fit is refused
   // (by factorize, with the numbers) after the user has seen what it would need.
@@ -292,13 +326,7 @@ void eigenmode_basis(const FeModel& model, const Assembled& fe, const Constraine
   if (log.message) log.message(timing_line(t_constraints, t_analyze, t_factorize, &solver.info()));
   record(r, solver);
   r.factor = factor.info().stats;
-  check_no_zero_modes(model, solver.result().lambda, part, free ? "beyond the six rigid-body modes" : "with the interface held");
-  basis = solver.result().X;
-  // Ke and Me of exactly these vectors, from the eigen-solver's checks.
-  r.Ke = solver.result().XtKX;
-  r.Me = solver.result().XtMX;
-  r.lambda = solver.result().lambda;
-  r.types.assign(static_cast<std::size_t>(basis.cols()), formats::ModeType::Normal);
+  modes_from(solver, model, part, free ? "beyond the six rigid-body modes" : "with the interface held", r, basis);
   r.reference = free ? "free" : "clamped:" + spec.interface;
   params = {{"method", free ? "free" : "clamped"}, {"shift", sigma}, {"backend", r.backend}};
   if (!free) params["interface"] = spec.interface;
