@@ -3,6 +3,7 @@
 #include "ffr/formats/h5.hpp"
 #include "ffr/preproc/solver/eigen_solver.hpp"
 #include "ffr/preproc/solver/memory.hpp"
+#include "../solver/eigen_backends.hpp"
 #include "node_mass.hpp"
 #include "pattern_analysis.hpp"
 #include "setup.hpp"
@@ -348,19 +349,30 @@ void craig_bampton_basis(const FeModel& model, const Assembled& fe, const Constr
   const auto split = detail::split(K, M, boundary);
   if (log.message)
     log.message("craig-bampton: " + std::to_string(boundary.size()) + " boundary DOF, " +
-                std::to_string(split.interior.size()) + " interior DOF, " + spec.factorization + " factorization");
+                std::to_string(split.interior.size()) + " interior DOF, " +
+                (spec.backend == "slepc" ? std::string("MUMPS") : spec.factorization) + " factorization");
   const double t_constraints = lap(clock);
-  CholmodFactor factor = analysed_factor(split.Kii, model, t, spec, early, log);
+  // The slepc backend: the constraint modes and the fixed-interface modes from MUMPS factors
+  // distributed over the ranks (one for the solves, one inside SLEPc), no CHOLMOD factor.
+  const bool distributed = spec.backend == "slepc";
+  CholmodFactor factor = distributed ? CholmodFactor(detail::eigen_factor_options(spec))
+                                     : analysed_factor(split.Kii, model, t, spec, early, log);
   const double t_analyze = lap(clock);
+  Eigen::MatrixXd Psi_i;
   try {
-    factor.factorize(split.Kii);
+    if (distributed) {
+      Psi_i = -detail::distributed_spd_solve(split.Kii, SymmetricStorage::Full, Eigen::MatrixXd(split.Kib));
+    } else {
+      factor.factorize(split.Kii);
+      Psi_i = -factor.solve(Eigen::MatrixXd(split.Kib));
+    }
   } catch (const NotPositiveDefiniteError& e) {
-    mechanism(model, "with the frame interface '" + spec.frame + "' held, the stiffness is singular at " +
-                         node_text(model, t, split.interior[static_cast<std::size_t>(e.column)]));
+    mechanism(model, "with the frame interface '" + spec.frame + "' held, the stiffness is singular" +
+                         (e.column >= 0 ? " at " + node_text(model, t, split.interior[static_cast<std::size_t>(e.column)])
+                                        : std::string(" (") + e.what() + ")"));
   }
   const double t_factorize = lap(clock);
   r.factor = factor.info().stats;
-  const Eigen::MatrixXd Psi_i = -factor.solve(Eigen::MatrixXd(split.Kib));
   Eigen::MatrixXd modes_i;
   Eigen::VectorXd lambda_n;
   if (spec.modes > 0 || spec.max_frequency_hz) {
@@ -368,7 +380,8 @@ void craig_bampton_basis(const FeModel& model, const Assembled& fe, const Constr
     use_node_mass(o, model, fe, t, spec);
     EigenSolver solver(o);
     attach_progress(solver, log);
-    solver.compute(split.Kii, split.Mii, factor);
+    if (distributed) solver.compute(split.Kii, split.Mii);
+    else solver.compute(split.Kii, split.Mii, factor);
     if (log.message) log.message(timing_line(t_constraints, t_analyze, t_factorize, &solver.info()));
     record(r, solver);
     check_no_zero_modes(model, solver.result().lambda, part, "with the frame interface held");

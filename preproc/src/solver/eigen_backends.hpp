@@ -72,6 +72,13 @@ struct SlepcRequest {
 BackendOutcome run_slepc(const SparseRef& K, SymmetricStorage sK, const SparseRef& M, SymmetricStorage sM,
                          const Deflation& deflation, const SlepcRequest& req);
 
+/// X = A^{-1} B for a symmetric positive definite A and dense B (n x k), by a MUMPS Cholesky
+/// factor distributed over the ranks of the active ParallelSession (slepc_backend.cpp), one
+/// solve a column; collective: every rank passes the same A and B and gets all of X. A failed
+/// factorization (A not definite) throws NotPositiveDefiniteError with column -1 (MUMPS does
+/// not say where); other PETSc failures std::runtime_error.
+Eigen::MatrixXd distributed_spd_solve(const SparseRef& A, SymmetricStorage sA, const Eigen::MatrixXd& B);
+
 /// All eigenpairs with lambda > sigma of the pencil restricted to the M-orthogonal
 /// complement of the deflation basis, by Eigen's dense solver. n <= a few thousand.
 BackendOutcome run_dense(const SparseRef& K, SymmetricStorage sK, const SparseRef& M,

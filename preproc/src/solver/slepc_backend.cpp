@@ -6,6 +6,7 @@
 // gathered back to every rank for the Rayleigh-Ritz pass and the checks of EigenSolver.
 #include "eigen_backends.hpp"
 #include "ffr/preproc/solver/parallel_session.hpp"
+#include "ffr/preproc/solver/solver_errors.hpp"
 
 #include <sstream>
 #include <stdexcept>
@@ -228,7 +229,68 @@ BackendOutcome run_slepc(const SparseRef& K, SymmetricStorage sK, const SparseRe
   return out;
 }
 
+Eigen::MatrixXd distributed_spd_solve(const SparseRef& A, SymmetricStorage sA, const Eigen::MatrixXd& B) {
+  if (!parallel_session_active())
+    throw std::invalid_argument("distributed solve: needs the program's MPI/SLEPc session (ffr::preproc::ParallelSession)");
+  const auto n = static_cast<PetscInt>(A.rows());
+  PetscInt n_local = PETSC_DECIDE, n_global = n;
+  check(PetscSplitOwnership(PETSC_COMM_WORLD, &n_local, &n_global), "PetscSplitOwnership");
+  PetscInt r0 = 0;
+  MPI_Exscan(&n_local, &r0, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
+  int rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank == 0) r0 = 0;
+  MatGuard Ad;
+  Ad.m = distributed_matrix(A, sA, n_local, r0);
+  struct KspGuard {
+    KSP k = nullptr;
+    ~KspGuard() { if (k) KSPDestroy(&k); }
+  } ksp;
+  PC pc = nullptr;
+  check(KSPCreate(PETSC_COMM_WORLD, &ksp.k), "KSPCreate");
+  check(KSPSetOperators(ksp.k, Ad.m, Ad.m), "KSPSetOperators");
+  check(KSPSetType(ksp.k, KSPPREONLY), "KSPSetType");
+  check(KSPGetPC(ksp.k, &pc), "KSPGetPC");
+  check(PCSetType(pc, PCCHOLESKY), "PCSetType");
+  check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  check(KSPSetOptionsPrefix(ksp.k, "ffr_solve_"), "KSPSetOptionsPrefix");
+  check(KSPSetFromOptions(ksp.k), "KSPSetFromOptions");
+  check(KSPSetUp(ksp.k), "KSPSetUp");
+  PCFailedReason failed = PC_NOERROR;
+  check(PCGetFailedReason(pc, &failed), "PCGetFailedReason");
+  if (failed != PC_NOERROR)
+    throw NotPositiveDefiniteError(std::string("MUMPS's Cholesky factorization failed (") + PCFailedReasons[failed] + ")",
+                                   -1, -1, failed == PC_FACTOR_NUMERIC_ZEROPIVOT);
+  VecGuard b, x, x_all;
+  ScatterGuard to_all;
+  check(MatCreateVecs(Ad.m, &x.v, &b.v), "MatCreateVecs");
+  check(VecScatterCreateToAll(x.v, &to_all.s, &x_all.v), "VecScatterCreateToAll");
+  Eigen::MatrixXd X(n, B.cols());
+  for (Eigen::Index c = 0; c < B.cols(); ++c) {
+    PetscScalar* a = nullptr;
+    check(VecGetArray(b.v, &a), "VecGetArray");
+    std::copy(B.col(c).data() + r0, B.col(c).data() + r0 + n_local, a);
+    check(VecRestoreArray(b.v, &a), "VecRestoreArray");
+    check(KSPSolve(ksp.k, b.v, x.v), "KSPSolve");
+    KSPConvergedReason reason;
+    check(KSPGetConvergedReason(ksp.k, &reason), "KSPGetConvergedReason");
+    if (reason < 0)
+      throw std::runtime_error(std::string("distributed solve: MUMPS's solve failed (") + KSPConvergedReasons[reason] + ")");
+    check(VecScatterBegin(to_all.s, x.v, x_all.v, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(to_all.s, x.v, x_all.v, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    const PetscScalar* xa = nullptr;
+    check(VecGetArrayRead(x_all.v, &xa), "VecGetArrayRead");
+    std::copy(xa, xa + n, X.col(c).data());
+    check(VecRestoreArrayRead(x_all.v, &xa), "VecRestoreArrayRead");
+  }
+  return X;
+}
+
 #else
+
+Eigen::MatrixXd distributed_spd_solve(const SparseRef&, SymmetricStorage, const Eigen::MatrixXd&) {
+  throw std::invalid_argument("distributed solve: the slepc backend is not built into this program");
+}
 
 BackendOutcome run_slepc(const SparseRef&, SymmetricStorage, const SparseRef&, SymmetricStorage, const Deflation&,
                          const SlepcRequest&) {
