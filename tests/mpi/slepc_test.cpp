@@ -7,7 +7,8 @@
 // signs and rotations within degenerate subspaces, at rtol 1e-6 over every member of the SID,
 // and the frequencies at 1e-8 relative.
 // And its refusals: the backend where it is not built in, ffr-reduce under mpirun with a serial
-// backend, and a PETSc failure on every rank; each a clear message and no SID.
+// backend, a PETSc failure on every rank and a failure of one rank alone; each a clear message
+// and no SID.
 #include "ffr/formats/sid_io.hpp"
 #include "support.hpp"
 
@@ -80,7 +81,7 @@ std::string stray_files(const test::TempDir& dir) {
   std::string s;
   for (const auto& e : fs::directory_iterator(dir.path())) {
     const std::string name = e.path().filename().string();
-    if (name != "part.json" && name != "part.geo") s += " " + name;
+    if (name != "part.json" && name != "part.geo" && name != "bad.json" && name != "bad.geo") s += " " + name;
   }
   return s;
 }
@@ -165,6 +166,27 @@ TEST(Slepc, PetscFailureLeavesNoSid) {
   const auto r = test::run(mpirun(2, reduce_command(dir, "out.sid.h5"), "PETSC_OPTIONS='-st_pc_factor_mat_solver_type no_such_package'"));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("slepc backend"), std::string::npos) << r.output;
+  EXPECT_EQ(stray_files(dir), "");
+}
+
+// One rank fails alone while the other goes on into the collective eigen-solve: Open MPI's MPMD
+// launch gives rank 1 a part whose geometry gmsh cannot read. The failing rank names itself and
+// ends the job with the exit status of its error (2, bad input) instead of leaving rank 0
+// waiting; rank 0 is stopped before it writes, so there is no SID and no temporary file.
+TEST(Slepc, OneRankFailingEndsTheJobWithoutSid) {
+  test::TempDir dir("slepc_rank_fails");
+  write_part(dir, Body::Solid, Method::Free, "slepc");
+  test::write_text(dir / "bad.geo", "Box(1) = {0, 0, 0, 0.2, 0.02\n");
+  std::string bad = part_json(Body::Solid, Method::Free, "slepc");
+  bad.replace(bad.find("part.geo"), 8, "bad.geo");
+  test::write_text(dir / "bad.json", bad);
+  const std::string tool = test::bin("ffr-reduce").string(), out = (dir / "out.sid.h5").string();
+  const auto r = test::run("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " FFR_MPIEXEC " --oversubscribe -np 1 " +
+                           tool + " " + (dir / "part.json").string() + " -o " + out + " --quiet : -np 1 " + tool + " " +
+                           (dir / "bad.json").string() + " -o " + out + " --quiet");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("bad.geo"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(rank 1 of 2)"), std::string::npos) << r.output;
   EXPECT_EQ(stray_files(dir), "");
 }
 
