@@ -2,7 +2,7 @@
 // shift-invert factorized by MUMPS) under `mpirun -np 2` gives the SID of the serial path (the
 // default: the own block Lanczos on the own supernodal Cholesky, itself checked against CalculiX
 // in tests/reduce) on a solid and a shell part, free (by count and up to a frequency), clamped
-// and Craig-Bampton. Reference: the serial path; the two share no eigen-solver or factorization
+// and Craig-Bampton, and a beam part, free. Reference: the serial path; the two share no eigen-solver or factorization
 // code (SLEPc and MUMPS are code nobody here wrote). Compared by ffr-diff, which aligns mode
 // signs and rotations within degenerate subspaces, at rtol 1e-6 over every member of the SID,
 // and the frequencies at 1e-8 relative.
@@ -36,15 +36,21 @@ Transfinite Curve{1, 3} = 26; Transfinite Curve{2, 4} = 6;
 Transfinite Surface{1}; Recombine Surface{1};
 Physical Surface("plate") = {1}; Physical Curve("left") = {4}; Physical Curve("right") = {2};
 )";
+const char* kBeamGeo = R"(Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Line(1) = {1, 2};
+Transfinite Curve{1} = 41; Physical Curve("beam") = {1}; Physical Point("left") = {1}; Physical Point("right") = {2};
+)";
 
-enum class Body { Solid, Shell };
+enum class Body { Solid, Shell, Beam };
 enum class Method { Free, FreeUpTo, Clamped, CraigBampton };
 
 std::string part_json(Body b, Method m, const std::string& backend) {
   std::string s = b == Body::Solid ? R"({"geometry": "part.geo", "mesh": {"size": 0.008, "order": 1},
         "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],)"
-                                   : R"({"geometry": "part.geo", "mesh": {"order": 1},
-        "shells": [{"group": "plate", "thickness": 0.002, "E": 7e10, "nu": 0.3, "rho": 2700}],)";
+                   : b == Body::Shell ? R"({"geometry": "part.geo", "mesh": {"order": 1},
+        "shells": [{"group": "plate", "thickness": 0.002, "E": 7e10, "nu": 0.3, "rho": 2700}],)"
+                                      : R"({"geometry": "part.geo", "mesh": {"order": 1},
+        "beams": [{"group": "beam", "E": 2.1e11, "nu": 0.3, "rho": 7850, "y_axis": [0, 1, 0],
+                   "section": {"A": 1.2e-3, "Iy": 4e-8, "Iz": 3.6e-7, "J": 1.5e-7}}],)";
   s += R"( "interfaces": [{"name": "L", "group": "left"}, {"name": "R", "group": "right"}], "visual": false,
     "reduction": {)";
   switch (m) {
@@ -59,7 +65,7 @@ std::string part_json(Body b, Method m, const std::string& backend) {
 }
 
 void write_part(const test::TempDir& dir, Body b, Method m, const std::string& backend) {
-  test::write_text(dir / "part.geo", b == Body::Solid ? kSolidGeo : kShellGeo);
+  test::write_text(dir / "part.geo", b == Body::Solid ? kSolidGeo : b == Body::Shell ? kShellGeo : kBeamGeo);
   test::write_text(dir / "part.json", part_json(b, m, backend));
 }
 
@@ -123,11 +129,12 @@ INSTANTIATE_TEST_SUITE_P(PartTypes, SlepcOnTwoRanks,
                                            std::make_tuple(Body::Solid, Method::Clamped),
                                            std::make_tuple(Body::Solid, Method::CraigBampton),
                                            std::make_tuple(Body::Shell, Method::Free),
-                                           std::make_tuple(Body::Shell, Method::Clamped)),
+                                           std::make_tuple(Body::Shell, Method::Clamped),
+                                           std::make_tuple(Body::Beam, Method::Free)),
                          [](const auto& info) {
                            const Body b = std::get<0>(info.param);
                            const Method m = std::get<1>(info.param);
-                           return std::string(b == Body::Solid ? "solid" : "shell") + "_" +
+                           return std::string(b == Body::Solid ? "solid" : b == Body::Shell ? "shell" : "beam") + "_" +
                                   (m == Method::Free       ? "free"
                                    : m == Method::FreeUpTo ? "free_up_to_20kHz"
                                    : m == Method::Clamped  ? "clamped"
