@@ -45,6 +45,8 @@ environment:
   GLIBC_TUNABLES=glibc.malloc.hugetlb=1   transparent 2 MiB pages for the heap (glibc 2.35+):
                         fewer page faults where the kernel hands out huge pages cheaply
   OPENBLAS_CORETYPE     OpenBLAS's kernels, when the log says the CPU suits newer ones
+  PETSC_OPTIONS         options of PETSc, SLEPc and MUMPS under the slepc backend (e.g.
+                        "-st_mat_mumps_icntl_14 50" for more MUMPS workspace; docs/cluster.md)
 
 under MPI (backend slepc): every rank runs the pipeline, rank 0 alone prints and writes the
 file, after every rank has succeeded; a failing rank ends the job with its exit status.

@@ -187,7 +187,7 @@ BackendOutcome run_slepc(const SparseRef& K, SymmetricStorage sK, const SparseRe
     start.v = distributed_vector(req.v0->data(), n_local, r0, n);
     check(EPSSetInitialSpace(eps.e, 1, &start.v), "EPSSetInitialSpace");
   }
-  // PETSC_OPTIONS may adjust the solver (e.g. MUMPS's -mat_mumps_icntl_14 workspace on a
+  // PETSC_OPTIONS may adjust the solver (e.g. MUMPS's -st_mat_mumps_icntl_14 workspace on a
   // cluster); EigenSolver's checks of every returned pair still apply.
   check(EPSSetFromOptions(eps.e), "EPSSetFromOptions");
   check(EPSSolve(eps.e), "EPSSolve");
@@ -253,6 +253,7 @@ Eigen::MatrixXd distributed_spd_solve(const SparseRef& A, SymmetricStorage sA, c
   check(KSPGetPC(ksp.k, &pc), "KSPGetPC");
   check(PCSetType(pc, PCCHOLESKY), "PCSetType");
   check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  // Options of its own in PETSC_OPTIONS (-ffr_solve_...), apart from the eigen-solve's (-st_...).
   check(KSPSetOptionsPrefix(ksp.k, "ffr_solve_"), "KSPSetOptionsPrefix");
   check(KSPSetFromOptions(ksp.k), "KSPSetFromOptions");
   check(KSPSetUp(ksp.k), "KSPSetUp");
