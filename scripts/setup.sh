@@ -22,6 +22,7 @@ packages=(
   python3-dev python3-numpy pybind11-dev   # the Python package (python/), for /usr/bin/python3
   unzip                                    # tests/fmu unpacks the FMUs as an importer does
   clang libclang-rt-14-dev   # libFuzzer and the sanitizers of tools/fuzz
+  slepc-dev petsc-dev libopenmpi-dev openmpi-bin   # ffr-reduce's slepc backend (docs/cluster.md)
 )
 
 sudo_=""

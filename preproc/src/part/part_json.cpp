@@ -1,5 +1,6 @@
 #include "ffr/formats/json_input.hpp"
 #include "ffr/preproc/part/part.hpp"
+#include "ffr/preproc/solver/parallel_session.hpp"
 
 #include "../mesh/bdf_reader.hpp"
 #include "../mesh/inp_reader.hpp"
@@ -228,8 +229,11 @@ ReductionSpec read_reduction(const JsonNode& n) {
     n.fail("give \"modes\" (a count) or \"max_frequency_hz\"");
   r.orthonormalize = n.boolean_or("orthonormalize", false);
   r.backend = n.string_or("backend", "block");
-  if (r.backend != "spectra" && r.backend != "arpack" && r.backend != "block")
-    n.at("backend").fail("backend must be \"block\", \"spectra\" or \"arpack\"");
+  if (r.backend != "spectra" && r.backend != "arpack" && r.backend != "block" && r.backend != "slepc")
+    n.at("backend").fail("backend must be \"block\", \"spectra\", \"arpack\" or \"slepc\"");
+  if (r.backend == "slepc" && !slepc_available())
+    n.at("backend").fail("backend \"slepc\" is not built into this program (configure with -DFFR_SLEPC=ON and "
+                         "Debian's slepc-dev, petsc-dev and libopenmpi-dev)");
   r.factorization = n.string_or("factorization", "supernodal");
   if (r.factorization != "supernodal" && r.factorization != "cholmod")
     n.at("factorization").fail("factorization must be \"supernodal\" or \"cholmod\"");

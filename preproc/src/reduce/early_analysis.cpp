@@ -35,6 +35,8 @@ EarlyAnalysis::~EarlyAnalysis() {
 EarlyAnalysis EarlyAnalysis::start(const FeModel& model, const ReductionSpec& spec) {
   EarlyAnalysis e;
   if (max_threads() < 2) return e;
+  // The slepc backend factorizes with MUMPS, not CHOLMOD.
+  if (spec.backend == "slepc") return e;
   e.state_ = std::make_unique<State>();
   State* s = e.state_.get();
   // The state lives on the heap, so the thread's pointer stays valid when `e` is moved.

@@ -3,6 +3,7 @@
 #include "ffr/formats/h5.hpp"
 #include "ffr/preproc/solver/eigen_solver.hpp"
 #include "ffr/preproc/solver/memory.hpp"
+#include "../solver/eigen_backends.hpp"
 #include "node_mass.hpp"
 #include "pattern_analysis.hpp"
 #include "setup.hpp"
@@ -63,8 +64,9 @@ EigenOptions eigen_options(const ReductionSpec& spec, const PartSpec& part, doub
   o.nev = spec.modes > 0 ? spec.modes : 10;
   if (spec.max_frequency_hz) o.lambda_max = lambda_of_hz(*spec.max_frequency_hz, part);
   o.sigma = sigma;
-  o.backend = spec.backend == "arpack" ? EigenBackend::Arpack
+  o.backend = spec.backend == "arpack"  ? EigenBackend::Arpack
               : spec.backend == "block" ? EigenBackend::Block
+              : spec.backend == "slepc" ? EigenBackend::Slepc
                                         : EigenBackend::Spectra;
   o.factor = detail::eigen_factor_options(spec);
   return o;
@@ -244,6 +246,18 @@ SparseMatrix shifted_stiffness(const ConstrainedPencil& p, const SparseRef& M, d
   return C;
 }
 
+// The eigen-solver's modes as the basis, refused if some are mechanisms; Ke and Me of exactly
+// these vectors, from the eigen-solver's checks.
+void modes_from(const EigenSolver& solver, const FeModel& model, const PartSpec& part, const std::string& held,
+                ReductionResult& r, Eigen::MatrixXd& basis) {
+  check_no_zero_modes(model, solver.result().lambda, part, held);
+  basis = solver.result().X;
+  r.Ke = solver.result().XtKX;
+  r.Me = solver.result().XtMX;
+  r.lambda = solver.result().lambda;
+  r.types.assign(static_cast<std::size_t>(basis.cols()), formats::ModeType::Normal);
+}
+
 // Free or clamped: the lowest eigenpairs (lambda, x) of K x = lambda M x above the shift sigma
 // (below every wanted eigenvalue, so that K - sigma M is definite), with the rigid-body modes
 // deflated for a free body. The modes are the basis; Ke = X^T K X, Me = X^T M X.
@@ -264,8 +278,29 @@ void eigenmode_basis(const FeModel& model, const Assembled& fe, const Constraine
     log.message(std::string(free ? "free-free" : "clamped") + " eigen-solve: " + std::to_string(t.num_ind()) + " DOF, " +
                 (spec.max_frequency_hz ? "up to " + std::to_string(*spec.max_frequency_hz) + " Hz"
                                        : std::to_string(o.nev) + " modes") +
-                ", " + spec.backend + ", " + spec.factorization + " factorization");
+                ", " + spec.backend + ", " + (spec.backend == "slepc" ? std::string("MUMPS") : spec.factorization) +
+                " factorization");
   const double t_constraints = lap(clock);
+  if (o.backend == EigenBackend::Slepc) {
+    // SLEPc factorizes K - sigma M itself (MUMPS, distributed over the ranks): no factor here.
+    EigenSolver solver(o);
+    attach_progress(solver, log);
+    solver.compute(p.K, M);
+    if (log.message) {
+      std::ostringstream line;
+      line.precision(3);
+      line << "timing: constraints " << t_constraints << " s, SLEPc Krylov-Schur with its MUMPS factorization "
+           << solver.info().lanczos_seconds << " s (" << solver.info().iterations << " restarts), checks "
+           << solver.info().verify_seconds << " s";
+      log.message(line.str());
+    }
+    record(r, solver);
+    modes_from(solver, model, part, free ? "beyond the six rigid-body modes" : "with the interface held", r, basis);
+    r.reference = free ? "free" : "clamped:" + spec.interface;
+    params = {{"method", free ? "free" : "clamped"}, {"shift", sigma}, {"backend", r.backend}};
+    if (!free) params["interface"] = spec.interface;
+    return;
+  }
   SparseMatrix C = shifted_stiffness(p, M, sigma);
   // Analysed first and the factor's size reported, so a factor that will not fit is refused
   // (by factorize, with the numbers) after the user has seen what it would need.
@@ -292,13 +327,7 @@ void eigenmode_basis(const FeModel& model, const Assembled& fe, const Constraine
   if (log.message) log.message(timing_line(t_constraints, t_analyze, t_factorize, &solver.info()));
   record(r, solver);
   r.factor = factor.info().stats;
-  check_no_zero_modes(model, solver.result().lambda, part, free ? "beyond the six rigid-body modes" : "with the interface held");
-  basis = solver.result().X;
-  // Ke and Me of exactly these vectors, from the eigen-solver's checks.
-  r.Ke = solver.result().XtKX;
-  r.Me = solver.result().XtMX;
-  r.lambda = solver.result().lambda;
-  r.types.assign(static_cast<std::size_t>(basis.cols()), formats::ModeType::Normal);
+  modes_from(solver, model, part, free ? "beyond the six rigid-body modes" : "with the interface held", r, basis);
   r.reference = free ? "free" : "clamped:" + spec.interface;
   params = {{"method", free ? "free" : "clamped"}, {"shift", sigma}, {"backend", r.backend}};
   if (!free) params["interface"] = spec.interface;
@@ -320,19 +349,30 @@ void craig_bampton_basis(const FeModel& model, const Assembled& fe, const Constr
   const auto split = detail::split(K, M, boundary);
   if (log.message)
     log.message("craig-bampton: " + std::to_string(boundary.size()) + " boundary DOF, " +
-                std::to_string(split.interior.size()) + " interior DOF, " + spec.factorization + " factorization");
+                std::to_string(split.interior.size()) + " interior DOF, " +
+                (spec.backend == "slepc" ? std::string("MUMPS") : spec.factorization) + " factorization");
   const double t_constraints = lap(clock);
-  CholmodFactor factor = analysed_factor(split.Kii, model, t, spec, early, log);
+  // The slepc backend: the constraint modes and the fixed-interface modes from MUMPS factors
+  // distributed over the ranks (one for the solves, one inside SLEPc), no CHOLMOD factor.
+  const bool distributed = spec.backend == "slepc";
+  CholmodFactor factor = distributed ? CholmodFactor(detail::eigen_factor_options(spec))
+                                     : analysed_factor(split.Kii, model, t, spec, early, log);
   const double t_analyze = lap(clock);
+  Eigen::MatrixXd Psi_i;
   try {
-    factor.factorize(split.Kii);
+    if (distributed) {
+      Psi_i = -detail::distributed_spd_solve(split.Kii, SymmetricStorage::Full, Eigen::MatrixXd(split.Kib));
+    } else {
+      factor.factorize(split.Kii);
+      Psi_i = -factor.solve(Eigen::MatrixXd(split.Kib));
+    }
   } catch (const NotPositiveDefiniteError& e) {
-    mechanism(model, "with the frame interface '" + spec.frame + "' held, the stiffness is singular at " +
-                         node_text(model, t, split.interior[static_cast<std::size_t>(e.column)]));
+    mechanism(model, "with the frame interface '" + spec.frame + "' held, the stiffness is singular" +
+                         (e.column >= 0 ? " at " + node_text(model, t, split.interior[static_cast<std::size_t>(e.column)])
+                                        : std::string(" (") + e.what() + ")"));
   }
   const double t_factorize = lap(clock);
   r.factor = factor.info().stats;
-  const Eigen::MatrixXd Psi_i = -factor.solve(Eigen::MatrixXd(split.Kib));
   Eigen::MatrixXd modes_i;
   Eigen::VectorXd lambda_n;
   if (spec.modes > 0 || spec.max_frequency_hz) {
@@ -340,7 +380,8 @@ void craig_bampton_basis(const FeModel& model, const Assembled& fe, const Constr
     use_node_mass(o, model, fe, t, spec);
     EigenSolver solver(o);
     attach_progress(solver, log);
-    solver.compute(split.Kii, split.Mii, factor);
+    if (distributed) solver.compute(split.Kii, split.Mii);
+    else solver.compute(split.Kii, split.Mii, factor);
     if (log.message) log.message(timing_line(t_constraints, t_analyze, t_factorize, &solver.info()));
     record(r, solver);
     check_no_zero_modes(model, solver.result().lambda, part, "with the frame interface held");

@@ -55,6 +55,30 @@ BackendOutcome run_spectra(ShiftInvertOp& op, MassOp& bop, const LanczosRequest&
 /// ARPACK-ng dsaupd/dseupd, bmat = 'G', which = 'LM', mode 3 (shift-invert).
 BackendOutcome run_arpack(ShiftInvertOp& op, MassOp& bop, const LanczosRequest& req);
 
+struct SlepcRequest {
+  int nev = 0;
+  int ncv = 0;  ///< 0: SLEPc's default
+  int max_restarts = 0;
+  double tol = 0;
+  double sigma = 0;
+  const Eigen::VectorXd* v0 = nullptr;  ///< starting vector, already projected by P
+};
+
+/// SLEPc's Krylov-Schur, shift-invert with a MUMPS Cholesky factor of K - sigma M, distributed
+/// over the ranks of the active ParallelSession (slepc_backend.cpp); collective: every rank
+/// calls it with the same K, M and deflation and gets every converged pair. Throws
+/// std::invalid_argument when the backend is not built in or no session is active, and
+/// std::runtime_error with PETSc's message when a PETSc or SLEPc call fails.
+BackendOutcome run_slepc(const SparseRef& K, SymmetricStorage sK, const SparseRef& M, SymmetricStorage sM,
+                         const Deflation& deflation, const SlepcRequest& req);
+
+/// X = A^{-1} B for a symmetric positive definite A and dense B (n x k), by a MUMPS Cholesky
+/// factor distributed over the ranks of the active ParallelSession (slepc_backend.cpp), one
+/// solve a column; collective: every rank passes the same A and B and gets all of X. A failed
+/// factorization (A not definite) throws NotPositiveDefiniteError with column -1 (MUMPS does
+/// not say where); other PETSc failures std::runtime_error.
+Eigen::MatrixXd distributed_spd_solve(const SparseRef& A, SymmetricStorage sA, const Eigen::MatrixXd& B);
+
 /// All eigenpairs with lambda > sigma of the pencil restricted to the M-orthogonal
 /// complement of the deflation basis, by Eigen's dense solver. n <= a few thousand.
 BackendOutcome run_dense(const SparseRef& K, SymmetricStorage sK, const SparseRef& M,

@@ -16,6 +16,7 @@ const char* to_string(EigenBackend b) {
     case EigenBackend::Arpack: return "ARPACK";
     case EigenBackend::Dense: return "dense";
     case EigenBackend::Block: return "block Lanczos";
+    case EigenBackend::Slepc: return "SLEPc Krylov-Schur";
   }
   return "?";
 }
@@ -162,7 +163,7 @@ struct EigenSolver::Run {
   }
 
   // The factor of K - sigma M: the caller's (checked to be of this shift), else computed into
-  // `own`; none for the dense backend.
+  // `own`; none for the dense backend, nor for slepc (MUMPS factorizes it, distributed).
   const CholmodFactor* factor_shifted_stiffness(const CholmodFactor* given, CholmodFactor& own) {
     const EigenOptions& o = options();
     const auto t0 = Clock::now();
@@ -177,7 +178,7 @@ struct EigenSolver::Run {
           os << "eigen-solver: the given factor is of K - " << have << " M but sigma = " << o.sigma;
           throw std::invalid_argument(os.str());
         }
-      } else if (o.backend != EigenBackend::Dense) {
+      } else if (o.backend != EigenBackend::Dense && o.backend != EigenBackend::Slepc) {
         report("factorize");
         own.factorize_shifted(K, M, o.sigma);
         factor = &own;
@@ -259,6 +260,14 @@ struct EigenSolver::Run {
     return run;
   }
 
+  // nev pairs by SLEPc's Krylov-Schur, distributed over the session's ranks.
+  detail::BackendOutcome slepc_krylov_schur(int nev, const Eigen::VectorXd& v0) {
+    const EigenOptions& o = options();
+    const int ncv = o.ncv > 0 ? static_cast<int>(std::min<Eigen::Index>(std::max(o.ncv, nev + 1), n_eff)) : 0;
+    const detail::SlepcRequest req{nev, ncv, o.max_restarts, o.lanczos_tol, o.sigma, &v0};
+    return detail::run_slepc(K, sK, M, sM, deflation, req);
+  }
+
   // The converged pairs, in as many rounds as a lambda_max query needs: nev grows (Weyl's law)
   // until a converged eigenvalue lies above lambda_max.
   detail::BackendOutcome ritz_pairs(const CholmodFactor* factor, EigenBackend& backend) {
@@ -277,6 +286,7 @@ struct EigenSolver::Run {
       info().backend_used = backend;
       report("lanczos");
       if (backend == EigenBackend::Dense) run = detail::run_dense(K, sK, M, sM, deflation, o.sigma);
+      else if (backend == EigenBackend::Slepc) run = slepc_krylov_schur(nev, v0);
       else run = shift_invert_lanczos(*factor, nev, backend, v0);
       info().backend_used = backend;
       info().iterations = run.iterations;

@@ -81,7 +81,7 @@ struct ReductionSpec {
   int modes = 0;                        ///< number of eigenmodes
   std::optional<double> max_frequency_hz;
   bool orthonormalize = false;          ///< craig-bampton: orthonormalize the whole basis
-  std::string backend = "block";        ///< "block", "spectra" or "arpack"
+  std::string backend = "block";        ///< "block", "spectra", "arpack" or "slepc"
   std::string factorization = "supernodal";  ///< "supernodal" or "cholmod" (FactorizationBackend)
   std::uint64_t memory_limit_bytes = 0; ///< refuse factors above this (0: the machine's available memory)
 };

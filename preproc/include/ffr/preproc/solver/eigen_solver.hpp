@@ -47,6 +47,8 @@ enum class EigenBackend {
   Dense,    ///< Eigen's dense GeneralizedSelfAdjointEigenSolver; small problems only
   Block,    ///< block shift-invert Lanczos (blocks of solves with the factor; the default); falls
             ///< back to Spectra if it does not converge or the problem is too small for its basis
+  Slepc,    ///< SLEPc's Krylov-Schur over MPI, shift-invert factorized by MUMPS (needs a
+            ///< ParallelSession, solver/parallel_session.hpp; no CHOLMOD factor is used)
 };
 const char* to_string(EigenBackend b);
 
