@@ -40,12 +40,17 @@ int run_stress(const fs::path& run, const std::string& body, const std::string& 
     std::cout << out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     return 0;
   }
-  std::printf("%s: body %s, stress at %lld nodes (%s) from %s, modal coordinates '%s', %lld samples\n",
-              run.string().c_str(), body.c_str(), static_cast<long long>(ns), h.selection.c_str(),
-              sid.c_str(), h.output.c_str(), static_cast<long long>(nt));
   // The layer column only when shells carry stress: a solid-only table reads as before.
   bool shells = false;
-  for (const auto l : h.layer) shells = shells || l != formats::kSolid;
+  long long nodes = 0;  // a node's rows are adjacent (SPEC.md section 12.1)
+  for (Eigen::Index i = 0; i < ns; ++i) {
+    shells = shells || h.layer[static_cast<std::size_t>(i)] != formats::kSolid;
+    nodes += i == 0 || h.node[static_cast<std::size_t>(i)] != h.node[static_cast<std::size_t>(i - 1)];
+  }
+  const std::string rows = shells ? " in " + std::to_string(ns) + " rows (shells: top, middle, bottom)" : "";
+  std::printf("%s: body %s, stress at %lld nodes%s (%s) from %s, modal coordinates '%s', %lld samples\n",
+              run.string().c_str(), body.c_str(), nodes, rows.c_str(), h.selection.c_str(), sid.c_str(),
+              h.output.c_str(), static_cast<long long>(nt));
   std::printf("%10s %12s %12s %12s%s %14s %12s %14s %14s %14s\n", "node", "x", "y", "z", shells ? "  layer " : "",
               "max von Mises", "at t [s]", "sigma_1", "sigma_2", "sigma_3");
   for (Eigen::Index i = 0; i < ns; ++i) {
