@@ -6,8 +6,9 @@
 //    Elasticity, plane stress); for an imposed constant-curvature Kirchhoff field
 //    w = (A x1^2 + B x2^2 + C x1 x2) / 2 it is sigma = -z D (w,11, w,22, 2 w,12) at z = +-t/2
 //    (Timoshenko & Woinowsky-Krieger, Theory of Plates and Shells, ch. 1-2), and a rigid motion
-//    adds nothing; the same with half the elements' node order reversed (the recovery orients
-//    the surface: one normal for every node, the seam's top stress not cancelled);
+//    adds nothing (QUAD4, TRI3, and TRI6 as its four TRI3); the same with half the elements'
+//    node order reversed (the recovery orients the surface: one normal for every node, the
+//    seam's top stress not cancelled);
 //  - a cantilever plate strip under a tip force, reduced by Craig-Bampton with the tip as an
 //    interface so that the static load is represented exactly (as tests/stress/recovery_test.cpp
 //    does for solids): at sections away from the clamp and the tip the surface stress is the
@@ -35,6 +36,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <tuple>
 
 using namespace ffr;
 
@@ -68,7 +70,9 @@ struct Plate {
   // A 0.1 x 0.06 plate in the plane through `o` spanned by a1, a2, unstructured.
   // flip: the elements beyond x1 = 0.05 get their node order reversed (normal -n), as gmsh
   // gives when two surfaces of one part face opposite ways.
-  Plate(bool quads, const Eigen::Vector3d& o, const Eigen::Vector3d& a1, const Eigen::Vector3d& a2, bool flip = false) {
+  // order 2: TRI6 elements, which ffr computes as four TRI3 each.
+  Plate(bool quads, const Eigen::Vector3d& o, const Eigen::Vector3d& a1, const Eigen::Vector3d& a2, bool flip = false,
+        int order = 1) {
     std::ostringstream geo;
     geo.precision(17);
     const Eigen::Vector3d p[4] = {o, o + 0.1 * a1, o + 0.1 * a1 + 0.06 * a2, o + 0.06 * a2};
@@ -77,7 +81,7 @@ struct Plate {
         << "Plane Surface(1) = {1};\nPhysical Surface(\"skin\") = {1};\n"
         << (quads ? "Recombine Surface{1};\n" : "");
     test::write_text(dir / "p.geo", geo.str());
-    test::gmsh_mesh(dir / "p.geo", dir / "p.msh", 0.02, 1);
+    test::gmsh_mesh(dir / "p.geo", dir / "p.msh", 0.02, order);
     test::write_text(dir / "p.json", R"({"geometry": "p.msh",
       "shells": [{"group": "skin", "thickness": 0.003, "E": 7e10, "nu": 0.33, "rho": 2700}],
       "reduction": {"method": "free", "modes": 1}, "stress": {"group": "skin"}})");
@@ -109,15 +113,17 @@ TEST(ShellStressPatch, MembraneBendingAndRigidMotionOnTiltedPlates) {
   const double e11 = 1e-3, e22 = -4e-4, g12 = 6e-4;  // membrane strains
   const double A = 0.3, B = -0.5, C = 0.4;            // w = (A x1^2 + B x2^2 + C x1 x2) / 2 [1/m]
   const Eigen::Vector3d omega(2e-3, -1e-3, 3e-3), c(1e-4, 2e-4, -3e-4);
-  for (const auto& [quads, flip] : std::vector<std::pair<bool, bool>>{{true, false}, {false, false}, {true, true}, {false, true}}) {
-    Plate plate(quads, o, a1, a2, flip);
+  for (const auto& [quads, flip, order] :
+       std::vector<std::tuple<bool, bool, int>>{{true, false, 1}, {false, false, 1}, {true, true, 1}, {false, true, 1}, {false, false, 2}}) {
+    Plate plate(quads, o, a1, a2, flip, order);
     const auto& model = plate.model;
     const auto& mesh = plate.mesh;
     if (flip) {
       EXPECT_GT(plate.flipped, 5);
       EXPECT_LT(plate.flipped, mesh.blocks.front().size() - 5);
     }
-    ASSERT_EQ(mesh.blocks.front().type, quads ? preproc::ElementType::Quad4 : preproc::ElementType::Tri3);
+    ASSERT_EQ(mesh.blocks.front().type, quads ? preproc::ElementType::Quad4
+                                              : order == 2 ? preproc::ElementType::Tri6 : preproc::ElementType::Tri3);
     // Columns: the stretch, the bending, the stretch plus a rigid motion.
     Eigen::MatrixXd Phi = Eigen::MatrixXd::Zero(model.num_dofs, 3);
     std::vector<preproc::Index> nodes;
@@ -160,7 +166,7 @@ TEST(ShellStressPatch, MembraneBendingAndRigidMotionOnTiltedPlates) {
         worst = std::max(worst, (s.modes[static_cast<std::size_t>(k)].row(r).transpose() - want[k]).cwiseAbs().maxCoeff() /
                                     std::max(membrane.cwiseAbs().maxCoeff(), bending_top.cwiseAbs().maxCoeff()));
     }
-    std::cout << "[ shell patch ] " << (quads ? "QUAD4" : "TRI3") << (flip ? " (half the elements reversed)" : "") << ", "
+    std::cout << "[ shell patch ] " << (quads ? "QUAD4" : order == 2 ? "TRI6" : "TRI3") << (flip ? " (half the elements reversed)" : "") << ", "
               << nodes.size()
               << " nodes x 3 layers: max relative stress error " << worst << "\n";
     EXPECT_LT(worst, 1e-9);
