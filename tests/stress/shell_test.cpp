@@ -8,7 +8,8 @@
 //    (Timoshenko & Woinowsky-Krieger, Theory of Plates and Shells, ch. 1-2), and a rigid motion
 //    adds nothing (QUAD4, TRI3, and TRI6 as its four TRI3); the same with half the elements'
 //    node order reversed (the recovery orients the surface: one normal for every node, the
-//    seam's top stress not cancelled);
+//    seam's top stress not cancelled); a node of a solid block and its shell skin carries the
+//    3-D Hooke stress in its solid row and the plane-stress one in its three shell rows;
 //  - a cantilever plate strip under a tip force, reduced by Craig-Bampton with the tip as an
 //    interface so that the static load is represented exactly (as tests/stress/recovery_test.cpp
 //    does for solids): at sections away from the clamp and the tip the surface stress is the
@@ -464,4 +465,58 @@ TEST(ShellStressStrip, SurfaceStressMatchesCalculixAtMidSpan) {
             << " surface rows at 0.25 L..0.75 L, max |sigma - sigma_ccx| / (6M/bt^2) of xx, yy, xy = " << worst << "\n";
   EXPECT_GT(compared, 500);
   EXPECT_LT(worst, 0.01);
+}
+
+// A node held by solid and shell elements (a 1 mm skin on a block's top face) has a solid row
+// and then its three shell rows. For a uniform in-plane strain of the whole part the solid row is
+// the 3-D Hooke's law sigma = lambda tr(eps) I + 2 mu eps and the shell rows the plane-stress law
+// of the skin's material (both textbook forms, written here).
+TEST(ShellStressPatch, NodeOfSolidAndShellHasBothStresses) {
+  if (!have_gmsh()) GTEST_SKIP() << "gmsh missing";
+  test::TempDir dir("shell_stress_skin");
+  test::write_text(dir / "b.geo", R"(SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 0.1, 0.04, 0.03};
+Physical Volume("body") = {1};
+Physical Surface("top") = Surface In BoundingBox{-1, -1, 0.03 - 1e-6, 1, 1, 0.03 + 1e-6};
+)");
+  test::gmsh_mesh(dir / "b.geo", dir / "b.msh", 0.015, 1);
+  test::write_text(dir / "b.json", R"({"geometry": "b.msh",
+    "materials": [{"group": "body", "E": 7e10, "nu": 0.33, "rho": 2700}],
+    "shells": [{"group": "top", "thickness": 0.001, "E": 2.1e11, "nu": 0.3, "rho": 7850}],
+    "reduction": {"method": "free", "modes": 1}, "stress": {"group": "top"}})");
+  const preproc::PartSpec part = preproc::load_part(dir / "b.json");
+  const preproc::Mesh mesh = preproc::load_mesh(part);
+  const preproc::FeModel model = preproc::build_model(mesh, part);
+  const std::vector<preproc::Index> nodes = preproc::stress_nodes(model);
+  // u = G x with an in-plane strain (exx, eyy, gxy) and a rigid rotation about z.
+  const double exx = 8e-4, eyy = -3e-4, gxy = 5e-4, wz = 2e-3;
+  Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
+  G(0, 0) = exx;
+  G(1, 1) = eyy;
+  G(0, 1) = 0.5 * gxy - wz;
+  G(1, 0) = 0.5 * gxy + wz;
+  Eigen::MatrixXd Phi = Eigen::MatrixXd::Zero(model.num_dofs, 1);
+  for (preproc::Index k = 0; k < mesh.num_nodes(); ++k) {
+    const int nd = model.node_ndof[static_cast<std::size_t>(k)];
+    if (nd == 0) continue;
+    const Eigen::Vector3d u = G * mesh.x.row(k).transpose();
+    for (int i = 0; i < 3; ++i) Phi(model.dof(k, i), 0) = u[i];
+    if (nd == 6) Phi(model.dof(k, 5), 0) = wz;
+  }
+  const formats::ModalStress s = preproc::recover_modal_stress(model, Phi, nodes);
+  ASSERT_EQ(s.size(), 4 * static_cast<std::int64_t>(nodes.size()));
+  const double E = 7e10, nu = 0.33, lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+  Voigt solid;
+  solid << lambda * (exx + eyy) + 2 * mu * exx, lambda * (exx + eyy) + 2 * mu * eyy, lambda * (exx + eyy), mu * gxy, 0, 0;
+  const Voigt skin = voigt(plane_stress(exx, eyy, gxy, 2.1e11, 0.3, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY()));
+  double worst = 0;
+  for (Eigen::Index r = 0; r < s.size(); ++r) {
+    const std::int64_t want_layer = r % 4;  // solid, top, middle, bottom
+    ASSERT_EQ(s.layer[static_cast<std::size_t>(r)], want_layer) << "row " << r;
+    ASSERT_EQ(s.node[static_cast<std::size_t>(r)], s.node[static_cast<std::size_t>(r - want_layer)]);
+    const Voigt& want = want_layer == formats::kSolid ? solid : skin;
+    worst = std::max(worst, (s.modes[0].row(r).transpose() - want).cwiseAbs().maxCoeff() / skin.cwiseAbs().maxCoeff());
+  }
+  std::cout << "[ shell patch ] skin on a TET4 block: " << nodes.size() << " nodes x 4 rows, max relative error " << worst << "\n";
+  EXPECT_LT(worst, 1e-9);
 }
