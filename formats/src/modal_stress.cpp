@@ -26,6 +26,23 @@ void check_modal_stress(const ModalStress& s, std::int64_t nq) {
     if (!m.allFinite()) bad("modes: a value is not finite");
   }
   if (!s.position.allFinite()) bad("position: a value is not finite");
+  if (!s.layer.empty()) {
+    if (static_cast<Eigen::Index>(s.layer.size()) != ns) bad("layer has the wrong size (one value per node row)");
+    for (const auto l : s.layer)
+      if (l < kSolid || l > kShellBottom) bad("layer: a value is not 0 (solid), 1 (top), 2 (middle) or 3 (bottom)");
+    if (s.normal.rows() != ns) bad("normal has the wrong size (one row per node row)");
+    if (!s.normal.allFinite()) bad("normal: a value is not finite");
+  }
+}
+
+const char* layer_name(std::int64_t layer) {
+  switch (layer) {
+    case kSolid: return "solid";
+    case kShellTop: return "top";
+    case kShellMiddle: return "middle";
+    case kShellBottom: return "bottom";
+    default: throw std::invalid_argument("stress layer " + std::to_string(layer) + " is not 0, 1, 2 or 3");
+  }
 }
 
 void write_modal_stress(h5::Writer& w, const ModalStress& s) {
@@ -36,6 +53,10 @@ void write_modal_stress(h5::Writer& w, const ModalStress& s) {
   modes.reserve(nq * ns * 6);
   for (const auto& m : s.modes) modes.insert(modes.end(), m.data(), m.data() + m.size());
   w.write("/stress/modes", modes.data(), {nq, ns, 6});
+  if (!s.layer.empty()) {  // only with shell rows: a solid-only group is written as before
+    w.write("/stress/layer", s.layer.data(), {ns});
+    w.write("/stress/normal", s.normal.data(), {ns, 3});
+  }
   w.attr("/stress", "selection", s.selection);
   w.attr("/stress", "recovery", s.recovery);
 }
@@ -65,6 +86,15 @@ std::optional<ModalStress> read_modal_stress(const std::filesystem::path& path) 
   const auto m = r.read_array("/stress/modes", {nq, ns, 6});
   for (u64 k = 0; k < nq; ++k)
     s.modes.emplace_back(Eigen::Map<const ModalStress::RowsX6>(m.data() + k * ns * 6, static_cast<Eigen::Index>(ns), 6));
+  if (r.exists("/stress/layer")) {
+    s.layer.resize(ns);
+    r.read("/stress/layer", {ns}, s.layer.data());
+    for (const auto l : s.layer)
+      if (l < kSolid || l > kShellBottom)
+        r.fail("/stress/layer", "value " + std::to_string(l) + " is not 0 (solid), 1 (top), 2 (middle) or 3 (bottom)");
+    const auto n = r.read_array("/stress/normal", {ns, 3});
+    s.normal = Eigen::Map<const ModalStress::RowsX3>(n.data(), static_cast<Eigen::Index>(ns), 3);
+  }
   s.selection = r.has_attr("/stress", "selection") ? r.attr_string("/stress", "selection") : "";
   s.recovery = r.has_attr("/stress", "recovery") ? r.attr_string("/stress", "recovery") : "";
   if (version >= 2) r.verify_content();

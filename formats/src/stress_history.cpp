@@ -71,6 +71,8 @@ StressHistory recover_stress(const fs::path& run, const std::string& body, const
   h.time = res.time;
   h.node = stress->node;
   h.position = stress->position;
+  h.layer.resize(stress->node.size());
+  for (Eigen::Index i = 0; i < stress->size(); ++i) h.layer[static_cast<std::size_t>(i)] = stress->layer_of(i);
   const Eigen::Index nt = res.time.size(), ns = stress->size();
   h.von_mises.resize(nt, ns);
   h.principal.assign(static_cast<std::size_t>(ns), Eigen::MatrixXd(nt, 3));

@@ -88,6 +88,8 @@ model = {
                 {"name": "rotor_omega", "type": "body_angular_velocity", "body": "rotor"},
                 {"name": "hub", "type": "node_position", "body": "tub", "node": "hub"},
                 {"name": "rim", "type": "node_position", "body": "tub", "node": "rim"},
+                # the tub's elastic coordinates, from which `ffr-info --stress` recovers its stress
+                {"name": "q_tub", "type": "modal_coordinates", "body": "tub"},
                 {"name": "energy", "type": "energy"}]
                + [{"name": n, "type": "element_force", "force": n} for n in feet],
 }

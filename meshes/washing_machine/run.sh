@@ -16,7 +16,12 @@ echo "== reduce the tub: 2 mm steel shell with motor and counterweight, 10 free 
 echo "== simulate ${end} s: settle on springs, dampers and feet, then the drum-speed profile to 1400 rpm"
 python3 "$here/make_model.py" "$end" > "$out/model.json"
 "$bin/ffr-sim" "$out/model.json" -o "$out/machine.h5" --csv "$out/machine.csv" --quiet
+echo "== the tub's stress over the run (top, middle and bottom surface of every shell node)"
+"$bin/ffr-info" "$out/machine.h5" --stress tub > "$out/tub_stress.txt"
+awk 'NR > 2 && $6 + 0 > peak { peak = $6 + 0; node = $1; layer = $5; t = $7 }
+     END { printf "peak von Mises %.3g MPa at node %s (%s surface) at t = %s s\n", peak / 1e6, node, layer, t }' \
+  "$out/tub_stress.txt"
 echo "== plot the tub's orbit and the foot forces over drum speed"
 python3 "$here/plot.py" "$out/machine.csv" "$out"
 python3 "$here/check.py" "$out/machine.csv" "$end"
-echo "outputs in $out: tub.sid.h5, model.json, machine.h5/.csv, orbit.svg, foot_forces.svg"
+echo "outputs in $out: tub.sid.h5, model.json, machine.h5/.csv, tub_stress.txt, orbit.svg, foot_forces.svg"

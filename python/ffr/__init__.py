@@ -98,7 +98,7 @@ def stress(results_path, body, model=None):
     sigma(t) = sum_k q_k(t) S_k at the nodes of BODY's SID /stress group, q the run's
     modal_coordinates output of BODY. model: the model file of the run (default: the one the
     run names). Returns {"time": [nt], "nodes": [Ns] node tags, "position": [Ns, 3],
-    "von_mises": [nt, Ns], "principal": [nt, Ns, 3] (descending), "body", "sid", "output",
+    "layer": [Ns] ("solid", or a shell node's "top", "middle", "bottom"), "von_mises": [nt, Ns], "principal": [nt, Ns, 3] (descending), "body", "sid", "output",
     "selection"}; stresses in the SID's units (Pa).
     """
     if not isinstance(body, str):

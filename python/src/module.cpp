@@ -130,9 +130,11 @@ py::dict stress(const std::string& path, const std::string& body, const std::str
   const auto nt = static_cast<py::ssize_t>(h.time.size()), ns = static_cast<py::ssize_t>(h.node.size());
   py::array_t<double> t(nt), position({ns, py::ssize_t{3}}), vm({nt, ns}), principal({nt, ns, py::ssize_t{3}});
   py::array_t<std::int64_t> nodes(ns);
+  py::list layer;
   for (py::ssize_t i = 0; i < nt; ++i) t.mutable_at(i) = h.time[i];
   for (py::ssize_t j = 0; j < ns; ++j) {
     nodes.mutable_at(j) = h.node[static_cast<std::size_t>(j)];
+    layer.append(formats::layer_name(h.layer[static_cast<std::size_t>(j)]));
     for (py::ssize_t c = 0; c < 3; ++c) position.mutable_at(j, c) = h.position(j, c);
     const auto& P = h.principal[static_cast<std::size_t>(j)];
     for (py::ssize_t i = 0; i < nt; ++i) {
@@ -148,6 +150,7 @@ py::dict stress(const std::string& path, const std::string& body, const std::str
   out["time"] = t;
   out["nodes"] = nodes;
   out["position"] = position;
+  out["layer"] = layer;
   out["von_mises"] = vm;
   out["principal"] = principal;
   return out;

@@ -11,6 +11,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <fstream>
@@ -38,7 +39,9 @@ struct BodyView {
   Eigen::Matrix<std::int64_t, Eigen::Dynamic, 3, Eigen::RowMajor> triangles;
   std::vector<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> modes;  // [nq][Nv,3]
   std::optional<formats::ModalStress> stress;
-  std::vector<Eigen::Index> stress_row;  // per vertex: row of /stress, or -1
+  // per vertex: the rows of /stress at its position (a shell node has three layers, a node of a
+  // solid and a shell four); the vertex shows the largest von Mises stress among them
+  std::vector<std::vector<Eigen::Index>> stress_rows;
 };
 
 // The uniform box with the body's mass and second moments about the centre of mass: sides
@@ -151,13 +154,13 @@ Series::Series(const fs::path& pvd, const fs::path& model_file, runtime::Model& 
       v.modes = std::move(sid.visual.modes);
       v.stress = formats::read_modal_stress(sid_path);
       if (v.stress) {
-        std::map<std::array<double, 3>, Eigen::Index> at;
+        std::map<std::array<double, 3>, std::vector<Eigen::Index>> at;
         for (Eigen::Index r = 0; r < v.stress->size(); ++r)
-          at[{v.stress->position(r, 0), v.stress->position(r, 1), v.stress->position(r, 2)}] = r;
-        v.stress_row.assign(static_cast<std::size_t>(v.vertices.rows()), -1);
+          at[{v.stress->position(r, 0), v.stress->position(r, 1), v.stress->position(r, 2)}].push_back(r);
+        v.stress_rows.assign(static_cast<std::size_t>(v.vertices.rows()), {});
         for (Eigen::Index p = 0; p < v.vertices.rows(); ++p) {
           const auto it = at.find({v.vertices(p, 0), v.vertices(p, 1), v.vertices(p, 2)});
-          if (it != at.end()) v.stress_row[static_cast<std::size_t>(p)] = it->second;
+          if (it != at.end()) v.stress_rows[static_cast<std::size_t>(p)] = it->second;
         }
         s.any_stress = true;
       }
@@ -237,9 +240,13 @@ void Series::write_frames(const runtime::Model& model, const runtime::Recorder& 
         const Vector3d x = o + A * (v.vertices.row(p).transpose() + u), ug = A * u;
         points << number(x.x()) << ' ' << number(x.y()) << ' ' << number(x.z()) << '\n';
         disp << number(ug.x()) << ' ' << number(ug.y()) << ' ' << number(ug.z()) << '\n';
-        const Eigen::Index row = v.stress ? v.stress_row[static_cast<std::size_t>(p)] : -1;
-        mises << (row >= 0 ? number(formats::von_mises(S.row(row).transpose())) : std::string("0")) << '\n';
-        known << (row >= 0 ? "1 " : "0 ");
+        const bool has = v.stress && !v.stress_rows[static_cast<std::size_t>(p)].empty();
+        double vm = 0;
+        if (has)
+          for (const Eigen::Index row : v.stress_rows[static_cast<std::size_t>(p)])
+            vm = std::max(vm, formats::von_mises(S.row(row).transpose()));
+        mises << (has ? number(vm) : std::string("0")) << '\n';
+        known << (has ? "1 " : "0 ");
       }
     }
     char name[32];

@@ -5,7 +5,8 @@
 // and second moments about the centre of mass, on the principal axes), or by the STL surface
 // its model-file key "visual" names (stl_reader.hpp). Point data:
 // `displacement` (the elastic displacement A Phi q, global) and, when a body's SID has a /stress
-// group, `von_mises` (sigma = sum_k q_k S_k at the surface vertices that are stress nodes; NaN at
+// group, `von_mises` (sigma = sum_k q_k S_k at the surface vertices that are stress nodes, the
+// largest over a shell node's top, middle and bottom layers; NaN at
 // the others and on rigid bodies). Cell data `body`: the body's index in the model file.
 //
 // The frames go to the folder RUN_frames/ beside RUN.pvd: written into a temporary folder and

@@ -397,6 +397,8 @@ class StressTest(unittest.TestCase):
             self.assertTrue(same_bits(s["principal"],
                                       np.array([n["principal"] for n in ref["nodes"]]).transpose(1, 0, 2)))
             self.assertEqual((s["body"], s["output"], s["selection"]), (ref["body"], ref["output"], ref["selection"]))
+            self.assertEqual(s["layer"], [n["layer"] for n in ref["nodes"]])
+        self.assertEqual(set(s["layer"]), {"solid"})  # a solid part: no shell layers
         nt, ns = s["von_mises"].shape
         self.assertEqual(nt, 11)
         self.assertGreater(ns, 10)

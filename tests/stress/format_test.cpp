@@ -91,6 +91,59 @@ TEST(StressGroup, WrongShapesAreRefused) {
   }
 }
 
+// Shell rows (SPEC.md section 12.1): /stress/layer and /stress/normal round-trip, a solid-only
+// group is written without them (as before shells carried stress), and a layer outside 0..3 or
+// a missing normal is refused naming the dataset.
+TEST(StressGroup, ShellLayersRoundTripAndBadLayersAreRefused) {
+  test::TempDir dir("stress_layers");
+  formats::Sid sid = chain();
+  sid.stress = stress_for(sid.nq(), 4);
+  sid.stress->layer = {formats::kSolid, formats::kShellTop, formats::kShellMiddle, formats::kShellBottom};
+  sid.stress->normal = formats::ModalStress::RowsX3::Zero(4, 3);
+  for (int r = 1; r < 4; ++r) sid.stress->normal.row(r) << 0, 0, 1;
+  formats::write_sid(sid, dir / "s.sid.h5");
+  const auto s = formats::read_modal_stress(dir / "s.sid.h5");
+  ASSERT_TRUE(s.has_value());
+  EXPECT_EQ(s->layer, sid.stress->layer);
+  EXPECT_EQ(s->normal, sid.stress->normal);
+  EXPECT_STREQ(formats::layer_name(s->layer_of(3)), "bottom");
+  sid.stress->layer[2] = 7;
+  EXPECT_THROW(formats::check_modal_stress(*sid.stress, sid.nq()), std::invalid_argument);
+  EXPECT_THROW(formats::write_sid(sid, dir / "bad.sid.h5"), std::invalid_argument);
+
+  sid.stress = stress_for(sid.nq(), 4);  // solid only: no layer datasets
+  formats::write_sid(sid, dir / "solid.sid.h5");
+  EXPECT_FALSE(formats::h5::Reader(dir / "solid.sid.h5").exists("/stress/layer"));
+  const auto solid = formats::read_modal_stress(dir / "solid.sid.h5");
+  ASSERT_TRUE(solid.has_value());
+  EXPECT_TRUE(solid->layer.empty());
+  EXPECT_EQ(solid->layer_of(2), formats::kSolid);
+
+  for (const bool normal : {true, false}) {
+    {
+      formats::h5::Writer w(dir / "file.sid.h5");
+      w.attr("/", "format", std::string("ffr-sid"));
+      w.attr("/", "format_version", std::int64_t{1});
+      const double f[1] = {1};
+      w.write("/refmod/frequency_hz", f, {1});
+      const std::int64_t nodes[2] = {1, 1}, layer[2] = {1, normal ? 4 : 3};
+      w.write("/stress/node", nodes, {2});
+      const std::vector<double> pos(6, 0.0), modes(12, 1.0);
+      w.write("/stress/position", pos.data(), {2, 3});
+      w.write("/stress/modes", modes.data(), {1, 2, 6});
+      w.write("/stress/layer", layer, {2});
+      if (normal) w.write("/stress/normal", pos.data(), {2, 3});
+      w.close();
+    }
+    try {
+      formats::read_modal_stress(dir / "file.sid.h5");
+      ADD_FAILURE() << "a bad /stress/layer group was accepted";
+    } catch (const formats::FormatError& e) {
+      EXPECT_EQ(e.object(), normal ? "/stress/layer" : "/stress/normal") << e.what();
+    }
+  }
+}
+
 // Closed forms: uniaxial sigma gives von Mises |sigma|; pure shear tau gives sqrt(3) tau and
 // principal stresses (tau, 0, -tau); a hydrostatic state gives 0.
 TEST(StressGroup, EquivalentAndPrincipalStresses) {

@@ -4,12 +4,15 @@
 // with them; a rigid body is drawn as its inertia box, checked against the box formula
 // I_xx = m (b^2 + c^2) / 12 (a box of sides 0.3 x 0.1 x 0.05 m given by its inertia comes back
 // with those sides, centred on the centre of mass the run reports); a SID without a surface is
-// refused before the run with nothing written.
+// refused before the run with nothing written; a shell vertex shows the largest von Mises stress
+// of its three layers.
 #include "ffr/formats/results_io.hpp"
+#include "ffr/formats/sid_io.hpp"
 #include "ffr/formats/text_file.hpp"
 #include "support.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <Eigen/Geometry>
 
@@ -17,6 +20,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <iostream>
 #include <cctype>
@@ -515,4 +519,59 @@ TEST(VtkSeries, StaleFramesFoldersOfKilledRunsAreRemoved) {
     const std::string name = e.path().filename().string();
     if (name.rfind(".run", 0) == 0) EXPECT_NE(std::find(kept.begin(), kept.end(), name), kept.end()) << name;
   }
+}
+
+// A shell body: every vertex of its surface is a stress node with three layers (top, middle,
+// bottom), and the frame shows the largest of their von Mises stresses, the same as
+// `ffr-info --stress --json` gives for the run's last sample.
+TEST(VtkSeries, ShellVerticesShowTheirLargestLayer) {
+  if (!have_tools() || !std::filesystem::exists(test::bin("ffr-info"))) GTEST_SKIP() << "tools missing";
+  test::TempDir dir("vtk_shell");
+  test::write_text(dir / "s.geo", R"(SetFactory("OpenCASCADE");
+Rectangle(1) = {0, 0, 0, 0.2, 0.02};
+Physical Surface("strip") = {1};
+Physical Curve("clamp") = Curve In BoundingBox{-1e-6, -1, -1, 1e-6, 1, 1};
+Recombine Surface{1};
+)");
+  test::gmsh_mesh(dir / "s.geo", dir / "s.msh", 0.005, 1);
+  test::write_text(dir / "s.json", R"({"geometry": "s.msh",
+    "shells": [{"group": "strip", "thickness": 0.002, "E": 2.1e11, "nu": 0.3, "rho": 7850}],
+    "interfaces": [{"name": "root", "group": "clamp"}],
+    "reduction": {"method": "clamped", "interface": "root", "modes": 4}, "stress": {"surface": true}})");
+  auto r = test::run(test::bin("ffr-reduce").string() + " " + (dir / "s.json").string() + " -o " +
+                     (dir / "s.sid.h5").string() + " --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  test::write_text(dir / "model.json", R"({"gravity": [0, 0, -9.81],
+    "bodies": [{"name": "strip", "type": "flexible", "sid": "s.sid.h5"}],
+    "joints": [{"name": "clamp", "type": "fixed", "body1": "ground", "body2": "strip", "node2": "root"}],
+    "solver": {"end": 0.01, "step": 0.001}, "outputs": [{"name": "q", "type": "modal_coordinates", "body": "strip"}]})");
+  r = test::run("cd " + dir.path().string() + " && " + test::bin("ffr-sim").string() + " model.json -o run.h5 --vtk run.pvd --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = test::run("cd " + dir.path().string() + " && " + test::bin("ffr-info").string() + " run.h5 --stress strip --json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  std::map<std::array<double, 3>, std::vector<double>> layers;  // position -> last-sample von Mises of its rows
+  for (const auto& n : j["nodes"])
+    layers[{n["position"][0].get<double>(), n["position"][1].get<double>(), n["position"][2].get<double>()}].push_back(
+        n["von_mises"].back().get<double>());
+  const formats::Sid sid = formats::read_sid(dir / "s.sid.h5");
+  const auto pvd = Parser(formats::read_text_file(dir / "run.pvd")).document();
+  const auto sets = pvd->child("Collection")->all("DataSet");
+  ASSERT_FALSE(sets.empty());
+  const Frame f = read_frame(dir / sets.back()->attrs.at("file"));
+  ASSERT_EQ(f.np, sid.visual.vertices.rows());
+  double worst = 0, peak = 0;
+  for (long long p = 0; p < f.np; ++p) {
+    const auto it = layers.find({sid.visual.vertices(p, 0), sid.visual.vertices(p, 1), sid.visual.vertices(p, 2)});
+    ASSERT_NE(it, layers.end()) << "vertex " << p << " is not a stress node";
+    ASSERT_EQ(it->second.size(), 3u);
+    EXPECT_EQ(f.has_stress[static_cast<std::size_t>(p)], 1.0);
+    const double want = *std::max_element(it->second.begin(), it->second.end());
+    peak = std::max(peak, want);
+    worst = std::max(worst, std::abs(f.von_mises[static_cast<std::size_t>(p)] - want));
+  }
+  std::cout << "[ vtk ] shell strip: " << f.np << " vertices, peak von Mises " << peak
+            << " Pa, max |frame - max over layers| " << worst << " Pa\n";
+  EXPECT_GT(peak, 1e5);
+  EXPECT_LT(worst, 1e-6 * peak);
 }

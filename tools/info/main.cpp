@@ -30,8 +30,10 @@ an ffr-sim results file (time span, statistics, output channels with their final
                           time at the nodes of BODY's SID /stress group (sigma = sum_k q_k S_k,
                           q the run's modal_coordinates output of BODY): a table of each node's
                           peak, or with --json every sample ({"time", "nodes": [{"node",
-                          "position", "von_mises": [nt], "principal": [nt][3]}]}), stress in
-                          the SID's units (Pa), principal stresses descending
+                          "position", "layer", "von_mises": [nt], "principal": [nt][3]}]}),
+                          stress in the SID's units (Pa), principal stresses descending; a
+                          shell node has three entries, layer "top", "middle" and "bottom"
+                          (a solid node's layer is "solid")
   --model MODEL.json      with --stress: the model file of the run (default: the one the run
                           names in its attribute `model`, as given or beside the run)
   --export-fbi -o OUT     write the SID as a SID_FEM text file (the standard input data of a
@@ -94,7 +96,11 @@ int run(ffr::cli::Args& a) {
       summary = ffr::info::summarize_sid(ffr::formats::read_sid(files[0], &warnings), files[0], version);
       // The optional /stress group, which read_sid leaves out (formats/SPEC.md section 12.1).
       const auto stress = ffr::formats::read_modal_stress(files[0]);
-      summary["stress"] = stress ? nlohmann::json{{"nodes", stress->size()}, {"selection", stress->selection}}
+      // "nodes": mesh nodes; "rows": stresses stored (a shell node has three layers).
+      std::int64_t nodes = 0;
+      for (Eigen::Index i = 0; stress && i < stress->size(); ++i)
+        nodes += i == 0 || stress->node[static_cast<std::size_t>(i)] != stress->node[static_cast<std::size_t>(i - 1)];
+      summary["stress"] = stress ? nlohmann::json{{"nodes", nodes}, {"rows", stress->size()}, {"selection", stress->selection}}
                                  : nlohmann::json(nullptr);
     }
   }

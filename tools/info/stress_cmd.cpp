@@ -30,6 +30,7 @@ int run_stress(const fs::path& run, const std::string& body, const std::string& 
       std::vector<double> v(vm.col(i).data(), vm.col(i).data() + nt);
       nodes.push_back({{"node", h.node[static_cast<std::size_t>(i)]},
                        {"position", {h.position(i, 0), h.position(i, 1), h.position(i, 2)}},
+                       {"layer", formats::layer_name(h.layer[static_cast<std::size_t>(i)])},
                        {"von_mises", v},
                        {"principal", p}});
     }
@@ -39,18 +40,27 @@ int run_stress(const fs::path& run, const std::string& body, const std::string& 
     std::cout << out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     return 0;
   }
-  std::printf("%s: body %s, stress at %lld nodes (%s) from %s, modal coordinates '%s', %lld samples\n",
-              run.string().c_str(), body.c_str(), static_cast<long long>(ns), h.selection.c_str(),
-              sid.c_str(), h.output.c_str(), static_cast<long long>(nt));
-  std::printf("%10s %12s %12s %12s %14s %12s %14s %14s %14s\n", "node", "x", "y", "z", "max von Mises", "at t [s]",
-              "sigma_1", "sigma_2", "sigma_3");
+  // The layer column only when shells carry stress: a solid-only table reads as before.
+  bool shells = false;
+  long long nodes = 0;  // a node's rows are adjacent (SPEC.md section 12.1)
+  for (Eigen::Index i = 0; i < ns; ++i) {
+    shells = shells || h.layer[static_cast<std::size_t>(i)] != formats::kSolid;
+    nodes += i == 0 || h.node[static_cast<std::size_t>(i)] != h.node[static_cast<std::size_t>(i - 1)];
+  }
+  const std::string rows = shells ? " in " + std::to_string(ns) + " rows (shells: top, middle, bottom)" : "";
+  std::printf("%s: body %s, stress at %lld nodes%s (%s) from %s, modal coordinates '%s', %lld samples\n",
+              run.string().c_str(), body.c_str(), nodes, rows.c_str(), h.selection.c_str(), sid.c_str(),
+              h.output.c_str(), static_cast<long long>(nt));
+  std::printf("%10s %12s %12s %12s%s %14s %12s %14s %14s %14s\n", "node", "x", "y", "z", shells ? "  layer " : "",
+              "max von Mises", "at t [s]", "sigma_1", "sigma_2", "sigma_3");
   for (Eigen::Index i = 0; i < ns; ++i) {
     Eigen::Index t = 0;
     if (nt) vm.col(i).maxCoeff(&t);
     const auto& P = principal[static_cast<std::size_t>(i)];
-    std::printf("%10lld %12.6g %12.6g %12.6g %14.6g %12.6g %14.6g %14.6g %14.6g\n",
+    const std::string layer = shells ? "  " + std::string(formats::layer_name(h.layer[static_cast<std::size_t>(i)])) : "";
+    std::printf("%10lld %12.6g %12.6g %12.6g%-8s %14.6g %12.6g %14.6g %14.6g %14.6g\n",
                 static_cast<long long>(h.node[static_cast<std::size_t>(i)]), h.position(i, 0),
-                h.position(i, 1), h.position(i, 2), nt ? vm(t, i) : 0.0, nt ? h.time(t) : 0.0,
+                h.position(i, 1), h.position(i, 2), layer.c_str(), nt ? vm(t, i) : 0.0, nt ? h.time(t) : 0.0,
                 nt ? P(t, 0) : 0.0, nt ? P(t, 1) : 0.0, nt ? P(t, 2) : 0.0);
   }
   std::fflush(stdout);

@@ -71,7 +71,14 @@ void sid_text(std::ostringstream& o, const json& s) {
   line(o, "stiffening", st);
   line(o, "visual", s["visual"].is_null() ? "no" : num(s["visual"]["vertices"]) + " vertices, " + num(s["visual"]["triangles"]) + " triangles");
   if (s.contains("stress"))
-    line(o, "stress", s["stress"].is_null() ? "no" : num(s["stress"]["nodes"]) + " nodes (" + s["stress"]["selection"].get<std::string>() + ")");
+    line(o, "stress",
+         s["stress"].is_null()
+             ? "no"
+             : num(s["stress"]["nodes"]) + " nodes" +
+                   (s["stress"].value("rows", s["stress"]["nodes"]) != s["stress"]["nodes"]
+                        ? ", " + num(s["stress"]["rows"]) + " rows with the shells' top, middle and bottom"
+                        : std::string()) +
+                   " (" + s["stress"]["selection"].get<std::string>() + ")");
   o << "  provenance\n";
   for (const auto& [k, v] : s["provenance"].items()) {
     if (v.is_string()) {

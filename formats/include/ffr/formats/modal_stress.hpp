@@ -29,9 +29,28 @@ struct ModalStress {
   /// [nq][Ns,6]: Cauchy stress of unit q_k at each node, Voigt (xx, yy, zz, xy, yz, xz),
   /// tensor shear components, units of stress per [q].
   std::vector<RowsX6> modes;
+  /// [Ns] where in the material each row is (StressLayer); empty: every row is a solid node
+  /// (files without /stress/layer, written before shells carried stress or without shells).
+  std::vector<std::int64_t> layer;
+  /// [Ns,3] with `layer`: the unit shell normal at the node that defines "top" (z = +t/2
+  /// along it); zero rows for solid nodes.
+  RowsX3 normal;
 
   std::int64_t size() const { return static_cast<std::int64_t>(node.size()); }
+  /// The layer of row i (kSolid when the file has no layers).
+  std::int64_t layer_of(Eigen::Index i) const { return layer.empty() ? 0 : layer[static_cast<std::size_t>(i)]; }
 };
+
+/// Values of ModalStress::layer (SPEC.md section 12.1).
+enum StressLayer : std::int64_t {
+  kSolid = 0,        ///< the 3-D stress at a node of solid elements
+  kShellTop = 1,     ///< shell surface at z = +t/2 along the node's normal
+  kShellMiddle = 2,  ///< shell mid-surface (membrane stress and transverse shear)
+  kShellBottom = 3,  ///< shell surface at z = -t/2
+};
+
+/// "solid", "top", "middle", "bottom"; throws std::invalid_argument for another value.
+const char* layer_name(std::int64_t layer);
 
 /// Throws std::invalid_argument naming the member if the sizes disagree with each other or
 /// with nq, or a value is not finite.

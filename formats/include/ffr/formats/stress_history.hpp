@@ -23,6 +23,7 @@ struct StressHistory {
   Eigen::VectorXd time;               ///< [nt] the run's output times
   std::vector<std::int64_t> node;     ///< [Ns] mesh node tags
   ModalStress::RowsX3 position;       ///< [Ns,3] undeformed node positions in K
+  std::vector<std::int64_t> layer;    ///< [Ns] StressLayer of each row (all kSolid without shells)
   Eigen::MatrixXd von_mises;          ///< [nt,Ns]
   std::vector<Eigen::MatrixXd> principal;  ///< [Ns][nt,3], descending per row
 };

@@ -56,6 +56,20 @@ struct ShellResultants {
 ShellResultants shell_resultants(ElementType type, const Eigen::MatrixX3d& xe, const ShellSection& section,
                                  const Eigen::VectorXd& d_e);
 
+/// Stresses at the element's nodes as linear maps of its displacement d_e (6 n, body axes):
+/// rows 6a..6a+5 give node a's Cauchy stress in body axes, Voigt (xx, yy, zz, xy, yz, xz), tensor
+/// shear. The resultants at the integration points are extrapolated to the corners by the corner
+/// shape functions, then spread through the thickness with the plane-stress assumption
+/// (src/elements/shell/shell_stress.cpp): top (z = +t/2 along `normal`) and bottom carry
+/// membrane +- bending stress, the middle the membrane stress and the peak transverse shear
+/// 3 Q / (2 t) (none for TRI3: the DKT plate has no shear strain).
+struct ShellStressMap {
+  Eigen::Vector3d normal;              ///< the element's normal e3 in body axes ("top" is its + side)
+  Eigen::MatrixXd top, middle, bottom; ///< 6n x 6n each
+};
+
+ShellStressMap shell_stress_map(ElementType type, const Eigen::MatrixX3d& xe, const ShellSection& section);
+
 /// Geometric (initial-stress) stiffness of the membrane forces in `r`:
 ///   K_G = int N_ab (du/dx_a) . (du/dx_b) dA   for all three displacement components,
 /// on the translational DOFs (rotational rows/columns are zero). 6n x 6n, body axes.
