@@ -1,0 +1,215 @@
+// Large-deformation beam bodies (ANCF, FORMULATION.md 15) against references nobody here
+// computed:
+// - the elastica of a cantilever under a dead tip load P L^2 / EI = 1, 2, 5: the tip
+//   displacement ratios tabulated by K. E. Bisshopp & D. C. Drucker, "Large deflection of
+//   cantilever beams", Quart. Appl. Math. 3 (1945) 272-275 (the values as reprinted by
+//   K. Mattiasson, "Numerical results from large deflection beam and frame problems analysed by
+//   means of elliptic integrals", Int. J. Numer. Meth. Eng. 17 (1981)), and an independent
+//   oracle written here: the elastica ODE theta'' = -(P/EI) cos(theta) shot by RK4;
+// - the first bending frequencies of a clamped straight beam against Euler-Bernoulli
+//   (beta L = 1.8751, 4.6941: the roots of cos(bL) cosh(bL) = -1);
+// - the element's forces against finite differences of its energy, and its tangent against
+//   finite differences of its forces;
+// - bad input refused naming the file and field.
+#include "support.hpp"
+
+#include "ffr/runtime/beam.hpp"
+#include "ffr/runtime/dynamics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+using namespace ffr::runtime;
+
+namespace {
+
+constexpr double kL = 1.0, kE = 2.1e11, kSide = 0.01;
+constexpr double kA = kSide * kSide, kI = kSide * kSide * kSide * kSide / 12, kRho = 7850;
+constexpr double kEI = kE * kI;
+
+std::string num(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+// A 1 m steel cantilever of 10 x 10 mm along x, clamped at its start, a dead load -P z at its end.
+std::string cantilever_json(double P, int elements, const std::string& solver) {
+  return R"({
+    "bodies": [{"name": "beam", "type": "beam", "formulation": "ancf", "start": [0, 0, 0], "end": [1, 0, 0],
+                "elements": )" + std::to_string(elements) + R"(, "E": 2.1e11, "rho": 7850,
+                "section": {"A": 1e-4, "Iy": 8.333333333333334e-10, "Iz": 8.333333333333334e-10}}],
+    "joints": [{"name": "clamp", "type": "fixed", "body1": "ground", "body2": "beam", "node2": "start"}],
+    "forces": [{"name": "P", "type": "point_force", "body": "beam", "node": "end",
+                "table": {"t": [0, 1], "value": [[0, 0, )" + num(-P) + "], [0, 0, " + num(-P) + R"(]]}}],
+    "solver": )" + solver + R"(,
+    "outputs": [{"name": "tip", "type": "node_position", "body": "beam", "node": "end"},
+                {"name": "mid", "type": "node_position", "body": "beam", "node": "n8"},
+                {"name": "e", "type": "energy"}]
+  })";
+}
+
+std::vector<double> output(const Model& model, Data& data, const char* name) {
+  const int i = model.find_output(name);
+  EXPECT_GE(i, 0) << name;
+  std::vector<double> v(static_cast<std::size_t>(model.outputs[static_cast<std::size_t>(i)].size));
+  evaluate_output(model, data, model.outputs[static_cast<std::size_t>(i)], v.data());
+  return v;
+}
+
+// Independent oracle: the inextensible elastica of a cantilever with a dead tip load, theta the
+// slope angle (downwards) along the arc s: EI theta'' = -P cos(theta), theta(0) = 0, theta'(L) = 0
+// (no moment at the tip), x' = cos(theta), z' = -sin(theta). theta'(0) by bisection on theta'(L),
+// each shot classical RK4 with 4000 steps. Returns the tip's (L - x, -z) over L.
+struct Tip {
+  double u, w;
+};
+Tip elastica_oracle(double k) {  // k = P L^2 / EI, L = 1
+  const auto shoot = [&](double c0, Tip* tip) {
+    const int n = 4000;
+    const double h = 1.0 / n;
+    Eigen::Vector4d y(0, c0, 0, 0);  // theta, theta', x, z
+    const auto f = [&](const Eigen::Vector4d& s) {
+      return Eigen::Vector4d(s(1), -k * std::cos(s(0)), std::cos(s(0)), -std::sin(s(0)));
+    };
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector4d k1 = f(y), k2 = f(y + h / 2 * k1), k3 = f(y + h / 2 * k2), k4 = f(y + h * k3);
+      y += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    }
+    if (tip) *tip = {1 - y(2), -y(3)};
+    return y(1);
+  };
+  // theta'(0) lies in (0, k]: at k the moment at the clamp is P L (no deflection), below the tip curvature is positive.
+  double lo = 0, hi = k;
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (shoot(mid, nullptr) > 0 ? hi : lo) = mid;
+  }
+  Tip t{};
+  shoot(0.5 * (lo + hi), &t);
+  return t;
+}
+
+}  // namespace
+
+// The oracle against the table it is meant to stand beside: the two independent sources agree.
+TEST(BeamElastica, OracleReproducesBisshoppDruckerTable) {
+  // Bisshopp & Drucker's tip displacements (u horizontal, w vertical, over L).
+  const double k[3] = {1, 2, 5}, u[3] = {0.05643, 0.16064, 0.38763}, w[3] = {0.30172, 0.49346, 0.71379};
+  for (int i = 0; i < 3; ++i) {
+    const Tip t = elastica_oracle(k[i]);
+    std::printf("oracle PL^2/EI = %g: u/L %.6f (table %.5f), w/L %.6f (table %.5f)\n", k[i], t.u, u[i], t.w, w[i]);
+    EXPECT_NEAR(t.u, u[i], 1e-4);
+    EXPECT_NEAR(t.w, w[i], 1e-4);
+  }
+}
+
+// The cantilever solved statically (16 elements) against the table: within 0.5 % of each ratio.
+TEST(BeamElastica, CantileverTipMatchesElasticaWith16Elements) {
+  const double k[3] = {1, 2, 5}, u[3] = {0.05643, 0.16064, 0.38763}, w[3] = {0.30172, 0.49346, 0.71379};
+  for (int i = 0; i < 3; ++i) {
+    const double P = k[i] * kEI / (kL * kL);
+    const Model model = test::model_from(cantilever_json(P, 16, R"({"analysis": "static"})"));
+    Data data(model);
+    for (const auto& n : initialize(model, data)) std::printf("note: %s\n", n.c_str());
+    const auto tip = output(model, data, "tip");
+    const double tu = (kL - tip[0]) / kL, tw = -tip[2] / kL;
+    const Tip o = elastica_oracle(k[i]);
+    std::printf("PL^2/EI = %g, 16 elements: u/L %.6f (table %.5f, %.3f %%), w/L %.6f (table %.5f, %.3f %%); oracle %.6f %.6f\n",
+                k[i], tu, u[i], 100 * (tu / u[i] - 1), tw, w[i], 100 * (tw / w[i] - 1), o.u, o.w);
+    EXPECT_NEAR(tu / u[i], 1.0, 5e-3);
+    EXPECT_NEAR(tw / w[i], 1.0, 5e-3);
+    EXPECT_NEAR(tip[1], 0.0, 1e-12);  // stays in its plane
+  }
+}
+
+// The element's forces are the gradient of its energy, its tangent the derivative of its forces
+// (central differences), at a strongly bent and stretched state.
+TEST(BeamElastica, ElementForcesAndTangentMatchFiniteDifferences) {
+  const Body b = make_beam_body("b", Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.2, -0.1), 3, 1e7, 1000, 1e-3, 2e-7, 0.0,
+                                "f", "bodies[0]");
+  const AncfBeam& beam = *b.beam;
+  const int n = beam.nq();
+  Eigen::VectorXd y(n);
+  for (int i = 0; i < n; ++i) y(i) = 0.05 * std::sin(1.7 * i + 0.3) + 0.02 * std::cos(0.4 * i * i);
+  const Eigen::VectorXd yd = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd Q = Eigen::VectorXd::Zero(n);
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n), C = Eigen::MatrixXd::Zero(n, n);
+  ancf_beam_forces(beam, y, yd, Q, &K, &C);
+  double ef = 0, ek = 0;
+  const double h = 1e-6;
+  for (int j = 0; j < n; ++j) {
+    Eigen::VectorXd yp = y, ym = y;
+    yp(j) += h;
+    ym(j) -= h;
+    const double dU = (ancf_beam_energy(beam, yp) - ancf_beam_energy(beam, ym)) / (2 * h);
+    ef = std::max(ef, std::abs(-Q(j) - dU));
+    Eigen::VectorXd Qp = Eigen::VectorXd::Zero(n), Qm = Eigen::VectorXd::Zero(n);
+    ancf_beam_forces(beam, yp, yd, Qp, nullptr, nullptr);
+    ancf_beam_forces(beam, ym, yd, Qm, nullptr, nullptr);
+    ek = std::max(ek, (-(Qp - Qm) / (2 * h) - K.col(j)).cwiseAbs().maxCoeff());
+  }
+  std::printf("forces vs energy gradient %.3e of %.3e; tangent vs force differences %.3e of %.3e\n", ef,
+              Q.cwiseAbs().maxCoeff(), ek, K.cwiseAbs().maxCoeff());
+  EXPECT_LT(ef, 1e-6 * Q.cwiseAbs().maxCoeff());
+  EXPECT_LT(ek, 1e-6 * K.cwiseAbs().maxCoeff());
+  EXPECT_LT((K - K.transpose()).cwiseAbs().maxCoeff(), 1e-9 * K.cwiseAbs().maxCoeff());
+}
+
+// Small vibrations of the clamped beam (16 elements): the mass matrix and the tangent at the
+// straight state, the clamp's coordinates removed (position, and the slope's two transverse
+// components), give Euler-Bernoulli's first two bending frequencies (each twice: two planes).
+TEST(BeamElastica, ClampedBeamFrequenciesMatchEulerBernoulli) {
+  const Model model = test::model_from(cantilever_json(0, 16, R"({"analysis": "static"})"));
+  const Body& b = model.bodies[0];
+  const int n = b.nq;
+  Eigen::VectorXd Q = Eigen::VectorXd::Zero(n);
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
+  ancf_beam_forces(*b.beam, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Q, &K, nullptr);
+  std::vector<int> keep;
+  for (int j = 0; j < n; ++j)
+    if (j >= 6 || j == 3) keep.push_back(j);  // node 0: position and slope y, z held
+  const int m = static_cast<int>(keep.size());
+  Eigen::MatrixXd Kr(m, m), Mr(m, m);
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) {
+      Kr(i, j) = K(keep[i], keep[j]);
+      Mr(i, j) = b.Myy(keep[i], keep[j]);
+    }
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ge(Kr, Mr);
+  const Eigen::VectorXd w = ge.eigenvalues().cwiseSqrt();
+  const double base = std::sqrt(kEI / (kRho * kA * std::pow(kL, 4)));
+  const double w1 = 1.8751040687 * 1.8751040687 * base, w2 = 4.6940911330 * 4.6940911330 * base;
+  std::printf("clamped beam: omega %.6f %.6f %.6f %.6f rad/s; Euler-Bernoulli %.6f, %.6f (%.2e, %.2e relative)\n", w(0), w(1),
+              w(2), w(3), w1, w2, w(0) / w1 - 1, w(2) / w2 - 1);
+  EXPECT_NEAR(w(0) / w1, 1.0, 1e-4);
+  EXPECT_NEAR(w(1) / w1, 1.0, 1e-4);
+  EXPECT_NEAR(w(2) / w2, 1.0, 1e-4);
+  EXPECT_NEAR(w(3) / w2, 1.0, 1e-4);
+}
+
+TEST(BeamElastica, BadInputIsRefusedNamingTheField) {
+  const std::string good = cantilever_json(1, 4, R"({"analysis": "static"})");
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string s = good;
+    const auto at = s.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return s.replace(at, from.size(), to);
+  };
+  test::expect_error(with("\"elements\": 4", "\"elements\": 0"), "bodies[0].elements", "at least 1");
+  test::expect_error(with("\"end\": [1, 0, 0]", "\"end\": [0, 0, 0]"), "bodies[0].end", "zero length");
+  test::expect_error(with("\"node\": \"end\"", "\"node\": \"n5\""), "node", "has no node 'n5'");
+  test::expect_error(with("\"node2\": \"start\"", "\"node2\": \"n-1\""), "node2", "has no node 'n-1'");
+  test::expect_error(with("\"formulation\": \"ancf\"", "\"formulation\": \"geometrically_exact\""), "formulation", "not available");
+  test::expect_error(with("\"Iz\": 8.333333333333334e-10", "\"Iz\": 1e-9"), "Iz", "must equal Iy");
+  test::expect_error(with("\"rho\": 7850", "\"rho\": 7850, \"nu\": 0.3"), "nu", "not used");
+  test::expect_error(with("\"type\": \"fixed\"", "\"type\": \"revolute\", \"axis\": [0, 1, 0]"), "type", "not supported");
+  test::expect_error(with("\"point_force\"", "\"point_torque\""), "type", "not supported");
+  test::expect_error(with("\"node2\": \"start\"", "\"at\": [0, 0, 0]"), "joints[0]", "away from its nodes");
+}
