@@ -213,3 +213,75 @@ TEST(BeamElastica, BadInputIsRefusedNamingTheField) {
   test::expect_error(with("\"point_force\"", "\"point_torque\""), "type", "not supported");
   test::expect_error(with("\"node2\": \"start\"", "\"at\": [0, 0, 0]"), "joints[0]", "away from its nodes");
 }
+
+// A dynamic run: the cantilever settled under a tip load that is removed within the first step
+// vibrates at its first bending frequency (Euler-Bernoulli, beta L = 1.8751; the static shape is
+// almost all first mode; 2e-3 covers the trapezoidal period error (omega h)^2 / 12 = 2.3e-4 and the
+// shift of the zero crossings by the small higher-mode content over the 2 s run). Without
+// damping it keeps its energy to the trapezoidal rule's O(h^2).
+TEST(BeamElastica, ReleasedCantileverVibratesAtEulerBernoulliFrequency) {
+  const double P = 0.01 * kEI;  // small: a linear vibration
+  std::string json = cantilever_json(P, 16, R"({"end": 2, "step": 1e-3, "initial_equilibrium": true})");
+  // Beyond its last sample a table continues with its end slope: the zero is held by a third sample.
+  const std::string table = "\"t\": [0, 1]";
+  json.replace(json.find(table), table.size(), "\"t\": [0, 1e-6, 1]");
+  const std::string zero = num(-P) + R"(]]})";
+  json.replace(json.rfind(zero), zero.size(), "0], [0, 0, 0]]}");
+  const Model model = test::model_from(json);
+  Data data(model);
+  initialize(model, data);
+  const double z0 = output(model, data, "tip")[2];
+  std::vector<double> crossings;
+  double zprev = z0, tprev = data.state.t, e0 = 0, emax = 0;
+  bool first = true;
+  while (data.state.t < 2 - 1e-9) {
+    step(model, data);
+    const double z = output(model, data, "tip")[2];
+    const auto e = output(model, data, "e");
+    if (first) e0 = e[0] + e[1];  // after the load is gone
+    first = false;
+    emax = std::max(emax, std::abs(e[0] + e[1] - e0));
+    if ((zprev < 0) != (z < 0)) crossings.push_back(tprev + (data.state.t - tprev) * zprev / (zprev - z));
+    zprev = z;
+    tprev = data.state.t;
+  }
+  ASSERT_GE(crossings.size(), 5u);
+  const double period = 2 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  const double w = 2 * M_PI / period;
+  const double w1 = 1.8751040687 * 1.8751040687 * std::sqrt(kEI / (kRho * kA * std::pow(kL, 4)));
+  std::printf("released cantilever: tip %.3e m, omega %.5f rad/s (Euler-Bernoulli %.5f, %.2e relative); energy drift %.2e of %.3e J\n",
+              z0, w, w1, w / w1 - 1, emax, e0);
+  EXPECT_NEAR(w / w1, 1.0, 2e-3);
+  EXPECT_LT(emax, 1e-3 * std::abs(e0));
+}
+
+// A flexible pendulum: the beam hung at its start by a spherical joint, released horizontal under
+// gravity, swings down through large rotations; the energy (kinetic + gravity + strain) stays
+// within the trapezoidal rule's O(h^2), and halving the step shrinks its drift about fourfold.
+TEST(BeamElastica, FlexiblePendulumKeepsItsEnergy) {
+  const auto run = [&](double h) {
+    std::string json = cantilever_json(0, 8, R"({"end": 0.3, "step": )" + num(h) + "}");
+    json.replace(json.find("\"type\": \"fixed\""), 15, "\"type\": \"spherical\"");
+    json.replace(json.find("\"bodies\""), 8, "\"gravity\": [0, 0, -9.81], \"bodies\"");
+    // A softer beam (E 2.1e9): it bends visibly while it swings.
+    json.replace(json.find("\"E\": 2.1e11"), 11, "\"E\": 2.1e9");
+    const Model model = test::model_from(json);
+    Data data(model);
+    initialize(model, data);
+    const auto e0 = output(model, data, "e");
+    double drift = 0;
+    while (data.state.t < 0.3 - 1e-9) {
+      step(model, data);
+      const auto e = output(model, data, "e");
+      drift = std::max(drift, std::abs(e[0] + e[1] - e0[0] - e0[1]));
+    }
+    const auto tip = output(model, data, "tip");
+    std::printf("flexible pendulum h = %g: tip at t = 0.3 s (%.4f, %.4f, %.4f), energy drift %.3e J (potential scale %.3f J)\n", h,
+                tip[0], tip[1], tip[2], drift, kRho * kA * kL * 9.81 * 0.5);
+    EXPECT_LT(tip[2], -0.2);  // it swung down
+    return drift;
+  };
+  const double d1 = run(1e-3), d2 = run(5e-4);
+  EXPECT_LT(d1, 1e-2 * kRho * kA * kL * 9.81 * 0.5);
+  EXPECT_LT(d2, 0.4 * d1);
+}
