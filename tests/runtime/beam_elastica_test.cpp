@@ -285,3 +285,78 @@ TEST(BeamElastica, FlexiblePendulumKeepsItsEnergy) {
   EXPECT_LT(d1, 1e-2 * kRho * kA * kL * 9.81 * 0.5);
   EXPECT_LT(d2, 0.4 * d1);
 }
+
+// A rigid body hung on the beam's end by a spherical joint (through the constraint machinery)
+// loads it with its weight alone: the static tip equals that of the weight as a point force
+// (statics of a pin: no moment passes). A torsion spring about z (a bushing, unloaded at the
+// equilibrium) holds the bob's free spin about the vertical, which no other stiffness holds.
+TEST(BeamElastica, RigidBodyHungByASphericalJointLoadsTheTipWithItsWeight) {
+  const double m = 0.5, g = 9.81;
+  const std::string beam = R"({"name": "beam", "type": "beam", "formulation": "ancf", "start": [0, 0, 0], "end": [1, 0, 0],
+                "elements": 16, "E": 2.1e11, "rho": 7850, "section": {"A": 1e-4, "Iy": 8.333333333333334e-10, "Iz": 8.333333333333334e-10}})";
+  const std::string tail = R"(, "solver": {"analysis": "static"},
+    "outputs": [{"name": "tip", "type": "node_position", "body": "beam", "node": "end"}]})";
+  const Model hung = test::model_from(R"({"gravity": [0, 0, -9.81], "bodies": [)" + beam + R"(,
+      {"name": "bob", "type": "rigid", "mass": 0.5, "com": [1, 0, -0.1], "inertia": [[1e-4, 0, 0], [0, 1e-4, 0], [0, 0, 1e-4]]}],
+    "joints": [{"name": "clamp", "type": "fixed", "body1": "ground", "body2": "beam", "node2": "start"},
+               {"name": "pin", "type": "spherical", "body1": "beam", "node1": "end", "body2": "bob"}],
+    "forces": [{"name": "spin", "type": "bushing", "body1": "ground", "body2": "bob", "at": [1, 0, -0.1],
+                "stiffness": [0, 0, 0, 0, 0, 1]}])" + tail);
+  const Model loaded = test::model_from(R"({"gravity": [0, 0, -9.81], "bodies": [)" + beam + R"(],
+    "joints": [{"name": "clamp", "type": "fixed", "body1": "ground", "body2": "beam", "node2": "start"}],
+    "forces": [{"name": "W", "type": "point_force", "body": "beam", "node": "end",
+                "table": {"t": [0, 1], "value": [[0, 0, )" + num(-m * g) + "], [0, 0, " + num(-m * g) + R"(]]}}])" + tail);
+  Data dh(hung), dl(loaded);
+  for (const auto& n : initialize(hung, dh)) std::printf("note: %s\n", n.c_str());
+  initialize(loaded, dl);
+  const auto th = output(hung, dh, "tip"), tl = output(loaded, dl, "tip");
+  std::printf("hung bob: tip (%.12f, %.12f), weight as a point force: (%.12f, %.12f)\n", th[0], th[2], tl[0], tl[2]);
+  EXPECT_LT(std::abs(tl[2]), 0.1);  // a visible deflection, far from the small-deflection range
+  EXPECT_GT(std::abs(tl[2]), 1e-3);
+  EXPECT_NEAR(th[0], tl[0], 1e-9);
+  EXPECT_NEAR(th[2], tl[2], 1e-9 * std::abs(tl[2]) + 1e-12);
+}
+
+// Euler buckling of a pinned column (16 elements), pinned at its start and, at its end, to a
+// slider on the axis that the axial load pushes: the straight column is a stable equilibrium
+// below Euler's load P_cr = pi^2 EI / L^2 and is refused as unstable above it (the static
+// analysis's stability check on the reduced stiffness, FORMULATION.md 14).
+TEST(BeamElastica, PinnedColumnBucklesAtEulersLoad) {
+  const double Pcr = M_PI * M_PI * kEI / (kL * kL);
+  const auto column = [&](double P) {
+    return R"({"bodies": [{"name": "beam", "type": "beam", "formulation": "ancf", "start": [0, 0, 0], "end": [1, 0, 0],
+                "elements": 16, "E": 2.1e11, "rho": 7850, "section": {"A": 1e-4, "Iy": 8.333333333333334e-10, "Iz": 8.333333333333334e-10}},
+      {"name": "slider", "type": "rigid", "mass": 0.1, "com": [1, 0, 0], "inertia": [[1e-5, 0, 0], [0, 1e-5, 0], [0, 0, 1e-5]]}],
+    "joints": [{"name": "pin0", "type": "spherical", "body1": "ground", "body2": "beam", "node2": "start"},
+               {"name": "pin1", "type": "spherical", "body1": "beam", "node1": "end", "body2": "slider"},
+               {"name": "guide", "type": "prismatic", "body1": "ground", "body2": "slider", "at": [1, 0, 0], "axis": [1, 0, 0]}],
+    "forces": [{"name": "P", "type": "point_force", "body": "slider",
+                "table": {"t": [0, 1], "value": [[)" + num(-P) + ", 0, 0], [" + num(-P) + R"(, 0, 0]]}}],
+    "solver": {"analysis": "static"},
+    "outputs": [{"name": "tip", "type": "node_position", "body": "beam", "node": "end"}]})";
+  };
+  for (const double f : {0.98, 1.02}) {
+    const Model model = test::model_from(column(f * Pcr));
+    Data data(model);
+    std::string refusal;
+    try {
+      initialize(model, data);
+    } catch (const SolverError& e) {
+      refusal = e.what();
+    }
+    std::printf("column at %.2f P_cr (%.4f N): %s\n", f, f * Pcr, refusal.empty() ? "stable" : refusal.c_str());
+    if (f < 1) {
+      EXPECT_EQ(refusal, "");
+      // Straight, shortened to the stretch lambda of the element's Green strain under the load:
+      // EA (lambda^2 - 1) lambda / 2 = -P (Newton on the cubic).
+      double lambda = 1;
+      for (int it = 0; it < 50; ++it)
+        lambda -= (kE * kA * (lambda * lambda - 1) * lambda / 2 + f * Pcr) / (kE * kA * (3 * lambda * lambda - 1) / 2);
+      const double tip = output(model, data, "tip")[0];
+      std::printf("  tip x %.15f, lambda L %.15f\n", tip, lambda * kL);
+      EXPECT_NEAR(tip, lambda * kL, 1e-6 * (1 - lambda) * kL);
+    } else {
+      EXPECT_NE(refusal.find("unstable"), std::string::npos) << refusal;
+    }
+  }
+}

@@ -131,6 +131,10 @@ double ancf_beam_energy(const AncfBeam& beam, const Eigen::Ref<const Eigen::Vect
   return U;
 }
 
+std::string beam_coordinate_name(int k) {
+  return "node n" + std::to_string(k / 6) + (k % 6 < 3 ? " position " : " slope ") + "xyz"[k % 3];
+}
+
 Body make_beam_body(const std::string& name, const Eigen::Vector3d& start, const Eigen::Vector3d& end, int elements,
                     double E, double rho, double area, double inertia, double tau, const std::string& file,
                     const std::string& field) {

@@ -47,6 +47,9 @@ double ancf_beam_forces(const AncfBeam& beam, const Eigen::Ref<const Eigen::Vect
                         const Eigen::Ref<const Eigen::VectorXd>& yd, Eigen::Ref<Eigen::VectorXd> Qy, Eigen::MatrixXd* K,
                         Eigen::MatrixXd* C);
 
+/// What beam coordinate k (of y) is, for messages: "node n3 slope z".
+std::string beam_coordinate_name(int k);
+
 /// The strain energy alone.
 double ancf_beam_energy(const AncfBeam& beam, const Eigen::Ref<const Eigen::VectorXd>& y);
 
