@@ -22,6 +22,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -357,6 +358,30 @@ TEST(BeamElastica, PinnedColumnBucklesAtEulersLoad) {
       EXPECT_NEAR(tip, lambda * kL, 1e-6 * (1 - lambda) * kL);
     } else {
       EXPECT_NE(refusal.find("unstable"), std::string::npos) << refusal;
+    }
+  }
+}
+
+// ffr-sim: a static beam run writes its one sample; a beam with zero elements is refused with
+// exit status 2, the message naming the file and the field, and no results file.
+TEST(BeamElastica, FfrSimRunsABeamOrRefusesItsBadInput) {
+  test::TempDir dir("beam_cli");
+  const std::string good = cantilever_json(2 * kEI, 16, R"({"analysis": "static"})");
+  for (const bool bad : {false, true}) {
+    std::string json = good;
+    if (bad) json.replace(json.find("\"elements\": 16"), 14, "\"elements\": 0");
+    test::write_text(dir / "beam.json", json);
+    std::filesystem::remove(dir / "out.h5");
+    const auto r = test::run_ffr_sim((dir / "beam.json").string() + " -o " + (dir / "out.h5").string());
+    std::printf("%s beam: status %d\n%s\n", bad ? "bad" : "good", r.status, r.output.c_str());
+    if (!bad) {
+      EXPECT_EQ(r.status, 0) << r.output;
+      EXPECT_TRUE(std::filesystem::exists(dir / "out.h5"));
+    } else {
+      EXPECT_EQ(r.status, 2) << r.output;
+      EXPECT_NE(r.output.find("beam.json"), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("bodies[0].elements"), std::string::npos) << r.output;
+      EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
     }
   }
 }
