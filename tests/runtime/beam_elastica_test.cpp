@@ -385,3 +385,46 @@ TEST(BeamElastica, FfrSimRunsABeamOrRefusesItsBadInput) {
     }
   }
 }
+
+// Strain-rate damping: at the straight state its matrix is tau times the linear stiffness, so a
+// small vibration in mode n decays at sigma_n = zeta_n omega_n = tau omega_n^2 / 2 (stiffness-
+// proportional Rayleigh damping; omega_1 from Euler-Bernoulli). The released cantilever's tip
+// peaks are fitted by ln|z| = a - sigma t.
+TEST(BeamElastica, StrainRateDampingDecaysAsStiffnessProportionalDamping) {
+  const double P = 0.01 * kEI, tau = 2e-4;
+  std::string json = cantilever_json(P, 16, R"({"end": 2, "step": 1e-3, "initial_equilibrium": true})");
+  json.replace(json.find("\"t\": [0, 1]"), 11, "\"t\": [0, 1e-6, 1]");
+  const std::string zero = num(-P) + R"(]]})";
+  json.replace(json.rfind(zero), zero.size(), "0], [0, 0, 0]]}");
+  json.replace(json.find("\"rho\": 7850,"), 12, "\"rho\": 7850, \"damping\": {\"strain_rate\": " + num(tau) + "},");
+  const Model model = test::model_from(json);
+  Data data(model);
+  initialize(model, data);
+  std::vector<double> t, z;
+  while (data.state.t < 2 - 1e-9) {
+    step(model, data);
+    t.push_back(data.state.t);
+    z.push_back(output(model, data, "tip")[2]);
+  }
+  // Peaks of |z| (parabola through the three samples around each), then a least-squares line.
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int n = 0;
+  for (std::size_t i = 1; i + 1 < z.size(); ++i) {
+    const double a = std::abs(z[i - 1]), b = std::abs(z[i]), c = std::abs(z[i + 1]);
+    if (!(b > a && b >= c) || t[i] < 0.1) continue;  // after the higher modes have died out
+    const double d = 0.5 * (a - c) / (a - 2 * b + c);
+    const double tp = t[i] + d * (t[i] - t[i - 1]), zp = b - 0.25 * (a - c) * d;
+    sx += tp;
+    sy += std::log(zp);
+    sxx += tp * tp;
+    sxy += tp * std::log(zp);
+    ++n;
+  }
+  ASSERT_GT(n, 20);
+  const double sigma = -(n * sxy - sx * sy) / (n * sxx - sx * sx);
+  const double w1 = 1.8751040687 * 1.8751040687 * std::sqrt(kEI / (kRho * kA * std::pow(kL, 4)));
+  const double expected = tau * w1 * w1 / 2;
+  std::printf("strain-rate damping: decay rate %.5f 1/s over %d peaks, tau omega1^2 / 2 = %.5f (%.2e relative)\n", sigma, n, expected,
+              sigma / expected - 1);
+  EXPECT_NEAR(sigma / expected, 1.0, 1e-2);
+}
