@@ -52,7 +52,7 @@ std::string cantilever_json(double P, int elements, const std::string& solver) {
     "solver": )" + solver + R"(,
     "outputs": [{"name": "tip", "type": "node_position", "body": "beam", "node": "end"},
                 {"name": "mid", "type": "node_position", "body": "beam", "node": "n8"},
-                {"name": "e", "type": "energy"}]
+                {"name": "e", "type": "energy"}, {"name": "R", "type": "joint_reaction", "joint": "clamp"}]
   })";
 }
 
@@ -127,6 +127,12 @@ TEST(BeamElastica, CantileverTipMatchesElasticaWith16Elements) {
     EXPECT_NEAR(tu / u[i], 1.0, 5e-3);
     EXPECT_NEAR(tw / w[i], 1.0, 5e-3);
     EXPECT_NEAR(tip[1], 0.0, 1e-12);  // stays in its plane
+    // The clamp's reaction on the beam balances the load: force P up, moment -x_tip P about y
+    // (statics of the whole beam: T = -r_tip x F_load).
+    const auto R = output(model, data, "R");
+    std::printf("  clamp reaction F_z %.9f N (P %.9f), T_y %.9f N m (-x_tip P %.9f)\n", R[2], P, R[4], -tip[0] * P);
+    EXPECT_NEAR(R[2], P, 1e-8 * P);
+    EXPECT_NEAR(R[4], -tip[0] * P, 1e-8 * P * kL);
   }
 }
 

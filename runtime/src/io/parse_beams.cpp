@@ -59,9 +59,12 @@ void check_beam_attachments(const Field& root, ParseContext& ctx) {
       where.fail("attaches to beam '" + m.bodies[static_cast<std::size_t>(mk.body)].name +
                  "' away from its nodes: give node1/node2 (n0 ... nN, start, end)");
   };
-  for (std::size_t j = 0; j < m.joints.size(); ++j) {
-    const Joint& jt = m.joints[j];
-    const Field f = root.at("joints").at(j);
+  // The joints list also holds couplers, which are not in Model::joints: entries are matched in order.
+  const std::size_t njson = root.has("joints") ? root.at("joints").size() : 0;
+  for (std::size_t i = 0, j = 0; i < njson && j < m.joints.size(); ++i) {
+    const Field f = root.at("joints").at(i);
+    if (f.at("type").string() == "coupler") continue;
+    const Joint& jt = m.joints[j++];
     node_only(f, jt.m1);
     node_only(f, jt.m2);
     if (!on_beam(m, jt.m1) && !on_beam(m, jt.m2)) continue;

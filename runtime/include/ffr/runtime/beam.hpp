@@ -50,6 +50,11 @@ double ancf_beam_forces(const AncfBeam& beam, const Eigen::Ref<const Eigen::Vect
 /// What beam coordinate k (of y) is, for messages: "node n3 slope z".
 std::string beam_coordinate_name(int k);
 
+/// The nodal index (0 .. elements) of a beam body's node slice (Body::nodes: n0 .. nN, start, end).
+inline int beam_node_index(const AncfBeam& beam, int slice) {
+  return slice <= beam.elements ? slice : slice == beam.elements + 1 ? 0 : beam.elements;
+}
+
 /// The strain energy alone.
 double ancf_beam_energy(const AncfBeam& beam, const Eigen::Ref<const Eigen::VectorXd>& y);
 
