@@ -52,7 +52,8 @@ std::string cantilever_json(double P, int elements, const std::string& solver) {
     "solver": )" + solver + R"(,
     "outputs": [{"name": "tip", "type": "node_position", "body": "beam", "node": "end"},
                 {"name": "mid", "type": "node_position", "body": "beam", "node": "n8"},
-                {"name": "e", "type": "energy"}, {"name": "R", "type": "joint_reaction", "joint": "clamp"}]
+                {"name": "e", "type": "energy"}, {"name": "R", "type": "joint_reaction", "joint": "clamp"},
+                {"name": "vtip", "type": "node_velocity", "body": "beam", "node": "end"}]
   })";
 }
 
@@ -276,12 +277,23 @@ TEST(BeamElastica, FlexiblePendulumKeepsItsEnergy) {
     Data data(model);
     initialize(model, data);
     const auto e0 = output(model, data, "e");
-    double drift = 0;
+    double drift = 0, vdiff = 0, vmax = 0;
+    std::vector<double> x2, x1, v1;  // positions two and one steps back, velocity one step back
     while (data.state.t < 0.3 - 1e-9) {
       step(model, data);
       const auto e = output(model, data, "e");
       drift = std::max(drift, std::abs(e[0] + e[1] - e0[0] - e0[1]));
+      // node_velocity against the central difference of node_position over two steps (O(h^2)).
+      const auto x = output(model, data, "tip"), v = output(model, data, "vtip");
+      if (!x2.empty())
+        for (int c = 0; c < 3; ++c) vdiff = std::max(vdiff, std::abs((x[c] - x2[c]) / (2 * h) - v1[c]));
+      for (int c = 0; c < 3; ++c) vmax = std::max(vmax, std::abs(v[c]));
+      x2 = x1;
+      x1 = x;
+      v1 = v;
     }
+    std::printf("  node_velocity vs central difference: %.3e m/s of %.3f m/s\n", vdiff, vmax);
+    EXPECT_LT(vdiff, 2e-3 * vmax);
     const auto tip = output(model, data, "tip");
     std::printf("flexible pendulum h = %g: tip at t = 0.3 s (%.4f, %.4f, %.4f), energy drift %.3e J (potential scale %.3f J)\n", h,
                 tip[0], tip[1], tip[2], drift, kRho * kA * kL * 9.81 * 0.5);
