@@ -307,3 +307,29 @@ TEST(Allocation, CouplerInAMovingCarrierAllocatesNothing) {
   EXPECT_EQ(allocations, 0);
   EXPECT_GT(joint_coordinate_rate(model, data, 2, JointCoordinate::Angle), 0.1);  // it turned
 }
+
+// A beam body (FORMULATION.md 15): clamped, a rigid body hung at its end by a spherical joint,
+// strain-rate damping, a point force at a node, its node outputs and energy recorded.
+TEST(Allocation, BeamBodiesAllocateNothing) {
+  const Model model = test::model_from(R"({
+  "gravity": [0, 0, -9.81],
+  "bodies": [
+    {"name": "beam", "type": "beam", "formulation": "ancf", "start": [0, 0, 0], "end": [1, 0, 0], "elements": 6,
+     "E": 2.1e9, "rho": 7850, "section": {"A": 1e-4, "Iy": 8.3e-10, "Iz": 8.3e-10}, "damping": {"strain_rate": 1e-4}},
+    {"name": "bob", "type": "rigid", "mass": 0.2, "com": [1, 0, 0], "inertia": [[1e-4, 0, 0], [0, 1e-4, 0], [0, 0, 1e-4]]}
+  ],
+  "joints": [
+    {"name": "clamp", "type": "fixed", "body1": "ground", "body2": "beam", "node2": "start"},
+    {"name": "hang", "type": "spherical", "body1": "beam", "node1": "end", "body2": "bob"}
+  ],
+  "forces": [{"type": "point_force", "body": "beam", "node": "n3", "table": {"t": [0, 1], "value": [[0, 1, 0], [0, 1, 0]]}}],
+  "solver": {"end": 0.2, "step": 1e-3},
+  "outputs": [{"name": "energy", "type": "energy"}, {"name": "tip", "type": "node_position", "body": "beam", "node": "end"},
+              {"name": "v", "type": "node_velocity", "body": "beam", "node": "n3"}]
+})");
+  Data data(model);
+  initialize(model, data);
+  const long allocations = allocations_of_recorded_steps(model, data, 100);
+  std::printf("100 steps with a beam body: %ld allocations\n", allocations);
+  EXPECT_EQ(allocations, 0);
+}

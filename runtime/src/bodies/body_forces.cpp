@@ -109,6 +109,12 @@ void body_applied_forces(const Body& b, BodyData& bd, const Vector3d& g, const E
     Qy -= b.prestress->f0;
     Qy.noalias() -= b.prestress->K1 * y;
   }
+  // A beam's elastic and damping forces, with their tangents for body_applied_tangents at this y.
+  if (b.beam) {
+    bd.beam_K.setZero();
+    bd.beam_C.setZero();
+    ancf_beam_forces(*b.beam, y, yd, Qy, &bd.beam_K, &bd.beam_C);
+  }
 }
 
 void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& g, Eigen::Ref<MatrixXd> Kb,
@@ -128,6 +134,10 @@ void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& g,
   // body_applied_forces (the tangent's state).
   if (b.modal_stress) Kyy += bd.G1;
   if (b.prestress) Kyy += b.prestress->K1;
+  if (b.beam) {
+    Kyy += bd.beam_K;
+    Cb.block(12, 12, nq, nq) += bd.beam_C;
+  }
 }
 
 // The load-case stiffening -KG y depends on the frame's accelerations and spin (FORMULATION.md

@@ -30,6 +30,11 @@ void parse_solver(const Field& root, ParseContext& ctx);
 /// Refuses a flexible body with no inertia about an axis whose rotation no joint holds
 /// (check_inertia.cpp); runs after the joints and forces are parsed.
 void check_bodies_can_turn(const Field& root, ParseContext& ctx);
+/// A beam body from its "bodies" entry (parse_beams.cpp).
+Body parse_beam(const Field& b, const std::string& name, ParseContext& ctx);
+/// Refuses joints, forces and loads at a beam that read what its nodes do not carry (a rotation
+/// beyond the slope's direction) or that attach away from its nodes; runs after the forces.
+void check_beam_attachments(const Field& root, ParseContext& ctx);
 
 /// Body index by name (kGround for "ground"); fails naming `f` if unknown.
 int body_ref(const Field& f, const Model& m);

@@ -24,6 +24,8 @@ void node_offset(const Field& parent, const char* key, const Model& m, Attachmen
   const auto f = parent.find(key);
   if (!f) return;
   if (a.node < 0) f->fail("is an offset from a node: give the node too");
+  if (m.bodies[a.body].beam)
+    f->fail("is not supported at a beam node: the ancf node has no rotation beyond its slope's direction to carry it");
   a.offset = f->vec3();
   // Where the node carries it in the initial configuration (its initial rotation Psi y0 too).
   const Body& b = m.bodies[a.body];

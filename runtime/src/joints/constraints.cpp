@@ -33,6 +33,18 @@ struct Rows {
 void rigid_body_rows(const Model& model, const Data& data, int body, Rows& r) {
   const double L = model.length;
   const BodyData& bd = data.bodies[body];
+  if (model.bodies[static_cast<std::size_t>(body)].beam) {
+    // A beam's frame is the global frame (its nodal coordinates carry every motion): r0 = 0,
+    // L (A - I) = 0, twelve linear rows (FORMULATION.md 15). A beam is never driven.
+    r.Phi.head<3>() = data.state.q.segment<3>(model.bodies[static_cast<std::size_t>(body)].offset);
+    for (int a = 0; a < 3; ++a) r.Phi.segment<3>(3 + 3 * a) = L * (bd.A.col(a) - Matrix3d::Identity().col(a));
+    r.gamma.setZero();
+    r.Phit.setZero();
+    if (!r.jacobian) return;
+    r.J1.block<3, 3>(0, 0).diagonal().setConstant(1.0);
+    for (int k = 3; k < 12; ++k) r.J1(k, k) = L;
+    return;
+  }
   const int pairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {2, 0}};
   for (int i = 0; i < 6; ++i) {
     const int a = pairs[i][0], b = pairs[i][1];
@@ -293,6 +305,13 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
     const auto add = [&](const detail::JacobianBlock& Jb, int oa, int ob, int first, int na, int nb) {
       detail::add_weighted_product(buf, b.rows, na, Jb.data() + first * ld, ld, nb, &T(oa + first, ob + first), T.rows());
     };
+    if (b.kind == BlockKind::RigidBody && model.bodies[b.body1].beam) {
+      // A beam's held frame: its twelve frame columns.
+      const int o = model.bodies[b.body1].offset;
+      weigh(J1, 0, 12);
+      add(J1, o, o, 0, 12, 12);
+      continue;
+    }
     if (b.kind == BlockKind::RigidBody) {
       // Only the frame-vector columns are nonzero.
       const int o = model.bodies[b.body1].offset;

@@ -268,7 +268,7 @@ void finalize(Model& m) {
   // motions' block indices are numbered by order_blocks).
   m.blocks.clear();
   for (std::size_t i = 0; i < m.bodies.size(); ++i)
-    m.blocks.push_back({BlockKind::RigidBody, static_cast<int>(i), 0, 6, static_cast<int>(i), kGround});
+    m.blocks.push_back({BlockKind::RigidBody, static_cast<int>(i), 0, m.bodies[i].frame_rows(), static_cast<int>(i), kGround});
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
     Joint& jt = m.joints[j];
     const int b1 = m.markers[jt.m1].body, b2 = m.markers[jt.m2].body;

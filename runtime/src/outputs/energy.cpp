@@ -33,6 +33,7 @@ Energy energy(const Model& model, Data& data) {
         bdw.wq.noalias() = b.prestress->K1 * y;
         e.potential += y.dot(b.prestress->f0) + 0.5 * y.dot(bdw.wq);
       }
+      if (b.beam) e.potential += ancf_beam_energy(*b.beam, y);
     }
   }
   for (const SpringDamper& s : model.springs) e.potential += detail::spring_energy(model, s, data);

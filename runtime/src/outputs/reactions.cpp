@@ -86,6 +86,20 @@ Vector6d joint_reaction(const Model& model, const Data& data, int joint) {
       motion_row_wrench(model, model.motions[static_cast<std::size_t>(blk.index)], a, b, data.reaction_lambda(blk.row0), w);
     }
   }
+  // A beam node as body2 (FORMULATION.md 15): its rows read the slope's turn theta = t0 x (r_x - t0),
+  // which a rigid rotation dth of the node changes by |r_x| (dth less its part along the slope)
+  // where the joint holds theta = 0 (a clamp): the torque is that of the rigid-marker rows
+  // projected off the slope and scaled by its length. (No torque acts about the slope: the node
+  // has no torsion.)
+  const Marker& mk2 = model.markers[static_cast<std::size_t>(j.m2)];
+  if (mk2.body != kGround && model.bodies[static_cast<std::size_t>(mk2.body)].beam && mk2.node >= 0) {
+    const Body& beam = model.bodies[static_cast<std::size_t>(mk2.body)];
+    const int k = beam_node_index(*beam.beam, mk2.node);
+    const Vector3d rx = beam.beam->q0.segment<3>(6 * k + 3) + data.state.q.segment<3>(beam.offset + 12 + 6 * k + 3);
+    const double len = rx.norm();
+    const Vector3d t = rx / len;
+    w.T = len * (w.T - t.dot(w.T) * t);
+  }
   Vector6d out;
   out << w.F, w.T;
   return out;

@@ -9,6 +9,7 @@
 // position of its frame origin, the three frame vectors (A = [u v w]) and its modal amplitudes.
 // The ground has none.
 
+#include "ffr/runtime/beam.hpp"
 #include "ffr/runtime/step_policy.hpp"
 #include "ffr/runtime/table.hpp"
 
@@ -145,6 +146,12 @@ struct Body {
   std::optional<ModalStressStiffness> modal_stress;  ///< /sid/Ke/M1, when present and enabled
   std::optional<Prestress> prestress;                 ///< /sid/ksigma, when nonzero and enabled
   std::shared_ptr<const FullMass> full_mass;  ///< benchmarks only (see FullMass)
+  /// A beam body (beam.hpp): y are its nodal coordinates less beam->q0, its elastic forces the
+  /// element's, its frame held at the global frame by its twelve-row block (FORMULATION.md 15).
+  std::shared_ptr<const AncfBeam> beam;
+  /// The rows of its frame's constraint block: 6 (orthonormal frame vectors) or 12 (a beam's
+  /// frame held at the global frame).
+  int frame_rows() const { return beam ? 12 : 6; }
   std::vector<NodeSlice> nodes;
 
   // Initial state as given in the model file (global).

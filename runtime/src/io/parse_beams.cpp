@@ -1,0 +1,108 @@
+// "bodies" of type "beam": large-deformation beams (beam.hpp, FORMULATION.md section 15), and the
+// checks that what attaches to a beam reads only what its nodes carry.
+#include "ffr/runtime/beam.hpp"
+#include "parse.hpp"
+
+#include <cmath>
+
+namespace ffr::runtime::detail {
+
+Body parse_beam(const Field& b, const std::string& name, ParseContext& ctx) {
+  b.allow_only({"name", "type", "formulation", "start", "end", "elements", "E", "nu", "rho", "section", "y_axis", "damping"});
+  const Field form = b.at("formulation");
+  if (form.string() == "geometrically_exact")
+    form.fail("the geometrically exact (Simo-Reissner) beam is not available yet; use \"ancf\"");
+  if (form.string() != "ancf") form.fail("unknown beam formulation '" + form.string() + "' (expected ancf)");
+  // The gradient-deficient element has one bending stiffness, no torsion and no shear: what
+  // would be ignored is refused rather than dropped (FORMULATION.md 15, limitations).
+  if (auto f = b.find("nu")) f->fail("is not used by the ancf beam (no shear or torsion); remove it");
+  if (auto f = b.find("y_axis"))
+    f->fail("orients a section the ancf beam cannot: it has no torsion and needs Iy = Iz; remove it");
+  const Field sec = b.at("section");
+  sec.allow_only({"A", "Iy", "Iz", "J"});
+  if (auto f = sec.find("J")) f->fail("is not used: the ancf beam has no torsion; remove it");
+  const double A = sec.at("A").positive();
+  const double Iy = sec.at("Iy").positive();
+  const double Iz = sec.at("Iz").positive();
+  if (std::abs(Iy - Iz) > 1e-9 * std::max(Iy, Iz))
+    sec.at("Iz").fail("must equal Iy: the ancf beam's section bends alike about every axis (a round or square "
+                      "section); it has no section orientation");
+  const int elements = b.at("elements").small_integer();
+  const double E = b.at("E").positive();
+  const double rho = b.at("rho").positive();
+  double tau = 0;
+  if (auto d = b.find("damping")) {
+    d->allow_only({"strain_rate"});
+    tau = d->at("strain_rate").non_negative();
+  }
+  Body body = make_beam_body(name, b.at("start").vec3(), b.at("end").vec3(), elements, E, rho, A, Iy, tau, ctx.file, b.path());
+  body.source = "beam";
+  return body;
+}
+
+namespace {
+
+bool on_beam(const Model& m, int marker) {
+  const Marker& mk = m.markers[static_cast<std::size_t>(marker)];
+  return mk.body != kGround && m.bodies[static_cast<std::size_t>(mk.body)].beam != nullptr;
+}
+
+}  // namespace
+
+void check_beam_attachments(const Field& root, ParseContext& ctx) {
+  const Model& m = ctx.model;
+  // A beam's frame is held at the global frame: a marker on it that is not at a node would be
+  // attached to nothing that moves.
+  const auto node_only = [&](const Field& where, int marker) {
+    const Marker& mk = m.markers[static_cast<std::size_t>(marker)];
+    if (on_beam(m, marker) && mk.node < 0)
+      where.fail("attaches to beam '" + m.bodies[static_cast<std::size_t>(mk.body)].name +
+                 "' away from its nodes: give node1/node2 (n0 ... nN, start, end)");
+  };
+  // The joints list also holds couplers, which are not in Model::joints: entries are matched in order.
+  const std::size_t njson = root.has("joints") ? root.at("joints").size() : 0;
+  for (std::size_t i = 0, j = 0; i < njson && j < m.joints.size(); ++i) {
+    const Field f = root.at("joints").at(i);
+    if (f.at("type").string() == "coupler") continue;
+    const Joint& jt = m.joints[j++];
+    node_only(f, jt.m1);
+    node_only(f, jt.m2);
+    if (!on_beam(m, jt.m1) && !on_beam(m, jt.m2)) continue;
+    // A node has a position and a slope; its axes are the slope's small rotation, exact only
+    // for rows that hold the slope's direction against the ground (a clamp).
+    const bool to_ground = m.markers[static_cast<std::size_t>(jt.m1)].body == kGround ||
+                           m.markers[static_cast<std::size_t>(jt.m2)].body == kGround;
+    if (jt.type == JointType::Spherical || (jt.type == JointType::Fixed && to_ground)) continue;
+    f.at("type").fail(std::string("a ") + to_string(jt.type) +
+                      " joint at a beam node is not supported: the ancf node has no rotation beyond its slope's "
+                      "direction (spherical joints, and fixed joints to the ground, are)");
+  }
+  if (!root.has("forces")) return;
+  const Field forces = root.at("forces");
+  // The forces list mixes kinds; their markers are found again by kind, in the order parsed.
+  std::size_t ispring = 0, ibush = 0, ifric = 0, iload = 0;
+  for (std::size_t i = 0; i < forces.size(); ++i) {
+    const Field f = forces.at(i);
+    const std::string type = f.at("type").string();
+    if (type == "spring_damper") {
+      const SpringDamper& s = m.springs[ispring++];
+      node_only(f, s.m1);
+      node_only(f, s.m2);
+    } else if (type == "friction_damper") {
+      const FrictionDamper& s = m.friction_dampers[ifric++];
+      node_only(f, s.m1);
+      node_only(f, s.m2);
+    } else if (type == "bushing") {
+      const Bushing& s = m.bushings[ibush++];
+      if (on_beam(m, s.m1) || on_beam(m, s.m2))
+        f.at("type").fail("a bushing at a beam node is not supported: the ancf node has no rotation beyond its slope's direction");
+    } else if (type == "point_force" || type == "point_torque") {
+      const PointLoad& l = m.loads[iload++];
+      node_only(f, l.marker);
+      if (l.torque && on_beam(m, l.marker))
+        f.at("type").fail("a point torque at a beam node is not supported: the ancf node has no rotation beyond its slope's direction");
+    }
+  }
+}
+
+}  // namespace ffr::runtime::detail
