@@ -136,11 +136,14 @@ Reduced reduce(const Model& model, const Data& data, const MatrixXd& T) {
   const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(R);
   out.lo = eig.eigenvalues()(0);
   out.lo_mode = wi.cwiseProduct(N * (d.asDiagonal() * eig.eigenvectors().col(0)));
-  int k = 0;
-  while (k < R.rows() && std::abs(eig.eigenvalues()(k)) <= kSingular) ++k;
-  if (out.lo < -kSingular) k = 0;  // indefinite: refused at the end, no neutral motions to hold
-  if (k > 0) {
-    const MatrixXd Zw = N * (d.asDiagonal() * eig.eigenvectors().leftCols(k));
+  std::vector<Eigen::Index> zero;
+  for (Eigen::Index i = 0; i < R.rows(); ++i)
+    if (std::abs(eig.eigenvalues()(i)) <= kSingular) zero.push_back(i);
+  if (!zero.empty()) {
+    MatrixXd V(R.rows(), static_cast<Eigen::Index>(zero.size()));
+    for (std::size_t j = 0; j < zero.size(); ++j) V.col(static_cast<Eigen::Index>(j)) = eig.eigenvectors().col(zero[j]);
+    const Eigen::Index k = V.cols();
+    const MatrixXd Zw = N * (d.asDiagonal() * V);
     Eigen::HouseholderQR<MatrixXd> qr(Zw);
     out.Z = qr.householderQ() * MatrixXd::Identity(n, k);
   }
@@ -167,11 +170,17 @@ std::string neutral_names(const Model& model, const Reduced& r) {
 }
 
 [[noreturn]] void refuse_driven_neutral(const Model& model, double t, const VectorXd& step, double size) {
+  const std::string what =
+      model.tires.empty()
+          ? "hold that motion (a motion locking a wheel's joint, a brake, a joint, a spring or a bushing) or run the model "
+            "dynamically"
+          : "a tyre holds nothing along the road or sideways at rest (its horizontal forces come from the sliding "
+            "velocity: a vehicle parked on an incline creeps, locked wheels or not), so settle the vehicle on a flat "
+            "road, hold that motion with a joint, a spring or a bushing, or run the model dynamically";
   throw SolverError(t, size,
                     "static equilibrium at t = " + fmt(t) + " s: the stiffness is singular along a motion the joints allow, and "
                     "a force remains along it: nothing holds " + coordinate_name(model, step) + " against the loads (a wheel "
-                    "free to roll on an incline, a body free to slide or fall); hold that motion (a motion locking the wheel's "
-                    "joint, a brake, a joint, a spring or a bushing) or run the model dynamically");
+                    "free to roll on an incline, a body free to slide or fall); " + what);
 }
 
 // Refuses an equilibrium whose stiffness on the motions the constraints leave free is indefinite;
