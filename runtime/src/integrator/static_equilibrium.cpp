@@ -10,7 +10,9 @@
 // multiplier passes crawling on the soft ones. The small -d I (relative to the equilibrated
 // matrix) keeps redundant constraints (a closed planar loop) solvable; Newton's residual corrects
 // what it leaves. Every body is an unknown here, the driven ones held by their joints and
-// motions at the start time.
+// motions at the start time. Motions that meet no stiffness (a vehicle's rolling on its tyres)
+// get a proximal stiffness in each step and are accepted when no force drives them
+// (FORMULATION.md 14, neutral motions).
 #include "ffr/runtime/statics.hpp"
 
 #include "ffr/runtime/constraints.hpp"
@@ -293,7 +295,7 @@ std::vector<std::string> settle_statically(const Model& model, Data& data) {
                                  coordinate_name(model, moved) + " moved most)"};
   if (red.Z.cols() > 0)
     notes.push_back("static equilibrium: " + std::to_string(red.Z.cols()) +
-                    " neutral motion(s) meet no stiffness and no force (held where they started; any position along them "
+                    " neutral motion(s) meet no stiffness and no force (left where the start put them; any position along them "
                     "is an equilibrium): " + neutral_names(model, red));
   return notes;
 }
