@@ -16,8 +16,10 @@ namespace ffr::runtime {
 /// augmented Lagrangian. Velocities and accelerations are left zero (the caller makes the
 /// state consistent again). Checks that the equilibrium is stable: the stiffness on the motions
 /// the constraints leave free (the Lagrangian's Hessian reduced to the null space of Phi_q) must
-/// be positive definite. Throws SolverError naming what failed and what to try when Newton does
-/// not converge or the reduced stiffness is singular or indefinite. Returns a note on what moved.
+/// be positive semi-definite; its null directions (neutral motions: a vehicle's rolling on its
+/// tyres) are accepted when no force remains along them. Throws SolverError naming what failed
+/// and what to try when Newton does not converge, the reduced stiffness is indefinite, or a force
+/// drives a neutral motion. Returns a note on what moved, and one naming the neutral motions.
 /// Allocates (a set-up step, not a time step).
 std::vector<std::string> settle_statically(const Model& model, Data& data);
 
