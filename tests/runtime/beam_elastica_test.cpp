@@ -57,13 +57,7 @@ std::string cantilever_json(double P, int elements, const std::string& solver) {
   })";
 }
 
-std::vector<double> output(const Model& model, Data& data, const char* name) {
-  const int i = model.find_output(name);
-  EXPECT_GE(i, 0) << name;
-  std::vector<double> v(static_cast<std::size_t>(model.outputs[static_cast<std::size_t>(i)].size));
-  evaluate_output(model, data, model.outputs[static_cast<std::size_t>(i)], v.data());
-  return v;
-}
+using test::output;
 
 // Independent oracle: the inextensible elastica of a cantilever with a dead tip load, theta the
 // slope angle (downwards) along the arc s: EI theta'' = -P cos(theta), theta(0) = 0, theta'(L) = 0

@@ -19,14 +19,7 @@ namespace {
 
 constexpr double g = 9.81;
 
-// Every output of `model` at the current state, by name.
-std::vector<double> output(const Model& model, Data& data, const char* name) {
-  const int i = model.find_output(name);
-  EXPECT_GE(i, 0) << name;
-  std::vector<double> v(static_cast<std::size_t>(model.outputs[static_cast<std::size_t>(i)].size));
-  evaluate_output(model, data, model.outputs[static_cast<std::size_t>(i)], v.data());
-  return v;
-}
+using test::output;
 
 std::string num(double v) {
   char b[32];

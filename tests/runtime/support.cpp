@@ -95,4 +95,13 @@ SimRun run_ffr_sim(const std::string& args) {
   return r;
 }
 
+std::vector<double> output(const Model& model, Data& data, const std::string& name) {
+  const int i = model.find_output(name);
+  EXPECT_GE(i, 0) << name;
+  if (i < 0) return {};
+  std::vector<double> v(static_cast<std::size_t>(model.outputs[static_cast<std::size_t>(i)].size));
+  evaluate_output(model, data, model.outputs[static_cast<std::size_t>(i)], v.data());
+  return v;
+}
+
 }  // namespace ffr::runtime::test

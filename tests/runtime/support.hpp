@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace ffr::runtime::test {
 
@@ -48,5 +49,9 @@ struct SimRun {
 };
 /// Runs `ffr-sim ARGS` (ARGS as a shell would split them).
 SimRun run_ffr_sim(const std::string& args);
+
+/// The values of the output named `name` at the current state (evaluate_output); a missing name
+/// fails the test.
+std::vector<double> output(const Model& model, Data& data, const std::string& name);
 
 }  // namespace ffr::runtime::test

@@ -39,13 +39,7 @@ std::string num(double v) {
   return b;
 }
 
-std::vector<double> output(const Model& model, Data& data, const char* name) {
-  const int i = model.find_output(name);
-  EXPECT_GE(i, 0) << name;
-  std::vector<double> v(static_cast<std::size_t>(model.outputs[static_cast<std::size_t>(i)].size));
-  evaluate_output(model, data, model.outputs[static_cast<std::size_t>(i)], v.data());
-  return v;
-}
+using test::output;
 
 // A 20 kg wheel on a vertical guide over a road through (s, height) = (-10, h0 - 10 slope) and
 // (10, h0 + 10 slope), its centre `z0` above the origin; tyre of radius 0.3 m, k = 2e5 N/m.

@@ -31,13 +31,7 @@ std::string num(double v) {
   return b;
 }
 
-std::vector<double> output(const Model& model, Data& data, const std::string& name) {
-  const int i = model.find_output(name);
-  EXPECT_GE(i, 0) << name;
-  std::vector<double> v(static_cast<std::size_t>(model.outputs[static_cast<std::size_t>(i)].size));
-  evaluate_output(model, data, model.outputs[static_cast<std::size_t>(i)], v.data());
-  return v;
-}
+using test::output;
 
 // The car body (centre of mass xg ahead of the axles' middle, 0.5 m up) on four 20 kg wheels on
 // revolute joints about y at (+-xa, +-ya, 0.3), tyres of radius 0.3 touching a road of the given
