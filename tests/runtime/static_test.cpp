@@ -28,16 +28,7 @@ constexpr double g = 9.81;
 
 using test::output;
 
-// The message of the SolverError that initialize throws (empty if none).
-std::string refusal(const Model& model) {
-  Data data(model);
-  try {
-    initialize(model, data);
-  } catch (const SolverError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string refusal(const Model& model) { return test::initialize_refusal(model); }
 
 }  // namespace
 

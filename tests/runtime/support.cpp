@@ -104,4 +104,14 @@ std::vector<double> output(const Model& model, Data& data, const std::string& na
   return v;
 }
 
+std::string initialize_refusal(const Model& model) {
+  Data data(model);
+  try {
+    initialize(model, data);
+  } catch (const SolverError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 }  // namespace ffr::runtime::test

@@ -54,4 +54,7 @@ SimRun run_ffr_sim(const std::string& args);
 /// fails the test.
 std::vector<double> output(const Model& model, Data& data, const std::string& name);
 
+/// The message of the SolverError that initialize throws on `model` (empty if none).
+std::string initialize_refusal(const Model& model);
+
 }  // namespace ffr::runtime::test

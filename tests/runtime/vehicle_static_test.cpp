@@ -62,15 +62,7 @@ std::string vehicle(double slope, bool locked, const std::string& solver) {
          (locked ? R"(, "motions": [)" + motions + "]" : std::string()) + R"(, "solver": )" + solver + R"(, "outputs": [)" + outputs + "]}";
 }
 
-std::string refusal(const Model& model) {
-  Data data(model);
-  try {
-    initialize(model, data);
-  } catch (const SolverError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string refusal(const Model& model) { return test::initialize_refusal(model); }
 
 }  // namespace
 
