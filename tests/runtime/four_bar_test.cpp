@@ -7,6 +7,7 @@
 // classical RK4 at a much smaller step.
 #include "support.hpp"
 
+#include <Eigen/QR>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -114,8 +115,11 @@ struct Outcome {
   std::size_t notes;
 };
 
-Outcome run(double h) {
-  const double th0 = 0.3, w0 = 6.0, T = 1.0;
+constexpr double th0 = 0.3, w0 = 6.0;
+
+// The four-bar started at crank angle th0 with crank rate w0 (consistent velocities from the
+// one-DOF model).
+std::string four_bar_json(double h) {
   // Consistent initial velocities from the one-DOF model.
   const double e = 1e-7;
   const Config kp = config(th0 + e), km = config(th0 - e);
@@ -139,7 +143,12 @@ Outcome run(double h) {
   ],
   "solver": {"end": 1.0, "step": )" + num(h) + R"(}
 })";
-  const Model model = test::model_from(json);
+  return json;
+}
+
+Outcome run(double h) {
+  const double T = 1.0;
+  const Model model = test::model_from(four_bar_json(h));
   EXPECT_EQ(model.nconstraints, 3 * 6 + 4 * 5);
   Data data(model);
   const auto notes = initialize(model, data);
@@ -184,4 +193,40 @@ TEST(FourBar, RedundantRevolutesMatchOneDofModel) {
   EXPECT_NEAR(a.worst / b.worst, 4.0, 0.6);  // second order
   EXPECT_LT(a.violation, 1e-11);
   EXPECT_LT(a.dE, 2e-4 * std::abs(a.E0));
+}
+
+// exact_multipliers (the projections' and Newton's fallback when their passes stall) with the
+// three redundant rows: the correction Y mu it gives for a consistent right-hand side
+// c = Phi_a v must be the one of the KKT system [T Phi_a^T; Phi_a 0] [dx; mu] = [0; c] (dx is
+// unique although mu is not), solved independently by Eigen's complete orthogonal decomposition
+// of the whole singular KKT matrix; and the three redundant rows must be the ones it leaves out.
+TEST(FourBar, ExactMultipliersMatchTheKktSolutionWithRedundantRows) {
+  const Model model = test::model_from(four_bar_json(1e-3));
+  Data data(model);
+  initialize(model, data);
+  for (int i = 0; i < 10; ++i) step(model, data);
+  refresh_tangent(model, data, data.state.t, data.state.lambda);
+  const int nf = data.nf, na = data.na;
+  ASSERT_TRUE(data.unknowns.empty());
+  Eigen::VectorXd v(data.state.q.size());
+  for (int i = 0; i < v.size(); ++i) v(i) = std::sin(1.0 + 0.7 * i);
+  const Eigen::VectorXd c = data.Phiq.topLeftCorner(na, nf) * v.head(nf);
+  const int rank = exact_multipliers(data, c);
+  const Eigen::VectorXd dx = data.projY.topLeftCorner(nf, na) * data.proj_mu.head(na);
+
+  Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(nf + na, nf + na);
+  kkt.topLeftCorner(nf, nf) = data.T.topLeftCorner(nf, nf);
+  kkt.bottomLeftCorner(na, nf) = data.Phiq.topLeftCorner(na, nf);
+  kkt.topRightCorner(nf, na) = data.Phiq.topLeftCorner(na, nf).transpose();
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nf + na);
+  rhs.tail(na) = c;
+  const Eigen::VectorXd ref = kkt.completeOrthogonalDecomposition().solve(rhs);
+  const double diff = (dx - ref.head(nf)).cwiseAbs().maxCoeff(), size = ref.head(nf).cwiseAbs().maxCoeff();
+  const double residual = (data.Phiq.topLeftCorner(na, nf) * dx - c).cwiseAbs().maxCoeff();
+  std::printf("exact multipliers: rank %d of %d rows; correction against the KKT solution %.3e (of %.3e); "
+              "constraint residual %.3e (of %.3e)\n",
+              rank, na, diff, size, residual, c.cwiseAbs().maxCoeff());
+  EXPECT_EQ(rank, na - 3);
+  EXPECT_LT(diff, 1e-9 * size);
+  EXPECT_LT(residual, 1e-10 * c.cwiseAbs().maxCoeff());
 }

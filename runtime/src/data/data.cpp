@@ -36,6 +36,10 @@ Data::Data(const Model& model) : state(model), start(model) {
   lu_work = VectorXd::Zero(n);
   scale = VectorXd::Ones(n);
   Phi = Phit = gamma = VectorXd::Zero(m);
+  projY = MatrixXd::Zero(n, m);
+  projS = MatrixXd::Zero(m, m);
+  proj_order.assign(static_cast<std::size_t>(m), 0);
+  proj_mu = proj_w = VectorXd::Zero(m);
 
   int nb_max = 12;
   bodies.resize(model.bodies.size());

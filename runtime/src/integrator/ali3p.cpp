@@ -113,11 +113,29 @@ std::string newton_failure(const Model& model, const Data& data, double t, int i
 // iteration; on the benchmark's slider-crank it takes Newton from 7.0 to 4.5 iterations per
 // step (more passes gained nothing more then; see NewtonPolicy::multiplier_passes for the second). At most
 // `passes` passes. Returns the linearised violation left at q - dq, in model lengths.
-double newton_direction(const Model& model, Data& data, int passes) {
+//
+// exact: the multipliers solved for at once instead (exact_multipliers), for iterations that
+// contract slowly once the tangent refreshes are spent: the passes converge slowly along nearly
+// redundant constraint directions, and so, through the multipliers they leave, does Newton.
+double newton_direction(const Model& model, Data& data, int passes, bool exact) {
   const double h4 = data.state.k.kq;
   solve_tangent(data, data.f, data.dq);
   data.sigma.setZero();
   double left = 0;
+  if (exact) {
+    // dq = T^-1 (f + Phi_a^T mu) with Phi_a dq = Phi: S mu = Phi - Phi_a T^-1 f.
+    const int na = data.na, nf = data.nf;
+    constraint_times(model, data, data.dq, data.c);
+    data.c = data.Phi - data.c;
+    exact_multipliers(data, data.c);
+    data.dq.head(nf).noalias() += data.projY.topLeftCorner(nf, na) * data.proj_mu.head(na);
+    data.sigma.head(na) = data.proj_mu.head(na) / h4;
+    constraint_times(model, data, data.dq, data.c);
+    data.c = data.Phi - data.c;
+    left = data.c.cwiseAbs().maxCoeff() / model.length;
+    data.state.lambda += data.sigma;
+    return left;
+  }
   for (int pass = 0;; ++pass) {
     constraint_times(model, data, data.dq, data.c);
     data.c = data.Phi - data.c;
@@ -210,6 +228,8 @@ void step(const Model& model, Data& data, double h) {
   double inc = 0, prev_inc = 0, viol = 0;
   int it = 0;
   bool converged = false;
+  bool exact = false;           // exact multipliers in the direction (newton_direction)
+  bool exact_since_now = false; // switched at this iteration: no rate from the last increment
   for (it = 1; it <= s.max_iterations; ++it) {
     data.state.qd = k.c1 * data.state.q + data.qd_hat;
     data.state.qdd = k.c2 * data.state.q + data.qdd_hat;
@@ -246,7 +266,7 @@ void step(const Model& model, Data& data, double h) {
       ++refreshes;
     }
     const int passes = it == 1 ? 1 : p.multiplier_passes;
-    double left = newton_direction(model, data, passes);
+    double left = newton_direction(model, data, passes, exact);
     double next_inc = scaled_norm(model, data.dq);
     // A tangent built at an earlier iterate under which the increment more than doubles is not
     // used: its update is discarded and the direction recomputed with a tangent built here.
@@ -266,7 +286,7 @@ void step(const Model& model, Data& data, double h) {
       data.tangent_fresh_step = true;
       refreshed_now = true;
       ++refreshes;
-      left = newton_direction(model, data, passes);
+      left = newton_direction(model, data, passes, exact);
       next_inc = scaled_norm(model, data.dq);
     }
     data.state.q -= data.dq;
@@ -278,7 +298,8 @@ void step(const Model& model, Data& data, double h) {
     // (Hairer & Wanner, Solving ODEs II, IV.8), and the constraints left by the update are
     // the linearised violation (plus O(inc^2)).
     // theta only measures the rate when both increments came from the same tangent.
-    const double theta = it >= 2 && prev_inc > 0 && !refreshed_now ? inc / prev_inc : 1.0;
+    const double theta = it >= 2 && prev_inc > 0 && !refreshed_now && !exact_since_now ? inc / prev_inc : 1.0;
+    exact_since_now = false;
     // A tangent kept from an earlier step (reuse_jacobian) gives no such bound from one update:
     // built where the constraints' Jacobian was another, its penalty term stiffens directions
     // that are free now, and the increments there understate the error by as much. Its iterates
@@ -308,6 +329,10 @@ void step(const Model& model, Data& data, double h) {
     if (it == 1 && refreshed_now) {
       data.state.predictor_far = s.penalty * inc > p.stale_tangent;
       if (data.state.predictor_far) refactor = constraints_only = true;
+    }
+    // Slow with the refreshes spent: the multipliers are solved for exactly from now on.
+    if (it >= 2 && inc > p.slow_contraction * prev_inc && refreshes >= p.max_refreshes && !exact) {
+      exact = exact_since_now = true;
     }
     if (it >= 2 && inc > p.slow_contraction * prev_inc && refreshes < p.max_refreshes) {
       refactor = true;

@@ -131,6 +131,11 @@ struct Data {
   VectorXd q0, qd0, qdd0;       ///< state at the start of the step
   VectorXd qd_hat, qdd_hat;     ///< the scheme's affine terms (scheme.hpp)
   VectorXd f, dq, r, sigma, c, tmp, vstar;
+  /// exact_multipliers' work: Y = T^-1 Phi_a^T [n, m], S = Phi_a Y [m, m] and its pivoted factor
+  /// in place, the pivot order, the multipliers and the pivoted solution [m].
+  MatrixXd projY, projS;
+  std::vector<int> proj_order;
+  VectorXd proj_mu, proj_w;
   // Motions: values from the C API override the table when set.
   std::vector<char> motion_external;
   std::vector<Eigen::Vector3d> motion_value;  ///< value, rate, acceleration
