@@ -86,7 +86,7 @@ model = {
     # step) Newton diverges near the top speed, with the trapezoidal rule and with generalized-alpha
     # alike (README.md). Newton's tolerance is tied to the step's own error: the tub's orbit at the
     # spin (6 mm at 23 Hz) has a local truncation error of h^3/12 |d^3x/dt^3| ~ 2.5e-8 m a step,
-    # 4e-8 of the model length (0.57 m, the cabinet's feet from its centre of mass); the default
+    # 4e-8 of the model length (0.61 m, the cabinet's feet from its centre of mass); the default
     # 1e-10 sat 400 times below it and cost 3.7 Newton iterations a step, 1e-8 costs 2.6 and moves
     # the outputs by a hundredth of what halving the step moves them (README.md).
     "solver": {"end": end, "step": 2.5e-4, "output_every": 20, "initial_equilibrium": True,
