@@ -3,8 +3,9 @@
 - every sample finite, the run reached its end;
 - at rest (the first sample, after the static equilibrium): the four feet's vertical forces add
   up to the machine's weight within 1 %, the horizontal ones to nothing; the weight is computed
-  here from the masses the model and the part file state (the tub's shell from its meshed
-  geometry: a 24-sided mantle and rear wall, 2 mm steel), not from the SID;
+  here from the masses the model and the part files state (the tub's shell from its meshed
+  geometry: a 24-sided mantle and rear wall, 2 mm steel; the cabinet's panels from their
+  drawn areas, 1.5 mm steel), not from the SIDs;
 - energy: the friction dampers' dissipated energy never decreases; the kinetic energy is at
   least the drum's and the rotor's spin energy 1/2 I_xx w_x^2 (their absolute angular velocities,
   principal moments about their axes: a part of the whole), and once they spin (above 0.1 J) at
@@ -29,7 +30,10 @@ g = 9.81
 R, L, t, rho, n = 0.3, 0.35, 0.002, 7850.0, 24
 shell = (n * 2 * R * math.sin(math.pi / n) * L + 0.5 * n * R * R * math.sin(2 * math.pi / n)) * t * rho
 tub = shell + 6.0 + 15.0                      # shell, motor, counterweight (tub.json)
-mass = tub + 30.0 + 7.5 + 1.2                 # cabinet, drum with unbalance, rotor (make_model.py)
+# The cabinet (cabinet.json, cabinet.geo): 1.5 mm steel panels, four 0.6 x 0.85 m sides less the
+# door's opening (radius 0.2 m) and the 0.6 x 0.6 m top and floor.
+cabinet = (4 * 0.6 * 0.85 - math.pi * 0.2 ** 2 + 2 * 0.6 * 0.6) * 0.0015 * rho
+mass = tub + cabinet + 7.5 + 1.2              # cabinet, drum with unbalance, rotor (make_model.py)
 weight = mass * g
 feet = ["foot_front_left", "foot_front_right", "foot_rear_left", "foot_rear_right"]
 r0 = rows[0]

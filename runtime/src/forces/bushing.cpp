@@ -120,31 +120,53 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
 
   auto Kc = data.fK.topLeftCorner(ntot, ntot);
   auto Cc = data.fC.topLeftCorner(ntot, ntot);
-  auto H = data.fH.topLeftCorner(ntot, ntot);
   auto z = data.fz.head(ntot);
-  auto hz = data.fhz.head(ntot);
+  // Row i: H_i z (fH's first six rows as workspace: no tangent below reads fH).
+  auto HZ = data.fH.topLeftCorner(6, ntot);
   for (int side = 0; side < 2; ++side)
     if (nb[side]) z.segment(col0[side], nb[side]) = data.state.qd.segment(offset(model, body[side]), nb[side]);
+  // H_i is linear in its dot-product terms, so sum_i F_i H_i is accumulated term by term with the
+  // weights F_i coef straight into Kc, and H_i z from the terms' Jacobian-vector products: no
+  // [ntot, ntot] H_i is formed (six of them, each cleared, multiplied by z and added, were a
+  // sixth of the bushings' cost on the washing machine, whose gasket and feet span a flexible
+  // body's coordinates). Same sums, in another order.
   Kc.setZero();
-  Cc.setZero();
+  HZ.setZero();
+  Vector3d Jz[2][4];  // J_x z of each marker quantity (point, axes 0-2) that a term uses
+  for (int side = 0; side < 2; ++side)
+    for (int k = -1; k < 3; ++k)
+      Jz[side][k + 1] = nb[side] ? Vector3d(jac(*md[side], k) * z.segment(col0[side], nb[side])) : Vector3d::Zero();
   for (int i = 0; i < 6; ++i) {
     if (slope(i) == 0 && bu.c(i) == 0 && F(i) == 0) continue;
-    H.setZero();
     for (const DotTerm& t : kTerms[i]) {
       const int sa = t.ma, sb = t.mb;
       const Vector3d& xa = value(*md[sa], t.ka);
       const Vector3d& xb = value(*md[sb], t.kb);
-      if (nb[sa] && nb[sb]) {
-        H.block(col0[sa], col0[sb], nb[sa], nb[sb]).noalias() += t.coef * jac(*md[sa], t.ka).transpose() * jac(*md[sb], t.kb);
-        H.block(col0[sb], col0[sa], nb[sb], nb[sa]).noalias() += t.coef * jac(*md[sb], t.kb).transpose() * jac(*md[sa], t.ka);
+      const double w = F(i) * t.coef;
+      if (nb[sa] && nb[sb] && w != 0) {
+        Kc.block(col0[sa], col0[sb], nb[sa], nb[sb]).noalias() += w * jac(*md[sa], t.ka).transpose() * jac(*md[sb], t.kb);
+        Kc.block(col0[sb], col0[sa], nb[sb], nb[sa]).noalias() += w * jac(*md[sb], t.kb).transpose() * jac(*md[sa], t.ka);
       }
-      if (on_node(model, *mm[sa])) add_jt_f_derivative(slice(*mm[sa], t.ka), xb, t.coef, H.block(col0[sa], col0[sa], nb[sa], nb[sa]));
-      if (on_node(model, *mm[sb])) add_jt_f_derivative(slice(*mm[sb], t.kb), xa, t.coef, H.block(col0[sb], col0[sb], nb[sb], nb[sb]));
+      if (on_node(model, *mm[sa]) && w != 0) add_jt_f_derivative(slice(*mm[sa], t.ka), xb, w, Kc.block(col0[sa], col0[sa], nb[sa], nb[sa]));
+      if (on_node(model, *mm[sb]) && w != 0) add_jt_f_derivative(slice(*mm[sb], t.kb), xa, w, Kc.block(col0[sb], col0[sb], nb[sb], nb[sb]));
+      if (bu.c(i) == 0) continue;
+      if (nb[sa] && nb[sb]) {
+        HZ.row(i).segment(col0[sa], nb[sa]).noalias() += (t.coef * Jz[sb][t.kb + 1]).transpose() * jac(*md[sa], t.ka);
+        HZ.row(i).segment(col0[sb], nb[sb]).noalias() += (t.coef * Jz[sa][t.ka + 1]).transpose() * jac(*md[sb], t.kb);
+      }
+      if (on_node(model, *mm[sa]))
+        add_jt_f_derivative_times(slice(*mm[sa], t.ka), xb, t.coef, z.segment(col0[sa], nb[sa]), HZ.row(i).segment(col0[sa], nb[sa]));
+      if (on_node(model, *mm[sb]))
+        add_jt_f_derivative_times(slice(*mm[sb], t.kb), xa, t.coef, z.segment(col0[sb], nb[sb]), HZ.row(i).segment(col0[sb], nb[sb]));
     }
-    hz.noalias() = H * z;
-    Kc.noalias() += slope(i) * g.row(i).transpose() * g.row(i);
-    Kc.noalias() += bu.c(i) * g.row(i).transpose() * hz.transpose();
-    Kc += F(i) * H;
+  }
+  // K = sum_i k_i g_i^T g_i + c_i g_i^T (H_i z)^T + F_i H_i,  C = sum_i c_i g_i^T g_i (outer
+  // products with scalar factors: no temporaries, the step stays allocation-free).
+  Cc.setZero();
+  for (int i = 0; i < 6; ++i) {
+    if (slope(i) != 0) Kc.noalias() += slope(i) * g.row(i).transpose() * g.row(i);
+    if (bu.c(i) == 0) continue;
+    Kc.noalias() += bu.c(i) * g.row(i).transpose() * HZ.row(i);
     Cc.noalias() += bu.c(i) * g.row(i).transpose() * g.row(i);
   }
   for (int a = 0; a < 2; ++a)

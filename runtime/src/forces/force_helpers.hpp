@@ -28,6 +28,21 @@ void add_jt_f_derivative(const Matrix3Xd& S, const Vector3d& f, double s, Mat&& 
   }
 }
 
+/// out += s * d(J_x^T f)/dz times v (the product of add_jt_f_derivative's matrix with v, without
+/// forming it): rows 3 + 3a.. += s f (S_a . v_y), rows 12 + k += s sum_a S_ak (f . v_(3+3a..)).
+template <class Vec, class Out>
+void add_jt_f_derivative_times(const Matrix3Xd& S, const Vector3d& f, double s, const Vec& v, Out&& out) {
+  const Eigen::Index nq = S.cols();
+  if (nq == 0) return;
+  const Vector3d Sv = S * v.tail(nq);
+  Vector3d fv;
+  for (int a = 0; a < 3; ++a) {
+    out.segment(3 + 3 * a, 3) += (s * Sv(a)) * f.transpose();
+    fv(a) = f.dot(v.segment(3 + 3 * a, 3));
+  }
+  out.tail(nq).noalias() += (s * fv).transpose() * S;
+}
+
 /// D = d(J_x z_dot)/dz ([3, nb]) for a quantity with mode slice S.
 template <class Mat>
 void jzd_derivative(const Matrix3Xd& S, const Matrix3d& Ad, const Eigen::Ref<const VectorXd>& yd, Mat&& D) {
