@@ -12,6 +12,7 @@
 //   (2004); 0.00126 in Timoshenko & Woinowsky-Krieger's "Theory of Plates and Shells", Table 35);
 // - the element's forces against finite differences of its energy, and its tangents against
 //   finite differences of its forces;
+// - a cantilever strip with nu = 0 against the elastica (Bisshopp & Drucker's table);
 // - the released clamped plate vibrating at Leissa's first frequency with both integrators;
 // - bad input refused naming the file and field.
 #include "support.hpp"
@@ -325,6 +326,38 @@ TEST(Plate, ClampedPlateLargeDeflectionMatchesCalculix) {
   }
   EXPECT_GT(-wc, 1.5 * s.h);  // far beyond the linear range
   EXPECT_LT(-wc, 0.8 * wlin);
+}
+
+// A cantilever strip (1 m x 0.1 m, 8 x 1 elements, nu = 0) under a dead load P at its free edge
+// (half at each corner node): with nu = 0 cylindrical bending decouples the width, and the plate
+// is the elastica with EI = D b. Its tip against Bisshopp & Drucker's table ("Large deflection of
+// cantilever beams", Quart. Appl. Math. 3, 1945) at P L^2 / (D b) = 1, 2, 5, within 0.2 %; the
+// static analysis from the flat plate, without load stepping.
+TEST(Plate, CantileverStripFollowsTheElastica) {
+  const double E = 1e7, h = 0.01, b = 0.1, L = 1, D = E * h * h * h / 12;
+  const double k[3] = {1, 2, 5}, u[3] = {0.05643, 0.16064, 0.38763}, w[3] = {0.30172, 0.49346, 0.71379};
+  for (int i = 0; i < 3; ++i) {
+    const double P = k[i] * D * b / (L * L);
+    std::string forces;
+    for (int j = 0; j < 2; ++j)
+      forces += std::string(j ? ", " : "") + R"({"name": "P)" + std::to_string(j) + R"(", "type": "point_force", "body": "plate", "node": "n8_)" +
+                std::to_string(j) + R"(", "table": {"t": [0, 1], "value": [[0, 0, )" + num(-P / 2) + "], [0, 0, " + num(-P / 2) + "]]}}";
+    const Model model = test::model_from(R"({"bodies": [{"name": "plate", "type": "plate",
+        "corners": [[0, 0, 0], [1, 0, 0], [1, 0.1, 0], [0, 0.1, 0]], "elements": [8, 1], "thickness": 0.01, "E": 1e7, "nu": 0,
+        "rho": 1000, "supports": {"x0": "clamped"}}],
+      "forces": [)" + forces + R"(], "solver": {"analysis": "static"},
+      "outputs": [{"name": "tip", "type": "node_position", "body": "plate", "node": "n8_0"},
+                  {"name": "tip1", "type": "node_position", "body": "plate", "node": "n8_1"}]})");
+    Data data(model);
+    for (const auto& note : initialize(model, data)) std::printf("note: %s\n", note.c_str());
+    const auto tip = output(model, data, "tip"), tip1 = output(model, data, "tip1");
+    const double tu = (L - tip[0]) / L, tw = -tip[2] / L;
+    std::printf("strip P L^2 / (D b) = %g: u/L %.6f (table %.5f, %+.3f %%), w/L %.6f (table %.5f, %+.3f %%)\n", k[i], tu, u[i],
+                100 * (tu / u[i] - 1), tw, w[i], 100 * (tw / w[i] - 1));
+    EXPECT_NEAR(tu / u[i], 1.0, 2e-3);
+    EXPECT_NEAR(tw / w[i], 1.0, 2e-3);
+    EXPECT_NEAR(tip1[2], tip[2], 1e-9);  // cylindrical: both corners alike
+  }
 }
 
 // A dynamic run with each integrator: the clamped plate (4 x 4 elements) settled under loads at
