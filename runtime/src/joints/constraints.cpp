@@ -324,8 +324,8 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
       const int o = model.bodies[b.body1].offset;
       weigh(J1, 0, 12);
       add(J1, o, o, 0, 12, 12);
-      // A plate's support rows: each a multiple of three coordinates (the twelve frame rows'
-      // weights were all that weigh() read: it takes the first twelve of the block's columns).
+      // A plate's support rows, each a multiple of three of its coordinates (the products above
+      // take the block's first twelve columns, where these rows are zero).
       if (const auto& plate = model.bodies[b.body1].plate)
         for (std::size_t i = 0; i < plate->supports.size(); ++i) {
           const PlateSupportRow& s = plate->supports[i];
