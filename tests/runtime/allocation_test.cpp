@@ -333,3 +333,26 @@ TEST(Allocation, BeamBodiesAllocateNothing) {
   std::printf("100 steps with a beam body: %ld allocations\n", allocations);
   EXPECT_EQ(allocations, 0);
 }
+
+// A plate body (FORMULATION.md 16): an edge clamped, strain-rate damping, a rigid body hung at a
+// node by a spherical joint, a point force at a node, its node outputs and energy recorded.
+TEST(Allocation, PlateBodiesAllocateNothing) {
+  const Model model = test::model_from(R"({
+  "gravity": [0, 0, -9.81],
+  "bodies": [
+    {"name": "plate", "type": "plate", "corners": [[0, 0, 0], [0.4, 0, 0], [0.4, 0.3, 0], [0, 0.3, 0]], "elements": [2, 2],
+     "thickness": 0.005, "E": 7e10, "nu": 0.33, "rho": 2700, "damping": {"strain_rate": 1e-4}, "supports": {"x0": "clamped"}},
+    {"name": "bob", "type": "rigid", "mass": 0.2, "com": [0.4, 0.15, -0.05], "inertia": [[1e-4, 0, 0], [0, 1e-4, 0], [0, 0, 1e-4]]}
+  ],
+  "joints": [{"name": "hang", "type": "spherical", "body1": "plate", "node1": "n2_1", "body2": "bob"}],
+  "forces": [{"type": "point_force", "body": "plate", "node": "n1_2", "table": {"t": [0, 1], "value": [[0, 0, 1], [0, 0, 1]]}}],
+  "solver": {"end": 0.2, "step": 1e-3},
+  "outputs": [{"name": "energy", "type": "energy"}, {"name": "tip", "type": "node_position", "body": "plate", "node": "n2_2"},
+              {"name": "v", "type": "node_velocity", "body": "plate", "node": "n1_1"}]
+})");
+  Data data(model);
+  initialize(model, data);
+  const long allocations = allocations_of_recorded_steps(model, data, 100);
+  std::printf("100 steps with a plate body: %ld allocations\n", allocations);
+  EXPECT_EQ(allocations, 0);
+}

@@ -115,6 +115,11 @@ void body_applied_forces(const Body& b, BodyData& bd, const Vector3d& g, const E
     bd.beam_C.setZero();
     ancf_beam_forces(*b.beam, y, yd, Qy, &bd.beam_K, &bd.beam_C);
   }
+  if (b.plate) {
+    bd.plate_K.setZero();
+    bd.plate_C.setZero();
+    ancf_plate_forces(*b.plate, y, yd, Qy, &bd.plate_K, &bd.plate_C);
+  }
 }
 
 void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& g, Eigen::Ref<MatrixXd> Kb,
@@ -137,6 +142,10 @@ void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& g,
   if (b.beam) {
     Kyy += bd.beam_K;
     Cb.block(12, 12, nq, nq) += bd.beam_C;
+  }
+  if (b.plate) {
+    Kyy += bd.plate_K;
+    Cb.block(12, 12, nq, nq) += bd.plate_C;
   }
 }
 

@@ -42,6 +42,7 @@ std::string worst_coordinate(const Model& model, const Data& data, double& size)
       std::string c = k < 3    ? std::string("position ") + axis[k]
                       : k < 12 ? std::string("frame vector ") + "uvw"[(k - 3) / 3] + " component " + axis[(k - 3) % 3]
                       : b.beam ? beam_coordinate_name(k - 12)
+                      : b.plate ? plate_coordinate_name(*b.plate, k - 12)
                                : "modal coordinate " + std::to_string(k - 12);
       out = "body '" + b.name + "', " + c;
     }

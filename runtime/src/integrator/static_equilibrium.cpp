@@ -55,6 +55,7 @@ std::string coordinate_name(const Model& model, const VectorXd& v) {
     const std::string what = k < 3 ? std::string("its position along ") + "xyz"[k]
                              : k < 12 ? std::string("its rotation (frame vector ") + "uvw"[(k - 3) / 3] + ")"
                              : b.beam ? "its " + beam_coordinate_name(k - 12)
+                             : b.plate ? "its " + plate_coordinate_name(*b.plate, k - 12)
                                       : "its modal coordinate " + std::to_string(k - 12);
     return "body '" + b.name + "', " + what;
   }

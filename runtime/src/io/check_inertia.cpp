@@ -37,7 +37,7 @@ void check_bodies_can_turn(const Field& root, ParseContext& ctx) {
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const Body& body = m.bodies[b];
     if (!body.flexible) continue;  // a rigid body's inertia was checked with its input
-    if (body.beam) continue;       // a beam's frame is held; its nodes carry no rotation to be singular
+    if (body.held_frame()) continue;       // a beam's frame is held; its nodes carry no rotation to be singular
     // Inertia tensor about the centre of mass from the pseudo-inertia J0 (= int c c^T dm + ...).
     const Vector3d d = body.rdm / body.mass;
     const Matrix3d IO = body.J0.trace() * Matrix3d::Identity() - body.J0;

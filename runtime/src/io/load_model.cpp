@@ -195,6 +195,7 @@ Model parse_document(const formats::JsonDocument& doc, const std::filesystem::pa
   detail::parse_forces(root, ctx);
   detail::check_bodies_can_turn(root, ctx);
   detail::check_beam_attachments(root, ctx);
+  detail::check_plate_attachments(root, ctx);
   detail::parse_motions(root, ctx);
   detail::parse_outputs(root, ctx);
   finalize(m);

@@ -35,6 +35,11 @@ Body parse_beam(const Field& b, const std::string& name, ParseContext& ctx);
 /// Refuses joints, forces and loads at a beam that read what its nodes do not carry (a rotation
 /// beyond the slope's direction) or that attach away from its nodes; runs after the forces.
 void check_beam_attachments(const Field& root, ParseContext& ctx);
+/// A plate body from its "bodies" entry (parse_plates.cpp).
+Body parse_plate(const Field& b, const std::string& name, ParseContext& ctx);
+/// Refuses joints, forces and loads at a plate that read what its nodes do not carry or that
+/// attach away from its nodes; runs after the forces.
+void check_plate_attachments(const Field& root, ParseContext& ctx);
 
 /// Body index by name (kGround for "ground"); fails naming `f` if unknown.
 int body_ref(const Field& f, const Model& m);

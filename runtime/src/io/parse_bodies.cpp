@@ -119,8 +119,10 @@ void parse_bodies(const Field& root, ParseContext& ctx) {
       ctx.model.bodies.push_back(std::move(body));
     } else if (type == "beam") {
       ctx.model.bodies.push_back(parse_beam(b, name, ctx));
+    } else if (type == "plate") {
+      ctx.model.bodies.push_back(parse_plate(b, name, ctx));
     } else {
-      b.at("type").fail("unknown body type '" + type + "' (expected rigid, flexible or beam)");
+      b.at("type").fail("unknown body type '" + type + "' (expected rigid, flexible, beam or plate)");
     }
   }
 }

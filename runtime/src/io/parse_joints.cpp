@@ -26,6 +26,8 @@ void node_offset(const Field& parent, const char* key, const Model& m, Attachmen
   if (a.node < 0) f->fail("is an offset from a node: give the node too");
   if (m.bodies[a.body].beam)
     f->fail("is not supported at a beam node: the ancf node has no rotation beyond its slope's direction to carry it");
+  if (m.bodies[a.body].plate)
+    f->fail("is not supported at a plate node: the node's rotation is its gradients' linearised turn, which an offset would read as exact");
   a.offset = f->vec3();
   // Where the node carries it in the initial configuration (its initial rotation Psi y0 too).
   const Body& b = m.bodies[a.body];

@@ -216,7 +216,7 @@ void add_constraint_hessian(const Model& model, Data& data, const VectorXd& lam,
   for (int bi = 0; bi < data.nblocks; ++bi) {
     const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
     const auto l = lam.segment(b.row0, b.rows);
-    if (b.kind == BlockKind::RigidBody && model.bodies[b.body1].beam) continue;  // linear rows
+    if (b.kind == BlockKind::RigidBody && model.bodies[b.body1].held_frame()) continue;  // linear rows
     if (b.kind == BlockKind::RigidBody) {
       const int o = model.bodies[b.body1].offset + 3;
       const double L = model.length;

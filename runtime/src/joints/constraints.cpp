@@ -29,17 +29,31 @@ struct Rows {
   int local(int row) const { return row >= first && row < first + Phi.size() ? row - first : -1; }
 };
 
+// A plate's edge supports after its twelve frame rows: scale dir . y[index..] = 0, linear
+// (FORMULATION.md 16); a gradient's row is scaled by the model length to be a length.
+void plate_support_rows(const Model& model, const Data& data, int body, const AncfPlate& plate, Rows& r) {
+  const int y0 = model.bodies[static_cast<std::size_t>(body)].offset + 12;
+  for (std::size_t i = 0; i < plate.supports.size(); ++i) {
+    const PlateSupportRow& s = plate.supports[i];
+    const double scale = s.slope ? model.length : 1.0;
+    const int row = 12 + static_cast<int>(i);
+    r.Phi(row) = scale * s.dir.dot(data.state.q.segment<3>(y0 + s.index));
+    if (r.jacobian) r.J1.block<1, 3>(row, 12 + s.index) = scale * s.dir.transpose();
+  }
+}
+
 // The six conditions on a body's frame vectors: L/2 (u.u - 1), ..., L u.v, ... (each a length).
 void rigid_body_rows(const Model& model, const Data& data, int body, Rows& r) {
   const double L = model.length;
   const BodyData& bd = data.bodies[body];
-  if (model.bodies[static_cast<std::size_t>(body)].beam) {
+  if (model.bodies[static_cast<std::size_t>(body)].held_frame()) {
     // A beam's frame is the global frame (its nodal coordinates carry every motion): r0 = 0,
     // L (A - I) = 0, twelve linear rows (FORMULATION.md 15). A beam is never driven.
     r.Phi.head<3>() = data.state.q.segment<3>(model.bodies[static_cast<std::size_t>(body)].offset);
     for (int a = 0; a < 3; ++a) r.Phi.segment<3>(3 + 3 * a) = L * (bd.A.col(a) - Matrix3d::Identity().col(a));
     r.gamma.setZero();
     r.Phit.setZero();
+    if (const auto& plate = model.bodies[static_cast<std::size_t>(body)].plate) plate_support_rows(model, data, body, *plate, r);
     if (!r.jacobian) return;
     r.J1.block<3, 3>(0, 0).diagonal().setConstant(1.0);
     for (int k = 3; k < 12; ++k) r.J1(k, k) = L;
@@ -305,11 +319,20 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
     const auto add = [&](const detail::JacobianBlock& Jb, int oa, int ob, int first, int na, int nb) {
       detail::add_weighted_product(buf, b.rows, na, Jb.data() + first * ld, ld, nb, &T(oa + first, ob + first), T.rows());
     };
-    if (b.kind == BlockKind::RigidBody && model.bodies[b.body1].beam) {
-      // A beam's held frame: its twelve frame columns.
+    if (b.kind == BlockKind::RigidBody && model.bodies[b.body1].held_frame()) {
+      // A beam's or plate's held frame: its twelve frame columns.
       const int o = model.bodies[b.body1].offset;
       weigh(J1, 0, 12);
       add(J1, o, o, 0, 12, 12);
+      // A plate's support rows, each a multiple of three of its coordinates (the products above
+      // take the block's first twelve columns, where these rows are zero).
+      if (const auto& plate = model.bodies[b.body1].plate)
+        for (std::size_t i = 0; i < plate->supports.size(); ++i) {
+          const PlateSupportRow& s = plate->supports[i];
+          const double scale = s.slope ? model.length : 1.0;
+          const int k = o + 12 + s.index;
+          T.block<3, 3>(k, k).noalias() += (w[12 + i] * scale * scale) * s.dir * s.dir.transpose();
+        }
       continue;
     }
     if (b.kind == BlockKind::RigidBody) {

@@ -34,6 +34,7 @@ Energy energy(const Model& model, Data& data) {
         e.potential += y.dot(b.prestress->f0) + 0.5 * y.dot(bdw.wq);
       }
       if (b.beam) e.potential += ancf_beam_energy(*b.beam, y);
+      if (b.plate) e.potential += ancf_plate_energy(*b.plate, y);
     }
   }
   for (const SpringDamper& s : model.springs) e.potential += detail::spring_energy(model, s, data);

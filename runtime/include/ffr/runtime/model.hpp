@@ -10,6 +10,7 @@
 // The ground has none.
 
 #include "ffr/runtime/beam.hpp"
+#include "ffr/runtime/plate.hpp"
 #include "ffr/runtime/step_policy.hpp"
 #include "ffr/runtime/table.hpp"
 
@@ -151,7 +152,12 @@ struct Body {
   std::shared_ptr<const AncfBeam> beam;
   /// The rows of its frame's constraint block: 6 (orthonormal frame vectors) or 12 (a beam's
   /// frame held at the global frame).
-  int frame_rows() const { return beam ? 12 : 6; }
+  int frame_rows() const { return beam ? 12 : plate ? 12 + static_cast<int>(plate->supports.size()) : 6; }
+  /// A plate body (plate.hpp): like a beam, its frame held at the global frame; its edge
+  /// supports are further linear rows of that block (FORMULATION.md 16).
+  std::shared_ptr<const AncfPlate> plate;
+  /// The frame is held at the global frame and the nodal coordinates carry every motion.
+  bool held_frame() const { return beam || plate; }
   std::vector<NodeSlice> nodes;
 
   // Initial state as given in the model file (global).

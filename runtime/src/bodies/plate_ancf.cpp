@@ -1,0 +1,202 @@
+// The ANCF thin plate element (FORMULATION.md section 16): its shape functions, its elastic and
+// damping forces and their exact tangents.
+#include "plate_shape.hpp"
+
+#include "ffr/runtime/plate.hpp"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+
+namespace ffr::runtime {
+namespace {
+
+using Vec15 = Eigen::Matrix<double, 15, 1>;
+using Mat15 = Eigen::Matrix<double, 15, 15>;
+using Vec48 = Eigen::Matrix<double, 48, 1>;
+using Mat48 = Eigen::Matrix<double, 48, 48>;
+using Mat15x48 = Eigen::Matrix<double, 15, 48>;
+using Mat3 = Eigen::Matrix3d;
+using Vec3 = Eigen::Vector3d;
+
+Mat3 skew(const Vec3& a) {
+  Mat3 m;
+  m << 0, -a(2), a(1), a(2), 0, -a(0), -a(1), a(0), 0;
+  return m;
+}
+
+// The energy density of one Gauss point as a function of v = (r_x, r_y, r_xx, r_yy, r_xy): its
+// value, gradient g (15) and Hessian H (15 x 15), and the Kelvin-Voigt matrix D = J^T C J of the
+// strain and curvature rates (15 x 15).
+struct Density {
+  double U = 0;
+  Vec15 g;
+  Mat15 H, D;
+};
+
+void density(const AncfPlate& p, const Vec15& v, bool hessian, bool damping, Density& d) {
+  const Vec3 a = v.segment<3>(0), b = v.segment<3>(3);
+  const double h = p.thickness;
+  const double Em = p.E / (1 - p.nu * p.nu), G = p.E / (2 * (1 + p.nu));
+  const double Db = p.E * h * h * h / (12 * (1 - p.nu * p.nu));
+  d.g.setZero();
+  if (hessian) d.H.setZero();
+  if (damping) d.D.setZero();
+
+  // Membrane: eps = (exx, eyy, gxy), C_m = h [[Em, Em nu, 0], [Em nu, Em, 0], [0, 0, G]].
+  const double exx = 0.5 * (a.squaredNorm() - 1), eyy = 0.5 * (b.squaredNorm() - 1), gxy = a.dot(b);
+  const double sxx = h * Em * (exx + p.nu * eyy), syy = h * Em * (eyy + p.nu * exx), txy = h * G * gxy;
+  d.U = 0.5 * (sxx * exx + syy * eyy + txy * gxy);
+  d.g.segment<3>(0) = sxx * a + txy * b;
+  d.g.segment<3>(3) = syy * b + txy * a;
+  if (hessian || damping) {
+    // J_eps^T C_m J_eps over (a, b): rows d exx = (a, 0), d eyy = (0, b), d gxy = (b, a).
+    Eigen::Matrix<double, 6, 6> JCJ;
+    JCJ.block<3, 3>(0, 0) = h * Em * a * a.transpose() + h * G * b * b.transpose();
+    JCJ.block<3, 3>(3, 3) = h * Em * b * b.transpose() + h * G * a * a.transpose();
+    JCJ.block<3, 3>(0, 3) = h * Em * p.nu * a * b.transpose() + h * G * b * a.transpose();
+    JCJ.block<3, 3>(3, 0) = JCJ.block<3, 3>(0, 3).transpose();
+    if (hessian) {
+      d.H.topLeftCorner<6, 6>() = JCJ;
+      d.H.block<3, 3>(0, 0).diagonal().array() += sxx;
+      d.H.block<3, 3>(3, 3).diagonal().array() += syy;
+      d.H.block<3, 3>(0, 3).diagonal().array() += txy;
+      d.H.block<3, 3>(3, 0).diagonal().array() += txy;
+    }
+    if (damping) d.D.topLeftCorner<6, 6>() = p.tau * JCJ;
+  }
+
+  // Bending: kappa_i = X_i . n, X = (r_xx, r_yy, r_xy), n = m / s, m = a x b, s = |m|;
+  // C_b = D [[1, nu, 0], [nu, 1, 0], [0, 0, 2 (1 - nu)]].
+  const Vec3 m = a.cross(b);
+  const double s = m.norm();
+  const Vec3 n = m / s;
+  const Mat3 P = Mat3::Identity() - n * n.transpose();
+  const Mat3 Ma = -skew(b), Mb = skew(a);  // dm/da, dm/db
+  Mat3 Cb;
+  Cb << 1, p.nu, 0, p.nu, 1, 0, 0, 0, 2 * (1 - p.nu);
+  Cb *= Db;
+  Vec3 kappa;
+  Eigen::Matrix<double, 3, 15> Jk = Eigen::Matrix<double, 3, 15>::Zero();  // d kappa / dv
+  Vec3 u[3];                                                                // d kappa_i / dm
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 X = v.segment<3>(6 + 3 * i);
+    kappa(i) = X.dot(n);
+    u[i] = P * X / s;
+    Jk.block<1, 3>(i, 0) = (Ma.transpose() * u[i]).transpose();
+    Jk.block<1, 3>(i, 3) = (Mb.transpose() * u[i]).transpose();
+    Jk.block<1, 3>(i, 6 + 3 * i) = n.transpose();
+  }
+  const Vec3 M = Cb * kappa;  // the bending moments per unit length
+  d.U += 0.5 * kappa.dot(M);
+  d.g.noalias() += Jk.transpose() * M;
+  if (hessian) {
+    d.H.noalias() += Jk.transpose() * Cb * Jk;
+    // M_i times the second derivative of kappa_i = X_i . n(m(a, b)).
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 X = v.segment<3>(6 + 3 * i);
+      const double xn = X.dot(n);
+      // Hessian of X . (m / |m|) in m, and of u . (a x b) in (a, b).
+      const Mat3 Hn = (-(X * n.transpose() + n * X.transpose()) - xn * Mat3::Identity() + 3 * xn * n * n.transpose()) / (s * s);
+      Eigen::Matrix<double, 15, 15> Hi = Eigen::Matrix<double, 15, 15>::Zero();
+      Hi.block<3, 3>(0, 0) = Ma.transpose() * Hn * Ma;
+      Hi.block<3, 3>(3, 3) = Mb.transpose() * Hn * Mb;
+      Hi.block<3, 3>(0, 3) = Ma.transpose() * Hn * Mb - skew(u[i]);
+      Hi.block<3, 3>(3, 0) = Hi.block<3, 3>(0, 3).transpose();
+      // The mixed terms in X_i and m: d2 (X . n) / dX dm = P / s.
+      const Mat3 Pa = P / s * Ma, Pb = P / s * Mb;
+      Hi.block<3, 3>(6 + 3 * i, 0) = Pa;
+      Hi.block<3, 3>(6 + 3 * i, 3) = Pb;
+      Hi.block<3, 3>(0, 6 + 3 * i) = Pa.transpose();
+      Hi.block<3, 3>(3, 6 + 3 * i) = Pb.transpose();
+      d.H.noalias() += M(i) * Hi;
+    }
+  }
+  if (damping) d.D.noalias() += p.tau * Jk.transpose() * Cb * Jk;
+}
+
+// The coordinates of element (ei, ej) in y: its four nodes (i, j), (i+1, j), (i, j+1),
+// (i+1, j+1), twelve each; element index 12 l + 3 t + c is global index start(l) + 3 t + c.
+void element_starts(const AncfPlate& p, int ei, int ej, int (&start)[4]) {
+  for (int l = 0; l < 4; ++l) start[l] = 12 * p.node(ei + (l & 1), ej + (l >> 1));
+}
+
+// One element: adds its forces to Qy and tangents to K, C; returns its strain energy.
+double element(const AncfPlate& p, int ei, int ej, const Eigen::Ref<const Eigen::VectorXd>& y,
+               const Eigen::Ref<const Eigen::VectorXd>& yd, Eigen::Ref<Eigen::VectorXd>* Qy, Eigen::MatrixXd* K,
+               Eigen::MatrixXd* C, bool damp) {
+  int start[4];
+  element_starts(p, ei, ej, start);
+  Vec48 qe, qde;
+  for (int l = 0; l < 4; ++l) {
+    qe.segment<12>(12 * l) = p.q0.segment<12>(start[l]) + y.segment<12>(start[l]);
+    qde.segment<12>(12 * l) = yd.segment<12>(start[l]);
+  }
+  const bool damping = damp && p.tau > 0;
+  const double lx = p.dx(), ly = p.dy();
+  Vec48 fe = Vec48::Zero();
+  Mat48 Ke, Ce;
+  if (K) Ke.setZero();
+  if (C) Ce.setZero();
+  Density d;
+  double U = 0;
+  for (int gi = 0; gi < plate_shape::kGauss; ++gi)
+    for (int gj = 0; gj < plate_shape::kGauss; ++gj) {
+      const double w = plate_shape::kW[gi] * plate_shape::kW[gj] * lx * ly;
+      const plate_shape::Shape sh = plate_shape::shape(plate_shape::kXi[gi], plate_shape::kXi[gj], lx, ly);
+      // v = B qe, B = D (x) I3, D the five derivative rows (x, y, xx, yy, xy) of the 16 shapes.
+      Mat15x48 B = Mat15x48::Zero();
+      for (int k = 0; k < 16; ++k)
+        for (int c = 0; c < 3; ++c) {
+          B(c, 3 * k + c) = sh.dx(k);
+          B(3 + c, 3 * k + c) = sh.dy(k);
+          B(6 + c, 3 * k + c) = sh.dxx(k);
+          B(9 + c, 3 * k + c) = sh.dyy(k);
+          B(12 + c, 3 * k + c) = sh.dxy(k);
+        }
+      const Vec15 v = B * qe;
+      density(p, v, K != nullptr, damping, d);
+      U += w * d.U;
+      fe.noalias() += w * (B.transpose() * d.g);
+      if (K) Ke.noalias() += w * (B.transpose() * (d.H * B));
+      if (damping) {
+        const Vec15 vd = B * qde;
+        fe.noalias() += w * (B.transpose() * (d.D * vd));
+        if (C) Ce.noalias() += w * (B.transpose() * (d.D * B));
+      }
+    }
+  if (Qy)
+    for (int l = 0; l < 4; ++l) Qy->segment<12>(start[l]) -= fe.segment<12>(12 * l);
+  for (int l = 0; l < 4; ++l)
+    for (int m = 0; m < 4; ++m) {
+      if (K) K->block<12, 12>(start[l], start[m]) += Ke.block<12, 12>(12 * l, 12 * m);
+      if (C && damping) C->block<12, 12>(start[l], start[m]) += Ce.block<12, 12>(12 * l, 12 * m);
+    }
+  return U;
+}
+
+}  // namespace
+
+double ancf_plate_forces(const AncfPlate& plate, const Eigen::Ref<const Eigen::VectorXd>& y,
+                         const Eigen::Ref<const Eigen::VectorXd>& yd, Eigen::Ref<Eigen::VectorXd> Qy, Eigen::MatrixXd* K,
+                         Eigen::MatrixXd* C) {
+  double U = 0;
+  for (int ej = 0; ej < plate.ny; ++ej)
+    for (int ei = 0; ei < plate.nx; ++ei) U += element(plate, ei, ej, y, yd, &Qy, K, C, true);
+  return U;
+}
+
+double ancf_plate_energy(const AncfPlate& plate, const Eigen::Ref<const Eigen::VectorXd>& y) {
+  double U = 0;
+  for (int ej = 0; ej < plate.ny; ++ej)
+    for (int ei = 0; ei < plate.nx; ++ei) U += element(plate, ei, ej, y, y, nullptr, nullptr, nullptr, false);
+  return U;
+}
+
+std::string plate_coordinate_name(const AncfPlate& plate, int k) {
+  const int node = k / 12, t = (k % 12) / 3;
+  const char* what[4] = {" position ", " slope r_x ", " slope r_y ", " twist r_xy "};
+  return "node n" + std::to_string(node % (plate.nx + 1)) + "_" + std::to_string(node / (plate.nx + 1)) + what[t] + "xyz"[k % 3];
+}
+
+}  // namespace ffr::runtime
