@@ -8,7 +8,7 @@
 // factorisations per step, and the speed against real time (1 ms / step time). The goal:
 // 16 elements at least 100 times faster than real time (<= 10 us per step).
 //
-// Usage: ffr-bench-beams [--elements 2,4,8,16,32] [--end 0.5]
+// Usage: ffr-bench-beams [--elements 2,4,8,16,32] [--end 0.5] [--formulation ancf|geometrically_exact]
 #include "models.hpp"
 
 #include "ffr/runtime/load.hpp"
@@ -41,15 +41,18 @@ std::string pendulum_json(const std::string& form, int elements, double end) {
 int main(int argc, char** argv) {
   std::vector<int> counts{2, 4, 8, 16, 32};
   double end = 0.5;
+  std::vector<std::string> forms{"ancf", "geometrically_exact"};
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--help")) {
-      std::printf("usage: ffr-bench-beams [--elements 2,4,8,16,32] [--end 0.5]\n");
+      std::printf("usage: ffr-bench-beams [--elements 2,4,8,16,32] [--end 0.5] [--formulation ancf|geometrically_exact]\n");
       return 0;
     }
     if (!std::strcmp(argv[i], "--elements") && i + 1 < argc) {
       counts.clear();
       std::stringstream ss(argv[++i]);
       for (std::string t; std::getline(ss, t, ',');) counts.push_back(std::atoi(t.c_str()));
+    } else if (!std::strcmp(argv[i], "--formulation") && i + 1 < argc) {
+      forms = {argv[++i]};
     } else if (!std::strcmp(argv[i], "--end") && i + 1 < argc) {
       end = std::atof(argv[++i]);
     } else {
@@ -59,7 +62,7 @@ int main(int argc, char** argv) {
   }
   std::printf("%-20s %8s %12s %10s %10s %14s\n", "formulation", "elements", "us/step", "iter/step", "fact/step",
               "x real time");
-  for (const char* form : {"ancf", "geometrically_exact"})
+  for (const std::string& form : forms)
     for (const int n : counts) {
       const Model model = parse_model(pendulum_json(form, n, end), ".", "beam_pendulum.json");
       bench::StepTiming best;
@@ -69,7 +72,7 @@ int main(int argc, char** argv) {
         const bench::StepTiming t = bench::run_timed(model, data);
         if (r == 0 || t.us_per_step < best.us_per_step) best = t;
       }
-      std::printf("%-20s %8d %12.1f %10.2f %10.2f %14.1f\n", form, n, best.us_per_step, best.iterations_per_step,
+      std::printf("%-20s %8d %12.1f %10.2f %10.2f %14.1f\n", form.c_str(), n, best.us_per_step, best.iterations_per_step,
                   best.factorizations_per_step, 1e3 / best.us_per_step);
       std::fflush(stdout);
     }
