@@ -171,6 +171,8 @@ void check_beam_attachments(const Field& root, ParseContext& ctx) {
       node_only(f, s.m2);
     } else if (type == "bushing") {
       const Bushing& s = m.bushings[ibush++];
+      for (const int mk : {s.m1, s.m2})
+        if (ge_beam_of(m, m.markers[static_cast<std::size_t>(mk)].body) >= 0) node_only(f, mk);
       if (on_beam(m, s.m1) || on_beam(m, s.m2))
         f.at("type").fail("a bushing at a beam node is not supported: the ancf node has no rotation beyond its slope's direction");
     } else if (type == "point_force" || type == "point_torque") {
