@@ -356,3 +356,30 @@ TEST(Allocation, PlateBodiesAllocateNothing) {
   std::printf("100 steps with a plate body: %ld allocations\n", allocations);
   EXPECT_EQ(allocations, 0);
 }
+
+// A geometrically exact beam (FORMULATION.md 17): pinned by a revolute joint, a rigid body fixed
+// to its end (a node that turns), strain-rate damping, a point torque at a node, outputs, energy.
+TEST(Allocation, GeometricallyExactBeamsAllocateNothing) {
+  const Model model = test::model_from(R"({
+  "gravity": [0, 0, -9.81],
+  "bodies": [
+    {"name": "beam", "type": "beam", "formulation": "geometrically_exact", "start": [0, 0, 0], "end": [1, 0, 0], "elements": 6,
+     "E": 2.1e9, "nu": 0.3, "rho": 7850, "section": {"A": 1e-4, "Iy": 8.3e-10, "Iz": 8.3e-10, "J": 1.4e-9},
+     "damping": {"strain_rate": 1e-4}},
+    {"name": "bob", "type": "rigid", "mass": 0.2, "com": [1.05, 0, 0], "inertia": [[1e-4, 0, 0], [0, 1e-4, 0], [0, 0, 1e-4]]}
+  ],
+  "joints": [
+    {"name": "pin", "type": "revolute", "body1": "ground", "body2": "beam", "node2": "start", "axis": [0, 1, 0]},
+    {"name": "weld", "type": "fixed", "body1": "beam", "node1": "end", "body2": "bob"}
+  ],
+  "forces": [{"type": "point_torque", "body": "beam", "node": "n3", "table": {"t": [0, 1], "value": [[0.01, 0, 0], [0.01, 0, 0]]}}],
+  "solver": {"end": 0.2, "step": 1e-3},
+  "outputs": [{"name": "energy", "type": "energy"}, {"name": "tip", "type": "node_position", "body": "beam", "node": "end"},
+              {"name": "v", "type": "node_velocity", "body": "beam", "node": "n3"}]
+})");
+  Data data(model);
+  initialize(model, data);
+  const long allocations = allocations_of_recorded_steps(model, data, 100);
+  std::printf("100 steps with a geometrically exact beam: %ld allocations\n", allocations);
+  EXPECT_EQ(allocations, 0);
+}

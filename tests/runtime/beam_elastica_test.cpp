@@ -40,9 +40,25 @@ std::string num(double v) {
   return b;
 }
 
+// The beam formulations the tests below run with (FORMULATION.md 15 and 16).
+const char* const kFormulations[] = {"ancf", "geometrically_exact"};
+
+// A beam entry's formulation: the geometrically exact beam also reads nu and the torsion constant
+// (a square's, 0.1406 a^4: Roark), which the ancf beam refuses.
+std::string with_formulation(std::string json, const std::string& form) {
+  if (form == "ancf") return json;
+  const std::string f = "\"formulation\": \"ancf\"";
+  for (auto at = json.find(f); at != std::string::npos; at = json.find(f))
+    json.replace(at, f.size(), "\"formulation\": \"" + form + "\", \"nu\": 0.3");
+  const std::string iz = "\"Iz\": 8.333333333333334e-10}";
+  for (auto at = json.find(iz); at != std::string::npos; at = json.find(iz, at + 1))
+    json.replace(at, iz.size(), "\"Iz\": 8.333333333333334e-10, \"J\": 1.406e-9}");
+  return json;
+}
+
 // A 1 m steel cantilever of 10 x 10 mm along x, clamped at its start, a dead load -P z at its end.
-std::string cantilever_json(double P, int elements, const std::string& solver) {
-  return R"({
+std::string cantilever_json(double P, int elements, const std::string& solver, const std::string& form = "ancf") {
+  return with_formulation(R"({
     "bodies": [{"name": "beam", "type": "beam", "formulation": "ancf", "start": [0, 0, 0], "end": [1, 0, 0],
                 "elements": )" + std::to_string(elements) + R"(, "E": 2.1e11, "rho": 7850,
                 "section": {"A": 1e-4, "Iy": 8.333333333333334e-10, "Iz": 8.333333333333334e-10}}],
@@ -54,7 +70,7 @@ std::string cantilever_json(double P, int elements, const std::string& solver) {
                 {"name": "mid", "type": "node_position", "body": "beam", "node": "n8"},
                 {"name": "e", "type": "energy"}, {"name": "R", "type": "joint_reaction", "joint": "clamp"},
                 {"name": "vtip", "type": "node_velocity", "body": "beam", "node": "end"}]
-  })";
+  })", form);
 }
 
 using test::output;
@@ -106,12 +122,16 @@ TEST(BeamElastica, OracleReproducesBisshoppDruckerTable) {
   }
 }
 
-// The cantilever solved statically (16 elements) against the table: within 0.5 % of each ratio.
+// The cantilever solved statically (16 elements, each formulation) against the table: within
+// 0.5 % of each ratio.
 TEST(BeamElastica, CantileverTipMatchesElasticaWith16Elements) {
   const double k[3] = {1, 2, 5}, u[3] = {0.05643, 0.16064, 0.38763}, w[3] = {0.30172, 0.49346, 0.71379};
+  for (const std::string form : kFormulations)
   for (int i = 0; i < 3; ++i) {
+    SCOPED_TRACE(form);
+    std::printf("%s:\n", form.c_str());
     const double P = k[i] * kEI / (kL * kL);
-    const Model model = test::model_from(cantilever_json(P, 16, R"({"analysis": "static"})"));
+    const Model model = test::model_from(cantilever_json(P, 16, R"({"analysis": "static"})", form));
     Data data(model);
     for (const auto& n : initialize(model, data)) std::printf("note: %s\n", n.c_str());
     const auto tip = output(model, data, "tip");
@@ -208,7 +228,8 @@ TEST(BeamElastica, BadInputIsRefusedNamingTheField) {
   test::expect_error(with("\"end\": [1, 0, 0]", "\"end\": [0, 0, 0]"), "bodies[0].end", "zero length");
   test::expect_error(with("\"node\": \"end\"", "\"node\": \"n5\""), "node", "has no node 'n5'");
   test::expect_error(with("\"node2\": \"start\"", "\"node2\": \"n-1\""), "node2", "has no node 'n-1'");
-  test::expect_error(with("\"formulation\": \"ancf\"", "\"formulation\": \"geometrically_exact\""), "formulation", "not available");
+  // The geometrically exact beam reads what the ancf beam refuses (beam_ge_test.cpp).
+  test::expect_error(with("\"formulation\": \"ancf\"", "\"formulation\": \"geometrically_exact\""), "bodies[0].nu", "missing");
   test::expect_error(with("\"Iz\": 8.333333333333334e-10", "\"Iz\": 1e-9"), "Iz", "must equal Iy");
   test::expect_error(with("\"rho\": 7850", "\"rho\": 7850, \"nu\": 0.3"), "nu", "not used");
   test::expect_error(with("\"type\": \"fixed\"", "\"type\": \"revolute\", \"axis\": [0, 1, 0]"), "type", "not supported");
@@ -261,8 +282,11 @@ TEST(BeamElastica, ReleasedCantileverVibratesAtEulerBernoulliFrequency) {
 // gravity, swings down through large rotations; the energy (kinetic + gravity + strain) stays
 // within the trapezoidal rule's O(h^2), and halving the step shrinks its drift about fourfold.
 TEST(BeamElastica, FlexiblePendulumKeepsItsEnergy) {
+  for (const std::string form : kFormulations) {
+  SCOPED_TRACE(form);
+  std::printf("%s:\n", form.c_str());
   const auto run = [&](double h) {
-    std::string json = cantilever_json(0, 8, R"({"end": 0.3, "step": )" + num(h) + "}");
+    std::string json = cantilever_json(0, 8, R"({"end": 0.3, "step": )" + num(h) + "}", form);
     json.replace(json.find("\"type\": \"fixed\""), 15, "\"type\": \"spherical\"");
     json.replace(json.find("\"bodies\""), 8, "\"gravity\": [0, 0, -9.81], \"bodies\"");
     // A softer beam (E 2.1e9): it bends visibly while it swings.
@@ -297,6 +321,7 @@ TEST(BeamElastica, FlexiblePendulumKeepsItsEnergy) {
   const double d1 = run(1e-3), d2 = run(5e-4);
   EXPECT_LT(d1, 1e-2 * kRho * kA * kL * 9.81 * 0.5);
   EXPECT_LT(d2, 0.4 * d1);
+  }
 }
 
 // A rigid body hung on the beam's end by a spherical joint (through the constraint machinery)
@@ -304,9 +329,11 @@ TEST(BeamElastica, FlexiblePendulumKeepsItsEnergy) {
 // (statics of a pin: no moment passes). A torsion spring about z (a bushing, unloaded at the
 // equilibrium) holds the bob's free spin about the vertical, which no other stiffness holds.
 TEST(BeamElastica, RigidBodyHungByASphericalJointLoadsTheTipWithItsWeight) {
+  for (const std::string form : kFormulations) {
+  SCOPED_TRACE(form);
   const double m = 0.5, g = 9.81;
-  const std::string beam = R"({"name": "beam", "type": "beam", "formulation": "ancf", "start": [0, 0, 0], "end": [1, 0, 0],
-                "elements": 16, "E": 2.1e11, "rho": 7850, "section": {"A": 1e-4, "Iy": 8.333333333333334e-10, "Iz": 8.333333333333334e-10}})";
+  const std::string beam = with_formulation(R"({"name": "beam", "type": "beam", "formulation": "ancf", "start": [0, 0, 0], "end": [1, 0, 0],
+                "elements": 16, "E": 2.1e11, "rho": 7850, "section": {"A": 1e-4, "Iy": 8.333333333333334e-10, "Iz": 8.333333333333334e-10}})", form);
   const std::string tail = R"(, "solver": {"analysis": "static"},
     "outputs": [{"name": "tip", "type": "node_position", "body": "beam", "node": "end"}]})";
   const Model hung = test::model_from(R"({"gravity": [0, 0, -9.81], "bodies": [)" + beam + R"(,
@@ -328,16 +355,19 @@ TEST(BeamElastica, RigidBodyHungByASphericalJointLoadsTheTipWithItsWeight) {
   EXPECT_GT(std::abs(tl[2]), 1e-3);
   EXPECT_NEAR(th[0], tl[0], 1e-9);
   EXPECT_NEAR(th[2], tl[2], 1e-9 * std::abs(tl[2]) + 1e-12);
+  }
 }
 
-// Euler buckling of a pinned column (16 elements), pinned at its start and, at its end, to a
+// Euler buckling of a pinned column (16 elements, each formulation), pinned at its start and, at its end, to a
 // slider on the axis that the axial load pushes: the straight column is a stable equilibrium
 // below Euler's load P_cr = pi^2 EI / L^2 and is refused as unstable above it (the static
 // analysis's stability check on the reduced stiffness, FORMULATION.md 14).
 TEST(BeamElastica, PinnedColumnBucklesAtEulersLoad) {
   const double Pcr = M_PI * M_PI * kEI / (kL * kL);
+  for (const std::string form : kFormulations) {
+  SCOPED_TRACE(form);
   const auto column = [&](double P) {
-    return R"({"bodies": [{"name": "beam", "type": "beam", "formulation": "ancf", "start": [0, 0, 0], "end": [1, 0, 0],
+    return with_formulation(R"({"bodies": [{"name": "beam", "type": "beam", "formulation": "ancf", "start": [0, 0, 0], "end": [1, 0, 0],
                 "elements": 16, "E": 2.1e11, "rho": 7850, "section": {"A": 1e-4, "Iy": 8.333333333333334e-10, "Iz": 8.333333333333334e-10}},
       {"name": "slider", "type": "rigid", "mass": 0.1, "com": [1, 0, 0], "inertia": [[1e-5, 0, 0], [0, 1e-5, 0], [0, 0, 1e-5]]}],
     "joints": [{"name": "pin0", "type": "spherical", "body1": "ground", "body2": "beam", "node2": "start"},
@@ -346,7 +376,7 @@ TEST(BeamElastica, PinnedColumnBucklesAtEulersLoad) {
     "forces": [{"name": "P", "type": "point_force", "body": "slider",
                 "table": {"t": [0, 1], "value": [[)" + num(-P) + ", 0, 0], [" + num(-P) + R"(, 0, 0]]}}],
     "solver": {"analysis": "static"},
-    "outputs": [{"name": "tip", "type": "node_position", "body": "beam", "node": "end"}]})";
+    "outputs": [{"name": "tip", "type": "node_position", "body": "beam", "node": "end"}]})", form);
   };
   for (const double f : {0.98, 1.02}) {
     const Model model = test::model_from(column(f * Pcr));
@@ -362,15 +392,18 @@ TEST(BeamElastica, PinnedColumnBucklesAtEulersLoad) {
       EXPECT_EQ(refusal, "");
       // Straight, shortened to the stretch lambda of the element's Green strain under the load:
       // EA (lambda^2 - 1) lambda / 2 = -P (Newton on the cubic).
+      // The geometrically exact beam's axial strain is the stretch less one: EA (lambda - 1) = -P.
       double lambda = 1;
       for (int it = 0; it < 50; ++it)
         lambda -= (kE * kA * (lambda * lambda - 1) * lambda / 2 + f * Pcr) / (kE * kA * (3 * lambda * lambda - 1) / 2);
+      if (form == "geometrically_exact") lambda = 1 - f * Pcr / (kE * kA);
       const double tip = output(model, data, "tip")[0];
       std::printf("  tip x %.15f, lambda L %.15f\n", tip, lambda * kL);
       EXPECT_NEAR(tip, lambda * kL, 1e-6 * (1 - lambda) * kL);
     } else {
       EXPECT_NE(refusal.find("unstable"), std::string::npos) << refusal;
     }
+  }
   }
 }
 

@@ -30,7 +30,9 @@ Eigen::Matrix<double, 9, 9> gbar_transpose_derivative(const Vector3d& s) {
 
 void body_inertia_forces(const Body& b, const BodyData& bd, const Eigen::Ref<const VectorXd>& zd,
                          Eigen::Ref<VectorXd> Qb) {
-  if (b.nq == 0) return;
+  // A beam's frame is held at the global frame by linear rows (FORMULATION.md 15): A_dot = 0
+  // to the constraint tolerance, so every term here (each a product with A_dot) vanishes.
+  if (b.nq == 0 || b.beam) return;
   const int nq = b.nq;
   const auto yd = zd.tail(nq);
   const Vector3d vy = b.Pdm * yd;
@@ -50,7 +52,9 @@ void body_inertia_forces(const Body& b, const BodyData& bd, const Eigen::Ref<con
 
 void body_inertia_tangents(const Body& b, const BodyData& bd, const Eigen::Ref<const VectorXd>& zd,
                            Eigen::Ref<MatrixXd> Kb, Eigen::Ref<MatrixXd> Cb) {
-  if (b.nq == 0) return;
+  // A beam's held frame: no inertia forces (above); their derivatives in the frame's rates only
+  // couple rates the linear rows hold at zero (Newton's matrix, not the solution).
+  if (b.nq == 0 || b.beam) return;
   const int nq = b.nq;
   const auto yd = zd.tail(nq);
   const Matrix3d I = Matrix3d::Identity();

@@ -31,7 +31,8 @@ void body_rates(const Body& b, const Data& data, BodyData& bd) {
   const int o = b.offset;
   for (int a = 0; a < 3; ++a) bd.Ad.col(a) = data.state.qd.segment<3>(o + 3 + 3 * a);
   bd.omega = body_omega(bd.A, bd.Ad);
-  if (b.nq == 0) return;
+  // PPdm y_dot feeds only the inertia forces, which a beam's held frame does not have.
+  if (b.nq == 0 || b.beam) return;
   // One product with the stacked matrices instead of nine small ones, whose calls cost more
   // than their multiply-adds (through the vectorised kernel of the step's products).
   const Eigen::Index n9 = 9 * b.nq;

@@ -54,7 +54,8 @@ void mass_times(const Model& model, const Data& data, const VectorXd& x, VectorX
 void add_modal_acceleration_tangent(const Model& model, const Data& data, double scale, MatrixXd& T) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
-    if (b.nq == 0 || !data.integrated[i]) continue;
+    // A beam's held frame has no acceleration (Om = 0: FORMULATION.md 15).
+    if (b.nq == 0 || b.beam || !data.integrated[i]) continue;
     const BodyData& bd = data.bodies[i];
     const Matrix3d Om = bd.A.transpose() * bd.Add;  // Om(c, a) = A_c . A_dd_a, the weight of PPdm[c][a]
     auto Tyy = T.block(b.offset + 12, b.offset + 12, b.nq, b.nq);

@@ -34,6 +34,7 @@ void generalized_forces(const Model& model, Data& data, double t) {
   }
   detail::point_loads(model, data, t, true, false);
   detail::external_loads(model, data, true, false);
+  for (const GeBeam& gb : model.ge_beams) ge_beam_forces(model, gb, data, true, false);
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     if (!data.integrated[i]) continue;
     const Body& b = model.bodies[i];
@@ -69,6 +70,7 @@ void force_tangents(const Model& model, Data& data, double t) {
   for (const Tire& ty : model.tires) detail::tire_tangents(model, ty, data);
   detail::point_loads(model, data, t, false, true);
   detail::external_loads(model, data, false, true);
+  for (const GeBeam& gb : model.ge_beams) ge_beam_forces(model, gb, data, false, true);
 }
 
 }  // namespace ffr::runtime

@@ -33,6 +33,8 @@ namespace ffr::runtime {
 namespace {
 
 constexpr int kMaxIterations = 100;
+// Newton iterations of one load step (load stepping, settle_statically).
+constexpr int kStepIterations = 30;
 // Largest Newton correction taken at once, in model lengths (scaled_norm): far from the
 // equilibrium the linearisation of the frame vectors' constraints is poor.
 constexpr double kMaxCorrection = 0.2;
@@ -199,9 +201,10 @@ void check_stability(const Model& model, const Reduced& r, double t) {
                     "it dynamically with damping");
 }
 
-}  // namespace
-
-std::vector<std::string> settle_statically(const Model& model, Data& data) {
+// Newton from the current state at the model's full loads; `unconverged` is set when it throws
+// because Newton did not converge (rather than for a refusal that load stepping cannot cure).
+std::vector<std::string> settle_at(const Model& model, Data& data, bool& unconverged, int max_iterations = kMaxIterations) {
+  unconverged = false;
   const double t = data.state.t;
   const int n = model.ncoord, m = model.nconstraints;
   set_unknowns(model, data, false);  // every body an unknown, every row active
@@ -219,7 +222,7 @@ std::vector<std::string> settle_statically(const Model& model, Data& data) {
   double inc = 0, viol = 0;
   int it = 0, driven = 0;
   bool converged = false;
-  for (it = 1; it <= kMaxIterations; ++it) {
+  for (it = 1; it <= max_iterations; ++it) {
     evaluate(model, data, t);
     viol = m ? data.Phi.cwiseAbs().maxCoeff() / model.length : 0.0;
     static_tangent(model, data, t, T);
@@ -277,8 +280,9 @@ std::vector<std::string> settle_statically(const Model& model, Data& data) {
   if (!converged) {
     // The last corrections mostly along a neutral motion: the loads drive it.
     if (scaled_norm(model, neutral) > 0.5 * inc) refuse_driven_neutral(model, t, neutral, inc);
+    unconverged = true;
     throw SolverError(t, inc,
-                      "static equilibrium at t = " + fmt(t) + " s: Newton did not converge in " + std::to_string(kMaxIterations) +
+                      "static equilibrium at t = " + fmt(t) + " s: Newton did not converge in " + std::to_string(max_iterations) +
                           " iterations (last correction " + fmt(inc) + " of the model length, largest in " +
                           coordinate_name(model, x.head(n)) + "; constraint violation " + fmt(viol) +
                           "): the model may have no equilibrium near its initial configuration (a body free to move under "
@@ -299,6 +303,61 @@ std::vector<std::string> settle_statically(const Model& model, Data& data) {
     notes.push_back("static equilibrium: " + std::to_string(red.Z.cols()) +
                     " neutral motion(s) meet no stiffness and no force (left where the start put them; any position along them "
                     "is an equilibrium): " + neutral_names(model, red));
+  return notes;
+}
+
+// The model with its applied loads (gravity and the point loads' tables) scaled by f.
+void scale_loads(const Model& full, double f, Model& scaled) {
+  scaled.gravity = f * full.gravity;
+  for (std::size_t i = 0; i < full.loads.size(); ++i) {
+    const Table& tb = full.loads[i].table;
+    scaled.loads[i].table = Table(tb.times(), f * tb.values(), tb.kind());
+  }
+}
+
+}  // namespace
+
+// Where Newton from the start does not converge at the full loads (a strongly nonlinear
+// equilibrium: a cantilever rolled up by its end moment), the loads are stepped from zero, each
+// equilibrium starting the next; a step that fails is halved (FORMULATION.md 14, load stepping).
+std::vector<std::string> settle_statically(const Model& model, Data& data) {
+  const VectorXd q0 = data.state.q, lambda0 = data.state.lambda;
+  bool unconverged = false;
+  try {
+    return settle_at(model, data, unconverged);
+  } catch (const SolverError&) {
+    if (!unconverged || (model.loads.empty() && model.gravity.isZero())) throw;
+  }
+  Model scaled = model;  // set-up only: the step never comes here
+  double done = 0, step = 0.125;
+  int steps = 0;
+  std::vector<std::string> notes;
+  data.state.q = q0;
+  data.state.lambda = lambda0;
+  while (done < 1) {
+    const double f = std::min(1.0, done + step);
+    const VectorXd q = data.state.q, lambda = data.state.lambda;
+    bool failed = false;
+    try {
+      scale_loads(model, f, scaled);
+      // A load step that Newton does not settle quickly is halved rather than iterated on.
+      notes = f < 1 ? settle_at(scaled, data, unconverged, kStepIterations) : settle_at(model, data, unconverged, kStepIterations);
+    } catch (const SolverError&) {
+      if (!unconverged || step < 1.0 / 1024) throw;
+      failed = true;
+    }
+    if (failed) {
+      data.state.q = q;
+      data.state.lambda = lambda;
+      step *= 0.5;
+      continue;
+    }
+    done = f;
+    ++steps;
+    step *= 1.5;
+  }
+  notes.push_back("static equilibrium: Newton from the start did not converge at the full loads; reached by " +
+                  std::to_string(steps) + " load steps from zero");
   return notes;
 }
 

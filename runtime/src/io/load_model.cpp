@@ -12,9 +12,13 @@ namespace detail {
 int body_ref(const Field& f, const Model& m) {
   const std::string n = f.string();
   const int b = m.find_body(n);
+  // A geometrically exact beam is named by its first node's body; its nodes pick the others (node_ref).
+  for (const GeBeam& g : m.ge_beams)
+    if (g.name == n) return g.node_bodies.front();
   if (b == -2) {
     std::string known = "ground";
     for (const auto& body : m.bodies) known += ", " + body.name;
+    for (const GeBeam& g : m.ge_beams) known += ", " + g.name;
     f.fail("unknown body '" + n + "' (bodies: " + known + ")");
   }
   return b;

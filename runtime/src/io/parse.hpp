@@ -30,8 +30,9 @@ void parse_solver(const Field& root, ParseContext& ctx);
 /// Refuses a flexible body with no inertia about an axis whose rotation no joint holds
 /// (check_inertia.cpp); runs after the joints and forces are parsed.
 void check_bodies_can_turn(const Field& root, ParseContext& ctx);
-/// A beam body from its "bodies" entry (parse_beams.cpp).
-Body parse_beam(const Field& b, const std::string& name, ParseContext& ctx);
+/// A beam from its "bodies" entry (parse_beams.cpp): an ancf beam's one body, or a geometrically
+/// exact beam's node bodies (and its Model::ge_beams entry), appended to the model's bodies.
+void parse_beam(const Field& b, const std::string& name, ParseContext& ctx);
 /// Refuses joints, forces and loads at a beam that read what its nodes do not carry (a rotation
 /// beyond the slope's direction) or that attach away from its nodes; runs after the forces.
 void check_beam_attachments(const Field& root, ParseContext& ctx);
@@ -66,7 +67,13 @@ struct Attachment {
 /// The offset key (offset1/offset2) of a side with a node: its value, the node's position moved by it.
 void node_offset(const Field& parent, const char* key, const Model& m, Attachment& a);
 /// Node index of body by the name in field f (fails if the body is rigid or has no such node).
-int node_ref(const Field& f, const Model& m, int body);
+/// A geometrically exact beam's node is a body of its own: `body` becomes that node's body.
+int node_ref(const Field& f, const Model& m, int& body);
+/// The index into Model::ge_beams of the beam whose node `body` is (-1: none).
+int ge_beam_of(const Model& m, int body);
+/// Node `f` (n0 .. nN, start, end) of geometrically exact beam g: sets `body` to its node body
+/// and returns its one node slice (0).
+int ge_beam_node(const Field& f, const Model& m, int g, int& body);
 /// Global initial position of a node.
 Vector3d node_position(const Model& m, int body, int node);
 /// The common point of a two-body connection (joint or bushing) from at / node1 / node2.

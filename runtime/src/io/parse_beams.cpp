@@ -7,12 +7,85 @@
 
 namespace ffr::runtime::detail {
 
-Body parse_beam(const Field& b, const std::string& name, ParseContext& ctx) {
+namespace {
+
+// A geometrically exact beam (FORMULATION.md 17): its node bodies and its element data.
+void parse_ge_beam(const Field& b, const std::string& name, ParseContext& ctx) {
+  const double E = b.at("E").positive();
+  const Field nuf = b.at("nu");
+  const double nu = nuf.number();
+  if (!(nu > -1 && nu < 0.5)) nuf.fail("must lie in (-1, 0.5) (found " + std::to_string(nu) + ")");
+  const double rho = b.at("rho").positive();
+  const Field sec = b.at("section");
+  sec.allow_only({"A", "Iy", "Iz", "J", "shear_factor"});
+  const double A = sec.at("A").positive();
+  const double Iy = sec.at("Iy").positive();
+  const double Iz = sec.at("Iz").positive();
+  const double J = sec.at("J").positive();
+  // Shear correction: 5/6, a rectangle's (Reissner), unless the section says otherwise.
+  const double kappa = sec.has("shear_factor") ? sec.at("shear_factor").positive() : 5.0 / 6.0;
+  if (kappa > 1) sec.at("shear_factor").fail("must not exceed 1 (found " + std::to_string(kappa) + ")");
+  const int elements = b.at("elements").small_integer();
+  const Vector3d start = b.at("start").vec3(), end = b.at("end").vec3();
+  Vector3d y_axis;
+  if (auto f = b.find("y_axis")) {
+    y_axis = f->vec3();
+  } else {
+    // Without a y_axis the section's orientation must not matter.
+    if (std::abs(Iy - Iz) > 1e-9 * std::max(Iy, Iz))
+      b.fail("needs \"y_axis\" (the section's local y direction): Iy and Iz differ");
+    const Vector3d t = end - start;
+    y_axis = triad(t.norm() > 0 ? Vector3d(t.normalized()) : Vector3d::UnitX()).col(1);
+  }
+  double tau = 0;
+  if (auto d = b.find("damping")) {
+    d->allow_only({"strain_rate"});
+    tau = d->at("strain_rate").non_negative();
+  }
+  Model& m = ctx.model;
+  std::vector<Body> nodes;
+  GeBeam beam = make_ge_beam(nodes, name, start, end, y_axis, elements, E, E / (2 * (1 + nu)), rho, A, Iy, Iz, J, kappa,
+                             tau, ctx.file, b.path());
+  for (Body& n : nodes) {
+    if (m.find_body(n.name) != -2) b.at("name").fail("its node body '" + n.name + "' clashes with a body of that name");
+    n.source = "beam '" + name + "' node";
+    beam.node_bodies.push_back(static_cast<int>(m.bodies.size()));
+    m.bodies.push_back(std::move(n));
+  }
+  m.ge_beams.push_back(std::move(beam));
+}
+
+}  // namespace
+
+int ge_beam_of(const Model& m, int body) {
+  if (body < 0) return -1;
+  for (std::size_t g = 0; g < m.ge_beams.size(); ++g)
+    for (const int nb : m.ge_beams[g].node_bodies)
+      if (nb == body) return static_cast<int>(g);
+  return -1;
+}
+
+int ge_beam_node(const Field& f, const Model& m, int g, int& body) {
+  const GeBeam& beam = m.ge_beams[static_cast<std::size_t>(g)];
+  const std::string n = f.string();
+  int k = -1;
+  if (n == "start") k = 0;
+  if (n == "end") k = beam.elements;
+  for (int i = 0; i <= beam.elements && k < 0; ++i)
+    if (n == "n" + std::to_string(i)) k = i;
+  if (k < 0)
+    f.fail("body '" + beam.name + "' has no node '" + n + "' (nodes: n0 ... n" + std::to_string(beam.elements) +
+           ", start, end)");
+  body = beam.node_bodies[static_cast<std::size_t>(k)];
+  return 0;
+}
+
+void parse_beam(const Field& b, const std::string& name, ParseContext& ctx) {
   b.allow_only({"name", "type", "formulation", "start", "end", "elements", "E", "nu", "rho", "section", "y_axis", "damping"});
   const Field form = b.at("formulation");
-  if (form.string() == "geometrically_exact")
-    form.fail("the geometrically exact (Simo-Reissner) beam is not available yet; use \"ancf\"");
-  if (form.string() != "ancf") form.fail("unknown beam formulation '" + form.string() + "' (expected ancf)");
+  if (form.string() == "geometrically_exact") return parse_ge_beam(b, name, ctx);
+  if (form.string() != "ancf")
+    form.fail("unknown beam formulation '" + form.string() + "' (expected ancf or geometrically_exact)");
   // The gradient-deficient element has one bending stiffness, no torsion and no shear: what
   // would be ignored is refused rather than dropped (FORMULATION.md 15, limitations).
   if (auto f = b.find("nu")) f->fail("is not used by the ancf beam (no shear or torsion); remove it");
@@ -37,7 +110,7 @@ Body parse_beam(const Field& b, const std::string& name, ParseContext& ctx) {
   }
   Body body = make_beam_body(name, b.at("start").vec3(), b.at("end").vec3(), elements, E, rho, A, Iy, tau, ctx.file, b.path());
   body.source = "beam";
-  return body;
+  ctx.model.bodies.push_back(std::move(body));
 }
 
 namespace {
@@ -58,6 +131,10 @@ void check_beam_attachments(const Field& root, ParseContext& ctx) {
     if (on_beam(m, marker) && mk.node < 0)
       where.fail("attaches to beam '" + m.bodies[static_cast<std::size_t>(mk.body)].name +
                  "' away from its nodes: give node1/node2 (n0 ... nN, start, end)");
+    // A geometrically exact beam named without a node resolves to its first node's body.
+    if (const int g = ge_beam_of(m, mk.body); g >= 0 && mk.node < 0)
+      where.fail("attaches to beam '" + m.ge_beams[static_cast<std::size_t>(g)].name +
+                 "' without a node: give node1/node2 (n0 ... nN, start, end)");
   };
   // The joints list also holds couplers, which are not in Model::joints: entries are matched in order.
   const std::size_t njson = root.has("joints") ? root.at("joints").size() : 0;
@@ -94,6 +171,8 @@ void check_beam_attachments(const Field& root, ParseContext& ctx) {
       node_only(f, s.m2);
     } else if (type == "bushing") {
       const Bushing& s = m.bushings[ibush++];
+      for (const int mk : {s.m1, s.m2})
+        if (ge_beam_of(m, m.markers[static_cast<std::size_t>(mk)].body) >= 0) node_only(f, mk);
       if (on_beam(m, s.m1) || on_beam(m, s.m2))
         f.at("type").fail("a bushing at a beam node is not supported: the ancf node has no rotation beyond its slope's direction");
     } else if (type == "point_force" || type == "point_torque") {

@@ -118,7 +118,7 @@ void parse_bodies(const Field& root, ParseContext& ctx) {
       if (auto f = b.find("modal_velocities")) body.yd0 = f->vector(body.nq);
       ctx.model.bodies.push_back(std::move(body));
     } else if (type == "beam") {
-      ctx.model.bodies.push_back(parse_beam(b, name, ctx));
+      parse_beam(b, name, ctx);
     } else if (type == "plate") {
       ctx.model.bodies.push_back(parse_plate(b, name, ctx));
     } else {

@@ -6,9 +6,10 @@
 
 namespace ffr::runtime::detail {
 
-int node_ref(const Field& f, const Model& m, int body) {
+int node_ref(const Field& f, const Model& m, int& body) {
   const std::string n = f.string();
   if (body == kGround) f.fail("the ground has no nodes");
+  if (const int g = ge_beam_of(m, body); g >= 0) return ge_beam_node(f, m, g, body);
   const Body& b = m.bodies[body];
   if (!b.flexible) f.fail("body '" + b.name + "' is rigid and has no nodes (use \"at\")");
   const int k = b.find_node(n);

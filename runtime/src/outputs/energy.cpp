@@ -37,6 +37,7 @@ Energy energy(const Model& model, Data& data) {
       if (b.plate) e.potential += ancf_plate_energy(*b.plate, y);
     }
   }
+  for (const GeBeam& gb : model.ge_beams) e.potential += ge_beam_energy(model, gb, data);
   for (const SpringDamper& s : model.springs) e.potential += detail::spring_energy(model, s, data);
   for (const Bushing& bu : model.bushings) e.potential += detail::bushing_energy(model, bu, data);
   for (const Tire& ty : model.tires) e.potential += detail::tire_energy(model, ty, data);

@@ -13,10 +13,13 @@
 #include <Eigen/Core>
 
 #include <string>
+#include <vector>
 
 namespace ffr::runtime {
 
 struct Body;
+struct Model;
+struct Data;
 
 /// The element data of one beam (constant).
 struct AncfBeam {
@@ -57,5 +60,54 @@ inline int beam_node_index(const AncfBeam& beam, int slice) {
 
 /// The strain energy alone.
 double ancf_beam_energy(const AncfBeam& beam, const Eigen::Ref<const Eigen::VectorXd>& y);
+
+// The geometrically exact (Simo-Reissner) beam in directors (FORMULATION.md section 16). Each
+// node carries its position r and three orthonormal directors d1, d2, d3 (d3 the section's
+// normal, d1 and d2 its principal axes), exactly the natural coordinates [r0, u, v, w] of a rigid
+// body: a node is a rigid body (its lumped mass and section rotary inertia) whose frame-vector
+// constraints are the directors' orthonormality, and the elements are force elements between
+// consecutive nodes. Rotations are never parametrised (rotationless, after Betsch & Steinmann).
+
+/// One geometrically exact beam (constant): its node bodies and its elements' stiffness.
+struct GeBeam {
+  std::string name;
+  int elements = 0;
+  double length = 0;                        ///< whole beam [m]
+  std::vector<int> node_bodies;             ///< Model::bodies index of node k (elements + 1)
+  Eigen::Vector3d CG = Eigen::Vector3d::Zero();  ///< k G A, k G A, E A (shear 1, shear 2, axial)
+  Eigen::Vector3d CK = Eigen::Vector3d::Zero();  ///< E I1, E I2, G J (bending about d1, d2; torsion)
+  double tau = 0;                           ///< strain-rate (Kelvin-Voigt) damping time [s]
+  /// Each element's strains in the reference configuration (stress-free there), [6, elements]:
+  /// Gamma_1..3, K_1..3.
+  Eigen::Matrix<double, 6, Eigen::Dynamic> strain0;
+  double element_length() const { return length / elements; }
+};
+
+/// One element of a geometrically exact beam between nodes a and b, its coordinates q = [r_a,
+/// d1_a, d2_a, d3_a, r_b, d1_b, d2_b, d3_b] and rates qd: adds its elastic and damping forces'
+/// negative (the energy's gradient plus the damping force) to f; with K, C (may be null) adds
+/// their tangents; returns its strain energy. Allocation-free.
+double ge_beam_element(const GeBeam& beam, int element, const Eigen::Matrix<double, 24, 1>& q,
+                       const Eigen::Matrix<double, 24, 1>& qd, Eigen::Matrix<double, 24, 1>& f,
+                       Eigen::Matrix<double, 24, 24>* K, Eigen::Matrix<double, 24, 24>* C);
+
+/// All elements of a beam: with add_q their forces into data.Q, with tangents their -dQ/dq,
+/// -dQ/dqd into data.K, data.C (the node bodies' frame columns). Allocation-free.
+void ge_beam_forces(const Model& model, const GeBeam& beam, Data& data, bool add_q, bool tangents);
+/// The beam's strain energy in the current state.
+double ge_beam_energy(const Model& model, const GeBeam& beam, const Data& data);
+
+/// The element's six strains (Gamma_1..3, K_1..3) at coordinates q.
+Eigen::Matrix<double, 6, 1> ge_beam_strains(const GeBeam& beam, const Eigen::Matrix<double, 24, 1>& q);
+
+/// A geometrically exact beam's node bodies (the rigid bodies of nodes n0 .. nN, named
+/// "<name>:n<k>") and its element data, from the straight beam from `start` to `end` with the
+/// section's d1 axis along `y_axis` (projected normal to the beam). Throws ModelError (file,
+/// field) on degenerate input. The node bodies are appended to `nodes` (their indices in the
+/// model are the caller's: GeBeam::node_bodies is left empty).
+GeBeam make_ge_beam(std::vector<Body>& nodes, const std::string& name, const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+                         const Eigen::Vector3d& y_axis, int elements, double E, double G, double rho, double area,
+                         double Iy, double Iz, double J, double shear_factor, double tau, const std::string& file,
+                         const std::string& field);
 
 }  // namespace ffr::runtime

@@ -392,6 +392,9 @@ struct Model {
   std::vector<FrictionDamper> friction_dampers;
   std::vector<Output> outputs;
   SolverSettings settings;
+  /// Geometrically exact beams (beam.hpp): their nodes are among `bodies`, their elements
+  /// force elements between them (FORMULATION.md 17).
+  std::vector<GeBeam> ge_beams;
 
   // Filled by finalize(). Coordinates: the bodies that are integrated first (nfree numbers),
   // the driven ones after them; the frame vectors of frame-locked bodies among the first are
