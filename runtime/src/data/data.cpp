@@ -3,6 +3,7 @@
 #include "ffr/runtime/data.hpp"
 
 #include "ffr/runtime/dynamics.hpp"
+#include "ffr/runtime/relative.hpp"
 
 #include <algorithm>
 
@@ -36,6 +37,7 @@ Data::Data(const Model& model) : state(model), start(model) {
   lu_work = VectorXd::Zero(n);
   scale = VectorXd::Ones(n);
   Phi = Phit = gamma = VectorXd::Zero(m);
+  if (model.relative) relative = std::make_shared<RelativeWork>(model);  // FORMULATION.md 17
 
   int nb_max = 12;
   bodies.resize(model.bodies.size());
