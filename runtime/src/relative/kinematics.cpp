@@ -93,7 +93,8 @@ void relative_kinematics(const Model& model, Data& data, bool jacobian) {
     // Columns of the parent's coordinates: the same linear map (the parent's rows of R are zero
     // outside the columns its coordinates depend on, so all columns can be mapped).
     if (op >= 0) {
-      for (int col = 0; col < t.ns; ++col) {
+      const RelativeBody& pb = t.bodies[static_cast<std::size_t>(rb.parent)];
+      for (int col = pb.col0; col < pb.col0 + pb.ncols; ++col) {
         const Eigen::Map<const Matrix3d> dA(w.R.col(col).data() + op + 3);
         if (dA.isZero(0.0) && w.R.col(col).segment<3>(op).isZero(0.0)) continue;
         w.R.col(col).segment<3>(o) = w.R.col(col).segment<3>(op) + dA * k;

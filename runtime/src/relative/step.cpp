@@ -55,35 +55,61 @@ void refresh(const Model& model, Data& data, double t) {
   const StepCoefficients& k = data.state.k;
   force_tangents(model, data, t);
   w.Ts.setZero();
+  // Ts += R_i^T X R_j over the bodies' column ranges, X = Wb's top-left ni x nj.
+  const auto add = [&](int i, int j) {
+    const RelativeBody& ri = tree.bodies[static_cast<std::size_t>(i)];
+    const RelativeBody& rj = tree.bodies[static_cast<std::size_t>(j)];
+    const Body& bi = model.bodies[static_cast<std::size_t>(i)];
+    const Body& bj = model.bodies[static_cast<std::size_t>(j)];
+    const int ni = bi.ncoord(), nj = bj.ncoord();
+    w.WR.topLeftCorner(ni, rj.ncols).noalias() = w.Wb.topLeftCorner(ni, nj) * w.R.block(bj.offset, rj.col0, nj, rj.ncols);
+    w.Ts.block(ri.col0, rj.col0, ri.ncols, rj.ncols).noalias() +=
+        w.R.block(bi.offset, ri.col0, ni, ri.ncols).transpose() * w.WR.topLeftCorner(ni, rj.ncols);
+  };
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
     const int o = b.offset, nb = b.ncoord();
     auto Wb = w.Wb.topLeftCorner(nb, nb);
     Wb = data.bodies[i].M + k.kv * data.C.block(o, o, nb, nb) + k.kq * data.K.block(o, o, nb, nb);
     body_stiffening_rate_tangents(b, data.bodies[i], data.state.q.segment(o + 12, b.nq), data.state.qd.segment(o + 12, b.nq), k.kv, Wb);
-    w.WR.topRows(nb).noalias() = Wb * w.R.middleRows(o, nb);
-    w.Ts.noalias() += w.R.middleRows(o, nb).transpose() * w.WR.topRows(nb);
+    add(static_cast<int>(i), static_cast<int>(i));
   }
   for (const auto& [i, j] : tree.pairs) {
     const Body& bi = model.bodies[static_cast<std::size_t>(i)];
     const Body& bj = model.bodies[static_cast<std::size_t>(j)];
     const int oi = bi.offset, ni = bi.ncoord(), oj = bj.offset, nj = bj.ncoord();
-    // W_ij R_j into R_i^T, and W_ji R_i into R_j^T.
-    auto Wij = w.Wb.topLeftCorner(ni, nj);
-    Wij = k.kv * data.C.block(oi, oj, ni, nj) + k.kq * data.K.block(oi, oj, ni, nj);
-    w.WR.topRows(ni).noalias() = Wij * w.R.middleRows(oj, nj);
-    w.Ts.noalias() += w.R.middleRows(oi, ni).transpose() * w.WR.topRows(ni);
-    auto Wji = w.Wb.topLeftCorner(nj, ni);
-    Wji = k.kv * data.C.block(oj, oi, nj, ni) + k.kq * data.K.block(oj, oi, nj, ni);
-    w.WR.topRows(nj).noalias() = Wji * w.R.middleRows(oi, ni);
-    w.Ts.noalias() += w.R.middleRows(oj, nj).transpose() * w.WR.topRows(nj);
+    w.Wb.topLeftCorner(ni, nj) = k.kv * data.C.block(oi, oj, ni, nj) + k.kq * data.K.block(oi, oj, ni, nj);
+    add(i, j);
+    w.Wb.topLeftCorner(nj, ni) = k.kv * data.C.block(oj, oi, nj, ni) + k.kq * data.K.block(oj, oi, nj, ni);
+    add(j, i);
   }
-  if (tree.kept_rows > 0) {  // (Phis is the current iterate's: step() computed it)
-    for (int bi : tree.kept_blocks) {
-      const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
-      for (int r = b.row0; r < b.row0 + b.rows; ++r)
-        w.Ts.noalias() += (k.kq * data.alpha(r)) * w.Phis.row(r).transpose() * w.Phis.row(r);
+  // The absolute tangent's iterate-dependent terms (FORMULATION.md 9), projected: the kept rows'
+  // second derivatives with the multipliers (without them the free bodies' frame rows, whose
+  // Hessian is the multiplier times the identity, made Newton diverge on the benchmark's crank
+  // at 150 rad/s and h = 1 ms) and the modal masses' derivative at the iterate's accelerations.
+  // Into the n x n work data.T, then by the blocks where they can be nonzero.
+  if (!tree.hessian_pairs.empty()) {
+    for (const auto& [i, j] : tree.hessian_pairs) {
+      const Body& bi = model.bodies[static_cast<std::size_t>(i)];
+      const Body& bj = model.bodies[static_cast<std::size_t>(j)];
+      data.T.block(bi.offset, bj.offset, bi.ncoord(), bj.ncoord()).setZero();
+      data.T.block(bj.offset, bi.offset, bj.ncoord(), bi.ncoord()).setZero();
     }
+    if (tree.kept_rows > 0) add_constraint_hessian(model, data, data.state.lambda, k.kq, data.T);
+    if (tree.flexible) add_modal_acceleration_tangent(model, data, k.kq, data.T);
+    for (const auto& [i, j] : tree.hessian_pairs) {
+      const Body& bi = model.bodies[static_cast<std::size_t>(i)];
+      const Body& bj = model.bodies[static_cast<std::size_t>(j)];
+      w.Wb.topLeftCorner(bi.ncoord(), bj.ncoord()) = data.T.block(bi.offset, bj.offset, bi.ncoord(), bj.ncoord());
+      add(i, j);
+      if (i == j) continue;
+      w.Wb.topLeftCorner(bj.ncoord(), bi.ncoord()) = data.T.block(bj.offset, bi.offset, bj.ncoord(), bi.ncoord());
+      add(j, i);
+    }
+  }
+  if (tree.kept_rows > 0) {  // (Phis is the current iterate's: step() computed it; zero off the kept rows)
+    w.PA = data.alpha.asDiagonal() * w.Phis;
+    w.Ts.noalias() += k.kq * (w.Phis.transpose() * w.PA);
   }
   const auto d = w.Ts.diagonal().array().abs();
   w.scale = (d > 0).select(d.sqrt().inverse(), 1.0);
@@ -218,6 +244,10 @@ void relative_step(const Model& model, Data& data, double h) {
       converged = true;
       break;
     }
+    // The predictor's tangent far from this iterate (its penalty term built with the predictor's
+    // Phi_q, the absolute step's predictor_far, FORMULATION.md 9): rebuilt here. On the
+    // benchmark's crank (150 rad/s, h = 1 ms) iterations 2 and 3 otherwise did not contract.
+    if (it == 1 && s.penalty * inc > p.stale_tangent) refresh_now = true;
     if (it >= 2 && inc > p.slow_contraction * prev_inc && refreshes < p.max_refreshes) refresh_now = true;
   }
   data.stats.newton_iterations += it > s.max_iterations ? s.max_iterations : it;

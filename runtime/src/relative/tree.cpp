@@ -101,6 +101,30 @@ void build_relative_tree(Model& m) {
     }
   }
   t.ns = ns;
+  // Column ranges, parents first (a free body's: its own).
+  for (int b : t.order) {
+    RelativeBody& rb = t.bodies[static_cast<std::size_t>(b)];
+    int lo = ns, hi = 0;
+    const auto add = [&](int c0, int n) {
+      if (n <= 0 || c0 < 0) return;
+      lo = std::min(lo, c0);
+      hi = std::max(hi, c0 + n);
+    };
+    if (rb.free) {
+      add(rb.s_first, m.bodies[static_cast<std::size_t>(b)].ncoord());
+    } else {
+      if (rb.parent != kGround) {
+        const RelativeBody& pb = t.bodies[static_cast<std::size_t>(rb.parent)];
+        add(pb.col0, pb.ncols);
+      }
+      add(rb.s_angle, 1);
+      add(rb.s_slide, 1);
+      add(rb.s_first, m.bodies[static_cast<std::size_t>(b)].nq);
+    }
+    rb.col0 = lo < hi ? lo : 0;
+    rb.ncols = lo < hi ? hi - lo : 0;
+  }
+  for (const Body& b : m.bodies) t.flexible = t.flexible || b.nq > 0;
   // The rows that stay: all but the tree joints' and the tree bodies' frames.
   for (std::size_t i = 0; i < m.blocks.size(); ++i) {
     const ConstraintBlock& b = m.blocks[i];
@@ -109,6 +133,18 @@ void build_relative_tree(Model& m) {
     t.kept_blocks.push_back(static_cast<int>(i));
     t.kept_rows += b.rows;
   }
+  const auto hessian_pair = [&](int a, int b) {
+    if (a == kGround || b == kGround) return;
+    if (a > b) std::swap(a, b);
+    if (std::find(t.hessian_pairs.begin(), t.hessian_pairs.end(), std::pair{a, b}) == t.hessian_pairs.end()) t.hessian_pairs.emplace_back(a, b);
+  };
+  for (int bi : t.kept_blocks) {
+    const ConstraintBlock& b = m.blocks[static_cast<std::size_t>(bi)];
+    for (int x : {b.body1, b.body2, b.body3})
+      for (int y : {b.body1, b.body2, b.body3}) hessian_pair(x, y);
+  }
+  for (int b = 0; b < nb; ++b)
+    if (m.bodies[static_cast<std::size_t>(b)].nq > 0) hessian_pair(b, b);
   // Force elements between two bodies couple their blocks of K and C.
   const auto pair = [&](int mk1, int mk2) {
     int a = m.markers[static_cast<std::size_t>(mk1)].body, b = m.markers[static_cast<std::size_t>(mk2)].body;
@@ -154,6 +190,7 @@ RelativeWork::RelativeWork(const Model& model) {
   for (const Body& b : model.bodies) nb_max = std::max(nb_max, b.ncoord());
   Wb = MatrixXd::Zero(nb_max, nb_max);
   WR = MatrixXd::Zero(nb_max, ns);
+  PA = MatrixXd::Zero(m, ns);
   lu.resize(std::max(ns, 1));
   r = sigma = c = VectorXd::Zero(m);
   g = bias = qsave = q_last = qd_last = VectorXd::Zero(n);

@@ -33,6 +33,9 @@ struct RelativeBody {
   int s_angle = -1;        ///< its joint angle about the parent marker's axis e (-1: none)
   int s_slide = -1;        ///< its joint slide along that axis (-1: none)
   int s_first = -1;        ///< free: its first coordinate; tree: its first modal coordinate (-1: none)
+  /// The relative coordinates its absolute ones depend on lie in [col0, col0 + ncols): its own
+  /// and its ancestors' (R is zero outside, so the products run over this range only).
+  int col0 = 0, ncols = 0;
 };
 
 /// The spanning tree (built once by finalize, never changed by the step).
@@ -43,9 +46,13 @@ struct RelativeTree {
   std::vector<char> tree_joint;       ///< per joint: satisfied by construction (its rows dropped)
   std::vector<int> kept_blocks;       ///< constraint blocks that stay constraints
   int kept_rows = 0;
+  bool flexible = false;              ///< some body has modal coordinates
   /// Pairs of bodies a force element couples (i < j): where the force tangents K, C have blocks
   /// off the bodies' own.
   std::vector<std::pair<int, int>> pairs;
+  /// Pairs of bodies (i <= j) a kept constraint block joins, and each flexible body with itself:
+  /// where the constraint Hessian and the modal acceleration tangent have blocks.
+  std::vector<std::pair<int, int>> hessian_pairs;
   std::string description;            ///< what the tree is, for the notes
 };
 
@@ -65,6 +72,7 @@ struct RelativeWork {
   MatrixXd Phis;           ///< Phi_q R on the kept rows [m, ns] (zero elsewhere)
   MatrixXd Ts;             ///< tangent [ns, ns]
   MatrixXd Wb, WR;         ///< work: a body's (pair's) block of W, and W times R rows
+  MatrixXd PA;             ///< work [m, ns]: alpha times Phis
   SmallLU lu;
   VectorXd scale;
   VectorXd f, ds, r, sigma, c, g, bias, qsave;
