@@ -278,14 +278,19 @@ TEST(RelativeFormulation, RefusesWhatItCannotRun) {
 }
 
 TEST(RelativeFormulation, AutoSaysWhatItChose) {
+  // The rule (FORMULATION.md 17): relative when it has at most a third of the absolute coordinates.
   const Model chain = test::model_from(formulations::pendulum_chain_json(20, 1e-3, 0.01, "auto"));
-  const Model pendulum = test::model_from(test::compound_pendulum_json(R"({"formulation": "auto", "end": 1.0, "step": 0.001})"));
+  test::TempDir dir("relative_auto");
+  test::write_sid_file(test::simeon_rod_sid(), dir / "rod.sid.h5");
+  const Model crank = test::model_from(with_formulation(test::simeon_crank_json(1e-4, 0.01), "auto"), dir.path);
   ASSERT_FALSE(chain.notes.empty());
-  ASSERT_FALSE(pendulum.notes.empty());
-  std::printf("chain: %s\npendulum: %s\n", chain.notes.back().c_str(), pendulum.notes.back().c_str());
+  ASSERT_FALSE(crank.notes.empty());
+  std::printf("chain: %s\ncrank: %s\n", chain.notes.back().c_str(), crank.notes.back().c_str());
   EXPECT_TRUE(chain.relative);
-  EXPECT_FALSE(pendulum.relative);
-  EXPECT_NE(chain.notes.back().find("relative"), std::string::npos);
+  EXPECT_NE(chain.notes.back().find("relative (solver.formulation \"auto\": 20 relative coordinates against 240"), std::string::npos);
+  // The flexible rod's joints are at its nodes: it stays free, 18 of 40 coordinates.
+  EXPECT_FALSE(crank.relative);
+  EXPECT_NE(crank.notes.back().find("absolute (solver.formulation \"auto\": 18 relative coordinates against 40"), std::string::npos);
 }
 
 }  // namespace

@@ -38,12 +38,26 @@ double violation(const Model& model, const Data& data) {
   return w.keep.size() == 0 ? 0.0 : data.Phi.cwiseProduct(w.keep).cwiseAbs().maxCoeff() / model.length;
 }
 
-// Phi_q R on the kept rows (the others stay zero).
+// Phi_q R on the kept rows (the others stay zero), block by block over the columns of the
+// block's bodies and their ranges of relative coordinates. The products are small (a few rows,
+// a body's coordinates): coefficient-based (lazyProduct), where Eigen's blocked product spent
+// most of the step packing its operands.
 void projected_jacobian(const Model& model, Data& data) {
+  const RelativeTree& tree = *model.relative;
   RelativeWork& w = *data.relative;
-  for (int bi : model.relative->kept_blocks) {
+  for (int bi : tree.kept_blocks) {
     const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
-    w.Phis.middleRows(b.row0, b.rows).noalias() = data.Phiq.middleRows(b.row0, b.rows) * w.R;
+    w.Phis.middleRows(b.row0, b.rows).setZero();
+    for (int x : {b.body1, b.body2, b.body3}) {
+      if (x == kGround || (x == b.body2 && b.body2 == b.body1) || (x == b.body3 && (b.body3 == b.body1 || b.body3 == b.body2))) continue;
+      const RelativeBody& rb = tree.bodies[static_cast<std::size_t>(x)];
+      const Body& body = model.bodies[static_cast<std::size_t>(x)];
+      if (rb.free)  // its block of R is the identity
+        w.Phis.block(b.row0, rb.col0, b.rows, rb.ncols) += data.Phiq.block(b.row0, body.offset, b.rows, body.ncoord());
+      else
+        w.Phis.block(b.row0, rb.col0, b.rows, rb.ncols).noalias() +=
+            data.Phiq.block(b.row0, body.offset, b.rows, body.ncoord()).lazyProduct(w.R.block(body.offset, rb.col0, body.ncoord(), rb.ncols));
+    }
   }
 }
 
@@ -62,9 +76,13 @@ void refresh(const Model& model, Data& data, double t) {
     const Body& bi = model.bodies[static_cast<std::size_t>(i)];
     const Body& bj = model.bodies[static_cast<std::size_t>(j)];
     const int ni = bi.ncoord(), nj = bj.ncoord();
-    w.WR.topLeftCorner(ni, rj.ncols).noalias() = w.Wb.topLeftCorner(ni, nj) * w.R.block(bj.offset, rj.col0, nj, rj.ncols);
-    w.Ts.block(ri.col0, rj.col0, ri.ncols, rj.ncols).noalias() +=
-        w.R.block(bi.offset, ri.col0, ni, ri.ncols).transpose() * w.WR.topLeftCorner(ni, rj.ncols);
+    // (Coefficient-based products: see projected_jacobian. A free body's block of R is the
+    // identity: no product on its side.)
+    auto Ts = w.Ts.block(ri.col0, rj.col0, ri.ncols, rj.ncols);
+    if (rj.free) w.WR.topLeftCorner(ni, rj.ncols) = w.Wb.topLeftCorner(ni, nj);
+    else w.WR.topLeftCorner(ni, rj.ncols).noalias() = w.Wb.topLeftCorner(ni, nj).lazyProduct(w.R.block(bj.offset, rj.col0, nj, rj.ncols));
+    if (ri.free) Ts += w.WR.topLeftCorner(ni, rj.ncols);
+    else Ts.noalias() += w.R.block(bi.offset, ri.col0, ni, ri.ncols).transpose().lazyProduct(w.WR.topLeftCorner(ni, rj.ncols));
   };
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];

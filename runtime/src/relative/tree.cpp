@@ -28,19 +28,8 @@ bool tree_capable(const Model& m, const Joint& j) {
   return m.markers[static_cast<std::size_t>(j.m1)].body != m.markers[static_cast<std::size_t>(j.m2)].body;
 }
 
-}  // namespace
-
-void build_relative_tree(Model& m) {
-  const std::string& file = m.source;
-  const SolverSettings& st = m.settings;
-  if (st.integrator != Integrator::Trapezoidal)
-    throw ModelError(file, "solver.formulation",
-                     "\"relative\" integrates with the trapezoidal rule only; remove solver.integrator or use \"absolute\"");
-  if (st.adaptive)
-    throw ModelError(file, "solver.formulation",
-                     "\"relative\" takes fixed steps only; give solver.step a number or use \"absolute\"");
-  auto tree = std::make_shared<RelativeTree>();
-  RelativeTree& t = *tree;
+// The spanning tree and the relative coordinates (everything but the kept rows).
+void span(const Model& m, RelativeTree& t, int& ntree, int& nfree) {
   const int nb = static_cast<int>(m.bodies.size());
   t.bodies.assign(static_cast<std::size_t>(nb), RelativeBody{});
   t.tree_joint.assign(m.joints.size(), 0);
@@ -48,7 +37,7 @@ void build_relative_tree(Model& m) {
   // Breadth first from the ground, then from each body left over (a free base): every body is
   // reached by the fewest joints, which keeps the recursion short and the tree shallow.
   std::deque<int> queue{kGround};
-  int nfree = 0, ntree = 0;
+  nfree = ntree = 0;
   for (;;) {
     while (!queue.empty()) {
       const int p = queue.front();
@@ -125,6 +114,24 @@ void build_relative_tree(Model& m) {
     rb.ncols = lo < hi ? hi - lo : 0;
   }
   for (const Body& b : m.bodies) t.flexible = t.flexible || b.nq > 0;
+}
+
+}  // namespace
+
+void build_relative_tree(Model& m) {
+  const std::string& file = m.source;
+  const SolverSettings& st = m.settings;
+  if (st.integrator != Integrator::Trapezoidal)
+    throw ModelError(file, "solver.formulation",
+                     "\"relative\" integrates with the trapezoidal rule only; remove solver.integrator or use \"absolute\"");
+  if (st.adaptive)
+    throw ModelError(file, "solver.formulation",
+                     "\"relative\" takes fixed steps only; give solver.step a number or use \"absolute\"");
+  auto tree = std::make_shared<RelativeTree>();
+  RelativeTree& t = *tree;
+  int ntree = 0, nfree = 0;
+  span(m, t, ntree, nfree);
+  const int ns = t.ns;
   // The rows that stay: all but the tree joints' and the tree bodies' frames.
   for (std::size_t i = 0; i < m.blocks.size(); ++i) {
     const ConstraintBlock& b = m.blocks[i];
@@ -143,7 +150,7 @@ void build_relative_tree(Model& m) {
     for (int x : {b.body1, b.body2, b.body3})
       for (int y : {b.body1, b.body2, b.body3}) hessian_pair(x, y);
   }
-  for (int b = 0; b < nb; ++b)
+  for (int b = 0; b < static_cast<int>(m.bodies.size()); ++b)
     if (m.bodies[static_cast<std::size_t>(b)].nq > 0) hessian_pair(b, b);
   // Force elements between two bodies couple their blocks of K and C.
   const auto pair = [&](int mk1, int mk2) {
@@ -202,31 +209,22 @@ Formulation choose_formulation(const Model& m, std::string& why) {
     why = "absolute (solver.formulation \"auto\": the relative formulation takes fixed trapezoidal steps only)";
     return Formulation::Absolute;
   }
-  // Count what the tree would keep without building it: bodies a tree-capable joint can place.
-  int capable = 0, joints_cut = 0;
-  std::vector<char> placed(m.bodies.size(), 0);
-  for (const Joint& j : m.joints) {
-    const int b1 = m.markers[static_cast<std::size_t>(j.m1)].body, b2 = m.markers[static_cast<std::size_t>(j.m2)].body;
-    bool used = false;
-    if (tree_capable(m, j))
-      for (int b : {b2, b1})
-        if (b != kGround && !placed[static_cast<std::size_t>(b)]) {
-          placed[static_cast<std::size_t>(b)] = 1;
-          ++capable;
-          used = true;
-          break;
-        }
-    if (!used) ++joints_cut;
-  }
-  const int nb = static_cast<int>(m.bodies.size());
+  RelativeTree t;
+  int ntree = 0, nfree = 0;
+  span(m, t, ntree, nfree);
+  int n = 0;
+  for (const Body& b : m.bodies) n += b.ncoord();
+  // Relative when it has at most a third of the absolute coordinates. Measured
+  // (tools/bench/formulations/RESULTS.md): the chains and the four-bar (1/12 of the coordinates)
+  // ran faster in relative coordinates, the flexible slider-crank, whose rod stays free (its
+  // joints are at nodes: 24 of 46 coordinates), slower. The threshold lies between those
+  // measured ratios; where between them the two break even was not measured.
+  const bool rel = n > 0 && 3 * t.ns <= n;
   char buf[256];
-  std::snprintf(buf, sizeof buf, "%d of %d bodies placed by joints, %d joints cut", capable, nb, joints_cut);
-  // Relative when the tree places at least kAutoTreeBodies bodies and most of them (the
-  // eliminated frame rows are then what the absolute step spends its factorisation on).
-  constexpr int kAutoTreeBodies = 4;
-  const bool rel = capable >= kAutoTreeBodies && 2 * capable > nb;
+  std::snprintf(buf, sizeof buf, "%d relative coordinates against %d absolute ones (%d bodies placed by joints, %d free)", t.ns, n, ntree,
+                nfree);
   why = std::string(rel ? "relative" : "absolute") + " (solver.formulation \"auto\": " + buf +
-        "; relative when at least 4 bodies and more than half of them are placed by joints)";
+        "; relative when it has at most a third of the absolute coordinates)";
   return rel ? Formulation::Relative : Formulation::Absolute;
 }
 
