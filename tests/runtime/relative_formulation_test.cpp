@@ -22,6 +22,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <string>
 
 using namespace ffr::runtime;
@@ -300,6 +301,42 @@ TEST(RelativeFormulation, FlexibleBodyPlacedByItsJointMatchesAbsolute) {
   EXPECT_LT(da[1], 1e-5);
   EXPECT_GT(da[0] / da[1], 2.5);  // O(h^2): the two discretisations of the same equations converge
   EXPECT_LT(dy[1], 1e-3);
+}
+
+// ---- ffr-sim: results file and energy output from the reconstructed absolute state -------------
+
+TEST(RelativeFormulation, FfrSimWritesTheSameOutputs) {
+  test::TempDir dir("relative_cli");
+  std::string values[2];
+  int i = 0;
+  for (const char* f : {"absolute", "relative"}) {
+    std::string json = test::compound_pendulum_json(std::string(R"({"formulation": ")") + f + R"(", "end": 0.5, "step": 0.001})");
+    const std::string out = R"("outputs": [)";
+    json.insert(json.find(out) + out.size(), R"({"name": "energy", "type": "energy"}, )");
+    test::write_text(dir / "m.json", json);
+    const test::SimRun run = test::run_ffr_sim((dir / "m.json").string() + " -o " + (dir / "out.h5").string() + " --csv " +
+                                               (dir / "out.csv").string());
+    ASSERT_EQ(run.status, 0) << run.output;
+    if (std::string(f) == "relative") {
+      EXPECT_NE(run.output.find("note: relative formulation: 1 coordinates"), std::string::npos) << run.output;
+    }
+    std::ifstream csv(dir / "out.csv");
+    std::string line, last;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "time,energy[0],energy[1],energy[2],angle[0]");
+    while (std::getline(csv, line)) last = line;
+    values[i++] = last;
+  }
+  // time, kinetic, potential, total energy, angle at 0.5 s: the same to the integrator's error
+  // (the angle's against the RK4 oracle too).
+  double a[5], r[5];
+  ASSERT_EQ(std::sscanf(values[0].c_str(), "%lf,%lf,%lf,%lf,%lf", &a[0], &a[1], &a[2], &a[3], &a[4]), 5) << values[0];
+  ASSERT_EQ(std::sscanf(values[1].c_str(), "%lf,%lf,%lf,%lf,%lf", &r[0], &r[1], &r[2], &r[3], &r[4]), 5) << values[1];
+  std::printf("ffr-sim at t = %g: absolute %s\n                 relative %s (oracle angle %.10f)\n", a[0], values[0].c_str(), values[1].c_str(),
+              test::compound_pendulum_oracle(0.5));
+  EXPECT_EQ(a[0], r[0]);
+  for (int k = 1; k < 4; ++k) EXPECT_NEAR(a[k], r[k], 1e-4);
+  EXPECT_NEAR(r[4], test::compound_pendulum_oracle(0.5), 1e-5);
 }
 
 // ---- bad input ---------------------------------------------------------------------------------
