@@ -11,6 +11,7 @@
 #include "ffr/runtime/errors.hpp"
 #include "ffr/runtime/integrator.hpp"
 #include "ffr/runtime/kinematics.hpp"
+#include "ffr/runtime/relative.hpp"
 #include "../forces/forces.hpp"
 
 #include <cmath>
@@ -180,6 +181,7 @@ void check_drives(const Model& model, const Data& data, double t) {
 void step(const Model& model, Data& data) { step(model, data, model.settings.step); }
 
 void step(const Model& model, Data& data, double h) {
+  if (data.relative) return relative_step(model, data, h);  // FORMULATION.md 18
   const SolverSettings& s = model.settings;
   const NewtonPolicy& p = s.policy.newton;
   if (s.integrator == Integrator::GeneralizedAlpha && !data.state.have_previous && !data.scheme.start_step)

@@ -111,9 +111,17 @@ void parse_solver(const Field& root, ParseContext& ctx) {
   const Field s = root.at("solver");
   s.allow_only({"start", "end", "step", "output_every", "tolerance", "newton_tolerance", "max_iterations", "penalty", "reuse_jacobian",
                 "eliminate_driven_bodies", "integrator", "spectral_radius", "rtol", "atol", "output_interval", "max_step",
-                "analysis", "initial_equilibrium"});
+                "analysis", "initial_equilibrium", "formulation"});
   SolverSettings& st = ctx.model.settings;
   if (auto f = s.find("start")) st.start = f->number();
+  // FORMULATION.md 18; what "relative" cannot run is refused when the model is finalized.
+  if (auto f = s.find("formulation")) {
+    const std::string v = f->string();
+    if (v == "absolute") st.formulation = Formulation::Absolute;
+    else if (v == "relative") st.formulation = Formulation::Relative;
+    else if (v == "auto") st.formulation = Formulation::Auto;
+    else f->fail("unknown formulation '" + v + "' (absolute, relative, auto)");
+  }
   if (auto f = s.find("analysis")) {
     const std::string v = f->string();
     if (v == "static") st.static_analysis = true;

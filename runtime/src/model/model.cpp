@@ -1,5 +1,6 @@
 // Model bookkeeping: coordinate offsets, constraint blocks, scales and derived offsets.
 #include "ffr/runtime/model.hpp"
+#include "ffr/runtime/relative.hpp"
 
 #include "ffr/runtime/errors.hpp"
 #include "ffr/runtime/kinematics.hpp"
@@ -204,6 +205,13 @@ void mark_read_axes(Model& m) {
 }  // namespace
 
 void finalize(Model& m) {
+  // The relative formulation (relative.hpp) reconstructs every body's natural coordinates from
+  // its own: no body is driven out of the unknowns.
+  m.relative.reset();
+  std::string formulation_why;
+  const bool relative = m.settings.formulation == Formulation::Relative ||
+                        (m.settings.formulation == Formulation::Auto && choose_formulation(m, formulation_why) == Formulation::Relative);
+  if (relative) m.settings.eliminate_driven = false;
   // Coordinates: the integrated bodies first, the driven ones after them.
   find_drives(m);
   int off = 0;
@@ -340,6 +348,12 @@ void finalize(Model& m) {
     }
     bu.s0 << e1[0].dot(d), e1[1].dot(d), e1[2].dot(d), 0.5 * (e1[2].dot(e2[1]) - e1[1].dot(e2[2])),
         0.5 * (e1[0].dot(e2[2]) - e1[2].dot(e2[0])), 0.5 * (e1[1].dot(e2[0]) - e1[0].dot(e2[1]));
+  }
+  if (relative) {
+    build_relative_tree(m);
+    m.notes.push_back((formulation_why.empty() ? std::string() : "formulation: " + formulation_why + "; ") + m.relative->description);
+  } else if (!formulation_why.empty()) {
+    m.notes.push_back("formulation: " + formulation_why);
   }
 }
 

@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <vector>
 
 namespace ffr::runtime {
@@ -73,6 +74,8 @@ struct DriveReference {
   Vector3d axis = Vector3d::UnitZ();   ///< unit, global; the direction the coordinate grows (body side)
   double value = 0;                    ///< the prescribed coordinate at the reference
 };
+
+struct RelativeWork;  // relative.hpp
 
 struct Data {
   explicit Data(const Model& model);
@@ -167,6 +170,9 @@ struct Data {
   VectorXd alpha;               ///< penalty of each constraint row in use (penalty_weights)
   MatrixXd Jw;                  ///< work: a penalty-weighted Jacobian block (add_penalty_tangent)
   VectorXd penalty_rows;        ///< work: the penalty weights of one block's rows
+
+  /// The relative formulation's state and workspace (relative.hpp); null for the absolute one.
+  std::shared_ptr<RelativeWork> relative;
 };
 
 /// Which bodies and markers an update covers: all, or those of the unknowns alone (the ground's

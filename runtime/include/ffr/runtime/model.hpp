@@ -339,6 +339,12 @@ struct ConstraintBlock {
 /// The step's integration scheme (FORMULATION.md section 9, scheme.hpp).
 enum class Integrator { Trapezoidal, GeneralizedAlpha };
 
+/// The coordinates the step integrates (FORMULATION.md section 18): the bodies' natural
+/// coordinates, or joint coordinates over a spanning tree (relative.hpp); Auto picks one by the
+/// rule of relative.hpp (choose_formulation) when the model is finalized.
+enum class Formulation { Absolute, Relative, Auto };
+struct RelativeTree;
+
 struct SolverSettings {
   double start = 0.0;
   double end = 1.0;
@@ -374,6 +380,9 @@ struct SolverSettings {
   bool initial_equilibrium = false;
   /// Acceptance and tangent-refresh rules of the step (step_policy.hpp); not in the model file.
   StepPolicy policy;
+  /// "formulation" (FORMULATION.md section 18). Relative (or Auto choosing it) implies
+  /// eliminate_driven = false: every body's natural coordinates are reconstructed each step.
+  Formulation formulation = Formulation::Absolute;
 };
 
 struct Model {
@@ -418,6 +427,9 @@ struct Model {
   VectorXd increment_weight;
   double mass = 1.0;             ///< mean body mass (penalty scaling)
   std::vector<std::string> notes;  ///< things the set-up changed or assumed, for the caller to show
+  /// The relative formulation's spanning tree (relative.hpp), set by finalize() when the
+  /// formulation is (or Auto chose) Relative; null for the absolute one.
+  std::shared_ptr<const RelativeTree> relative;
 
   int find_body(const std::string& n) const;
   int find_joint(const std::string& n) const;

@@ -17,6 +17,7 @@
 #include "ffr/runtime/load.hpp"
 #include "ffr/runtime/model.hpp"
 #include "ffr/runtime/outputs.hpp"
+#include "ffr/runtime/relative.hpp"
 #include "ffr/runtime/scheme.hpp"
 #include "ffr/runtime/state.hpp"
 #include "ffr/runtime/statics.hpp"

@@ -1,0 +1,104 @@
+#pragma once
+// The relative (joint-coordinate) formulation, FORMULATION.md section 18: a semi-recursive,
+// velocity-transformation scheme after García de Jalón, Cuadrado and co-workers. A spanning
+// tree of the joint graph is chosen; each body reached through a revolute, prismatic,
+// cylindrical or fixed joint between two markers on body frames (not on flexible nodes) is
+// placed by its parent and that joint's coordinates; every other body keeps its natural
+// coordinates z as its own "joint" coordinates (a free base). The relative coordinates s are
+// these joint coordinates, the free bodies' z and every tree body's modal coordinates y. The
+// absolute coordinates are q = q(s), q_dot = R(s) s_dot; the equations of motion are the
+// absolute ones (mass matrices, forces, constraints of the existing evaluation) projected by R:
+//   R^T (M q_ddot - Q) + (Phi_q R)^T lambda = 0,
+// with only the rows that the tree does not satisfy by construction kept as constraints (the cut
+// joints, motions, couplers and the free bodies' frames), integrated by the same trapezoidal
+// index-3 augmented Lagrangian with projections. The state of the Data (q, q_dot, q_ddot) is the
+// reconstructed absolute one, so outputs, energy and the C API read it unchanged.
+
+#include "ffr/runtime/data.hpp"
+#include "ffr/runtime/model.hpp"
+#include "ffr/runtime/small_lu.hpp"
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace ffr::runtime {
+
+/// How one body's absolute coordinates follow from s.
+struct RelativeBody {
+  bool free = true;        ///< its z are relative coordinates (s_first .. s_first + 12 + nq)
+  int parent = kGround;    ///< a tree body's parent (body index or kGround)
+  int joint = -1;          ///< a tree body's joint to its parent
+  int parent_marker = -1;  ///< the joint's marker on the parent
+  int s_angle = -1;        ///< its joint angle about the parent marker's axis e (-1: none)
+  int s_slide = -1;        ///< its joint slide along that axis (-1: none)
+  int s_first = -1;        ///< free: its first coordinate; tree: its first modal coordinate (-1: none)
+  /// The relative coordinates its absolute ones depend on lie in [col0, col0 + ncols): its own
+  /// and its ancestors' (R is zero outside, so the products run over this range only).
+  int col0 = 0, ncols = 0;
+};
+
+/// The spanning tree (built once by finalize, never changed by the step).
+struct RelativeTree {
+  int ns = 0;                         ///< number of relative coordinates
+  std::vector<int> order;             ///< bodies, every parent before its children
+  std::vector<RelativeBody> bodies;   ///< per body
+  std::vector<char> tree_joint;       ///< per joint: satisfied by construction (its rows dropped)
+  std::vector<int> kept_blocks;       ///< constraint blocks that stay constraints
+  int kept_rows = 0;
+  bool flexible = false;              ///< some body has modal coordinates
+  /// Pairs of bodies a force element couples (i < j): where the force tangents K, C have blocks
+  /// off the bodies' own.
+  std::vector<std::pair<int, int>> pairs;
+  /// Pairs of bodies (i <= j) a kept constraint block joins, and each flexible body with itself:
+  /// where the constraint Hessian and the modal acceleration tangent have blocks.
+  std::vector<std::pair<int, int>> hessian_pairs;
+  std::string description;            ///< what the tree is, for the notes
+};
+
+/// The relative state and workspace, sized once (relative_step allocates nothing).
+struct RelativeWork {
+  explicit RelativeWork(const Model& model);
+  VectorXd s, sd, sdd, s0, sd0, sdd0, sdd_prev, sd_hat, sdd_hat;
+  double h_prev = 0;
+  bool have_previous = false;
+  /// The tree bodies' pose in their parent marker's triad when the coordinates were last taken
+  /// from the absolute state (sync): A = T_p Rx(angle) rel_A, r0 = P + T_p (Rx(angle) rel_p + slide e_x).
+  std::vector<Matrix3d> rel_A;
+  std::vector<Vector3d> rel_p;
+  MatrixXd R;              ///< dq/ds [n, ns]
+  VectorXd weight;         ///< per relative coordinate: the scaled size of the displacement it causes
+  VectorXd keep;           ///< per constraint row: 1 kept, 0 satisfied by the tree
+  MatrixXd Phis;           ///< Phi_q R on the kept rows [m, ns] (zero elsewhere)
+  MatrixXd Ts;             ///< tangent [ns, ns]
+  MatrixXd Wb, WR;         ///< work: a body's (pair's) block of W, and W times R rows
+  MatrixXd PA;             ///< work [m, ns]: alpha times Phis
+  SmallLU lu;
+  VectorXd scale;
+  VectorXd f, ds, r, sigma, c, g, bias, qsave;
+  /// The absolute state this formulation last produced: a different one (initialize,
+  /// restore_state, the C API) makes the next step take its coordinates from it afresh.
+  VectorXd q_last, qd_last;
+  double t_last = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// Builds model.relative (finalize calls it when the formulation is Relative, or Auto chose it).
+/// Throws ModelError naming the model file and the field of what the relative formulation cannot
+/// run.
+void build_relative_tree(Model& model);
+
+/// The Auto rule (FORMULATION.md section 18): Relative or Absolute for this model, and why.
+Formulation choose_formulation(const Model& model, std::string& why);
+
+/// One trapezoidal ALI3-P step of h in the relative coordinates (step() calls it when the model
+/// has a relative tree). Allocation-free.
+void relative_step(const Model& model, Data& data, double h);
+
+/// Takes the relative coordinates, rates and accelerations from the absolute state of data
+/// (consistent with the joints), with every tree joint coordinate zero there.
+void relative_sync(const Model& model, Data& data);
+
+/// q, q_dot and q_ddot (data.state) from s, s_dot, s_ddot, and R when `jacobian`.
+void relative_kinematics(const Model& model, Data& data, bool jacobian);
+
+}  // namespace ffr::runtime

@@ -1,0 +1,162 @@
+// The recursion q(s), q_dot = R s_dot, q_ddot = R s_ddot + R_dot s_dot (relative.hpp).
+//
+// A tree body c on parent p (frame r_p, A_p; the ground: 0, I) through a joint whose parent
+// marker is at c_p with triad E_p (body frame of p; global for the ground), with angle th about
+// the marker's axis e and slide x along it:
+//   A_c = A_p N,  N = E_p Rx(th) rel_A
+//   r_c = r_p + A_p k,  k = c_p + E_p (Rx(th) rel_p + x e_x)
+// Natural coordinates make this linear in the parent's (A_p, r_p): its derivatives with respect
+// to the parent's coordinates are the same map applied to their changes, and the rates and
+// accelerations follow by the product rule (FORMULATION.md 18).
+#include "ffr/runtime/relative.hpp"
+
+#include "ffr/runtime/constraints.hpp"
+#include "ffr/runtime/dynamics.hpp"
+#include "ffr/runtime/errors.hpp"
+#include "ffr/runtime/kinematics.hpp"
+
+#include <cmath>
+
+namespace ffr::runtime {
+namespace {
+
+Matrix3d rot_x(double th, int derivative) {
+  const double c = std::cos(th), s = std::sin(th);
+  Matrix3d r = Matrix3d::Zero();
+  switch (derivative) {
+    case 0: r << 1, 0, 0, 0, c, -s, 0, s, c; break;
+    case 1: r << 0, 0, 0, 0, -s, -c, 0, c, -s; break;
+    default: r << 0, 0, 0, 0, -c, s, 0, -s, -c; break;
+  }
+  return r;
+}
+
+// The frame of coordinates q at offset o: r0 and A = [u v w].
+Vector3d pos(const VectorXd& q, int o) { return q.segment<3>(o); }
+Matrix3d frame(const VectorXd& q, int o) { return Eigen::Map<const Matrix3d>(q.data() + o + 3); }
+void set(VectorXd& q, int o, const Vector3d& r, const Matrix3d& A) {
+  q.segment<3>(o) = r;
+  Eigen::Map<Matrix3d>(q.data() + o + 3) = A;
+}
+
+}  // namespace
+
+void relative_kinematics(const Model& model, Data& data, bool jacobian) {
+  const RelativeTree& t = *model.relative;
+  RelativeWork& w = *data.relative;
+  VectorXd &q = data.state.q, &qd = data.state.qd, &qdd = data.state.qdd;
+  if (jacobian) w.R.setZero();
+  for (int bi : t.order) {
+    const RelativeBody& rb = t.bodies[static_cast<std::size_t>(bi)];
+    const Body& b = model.bodies[static_cast<std::size_t>(bi)];
+    const int o = b.offset, nc = b.ncoord();
+    if (rb.free) {
+      q.segment(o, nc) = w.s.segment(rb.s_first, nc);
+      qd.segment(o, nc) = w.sd.segment(rb.s_first, nc);
+      qdd.segment(o, nc) = w.sdd.segment(rb.s_first, nc);
+      if (jacobian) w.R.block(o, rb.s_first, nc, nc).setIdentity();
+      continue;
+    }
+    const Marker& mk = model.markers[static_cast<std::size_t>(rb.parent_marker)];
+    Vector3d rp = Vector3d::Zero(), rpd = Vector3d::Zero(), rpdd = Vector3d::Zero();
+    Matrix3d Ap = Matrix3d::Identity(), Apd = Matrix3d::Zero(), Apdd = Matrix3d::Zero();
+    int op = -1;
+    if (rb.parent != kGround) {
+      op = model.bodies[static_cast<std::size_t>(rb.parent)].offset;
+      rp = pos(q, op), rpd = pos(qd, op), rpdd = pos(qdd, op);
+      Ap = frame(q, op), Apd = frame(qd, op), Apdd = frame(qdd, op);
+    }
+    const double th = rb.s_angle >= 0 ? w.s(rb.s_angle) : 0.0;
+    const double thd = rb.s_angle >= 0 ? w.sd(rb.s_angle) : 0.0;
+    const double thdd = rb.s_angle >= 0 ? w.sdd(rb.s_angle) : 0.0;
+    const double x = rb.s_slide >= 0 ? w.s(rb.s_slide) : 0.0;
+    const double xd = rb.s_slide >= 0 ? w.sd(rb.s_slide) : 0.0;
+    const double xdd = rb.s_slide >= 0 ? w.sdd(rb.s_slide) : 0.0;
+    const Matrix3d& relA = w.rel_A[static_cast<std::size_t>(bi)];
+    const Vector3d& relp = w.rel_p[static_cast<std::size_t>(bi)];
+    const Matrix3d& E = mk.E;
+    const Matrix3d R0 = rot_x(th, 0), R1 = rot_x(th, 1), R2 = rot_x(th, 2);
+    const Matrix3d N = E * R0 * relA, N1 = E * R1 * relA, N2 = E * R2 * relA;
+    const Vector3d ks = E.col(0);
+    const Vector3d k = mk.c + E * (R0 * relp) + x * ks, k1 = E * (R1 * relp), k2 = E * (R2 * relp);
+    const Vector3d kd = k1 * thd + ks * xd;  // rate of k
+    set(q, o, rp + Ap * k, Ap * N);
+    set(qd, o, rpd + Apd * k + Ap * kd, Apd * N + Ap * N1 * thd);
+    set(qdd, o, rpdd + Apdd * k + 2 * Apd * kd + Ap * (k2 * (thd * thd) + k1 * thdd + ks * xdd),
+        Apdd * N + 2 * thd * Apd * N1 + Ap * (N2 * (thd * thd) + N1 * thdd));
+    if (b.nq > 0) {
+      q.segment(o + 12, b.nq) = w.s.segment(rb.s_first, b.nq);
+      qd.segment(o + 12, b.nq) = w.sd.segment(rb.s_first, b.nq);
+      qdd.segment(o + 12, b.nq) = w.sdd.segment(rb.s_first, b.nq);
+    }
+    if (!jacobian) continue;
+    // Columns of the parent's coordinates: the same linear map (the parent's rows of R are zero
+    // outside the columns its coordinates depend on, so all columns can be mapped).
+    if (op >= 0) {
+      const RelativeBody& pb = t.bodies[static_cast<std::size_t>(rb.parent)];
+      for (int col = pb.col0; col < pb.col0 + pb.ncols; ++col) {
+        const Eigen::Map<const Matrix3d> dA(w.R.col(col).data() + op + 3);
+        if (dA.isZero(0.0) && w.R.col(col).segment<3>(op).isZero(0.0)) continue;
+        w.R.col(col).segment<3>(o) = w.R.col(col).segment<3>(op) + dA * k;
+        Eigen::Map<Matrix3d>(w.R.col(col).data() + o + 3) = dA * N;
+      }
+    }
+    if (rb.s_angle >= 0) {
+      w.R.col(rb.s_angle).segment<3>(o) = Ap * k1;
+      Eigen::Map<Matrix3d>(w.R.col(rb.s_angle).data() + o + 3) = Ap * N1;
+    }
+    if (rb.s_slide >= 0) w.R.col(rb.s_slide).segment<3>(o) = Ap * ks;
+    if (b.nq > 0) w.R.block(o + 12, rb.s_first, b.nq, b.nq).setIdentity();
+  }
+}
+
+void relative_sync(const Model& model, Data& data) {
+  const RelativeTree& t = *model.relative;
+  RelativeWork& w = *data.relative;
+  const State& st = data.state;
+  // Each tree body's pose in its parent marker's triad, its joint coordinates zero there.
+  for (int bi : t.order) {
+    const RelativeBody& rb = t.bodies[static_cast<std::size_t>(bi)];
+    const Body& b = model.bodies[static_cast<std::size_t>(bi)];
+    if (rb.free) {
+      w.s.segment(rb.s_first, b.ncoord()) = st.q.segment(b.offset, b.ncoord());
+      continue;
+    }
+    const Marker& mk = model.markers[static_cast<std::size_t>(rb.parent_marker)];
+    Vector3d rp = Vector3d::Zero();
+    Matrix3d Ap = Matrix3d::Identity();
+    if (rb.parent != kGround) {
+      const int op = model.bodies[static_cast<std::size_t>(rb.parent)].offset;
+      rp = pos(st.q, op);
+      Ap = frame(st.q, op);
+    }
+    const Matrix3d Tp = Ap * mk.E;
+    const Vector3d P = rp + Ap * mk.c;
+    w.rel_A[static_cast<std::size_t>(bi)] = Tp.transpose() * frame(st.q, b.offset);
+    w.rel_p[static_cast<std::size_t>(bi)] = Tp.transpose() * (pos(st.q, b.offset) - P);
+    if (rb.s_angle >= 0) w.s(rb.s_angle) = 0;
+    if (rb.s_slide >= 0) w.s(rb.s_slide) = 0;
+    if (b.nq > 0) w.s.segment(rb.s_first, b.nq) = st.q.segment(b.offset + 12, b.nq);
+  }
+  // Rates and accelerations: the least-squares solutions of R s_dot = q_dot and
+  // R s_ddot = q_ddot - R_dot s_dot (exact for a state that satisfies the tree's joints).
+  w.qsave = data.state.qd;
+  w.g = data.state.qdd;
+  w.sd.setZero();
+  w.sdd.setZero();
+  relative_kinematics(model, data, true);
+  w.Ts.noalias() = w.R.transpose() * w.R;
+  w.lu.compute(w.Ts);
+  w.sd.noalias() = w.R.transpose() * w.qsave;
+  w.lu.solve_in_place(w.sd);
+  relative_kinematics(model, data, false);  // q_ddot = R_dot s_dot with s_ddot = 0
+  w.bias = w.g - data.state.qdd;
+  w.sdd.noalias() = w.R.transpose() * w.bias;
+  w.lu.solve_in_place(w.sdd);
+  relative_kinematics(model, data, false);
+  // The scaled size of each coordinate's increment: the largest weighted displacement it causes.
+  for (int k = 0; k < t.ns; ++k) w.weight(k) = std::max(1e-12, w.R.col(k).cwiseAbs().cwiseProduct(model.increment_weight).maxCoeff());
+  w.have_previous = false;
+}
+
+}  // namespace ffr::runtime

@@ -1,0 +1,327 @@
+// One ALI3-P step in the relative coordinates (relative.hpp, FORMULATION.md 18): the absolute
+// step's trapezoidal rule, augmented-Lagrangian Newton iteration and projections (ali3p.cpp,
+// FORMULATION.md 9) with the absolute residual and tangent projected by R = dq/ds:
+//   f(s) = h^2/4 R^T [M q_ddot - Q + Phi_q^T (lambda + alpha Phi)]            (kept rows)
+//   T    = R^T (M + h/2 C + h^2/4 K) R + h^2/4 (Phi_q R)^T alpha (Phi_q R)
+// The tangent leaves out the derivatives of R itself (the curvature of q(s), of the size of the
+// accelerations times h^2/4): Newton then contracts linearly, by O(h^2 omega^2), and the
+// acceptance test measures that contraction (the same test as the absolute step's).
+#include "ffr/runtime/relative.hpp"
+
+#include "ffr/runtime/constraints.hpp"
+#include "ffr/runtime/dynamics.hpp"
+#include "ffr/runtime/errors.hpp"
+#include "ffr/runtime/integrator.hpp"
+#include "ffr/runtime/kinematics.hpp"
+#include "../forces/forces.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace ffr::runtime {
+namespace {
+
+std::string fmt(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", v);
+  return b;
+}
+
+double scaled(const RelativeWork& w, const VectorXd& ds) {
+  return ds.size() == 0 ? 0.0 : ds.cwiseAbs().cwiseProduct(w.weight).maxCoeff();
+}
+
+// The kept rows' violation, in model lengths.
+double violation(const Model& model, const Data& data) {
+  const RelativeWork& w = *data.relative;
+  return w.keep.size() == 0 ? 0.0 : data.Phi.cwiseProduct(w.keep).cwiseAbs().maxCoeff() / model.length;
+}
+
+// Phi_q R on the kept rows (the others stay zero), block by block over the columns of the
+// block's bodies and their ranges of relative coordinates. The products are small (a few rows,
+// a body's coordinates): coefficient-based (lazyProduct), where Eigen's blocked product spent
+// most of the step packing its operands.
+void projected_jacobian(const Model& model, Data& data) {
+  const RelativeTree& tree = *model.relative;
+  RelativeWork& w = *data.relative;
+  for (int bi : tree.kept_blocks) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
+    w.Phis.middleRows(b.row0, b.rows).setZero();
+    for (int x : {b.body1, b.body2, b.body3}) {
+      if (x == kGround || (x == b.body2 && b.body2 == b.body1) || (x == b.body3 && (b.body3 == b.body1 || b.body3 == b.body2))) continue;
+      const RelativeBody& rb = tree.bodies[static_cast<std::size_t>(x)];
+      const Body& body = model.bodies[static_cast<std::size_t>(x)];
+      if (rb.free)  // its block of R is the identity
+        w.Phis.block(b.row0, rb.col0, b.rows, rb.ncols) += data.Phiq.block(b.row0, body.offset, b.rows, body.ncoord());
+      else
+        w.Phis.block(b.row0, rb.col0, b.rows, rb.ncols).noalias() +=
+            data.Phiq.block(b.row0, body.offset, b.rows, body.ncoord()).lazyProduct(w.R.block(body.offset, rb.col0, body.ncoord(), rb.ncols));
+    }
+  }
+}
+
+// T = R^T W R + kq Phis^T alpha Phis with W = M + kv C + kq K, by body blocks and the blocks
+// of the force elements' pairs; factorised after the diagonal scaling of factorize_tangent.
+void refresh(const Model& model, Data& data, double t) {
+  const RelativeTree& tree = *model.relative;
+  RelativeWork& w = *data.relative;
+  const StepCoefficients& k = data.state.k;
+  force_tangents(model, data, t);
+  w.Ts.setZero();
+  // Ts += R_i^T X R_j over the bodies' column ranges, X = Wb's top-left ni x nj.
+  const auto add = [&](int i, int j) {
+    const RelativeBody& ri = tree.bodies[static_cast<std::size_t>(i)];
+    const RelativeBody& rj = tree.bodies[static_cast<std::size_t>(j)];
+    const Body& bi = model.bodies[static_cast<std::size_t>(i)];
+    const Body& bj = model.bodies[static_cast<std::size_t>(j)];
+    const int ni = bi.ncoord(), nj = bj.ncoord();
+    // (Coefficient-based products: see projected_jacobian. A free body's block of R is the
+    // identity: no product on its side.)
+    auto Ts = w.Ts.block(ri.col0, rj.col0, ri.ncols, rj.ncols);
+    if (rj.free) w.WR.topLeftCorner(ni, rj.ncols) = w.Wb.topLeftCorner(ni, nj);
+    else w.WR.topLeftCorner(ni, rj.ncols).noalias() = w.Wb.topLeftCorner(ni, nj).lazyProduct(w.R.block(bj.offset, rj.col0, nj, rj.ncols));
+    if (ri.free) Ts += w.WR.topLeftCorner(ni, rj.ncols);
+    else Ts.noalias() += w.R.block(bi.offset, ri.col0, ni, ri.ncols).transpose().lazyProduct(w.WR.topLeftCorner(ni, rj.ncols));
+  };
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    const Body& b = model.bodies[i];
+    const int o = b.offset, nb = b.ncoord();
+    auto Wb = w.Wb.topLeftCorner(nb, nb);
+    Wb = data.bodies[i].M + k.kv * data.C.block(o, o, nb, nb) + k.kq * data.K.block(o, o, nb, nb);
+    body_stiffening_rate_tangents(b, data.bodies[i], data.state.q.segment(o + 12, b.nq), data.state.qd.segment(o + 12, b.nq), k.kv, Wb);
+    add(static_cast<int>(i), static_cast<int>(i));
+  }
+  for (const auto& [i, j] : tree.pairs) {
+    const Body& bi = model.bodies[static_cast<std::size_t>(i)];
+    const Body& bj = model.bodies[static_cast<std::size_t>(j)];
+    const int oi = bi.offset, ni = bi.ncoord(), oj = bj.offset, nj = bj.ncoord();
+    w.Wb.topLeftCorner(ni, nj) = k.kv * data.C.block(oi, oj, ni, nj) + k.kq * data.K.block(oi, oj, ni, nj);
+    add(i, j);
+    w.Wb.topLeftCorner(nj, ni) = k.kv * data.C.block(oj, oi, nj, ni) + k.kq * data.K.block(oj, oi, nj, ni);
+    add(j, i);
+  }
+  // The absolute tangent's iterate-dependent terms (FORMULATION.md 9), projected: the kept rows'
+  // second derivatives with the multipliers (without them the free bodies' frame rows, whose
+  // Hessian is the multiplier times the identity, made Newton diverge on the benchmark's crank
+  // at 150 rad/s and h = 1 ms) and the modal masses' derivative at the iterate's accelerations.
+  // Into the n x n work data.T, then by the blocks where they can be nonzero.
+  if (!tree.hessian_pairs.empty()) {
+    for (const auto& [i, j] : tree.hessian_pairs) {
+      const Body& bi = model.bodies[static_cast<std::size_t>(i)];
+      const Body& bj = model.bodies[static_cast<std::size_t>(j)];
+      data.T.block(bi.offset, bj.offset, bi.ncoord(), bj.ncoord()).setZero();
+      data.T.block(bj.offset, bi.offset, bj.ncoord(), bi.ncoord()).setZero();
+    }
+    if (tree.kept_rows > 0) add_constraint_hessian(model, data, data.state.lambda, k.kq, data.T);
+    if (tree.flexible) add_modal_acceleration_tangent(model, data, k.kq, data.T);
+    for (const auto& [i, j] : tree.hessian_pairs) {
+      const Body& bi = model.bodies[static_cast<std::size_t>(i)];
+      const Body& bj = model.bodies[static_cast<std::size_t>(j)];
+      w.Wb.topLeftCorner(bi.ncoord(), bj.ncoord()) = data.T.block(bi.offset, bj.offset, bi.ncoord(), bj.ncoord());
+      add(i, j);
+      if (i == j) continue;
+      w.Wb.topLeftCorner(bj.ncoord(), bi.ncoord()) = data.T.block(bj.offset, bi.offset, bj.ncoord(), bi.ncoord());
+      add(j, i);
+    }
+  }
+  if (tree.kept_rows > 0) {  // (Phis is the current iterate's: step() computed it; zero off the kept rows)
+    w.PA = data.alpha.asDiagonal() * w.Phis;
+    w.Ts.noalias() += k.kq * (w.Phis.transpose() * w.PA);
+  }
+  const auto d = w.Ts.diagonal().array().abs();
+  w.scale = (d > 0).select(d.sqrt().inverse(), 1.0);
+  w.lu.compute(w.scale.asDiagonal() * w.Ts * w.scale.asDiagonal());
+  ++data.stats.factorizations;
+}
+
+void solve(RelativeWork& w, Data& data, const VectorXd& rhs, VectorXd& out) {
+  ++data.stats.solves;
+  out = w.scale.cwiseProduct(rhs);
+  w.lu.solve_in_place(out);
+  out.array() *= w.scale.array();
+}
+
+// out(kept rows) = Phis v.
+void phis_times(const Model& model, RelativeWork& w, const VectorXd& v, VectorXd& out) {
+  out.setZero();
+  for (int bi : model.relative->kept_blocks) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
+    out.segment(b.row0, b.rows).noalias() = w.Phis.middleRows(b.row0, b.rows) * v;
+  }
+}
+
+// out += Phis^T lam over the kept rows.
+void add_phis_t(const Model& model, RelativeWork& w, const VectorXd& lam, double factor, VectorXd& out) {
+  for (int bi : model.relative->kept_blocks) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
+    out.noalias() += factor * (w.Phis.middleRows(b.row0, b.rows).transpose() * lam.segment(b.row0, b.rows));
+  }
+}
+
+// A projection of x (s_dot or s_ddot) onto Phis x + b = 0 (b on the kept rows) in the metric of
+// the factorised tangent: x <- x - T^-1 kq Phis^T alpha (Phis x + b) until the residual, times
+// `scale` (h for rates, h^2 for accelerations: lengths), is below the tolerance.
+double project(const Model& model, Data& data, VectorXd& x, const VectorXd& b, double scale) {
+  RelativeWork& w = *data.relative;
+  const double kq = data.state.k.kq;
+  double res = 0;
+  for (int pass = 0; pass < 50; ++pass) {
+    phis_times(model, w, x, w.c);
+    w.c += b.cwiseProduct(w.keep);
+    res = w.c.cwiseAbs().maxCoeff() * scale / model.length;
+    if (res < model.settings.tolerance) return res;
+    w.r = data.alpha.cwiseProduct(w.c);
+    w.f.setZero();
+    add_phis_t(model, w, w.r, kq, w.f);
+    solve(w, data, w.f, w.ds);
+    x -= w.ds;
+  }
+  return res;
+}
+
+}  // namespace
+
+void relative_step(const Model& model, Data& data, double h) {
+  const SolverSettings& s = model.settings;
+  const NewtonPolicy& p = s.policy.newton;
+  RelativeWork& w = *data.relative;
+  State& st = data.state;
+  // A state this formulation did not produce (initialize, restore_state): take s from it.
+  if (!(st.t == w.t_last) || st.q != w.q_last || st.qd != w.qd_last) relative_sync(model, data);
+  st.k = trapezoidal_coefficients(h);
+  const StepCoefficients& k = st.k;
+  const double h2 = h * h, t1 = st.t + h;
+  w.s0 = w.s;
+  w.sd0 = w.sd;
+  w.sdd0 = w.sdd;
+  w.sd_hat = -(k.c1 * w.s0 + w.sd0);
+  w.sdd_hat = -(k.c2 * w.s0 + (4.0 / h) * w.sd0 + w.sdd0);
+  // The absolute step's predictor (ali3p.cpp), in s.
+  if (w.have_previous) {
+    const double r = h / w.h_prev;
+    w.s.noalias() += h * w.sd0 + (0.25 * (2 + r) * h2) * w.sdd0 - (0.25 * r * h2) * w.sdd_prev;
+  } else {
+    w.s.noalias() += h * w.sd0 + (0.5 * h2) * w.sdd0;
+  }
+  w.sdd_prev = w.sdd0;
+  penalty_weights(model, data, data.W, s.penalty * k.c2, data.alpha);
+  data.alpha.array() *= w.keep.array();
+  st.lambda.array() *= w.keep.array();
+  double inc = 0, prev_inc = 0, viol = 0, left = 0;
+  bool refresh_now = true, converged = false;
+  int refreshes = 0, it = 0;
+  for (it = 1; it <= s.max_iterations; ++it) {
+    w.sd = k.c1 * w.s + w.sd_hat;
+    w.sdd = k.c2 * w.s + w.sdd_hat;
+    relative_kinematics(model, data, true);
+    evaluate(model, data, t1);
+    viol = violation(model, data);
+    if (!std::isfinite(viol) || !st.q.allFinite())
+      throw SolverError(t1, viol, "Newton did not converge at t = " + fmt(t1) + " s (relative formulation): the state is not finite. Try a smaller step (solver.step = " + fmt(0.5 * h) + ")");
+    if (it > 1) st.lambda += data.alpha.cwiseProduct(data.Phi);
+    data.lambda_eff = st.lambda + data.alpha.cwiseProduct(data.Phi);
+    // (The constraint forces through Phi_q R on the kept rows: the dropped rows' multipliers
+    // are zero, and the product over all of the dense Phi_q cost as much as the rest.)
+    if (model.relative->kept_rows > 0) projected_jacobian(model, data);
+    mass_times(model, data, st.qdd, w.g);
+    w.g -= data.Q;
+    w.f.noalias() = w.R.transpose() * w.g;
+    add_phis_t(model, w, data.lambda_eff, 1.0, w.f);
+    w.f *= k.kq;
+    const bool refreshed = refresh_now;
+    if (refresh_now) {
+      refresh(model, data, t1);
+      refresh_now = false;
+      ++refreshes;
+    }
+    // Newton direction with augmented-Lagrangian passes on the linearised kept rows.
+    solve(w, data, w.f, w.ds);
+    w.sigma.setZero();
+    const int passes = it == 1 ? 1 : p.multiplier_passes;
+    for (int pass = 0;; ++pass) {
+      phis_times(model, w, w.ds, w.c);
+      w.c = (data.Phi - w.c).cwiseProduct(w.keep);
+      left = w.c.size() > 0 ? w.c.cwiseAbs().maxCoeff() / model.length : 0.0;
+      if (pass == passes || left < s.tolerance) break;
+      w.r = data.alpha.cwiseProduct(w.c);
+      w.sigma += w.r;
+      add_phis_t(model, w, w.r, k.kq, w.f);
+      solve(w, data, w.f, w.ds);
+    }
+    st.lambda += w.sigma;
+    w.s -= w.ds;
+    prev_inc = inc;
+    inc = scaled(w, w.ds);
+    if (!std::isfinite(inc))
+      throw SolverError(t1, inc, "Newton did not converge at t = " + fmt(t1) + " s (relative formulation): the tangent is singular. Check the joints' axes and the bodies' masses");
+    const double theta = it >= 2 && prev_inc > 0 && !refreshed ? inc / prev_inc : 1.0;
+    const double error_left = it == 1 ? inc : (theta < 1 ? inc * theta / (1 - theta) : std::numeric_limits<double>::infinity());
+    if ((error_left < s.newton_tolerance || inc < 0.1 * s.newton_tolerance) && left < s.tolerance &&
+        viol < p.violation_factor * s.tolerance) {
+      converged = true;
+      break;
+    }
+    // The predictor's tangent far from this iterate (its penalty term built with the predictor's
+    // Phi_q, the absolute step's predictor_far, FORMULATION.md 9): rebuilt here. On the
+    // benchmark's crank (150 rad/s, h = 1 ms) iterations 2 and 3 otherwise did not contract.
+    if (it == 1 && s.penalty * inc > p.stale_tangent) refresh_now = true;
+    if (it >= 2 && inc > p.slow_contraction * prev_inc && refreshes < p.max_refreshes) refresh_now = true;
+  }
+  data.stats.newton_iterations += it > s.max_iterations ? s.max_iterations : it;
+  data.stats.last_iterations = it;
+  st.last_iterations = it;
+  data.stats.last_increment = inc;
+  if (!converged)
+    throw SolverError(t1, std::max(inc, viol),
+                      "Newton did not converge at t = " + fmt(t1) + " s after " + std::to_string(s.max_iterations) +
+                          " iterations (relative formulation): scaled increment " + fmt(inc) + " (tolerance " +
+                          fmt(s.newton_tolerance) + "), kept constraint violation " + fmt(viol) +
+                          " of the model length. Try a smaller step (solver.step = " + fmt(0.5 * h) +
+                          ") or more iterations (solver.max_iterations)");
+
+  // Final state, multipliers and projections.
+  w.sd = k.c1 * w.s + w.sd_hat;
+  w.sdd = k.c2 * w.s + w.sdd_hat;
+  relative_kinematics(model, data, true);
+  update_bodies(model, data);
+  update_markers(model, data);
+  evaluate_constraints(model, data, t1);
+  st.lambda += data.alpha.cwiseProduct(data.Phi);
+  data.stats.last_violation = violation(model, data);
+  data.stats.last_velocity_violation = 0;
+  data.stats.last_acceleration_violation = 0;
+  if (model.relative->kept_rows > 0) {
+    projected_jacobian(model, data);
+    data.stats.last_velocity_violation = project(model, data, w.sd, data.Phit, h);
+    if (!(data.stats.last_velocity_violation < s.tolerance))
+      throw SolverError(t1, data.stats.last_velocity_violation,
+                        "the velocity projection did not converge at t = " + fmt(t1) + " s (relative formulation); try a smaller step (solver.step = " + fmt(0.5 * h) + ")");
+    // The acceleration bias at the projected rates: gamma + Phi_q R_dot s_dot.
+    w.sdd.setZero();
+    relative_kinematics(model, data, false);
+    update_body_rates(model, data);
+    update_marker_rates(model, data);
+    evaluate_constraint_biases(model, data, t1);
+    constraint_times(model, data, st.qdd, w.sigma);  // (project() works in r and c)
+    w.sigma += data.gamma;
+    w.sdd = k.c2 * w.s + w.sdd_hat;
+    data.stats.last_acceleration_violation = project(model, data, w.sdd, w.sigma, h2);
+    relative_kinematics(model, data, false);
+    update_bodies(model, data);
+    update_markers(model, data);
+  }
+  data.reaction_lambda = st.lambda;
+  detail::commit_friction(model, data, h);
+  st.t = t1;
+  st.have_previous = true;
+  w.have_previous = true;
+  w.h_prev = h;
+  ++data.stats.steps;
+  update_angle_references(model, data);
+  w.q_last = st.q;
+  w.qd_last = st.qd;
+  w.t_last = st.t;
+}
+
+}  // namespace ffr::runtime

@@ -1,0 +1,231 @@
+// The relative formulation's spanning tree (relative.hpp): which joints place their child
+// body, which bodies stay free, which constraint rows stay; and the Auto rule.
+#include "ffr/runtime/errors.hpp"
+#include "ffr/runtime/relative.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+
+namespace ffr::runtime {
+namespace {
+
+// A joint that can place its child: the kinds with a rotation about and a slide along the
+// first marker axis (or neither), between two markers rigidly on body frames (a marker on a
+// flexible node moves with the deformation, and a child placed by its non-orthonormal triad
+// would not be rigid), neither body a beam (held at the global frame by its own rows).
+bool tree_capable(const Model& m, const Joint& j) {
+  if (j.type != JointType::Revolute && j.type != JointType::Prismatic && j.type != JointType::Cylindrical &&
+      j.type != JointType::Fixed)
+    return false;
+  for (int mk : {j.m1, j.m2}) {
+    const Marker& k = m.markers[static_cast<std::size_t>(mk)];
+    if (k.node >= 0) return false;
+    if (k.body != kGround && m.bodies[static_cast<std::size_t>(k.body)].beam) return false;
+    if (!(k.E.transpose() * k.E - Matrix3d::Identity()).isZero(1e-9)) return false;
+  }
+  return m.markers[static_cast<std::size_t>(j.m1)].body != m.markers[static_cast<std::size_t>(j.m2)].body;
+}
+
+// The spanning tree and the relative coordinates (everything but the kept rows).
+void span(const Model& m, RelativeTree& t, int& ntree, int& nfree) {
+  const int nb = static_cast<int>(m.bodies.size());
+  t.bodies.assign(static_cast<std::size_t>(nb), RelativeBody{});
+  t.tree_joint.assign(m.joints.size(), 0);
+  std::vector<char> placed(static_cast<std::size_t>(nb), 0);
+  // Breadth first from the ground, then from each body left over (a free base): every body is
+  // reached by the fewest joints, which keeps the recursion short and the tree shallow.
+  std::deque<int> queue{kGround};
+  nfree = ntree = 0;
+  for (;;) {
+    while (!queue.empty()) {
+      const int p = queue.front();
+      queue.pop_front();
+      for (std::size_t ji = 0; ji < m.joints.size(); ++ji) {
+        const Joint& j = m.joints[ji];
+        if (t.tree_joint[ji] || !tree_capable(m, j)) continue;
+        const int b1 = m.markers[static_cast<std::size_t>(j.m1)].body, b2 = m.markers[static_cast<std::size_t>(j.m2)].body;
+        int child = -1, pm = -1;
+        if (b1 == p && b2 != kGround && !placed[static_cast<std::size_t>(b2)]) child = b2, pm = j.m1;
+        else if (b2 == p && b1 != kGround && !placed[static_cast<std::size_t>(b1)]) child = b1, pm = j.m2;
+        if (child < 0) continue;
+        RelativeBody& rb = t.bodies[static_cast<std::size_t>(child)];
+        rb.free = false;
+        rb.parent = p;
+        rb.joint = static_cast<int>(ji);
+        rb.parent_marker = pm;
+        placed[static_cast<std::size_t>(child)] = 1;
+        t.tree_joint[ji] = 1;
+        t.order.push_back(child);
+        queue.push_back(child);
+        ++ntree;
+      }
+    }
+    int root = -1;
+    for (int b = 0; b < nb && root < 0; ++b)
+      if (!placed[static_cast<std::size_t>(b)]) root = b;
+    if (root < 0) break;
+    placed[static_cast<std::size_t>(root)] = 1;
+    t.order.push_back(root);
+    queue.push_back(root);
+    ++nfree;
+  }
+  // Coordinates in the order of the recursion.
+  int ns = 0;
+  for (int b : t.order) {
+    RelativeBody& rb = t.bodies[static_cast<std::size_t>(b)];
+    const Body& body = m.bodies[static_cast<std::size_t>(b)];
+    if (rb.free) {
+      rb.s_first = ns;
+      ns += body.ncoord();
+      continue;
+    }
+    const JointType jt = m.joints[static_cast<std::size_t>(rb.joint)].type;
+    if (jt == JointType::Revolute || jt == JointType::Cylindrical) rb.s_angle = ns++;
+    if (jt == JointType::Prismatic || jt == JointType::Cylindrical) rb.s_slide = ns++;
+    if (body.nq > 0) {
+      rb.s_first = ns;
+      ns += body.nq;
+    }
+  }
+  t.ns = ns;
+  // Column ranges, parents first (a free body's: its own).
+  for (int b : t.order) {
+    RelativeBody& rb = t.bodies[static_cast<std::size_t>(b)];
+    int lo = ns, hi = 0;
+    const auto add = [&](int c0, int n) {
+      if (n <= 0 || c0 < 0) return;
+      lo = std::min(lo, c0);
+      hi = std::max(hi, c0 + n);
+    };
+    if (rb.free) {
+      add(rb.s_first, m.bodies[static_cast<std::size_t>(b)].ncoord());
+    } else {
+      if (rb.parent != kGround) {
+        const RelativeBody& pb = t.bodies[static_cast<std::size_t>(rb.parent)];
+        add(pb.col0, pb.ncols);
+      }
+      add(rb.s_angle, 1);
+      add(rb.s_slide, 1);
+      add(rb.s_first, m.bodies[static_cast<std::size_t>(b)].nq);
+    }
+    rb.col0 = lo < hi ? lo : 0;
+    rb.ncols = lo < hi ? hi - lo : 0;
+  }
+  for (const Body& b : m.bodies) t.flexible = t.flexible || b.nq > 0;
+}
+
+}  // namespace
+
+void build_relative_tree(Model& m) {
+  const std::string& file = m.source;
+  const SolverSettings& st = m.settings;
+  if (st.integrator != Integrator::Trapezoidal)
+    throw ModelError(file, "solver.formulation",
+                     "\"relative\" integrates with the trapezoidal rule only; remove solver.integrator or use \"absolute\"");
+  if (st.adaptive)
+    throw ModelError(file, "solver.formulation",
+                     "\"relative\" takes fixed steps only; give solver.step a number or use \"absolute\"");
+  auto tree = std::make_shared<RelativeTree>();
+  RelativeTree& t = *tree;
+  int ntree = 0, nfree = 0;
+  span(m, t, ntree, nfree);
+  const int ns = t.ns;
+  // The rows that stay: all but the tree joints' and the tree bodies' frames.
+  for (std::size_t i = 0; i < m.blocks.size(); ++i) {
+    const ConstraintBlock& b = m.blocks[i];
+    if (b.kind == BlockKind::Joint && t.tree_joint[static_cast<std::size_t>(b.index)]) continue;
+    if (b.kind == BlockKind::RigidBody && !t.bodies[static_cast<std::size_t>(b.body1)].free) continue;
+    t.kept_blocks.push_back(static_cast<int>(i));
+    t.kept_rows += b.rows;
+  }
+  const auto hessian_pair = [&](int a, int b) {
+    if (a == kGround || b == kGround) return;
+    if (a > b) std::swap(a, b);
+    if (std::find(t.hessian_pairs.begin(), t.hessian_pairs.end(), std::pair{a, b}) == t.hessian_pairs.end()) t.hessian_pairs.emplace_back(a, b);
+  };
+  for (int bi : t.kept_blocks) {
+    const ConstraintBlock& b = m.blocks[static_cast<std::size_t>(bi)];
+    for (int x : {b.body1, b.body2, b.body3})
+      for (int y : {b.body1, b.body2, b.body3}) hessian_pair(x, y);
+  }
+  for (int b = 0; b < static_cast<int>(m.bodies.size()); ++b)
+    if (m.bodies[static_cast<std::size_t>(b)].nq > 0) hessian_pair(b, b);
+  // Force elements between two bodies couple their blocks of K and C.
+  const auto pair = [&](int mk1, int mk2) {
+    int a = m.markers[static_cast<std::size_t>(mk1)].body, b = m.markers[static_cast<std::size_t>(mk2)].body;
+    if (a == kGround || b == kGround || a == b) return;
+    if (a > b) std::swap(a, b);
+    if (std::find(t.pairs.begin(), t.pairs.end(), std::pair{a, b}) == t.pairs.end()) t.pairs.emplace_back(a, b);
+  };
+  for (const auto& s : m.springs) pair(s.m1, s.m2);
+  for (const auto& s : m.bushings) pair(s.m1, s.m2);
+  for (const auto& s : m.friction_dampers) pair(s.m1, s.m2);
+  // What the tree cannot give: the reaction of a joint it satisfies by construction has no
+  // multiplier.
+  for (std::size_t i = 0; i < m.outputs.size(); ++i) {
+    const Output& o = m.outputs[i];
+    if (o.type == OutputType::JointReaction && o.joint >= 0 && t.tree_joint[static_cast<std::size_t>(o.joint)])
+      throw ModelError(file, "outputs[" + std::to_string(i) + "] ('" + o.name + "')",
+                       "a joint_reaction of joint '" + m.joints[static_cast<std::size_t>(o.joint)].name +
+                           "', which the relative formulation satisfies by its coordinates (no multiplier); use \"formulation\": \"absolute\"");
+  }
+  t.description = "relative formulation: " + std::to_string(ns) + " coordinates (absolute: " + std::to_string(m.ncoord) + "), " +
+                  std::to_string(ntree) + " bodies placed by their joints, " + std::to_string(nfree) + " free, " +
+                  std::to_string(t.kept_rows) + " constraint rows kept (absolute: " + std::to_string(m.nconstraints) + ")";
+  m.relative = std::move(tree);
+}
+
+RelativeWork::RelativeWork(const Model& model) {
+  const RelativeTree& t = *model.relative;
+  const int ns = t.ns, n = model.ncoord, m = model.nconstraints;
+  s = sd = sdd = s0 = sd0 = sdd0 = sdd_prev = sd_hat = sdd_hat = VectorXd::Zero(ns);
+  f = ds = scale = VectorXd::Zero(ns);
+  rel_A.assign(model.bodies.size(), Matrix3d::Identity());
+  rel_p.assign(model.bodies.size(), Vector3d::Zero());
+  R = MatrixXd::Zero(n, ns);
+  weight = VectorXd::Ones(ns);
+  keep = VectorXd::Zero(m);
+  for (int bi : t.kept_blocks) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
+    keep.segment(b.row0, b.rows).setOnes();
+  }
+  Phis = MatrixXd::Zero(m, ns);
+  Ts = MatrixXd::Zero(ns, ns);
+  int nb_max = 12;
+  for (const Body& b : model.bodies) nb_max = std::max(nb_max, b.ncoord());
+  Wb = MatrixXd::Zero(nb_max, nb_max);
+  WR = MatrixXd::Zero(nb_max, ns);
+  PA = MatrixXd::Zero(m, ns);
+  lu.resize(std::max(ns, 1));
+  r = sigma = c = VectorXd::Zero(m);
+  g = bias = qsave = q_last = qd_last = VectorXd::Zero(n);
+}
+
+// The Auto rule: see FORMULATION.md section 18 for the measurements behind it.
+Formulation choose_formulation(const Model& m, std::string& why) {
+  if (m.settings.integrator != Integrator::Trapezoidal || m.settings.adaptive) {
+    why = "absolute (solver.formulation \"auto\": the relative formulation takes fixed trapezoidal steps only)";
+    return Formulation::Absolute;
+  }
+  RelativeTree t;
+  int ntree = 0, nfree = 0;
+  span(m, t, ntree, nfree);
+  int n = 0;
+  for (const Body& b : m.bodies) n += b.ncoord();
+  // Relative when it has at most a third of the absolute coordinates. Measured
+  // (tools/bench/formulations/RESULTS.md): the chains and the four-bar (1/12 of the coordinates)
+  // ran faster in relative coordinates, the flexible slider-crank, whose rod stays free (its
+  // joints are at nodes: 24 of 46 coordinates), slower. The threshold lies between those
+  // measured ratios; where between them the two break even was not measured.
+  const bool rel = n > 0 && 3 * t.ns <= n;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%d relative coordinates against %d absolute ones (%d bodies placed by joints, %d free)", t.ns, n, ntree,
+                nfree);
+  why = std::string(rel ? "relative" : "absolute") + " (solver.formulation \"auto\": " + buf +
+        "; relative when it has at most a third of the absolute coordinates)";
+  return rel ? Formulation::Relative : Formulation::Absolute;
+}
+
+}  // namespace ffr::runtime
