@@ -15,8 +15,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 using namespace ffr;
 namespace fs = std::filesystem;
@@ -140,6 +142,62 @@ INSTANTIATE_TEST_SUITE_P(PartTypes, SlepcOnTwoRanks,
                                    : m == Method::Clamped  ? "clamped"
                                                            : "craig_bampton");
                          });
+
+// What each rank reports of its share (the distributed path's log, one line a rank): its
+// elements, the entries of K and M it assembled and those of its rows of the summed K and M.
+struct RankShare {
+  long long elements = 0, assembled = 0, rows = 0, rss_mib = 0;
+};
+std::vector<RankShare> rank_shares(const std::string& log, int ranks) {
+  std::vector<RankShare> v(static_cast<std::size_t>(ranks));
+  int seen = 0;
+  for (int r = 0; r < ranks; ++r) {
+    const std::string key = "rank " + std::to_string(r) + " of " + std::to_string(ranks) + ": ";
+    const auto at = log.find(key);
+    if (at == std::string::npos) continue;
+    RankShare& s = v[static_cast<std::size_t>(r)];
+    if (std::sscanf(log.c_str() + at + key.size(),
+                    "%lld elements, %lld assembled entries of K and M, %lld entries in its rows of K and M, peak RSS %lld MiB",
+                    &s.elements, &s.assembled, &s.rows, &s.rss_mib) == 4)
+      ++seen;
+  }
+  if (seen != ranks) v.clear();
+  return v;
+}
+
+// No rank holds K and M whole: on two ranks each assembles about half of the elements, and
+// stores about half of the rows of the summed matrices. Reference: the same part on one rank,
+// where the one rank assembles every element (the count gmsh's mesh has) and stores all rows.
+// The halves overlap by the entries of the elements on the cut and the rows' coupling to it
+// (some percent on this bar), so the bound is 0.75 of the whole; and the SID is the serial one.
+TEST(Slepc, EachRankAssemblesAndStoresItsShareOnly) {
+  test::TempDir dir("slepc_share");
+  write_part(dir, Body::Solid, Method::Free, "slepc");
+  // With its log (reduce_command's --quiet left out): rank 0 prints every rank's line.
+  auto logged = [&](const std::string& out) {
+    return test::bin("ffr-reduce").string() + " " + (dir / "part.json").string() + " -o " + (dir / out).string();
+  };
+  const auto one = test::run(mpirun(1, logged("one.sid.h5")));
+  ASSERT_EQ(one.status, 0) << one.output;
+  const auto two = test::run(mpirun(2, logged("two.sid.h5")));
+  ASSERT_EQ(two.status, 0) << two.output;
+  const auto whole = rank_shares(one.output, 1);
+  const auto half = rank_shares(two.output, 2);
+  ASSERT_EQ(whole.size(), 1u) << one.output;
+  ASSERT_EQ(half.size(), 2u) << two.output;
+  EXPECT_EQ(half[0].elements + half[1].elements, whole[0].elements);
+  for (int r = 0; r < 2; ++r) {
+    const RankShare& s = half[static_cast<std::size_t>(r)];
+    EXPECT_GT(s.elements, 0) << "rank " << r;
+    EXPECT_LT(s.assembled, 0.75 * static_cast<double>(whole[0].assembled)) << "rank " << r << "\n" << two.output;
+    EXPECT_LT(s.rows, 0.75 * static_cast<double>(whole[0].rows)) << "rank " << r << "\n" << two.output;
+  }
+  // The summed rows are the whole matrices: every entry of one rank's K and M is in one rank's rows.
+  EXPECT_EQ(half[0].rows + half[1].rows, whole[0].rows);
+  const auto diff = test::run(test::bin("ffr-diff").string() + " " + (dir / "one.sid.h5").string() + " " +
+                              (dir / "two.sid.h5").string() + " --rtol 1e-6");
+  EXPECT_EQ(diff.status, 0) << diff.output;
+}
 
 // Without mpirun the same program runs the backend on one rank.
 TEST(Slepc, RunsWithoutMpirunOnOneRank) {
