@@ -2,7 +2,7 @@
 // shift-invert factorized by MUMPS) under `mpirun -np 2` gives the SID of the serial path (the
 // default: the own block Lanczos on the own supernodal Cholesky, itself checked against CalculiX
 // in tests/reduce) on a solid and a shell part, free (by count and up to a frequency), clamped
-// and Craig-Bampton, and a beam part, free. Reference: the serial path; the two share no eigen-solver or factorization
+// and Craig-Bampton, a shell with an attached mass, free, and a beam part, free. Reference: the serial path; the two share no eigen-solver or factorization
 // code (SLEPc and MUMPS are code nobody here wrote). Compared by ffr-diff, which aligns mode
 // signs and rotations within degenerate subspaces, at rtol 1e-6 over every member of the SID,
 // and the frequencies at 1e-8 relative.
@@ -42,7 +42,7 @@ const char* kBeamGeo = R"(Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Line(1) = 
 Transfinite Curve{1} = 41; Physical Curve("beam") = {1}; Physical Point("left") = {1}; Physical Point("right") = {2};
 )";
 
-enum class Body { Solid, Shell, Beam };
+enum class Body { Solid, Shell, ShellWithMass, Beam };
 enum class Method { Free, FreeUpTo, Clamped, CraigBampton };
 
 std::string part_json(Body b, Method m, const std::string& backend) {
@@ -50,6 +50,10 @@ std::string part_json(Body b, Method m, const std::string& backend) {
         "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],)"
                    : b == Body::Shell ? R"({"geometry": "part.geo", "mesh": {"order": 1},
         "shells": [{"group": "plate", "thickness": 0.002, "E": 7e10, "nu": 0.3, "rho": 2700}],)"
+                   : b == Body::ShellWithMass ? R"({"geometry": "part.geo", "mesh": {"order": 1},
+        "shells": [{"group": "plate", "thickness": 0.002, "E": 7e10, "nu": 0.3, "rho": 2700}],
+        "point_masses": [{"name": "tip", "at": [0.5, 0.04, 0], "mass": 0.05, "com_offset": [0, 0, 0.01],
+                          "inertia": [[1e-5, 0, 0], [0, 1e-5, 0], [0, 0, 2e-5]]}],)"
                                       : R"({"geometry": "part.geo", "mesh": {"order": 1},
         "beams": [{"group": "beam", "E": 2.1e11, "nu": 0.3, "rho": 7850, "y_axis": [0, 1, 0],
                    "section": {"A": 1.2e-3, "Iy": 4e-8, "Iz": 3.6e-7, "J": 1.5e-7}}],)";
@@ -67,7 +71,7 @@ std::string part_json(Body b, Method m, const std::string& backend) {
 }
 
 void write_part(const test::TempDir& dir, Body b, Method m, const std::string& backend) {
-  test::write_text(dir / "part.geo", b == Body::Solid ? kSolidGeo : b == Body::Shell ? kShellGeo : kBeamGeo);
+  test::write_text(dir / "part.geo", b == Body::Solid ? kSolidGeo : b == Body::Beam ? kBeamGeo : kShellGeo);
   test::write_text(dir / "part.json", part_json(b, m, backend));
 }
 
@@ -132,11 +136,17 @@ INSTANTIATE_TEST_SUITE_P(PartTypes, SlepcOnTwoRanks,
                                            std::make_tuple(Body::Solid, Method::CraigBampton),
                                            std::make_tuple(Body::Shell, Method::Free),
                                            std::make_tuple(Body::Shell, Method::Clamped),
+                                           // The rotary part and the samples of an attached mass, summed over the ranks.
+                                           std::make_tuple(Body::ShellWithMass, Method::Free),
                                            std::make_tuple(Body::Beam, Method::Free)),
                          [](const auto& info) {
                            const Body b = std::get<0>(info.param);
                            const Method m = std::get<1>(info.param);
-                           return std::string(b == Body::Solid ? "solid" : b == Body::Shell ? "shell" : "beam") + "_" +
+                           return std::string(b == Body::Solid           ? "solid"
+                                              : b == Body::Shell         ? "shell"
+                                              : b == Body::ShellWithMass ? "shell_with_mass"
+                                                                         : "beam") +
+                                  "_" +
                                   (m == Method::Free       ? "free"
                                    : m == Method::FreeUpTo ? "free_up_to_20kHz"
                                    : m == Method::Clamped  ? "clamped"
