@@ -18,7 +18,7 @@
 namespace ffr::preproc::detail {
 namespace {
 
-void sum_matrix(Eigen::MatrixXd& A) { sum_over_ranks(A.data(), static_cast<std::size_t>(A.size())); }
+// A dense Eigen matrix summed over the ranks, in place.
 template <class M>
 void sum_dense(M& A) {
   sum_over_ranks(A.data(), static_cast<std::size_t>(A.size()));
@@ -151,9 +151,9 @@ void DistributedReduction::integrals(const Assembled& fe, const Eigen::MatrixXd&
   sum_dense(sid.integrals.Pdm);
   for (auto& m : sid.integrals.rPdm) sum_dense(m);
   for (auto& row : sid.integrals.PPdm)
-    for (auto& m : row) sum_matrix(m);
+    for (auto& m : row) sum_dense(m);
   sum_dense(sid.rotary.PsiI);
-  sum_matrix(sid.rotary.PsiIPsi);
+  sum_dense(sid.rotary.PsiIPsi);
 }
 
 std::vector<std::string> DistributedReduction::rank_lines() const {

@@ -8,7 +8,7 @@ n DOF on p ranks:   R(n, p) = a + b n + c n^alpha / p
   K and M, its rows of the summed matrices, its part of MUMPS's factor and of the Krylov basis).
 alpha is scanned, (a, b, c) fitted by relative least squares. The check: the model fitted
 without the largest size predicts the largest size's runs.
-Usage: fit.py results.tsv
+Usage: fit.py results.tsv [more.tsv ...]   (the runs of every file, sorted by DOF)
 """
 import sys
 
@@ -51,7 +51,8 @@ def model(m, n, p):
 
 
 def main():
-    rows = [l.rstrip("\n").split("\t") for l in open(sys.argv[1])][1:]
+    rows = [l.rstrip("\n").split("\t") for f in sys.argv[1:] for l in list(open(f))[1:]]
+    rows.sort(key=lambda r: (int(r[1]), r[2] != "serial", r[3]))
     print("| size | DOF | path | ranks | wall [s] | peak RSS per rank [MiB] | SID vs serial |")
     print("|---|---|---|---|---|---|---|")
     for size, dof, path, ranks, wall, rss, diff in rows:
