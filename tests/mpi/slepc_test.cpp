@@ -209,6 +209,21 @@ TEST(Slepc, EachRankAssemblesAndStoresItsShareOnly) {
   EXPECT_EQ(diff.status, 0) << diff.output;
 }
 
+// Bad input found after the distributed assembly (no mass at any DOF: a density of 0, seen
+// only in the summed M): the serial path's message on every rank, exit status 2, no SID.
+TEST(Slepc, MasslessPartRefusedOnTwoRanks) {
+  test::TempDir dir("slepc_massless");
+  write_part(dir, Body::Solid, Method::Free, "slepc");
+  std::string json = part_json(Body::Solid, Method::Free, "slepc");
+  json.replace(json.find("\"rho\": 7850"), 11, "\"rho\": 0");
+  test::write_text(dir / "part.json", json);
+  const auto r = test::run(mpirun(2, reduce_command(dir, "out.sid.h5")));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("materials"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("carry no mass"), std::string::npos) << r.output;
+  EXPECT_EQ(stray_files(dir), "");
+}
+
 // Without mpirun the same program runs the backend on one rank.
 TEST(Slepc, RunsWithoutMpirunOnOneRank) {
   test::TempDir dir("slepc1");
