@@ -67,17 +67,19 @@ def main():
     err, alpha, a, b, c = m
     print(f"\nModel (all slepc runs): R(n, p) = {a:.0f} MiB + {b * 1e3:.3f} MiB per 1000 DOF x n/1000"
           f" + {c:.3g} MiB x n^{alpha:.2f} / p;  largest relative misfit {100 * err:.1f} %")
-    largest = max(n for n, _, _ in runs)
-    rest = [x for x in runs if x[0] != largest]
-    if len({n for n, _, _ in rest}) >= 3:
+    # The check: fitted without a size (and every larger one), the model predicts that size's
+    # runs; for the largest size and the one below it.
+    for largest in sorted({n for n, _, _ in runs})[-2:]:
+        rest = [x for x in runs if x[0] < largest]
+        if len({n for n, _, _ in rest}) < 3:
+            print(f"\n(fewer than three sizes below {largest} DOF: no check there)")
+            continue
         m2 = fit(rest)
-        print(f"\nCheck: fitted without the {largest}-DOF runs (alpha {m2[1]:.2f}), the model predicts them:")
+        print(f"\nCheck: fitted to the runs below {largest} DOF (alpha {m2[1]:.2f}), the model predicts those at {largest}:")
         for n, p, r in runs:
             if n == largest:
                 pr = model(m2, n, p)
                 print(f"- {p} rank(s): predicted {pr:.0f} MiB, measured {r:.0f} MiB ({100 * (pr - r) / r:+.1f} %)")
-    else:
-        print("\n(fewer than three smaller sizes: no check against the largest)")
     print("\nPredicted peak memory per rank at 10M DOF (the fit on all runs):")
     for p in (1, 2, 8, 16, 32, 64, 128):
         print(f"- {p} ranks: {model(m, 10e6, p) / 1024:.1f} GiB per rank ({p * model(m, 10e6, p) / 1024:.0f} GiB in all)")
