@@ -92,7 +92,7 @@ run_one() {
     printf '%s\t%s\t%s\t-\t-\tskipped (expected %s MiB)\t-\n' "$tag" "$dof" "$path" "$need" >> "$tsv"
     return
   fi
-  rm -f "$dir"/time.* "$dir/$path.sid.h5"
+  rm -f "$dir/time.$path."* "$dir/$path.sid.h5"
   out="$dir/$path.sid.h5"
   if [ "$path" = serial ]; then
     ranks=1
