@@ -13,12 +13,14 @@
 #include "ffr/preproc/visual/visual.hpp"
 #include "ffr/version.hpp"
 #include "matrix_input/matrix_input.hpp"
+#include "reduce/distributed_reduction.hpp"
 #include "reduce/pattern_analysis.hpp"
 #include "reduce/setup.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 namespace ffr::preproc {
@@ -101,9 +103,19 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   // the part's own assembled matrices, without either.
   const bool from_files = part.matrices.given();
   std::string file_mass_type;
-  EarlyAnalysis early = from_files ? EarlyAnalysis{} : EarlyAnalysis::start(model, part.reduction);
+  // The slepc backend's distributed path: each rank assembles its share of the elements
+  // (reduce/distributed_reduction.hpp).
+  std::optional<detail::DistributedReduction> distributed;
+  if (detail::distributed_reduction_applies(part)) distributed.emplace(model, part.reduction);
+  EarlyAnalysis early = from_files || distributed ? EarlyAnalysis{} : EarlyAnalysis::start(model, part.reduction);
   Assembled fe;
-  if (from_files) {
+  if (distributed) {
+    fe = distributed->assemble([&](double f) { progress("assembly " + std::to_string(static_cast<int>(100 * f)) + " %"); });
+    stage("assembly: " + std::to_string(fe.elements) + " elements, distributed, mass " + fmt(fe.mass, 6) + " " +
+          part.units.mass + " [" + fmt(sw.lap()) + " s]");
+    if (!fe.worst_element.empty())
+      stage("  quality: worst scaled Jacobian " + fmt(fe.worst_scaled_jacobian) + " (" + fe.worst_element + ")");
+  } else if (from_files) {
     detail::MatrixInput in = detail::read_matrix_input(model, part);
     fe = std::move(in.fe);
     file_mass_type = std::move(in.mass_type);
@@ -148,8 +160,10 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
   ReductionLog rlog;
   rlog.message = [&](const std::string& s) { stage("  " + s); };
   rlog.progress = progress;
-  ReductionResult red = part.stiffening || !part.preload.empty() ? reduce(model, fe, part.reduction, rlog, from_files ? nullptr : &early)
-                                      : reduce_consuming_matrices(model, fe, part.reduction, rlog, from_files ? nullptr : &early);
+  ReductionResult red = distributed ? distributed->reduce(fe, rlog)
+                        : part.stiffening || !part.preload.empty()
+                            ? reduce(model, fe, part.reduction, rlog, from_files ? nullptr : &early)
+                            : reduce_consuming_matrices(model, fe, part.reduction, rlog, from_files ? nullptr : &early);
   {
     std::string f;
     for (Index i = 0; i < std::min<Index>(red.lambda.size(), 6); ++i)
@@ -157,6 +171,8 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
     stage("modes: " + std::to_string(red.lambda.size()) + " (" + red.reference + "), first [Hz]: " + f +
           (red.lambda.size() > 6 ? ", ..." : "") + "; max residual " + fmt(red.max_residual, 2) + " [" + fmt(sw.lap()) + " s]");
   }
+  if (distributed)
+    for (const std::string& line : distributed->rank_lines()) stage("  " + line);
 
   // 5. Invariants.
   formats::Sid sid;
@@ -170,7 +186,8 @@ formats::Sid run_pipeline(const PartSpec& part, const PipelineOptions& options, 
     sid.refmod.frequency_hz(k) = std::sqrt(std::max(0.0, red.lambda(k))) / (2 * M_PI) / t_unit;
   sid.refmod.mode_type = red.types;
   sid.refmod.reference = red.reference;
-  compute_integrals(model, fe, red.Phi, sid);
+  if (distributed) distributed->integrals(fe, red.Phi, sid);
+  else compute_integrals(model, fe, red.Phi, sid);
   members_from_integrals(sid);
   sid.Ke = red.Ke;
   sid.De = damping_matrix(part.damping, sid.Me, sid.Ke);

@@ -2,7 +2,7 @@
 // shift-invert factorized by MUMPS) under `mpirun -np 2` gives the SID of the serial path (the
 // default: the own block Lanczos on the own supernodal Cholesky, itself checked against CalculiX
 // in tests/reduce) on a solid and a shell part, free (by count and up to a frequency), clamped
-// and Craig-Bampton, and a beam part, free. Reference: the serial path; the two share no eigen-solver or factorization
+// and Craig-Bampton, a shell with an attached mass, free, and a beam part, free. Reference: the serial path; the two share no eigen-solver or factorization
 // code (SLEPc and MUMPS are code nobody here wrote). Compared by ffr-diff, which aligns mode
 // signs and rotations within degenerate subspaces, at rtol 1e-6 over every member of the SID,
 // and the frequencies at 1e-8 relative.
@@ -15,8 +15,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 using namespace ffr;
 namespace fs = std::filesystem;
@@ -40,7 +42,7 @@ const char* kBeamGeo = R"(Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Line(1) = 
 Transfinite Curve{1} = 41; Physical Curve("beam") = {1}; Physical Point("left") = {1}; Physical Point("right") = {2};
 )";
 
-enum class Body { Solid, Shell, Beam };
+enum class Body { Solid, Shell, ShellWithMass, Beam };
 enum class Method { Free, FreeUpTo, Clamped, CraigBampton };
 
 std::string part_json(Body b, Method m, const std::string& backend) {
@@ -48,6 +50,10 @@ std::string part_json(Body b, Method m, const std::string& backend) {
         "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],)"
                    : b == Body::Shell ? R"({"geometry": "part.geo", "mesh": {"order": 1},
         "shells": [{"group": "plate", "thickness": 0.002, "E": 7e10, "nu": 0.3, "rho": 2700}],)"
+                   : b == Body::ShellWithMass ? R"({"geometry": "part.geo", "mesh": {"order": 1},
+        "shells": [{"group": "plate", "thickness": 0.002, "E": 7e10, "nu": 0.3, "rho": 2700}],
+        "point_masses": [{"name": "tip", "at": [0.5, 0.04, 0], "mass": 0.05, "com_offset": [0, 0, 0.01],
+                          "inertia": [[1e-5, 0, 0], [0, 1e-5, 0], [0, 0, 2e-5]]}],)"
                                       : R"({"geometry": "part.geo", "mesh": {"order": 1},
         "beams": [{"group": "beam", "E": 2.1e11, "nu": 0.3, "rho": 7850, "y_axis": [0, 1, 0],
                    "section": {"A": 1.2e-3, "Iy": 4e-8, "Iz": 3.6e-7, "J": 1.5e-7}}],)";
@@ -65,7 +71,7 @@ std::string part_json(Body b, Method m, const std::string& backend) {
 }
 
 void write_part(const test::TempDir& dir, Body b, Method m, const std::string& backend) {
-  test::write_text(dir / "part.geo", b == Body::Solid ? kSolidGeo : b == Body::Shell ? kShellGeo : kBeamGeo);
+  test::write_text(dir / "part.geo", b == Body::Solid ? kSolidGeo : b == Body::Beam ? kBeamGeo : kShellGeo);
   test::write_text(dir / "part.json", part_json(b, m, backend));
 }
 
@@ -130,16 +136,93 @@ INSTANTIATE_TEST_SUITE_P(PartTypes, SlepcOnTwoRanks,
                                            std::make_tuple(Body::Solid, Method::CraigBampton),
                                            std::make_tuple(Body::Shell, Method::Free),
                                            std::make_tuple(Body::Shell, Method::Clamped),
+                                           // The rotary part and the samples of an attached mass, summed over the ranks.
+                                           std::make_tuple(Body::ShellWithMass, Method::Free),
                                            std::make_tuple(Body::Beam, Method::Free)),
                          [](const auto& info) {
                            const Body b = std::get<0>(info.param);
                            const Method m = std::get<1>(info.param);
-                           return std::string(b == Body::Solid ? "solid" : b == Body::Shell ? "shell" : "beam") + "_" +
+                           return std::string(b == Body::Solid           ? "solid"
+                                              : b == Body::Shell         ? "shell"
+                                              : b == Body::ShellWithMass ? "shell_with_mass"
+                                                                         : "beam") +
+                                  "_" +
                                   (m == Method::Free       ? "free"
                                    : m == Method::FreeUpTo ? "free_up_to_20kHz"
                                    : m == Method::Clamped  ? "clamped"
                                                            : "craig_bampton");
                          });
+
+// What each rank reports of its share (the distributed path's log, one line a rank): its
+// elements, the entries of K and M it assembled and those of its rows of the summed K and M.
+struct RankShare {
+  long long elements = 0, assembled = 0, rows = 0, rss_mib = 0;
+};
+std::vector<RankShare> rank_shares(const std::string& log, int ranks) {
+  std::vector<RankShare> v(static_cast<std::size_t>(ranks));
+  int seen = 0;
+  for (int r = 0; r < ranks; ++r) {
+    const std::string key = "rank " + std::to_string(r) + " of " + std::to_string(ranks) + ": ";
+    const auto at = log.find(key);
+    if (at == std::string::npos) continue;
+    RankShare& s = v[static_cast<std::size_t>(r)];
+    if (std::sscanf(log.c_str() + at + key.size(),
+                    "%lld elements, %lld assembled entries of K and M, %lld entries in its rows of K and M, peak RSS %lld MiB",
+                    &s.elements, &s.assembled, &s.rows, &s.rss_mib) == 4)
+      ++seen;
+  }
+  if (seen != ranks) v.clear();
+  return v;
+}
+
+// No rank holds K and M whole: on two ranks each assembles about half of the elements, and
+// stores about half of the rows of the summed matrices. Reference: the same part on one rank,
+// where the one rank assembles every element (the count gmsh's mesh has) and stores all rows.
+// The halves overlap by the entries of the elements on the cut and the rows' coupling to it
+// (some percent on this bar), so the bound is 0.75 of the whole; and the SID is the serial one.
+TEST(Slepc, EachRankAssemblesAndStoresItsShareOnly) {
+  test::TempDir dir("slepc_share");
+  write_part(dir, Body::Solid, Method::Free, "slepc");
+  // With its log (reduce_command's --quiet left out): rank 0 prints every rank's line.
+  auto logged = [&](const std::string& out) {
+    return test::bin("ffr-reduce").string() + " " + (dir / "part.json").string() + " -o " + (dir / out).string();
+  };
+  const auto one = test::run(mpirun(1, logged("one.sid.h5")));
+  ASSERT_EQ(one.status, 0) << one.output;
+  const auto two = test::run(mpirun(2, logged("two.sid.h5")));
+  ASSERT_EQ(two.status, 0) << two.output;
+  const auto whole = rank_shares(one.output, 1);
+  const auto half = rank_shares(two.output, 2);
+  ASSERT_EQ(whole.size(), 1u) << one.output;
+  ASSERT_EQ(half.size(), 2u) << two.output;
+  EXPECT_EQ(half[0].elements + half[1].elements, whole[0].elements);
+  for (int r = 0; r < 2; ++r) {
+    const RankShare& s = half[static_cast<std::size_t>(r)];
+    EXPECT_GT(s.elements, 0) << "rank " << r;
+    EXPECT_LT(s.assembled, 0.75 * static_cast<double>(whole[0].assembled)) << "rank " << r << "\n" << two.output;
+    EXPECT_LT(s.rows, 0.75 * static_cast<double>(whole[0].rows)) << "rank " << r << "\n" << two.output;
+  }
+  // The summed rows are the whole matrices: every entry of one rank's K and M is in one rank's rows.
+  EXPECT_EQ(half[0].rows + half[1].rows, whole[0].rows);
+  const auto diff = test::run(test::bin("ffr-diff").string() + " " + (dir / "one.sid.h5").string() + " " +
+                              (dir / "two.sid.h5").string() + " --rtol 1e-6");
+  EXPECT_EQ(diff.status, 0) << diff.output;
+}
+
+// Bad input found after the distributed assembly (no mass at any DOF: a density of 0, seen
+// only in the summed M): the serial path's message on every rank, exit status 2, no SID.
+TEST(Slepc, MasslessPartRefusedOnTwoRanks) {
+  test::TempDir dir("slepc_massless");
+  write_part(dir, Body::Solid, Method::Free, "slepc");
+  std::string json = part_json(Body::Solid, Method::Free, "slepc");
+  json.replace(json.find("\"rho\": 7850"), 11, "\"rho\": 0");
+  test::write_text(dir / "part.json", json);
+  const auto r = test::run(mpirun(2, reduce_command(dir, "out.sid.h5")));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("materials"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("carry no mass"), std::string::npos) << r.output;
+  EXPECT_EQ(stray_files(dir), "");
+}
 
 // Without mpirun the same program runs the backend on one rank.
 TEST(Slepc, RunsWithoutMpirunOnOneRank) {

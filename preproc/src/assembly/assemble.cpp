@@ -51,7 +51,7 @@ std::string describe(const FeModel& model, const ElementRef& ref) {
 
 Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
-  const auto refs = all_elements(model);
+  const auto refs = opt.elements ? *opt.elements : all_elements(model);
   const auto kernel = opt.kernel ? opt.kernel : [](const FeModel& m, const ElementRef& r) { return element_matrices(m, r); };
 
   const detail::Pattern pattern = detail::build_pattern(model, refs);

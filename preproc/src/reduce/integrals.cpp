@@ -133,13 +133,14 @@ void structural_part(const FeModel& model, const Eigen::MatrixXd& Phi, const std
 
 }  // namespace
 
-void compute_integrals(const FeModel& model, const Assembled& fe, const Eigen::MatrixXd& Phi, formats::Sid& sid) {
+void compute_integrals(const FeModel& model, const Assembled& fe, const Eigen::MatrixXd& Phi, formats::Sid& sid,
+                       const std::vector<ElementRef>* elements) {
   const Index nq = Phi.cols();
   Accum total(nq);
   solid_part(model, fe, Phi, total);
 
   std::vector<ElementRef> refs;
-  for (const auto& r : all_elements(model))
+  for (const auto& r : elements ? *elements : all_elements(model))
     if (r.block < 0 || model.blocks[static_cast<std::size_t>(r.block)].kind != ElementKind::Solid) refs.push_back(r);
   if (!refs.empty()) {
     const unsigned nt = std::max(1u, std::min<unsigned>(max_threads(), static_cast<unsigned>(refs.size())));

@@ -6,6 +6,7 @@
 #include "../solver/eigen_backends.hpp"
 #include "node_mass.hpp"
 #include "pattern_analysis.hpp"
+#include "reduction_parts.hpp"
 #include "setup.hpp"
 #include "sparse_ops.hpp"
 
@@ -229,12 +230,20 @@ void require_mass_at_every_dof(const SparseRef& M, const PartSpec& part) {
     const auto* d = std::lower_bound(inner + outer[j], inner + outer[j + 1], j);  // rows are sorted
     massless += d != inner + outer[j + 1] && *d == j && M.valuePtr()[d - inner] != 0.0 ? 0 : 1;
   }
+  detail::require_mass(massless, M.cols(), part);
+}
+
+}  // namespace
+
+void detail::require_mass(Index massless, Index n, const PartSpec& part) {
   if (massless > 0)
     throw FormatError(part.file.string(), "materials",
-                      std::to_string(massless) + " of " + std::to_string(M.cols()) +
+                      std::to_string(massless) + " of " + std::to_string(n) +
                           " degrees of freedom carry no mass (a density of 0): the eigen-solve needs mass at every "
                           "one; give each material a density (a small one for a nearly massless part)");
 }
+
+namespace {
 
 // The shifted stiffness C = K - sigma M (upper triangle), a matrix of its own: K stays as
 // assembled for the eigen-solver's products and checks. On M's shared structure only the
@@ -462,6 +471,15 @@ ReductionResult reduce(const FeModel& model, const Assembled& fe, const Reductio
 ReductionResult reduce_consuming_matrices(const FeModel& model, Assembled& fe, const ReductionSpec& spec,
                                           const ReductionLog& log, EarlyAnalysis* early) {
   return reduce_impl(model, fe, &fe, spec, log, early);
+}
+
+double detail::lambda_of_frequency(double hz, const PartSpec& part) { return lambda_of_hz(hz, part); }
+EigenOptions detail::reduction_eigen_options(const ReductionSpec& spec, const PartSpec& part, double sigma) {
+  return eigen_options(spec, part, sigma);
+}
+void detail::require_connected(const FeModel& model) { require_one_piece(model); }
+void detail::require_no_zero_modes(const FeModel& model, const Eigen::VectorXd& lambda, const std::string& held) {
+  check_no_zero_modes(model, lambda, *model.part, held);
 }
 
 }  // namespace ffr::preproc

@@ -3,7 +3,10 @@
 // ParallelSession. Every rank holds K and M whole (the pipeline before the eigen-solve runs on
 // each); each copies only its block of rows into PETSc's distributed matrices, so the
 // factorization and the Krylov vectors are distributed, and the converged eigenvectors are
-// gathered back to every rank for the Rayleigh-Ritz pass and the checks of EigenSolver.
+// gathered back to every rank for the Rayleigh-Ritz pass and the checks of EigenSolver. This is
+// the replicated path (Craig-Bampton, stiffening, preload, a part's own matrices); the free and
+// clamped reductions take the distributed one (slepc_distributed.hpp), where no rank holds K
+// or M whole.
 #include "eigen_backends.hpp"
 #include "ffr/preproc/solver/parallel_session.hpp"
 #include "ffr/preproc/solver/solver_errors.hpp"

@@ -54,6 +54,9 @@ struct AssemblyOptions {
   /// the eigen-solve's structure, and scattering it and extracting it from the whole assembled
   /// M took 0.1-0.15 s of the 100k-DOF plate's 4.8-5.5 s at one thread (tools/bench/reduce).
   bool node_mass_only = false;
+  /// Only these elements (null: all_elements()): K, M, Ms and the sums are then this subset's
+  /// contributions, as a rank of a distributed reduction assembles its share.
+  const std::vector<ElementRef>* elements = nullptr;
   /// Substitute kernel (stiffening, tests); empty = element_matrices().
   std::function<ElementMatrices(const FeModel&, const ElementRef&)> kernel;
 };

@@ -14,7 +14,11 @@
 namespace ffr::preproc {
 
 /// Fills sid.refmod.mass, sid.integrals and sid.rotary for the modes Phi (full DOFs x nq).
-void compute_integrals(const FeModel& model, const Assembled& fe, const Eigen::MatrixXd& Phi, formats::Sid& sid);
+/// `elements`: the shells, beams and masses whose samples are summed (null: all of them), for
+/// a rank of a distributed reduction whose fe holds its own elements' Ms (the integrals are
+/// sums over the elements, so the ranks' results add up to the whole body's).
+void compute_integrals(const FeModel& model, const Assembled& fe, const Eigen::MatrixXd& Phi, formats::Sid& sid,
+                       const std::vector<ElementRef>* elements = nullptr);
 
 /// Fills mdCM, J, Ct.M0, Cr, Gr, Ge, Oe and Me from sid.refmod.mass, sid.integrals and
 /// sid.rotary. The rotary part enters J.M0, Cr.M0 and Me (its higher-order terms, of the

@@ -1,0 +1,121 @@
+#!/usr/bin/env bash
+# Memory per rank and wall time of the slepc backend's distributed path against the default
+# serial path, on the TET10 plate of tools/bench/reduce (240 x 120 x 30 mm steel with four
+# holes, clamped at x = 0, 20 modes), side by side in one run for every size:
+#   serial    ffr-reduce with its default backend (block Lanczos, own Cholesky), default threads
+#   slepc 1   mpirun -np 1 ffr-reduce --backend slepc --threads 1
+#   slepc 2   mpirun -np 2 ffr-reduce --backend slepc --threads 1
+# Each process runs under /usr/bin/time -v (its own file per rank): wall time and the maximum
+# resident set of every rank. The SIDs of the slepc runs are compared with the serial one
+# (ffr-diff --rtol 1e-6). The runs are sequential, niced, one at a time.
+#
+#   tools/bench/mpi/run.sh [--sizes "100k 250k 500k"] [--workdir DIR] [--no-build] [--paths "serial 1 2"]
+#
+# Results go to DIR/results.tsv (appended: one line a run) and fit.py turns them into the
+# tables and the memory model of RESULTS.md. A run is skipped when the memory it is expected to
+# need (from the largest run so far, scaled by DOF^1.3) exceeds MemAvailable.
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+root=$(cd "$here/../../.." && pwd)
+sizes="100k 250k 500k" build=1 workdir="$root/build/bench-mpi" paths="serial 1 2"
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --sizes) sizes=$2; shift ;;
+    --paths) paths=$2; shift ;;
+    --no-build) build=0 ;;
+    --workdir) workdir=$2; shift ;;
+    -h|--help) sed -n '2,18p' "$0"; exit 0 ;;
+    *) echo "run.sh: unknown option $1" >&2; exit 2 ;;
+  esac
+  shift
+done
+if [ $build = 1 ]; then cmake --build "$root/build" -j 2 --target ffr-reduce ffr-diff; fi
+bin="$root/build/bin"
+mkdir -p "$workdir"
+tsv="$workdir/results.tsv"
+[ -f "$tsv" ] || printf 'size\tdof\tpath\tranks\twall_s\tmaxrss_mib_per_rank\tdiff\n' > "$tsv"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+
+geo='SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 0.24, 0.12, 0.03};
+Cylinder(2) = {0.07, 0.06, -0.01, 0, 0, 0.05, 0.025};
+Cylinder(3) = {0.15, 0.04, -0.01, 0, 0, 0.05, 0.015};
+Cylinder(4) = {0.15, 0.09, -0.01, 0, 0, 0.05, 0.012};
+Cylinder(5) = {0.21, 0.06, -0.01, 0, 0, 0.05, 0.01};
+BooleanDifference(10) = { Volume{1}; Delete; }{ Volume{2, 3, 4, 5}; Delete; };
+Physical Volume("body") = {10};
+Physical Surface("clamp") = Surface In BoundingBox{-1e-6, -1, -1, 1e-6, 1, 1};'
+
+dof_of() { case "$1" in *k) echo $(( ${1%k} * 1000 ));; *M) echo $(( ${1%M} * 1000000 ));; *) echo "$1";; esac; }
+nodes_of() { awk '/^\$Nodes/{getline; print $2; exit}' "$1"; }
+elapsed_s() { awk -F': ' '/Elapsed \(wall clock\)/{n=split($2,a,":"); s=0; for(i=1;i<=n;i++) s=s*60+a[i]; print s}' "$1"; }
+maxrss_mib() { awk -F': ' '/Maximum resident set size/{printf "%d", $2/1024}' "$1"; }
+avail_mib() { awk '/MemAvailable/{printf "%d", $2/1024}' /proc/meminfo; }
+
+# The plate mesh with about the requested DOF: DOF ~ 99e3 (5.8 mm / h)^2.77 on this geometry
+# (tools/bench/reduce/meshes.cpp), corrected once from the measured count.
+mesh() {
+  local tag=$1 target dir h nodes ratio
+  target=$(dof_of "$tag") dir="$workdir/$tag"
+  mkdir -p "$dir"
+  [ -f "$dir/plate.msh" ] && return
+  printf '%s\n' "$geo" > "$dir/plate.geo"
+  h=$(python3 -c "print(0.0058 * (99e3 / $target) ** (1 / 2.77))")
+  for attempt in 1 2; do
+    (cd "$dir" && nice gmsh -3 -order 2 -clmax "$h" -format msh41 plate.geo -o plate.msh > gmsh.log 2>&1)
+    nodes=$(nodes_of "$dir/plate.msh")
+    ratio=$(python3 -c "print(3 * $nodes / $target)")
+    python3 -c "import sys; sys.exit(0 if abs($ratio - 1) < 0.05 else 1)" && break
+    h=$(python3 -c "print($h * $ratio ** (1 / 2.77))")
+  done
+  cat > "$dir/part.json" <<JSON
+{"geometry": "plate.msh",
+ "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],
+ "interfaces": [{"name": "clamp", "group": "clamp"}], "visual": false,
+ "reduction": {"method": "clamped", "interface": "clamp", "modes": 20}}
+JSON
+}
+
+# Memory a run is expected to need (MiB): the largest finished run of this path, scaled by DOF^1.3.
+expected_mib() {
+  local path=$1 dof=$2
+  awk -F'\t' -v p="$path" -v d="$dof" 'NR>1 && $3==p && $2>best {best=$2; n=split($6,r,","); m=0; for(i=1;i<=n;i++) m+=r[i]; mem=m}
+    END{if (best>0) printf "%d", mem * (d/best)^1.3; else print 0}' "$tsv"
+}
+
+run_one() {
+  local tag=$1 path=$2 dir dof need out ranks cmd rss wall diff
+  dir="$workdir/$tag" dof=$((3 * $(nodes_of "$workdir/$tag/plate.msh")))
+  need=$(expected_mib "$path" "$dof")
+  if [ "$need" -gt "$(avail_mib)" ]; then
+    echo "run.sh: $tag $path skipped: expected $need MiB, $(avail_mib) MiB available" >&2
+    printf '%s\t%s\t%s\t-\t-\tskipped (expected %s MiB)\t-\n' "$tag" "$dof" "$path" "$need" >> "$tsv"
+    return
+  fi
+  rm -f "$dir/time.$path."* "$dir/$path.sid.h5"
+  out="$dir/$path.sid.h5"
+  if [ "$path" = serial ]; then
+    ranks=1
+    nice /usr/bin/time -v -o "$dir/time.serial.0" "$bin/ffr-reduce" "$dir/part.json" -o "$out" > "$dir/$path.log" 2>&1
+  else
+    ranks=$path
+    OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 nice mpirun --oversubscribe -np "$ranks" sh -c \
+      "/usr/bin/time -v -o '$dir/time.$path.'\$OMPI_COMM_WORLD_RANK '$bin/ffr-reduce' '$dir/part.json' -o '$out' --backend slepc --threads 1" \
+      > "$dir/$path.log" 2>&1
+  fi
+  wall=$(elapsed_s "$dir/time.$path.0")
+  rss=$(for r in $(seq 0 $((ranks - 1))); do maxrss_mib "$dir/time.$path.$r"; echo; done | paste -sd, -)
+  diff=-
+  if [ "$path" != serial ] && [ -f "$dir/serial.sid.h5" ]; then
+    if "$bin/ffr-diff" "$dir/serial.sid.h5" "$out" --rtol 1e-6 > "$dir/diff.$path.txt" 2>&1; then diff=equivalent; else diff=DIFFERENT; fi
+  fi
+  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$tag" "$dof" "$path" "$ranks" "$wall" "$rss" "$diff" >> "$tsv"
+  echo "run.sh: $tag ($dof DOF) $path: ${wall} s, max RSS per rank ${rss} MiB, $diff" >&2
+}
+
+echo "# $(date -u +%FT%TZ) $(uname -n) $(nproc) cores, $(awk '/MemTotal/{printf "%.1f GiB", $2/1048576}' /proc/meminfo), commit $(git -C "$root" rev-parse --short HEAD)" >> "$workdir/runs.txt"
+for tag in $sizes; do
+  mesh "$tag"
+  for p in $paths; do run_one "$tag" "$p"; done
+done
+python3 "$here/fit.py" "$tsv"
