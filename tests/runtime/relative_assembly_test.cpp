@@ -152,4 +152,15 @@ TEST(RelativeAssembly, RigidBodyHungOnAPlateNodeByAnAssembledSphericalJoint) {
                    "joint 'hang' assembled (spherical, body 'bob' placed at node 'n2_2' of 'plate')");
 }
 
+// ffr-sim says which joints it assembled.
+TEST(RelativeAssembly, FfrSimReportsTheAssembledJoints) {
+  test::TempDir dir("relative_assembly_cli");
+  test::write_text(dir / "model.json",
+                   relative_assembly::hung_bob_json("ancf", R"({"formulation": "relative", "end": 0.01, "step": 1e-3})"));
+  const test::SimRun run = test::run_ffr_sim((dir / "model.json").string() + " -o " + (dir / "out.h5").string());
+  std::printf("%s\n", run.output.c_str());
+  EXPECT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("joint 'hang' assembled (spherical, body 'bob' placed at node 'end' of 'beam')"), std::string::npos) << run.output;
+}
+
 }  // namespace
