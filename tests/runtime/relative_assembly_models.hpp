@@ -52,6 +52,19 @@ inline std::string hung_bob_json(const std::string& beam_formulation, const std:
                 "stiffness": [0, 0, 0, 0, 0, 1]}])" + tail;
 }
 
+/// hung_bob_json's geometrically exact cantilever with the 0.5 kg body welded (a fixed joint
+/// "weld") to its end node, its centre of mass at the node.
+inline std::string welded_bob_json(const std::string& solver) {
+  std::string json = hung_bob_json("geometrically_exact", solver);
+  const auto replace = [&](const std::string& from, const std::string& to) { json.replace(json.find(from), from.size(), to); };
+  replace(R"("com": [1, 0, -0.1])", R"("com": [1, 0, 0])");
+  replace(R"({"name": "hang", "type": "spherical")", R"({"name": "weld", "type": "fixed")");
+  replace(R"(,
+    "forces": [{"name": "spin", "type": "bushing", "body1": "ground", "body2": "bob", "at": [1, 0, -0.1],
+                "stiffness": [0, 0, 0, 0, 0, 1]}])", "");
+  return json;
+}
+
 /// A clamped square steel plate (1 m, 10 mm, 4 x 4 elements) with a 50 kg bob hung on its centre
 /// node n2_2 by a spherical joint "hang" (or, without the bob, its weight as a point force there).
 inline std::string plate_bob_json(const std::string& solver, bool bob = true) {

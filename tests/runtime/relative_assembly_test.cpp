@@ -144,6 +144,22 @@ TEST(RelativeAssembly, RigidBodyHungOnABeamEndByAnAssembledSphericalJoint) {
   }
 }
 
+// A geometrically exact beam's node is a rigid body (FORMULATION.md 17): a body welded to it by a
+// fixed joint is placed wholly (no coordinate of its own); its centre of mass at the node, its
+// weight loads the tip as a point force there.
+TEST(RelativeAssembly, RigidBodyWeldedToAGeometricallyExactBeamEnd) {
+  using relative_assembly::welded_bob_json;
+  const Model m = test::model_from(welded_bob_json(solver("relative", R"("end": 0.01, "step": 1e-3)")));
+  ASSERT_TRUE(m.relative);
+  for (std::size_t b = 0; b < m.bodies.size(); ++b)
+    if (m.bodies[b].name == "bob") EXPECT_TRUE(!m.relative->bodies[b].free && !m.relative->bodies[b].point);
+  hung_body_checks("welded on a geometrically exact beam", welded_bob_json(solver("relative", R"("initial_equilibrium": true, "end": 0.05, "step": 1e-3)")),
+                   welded_bob_json(solver("relative", R"("end": 0.06, "step": 5e-4)")),
+                   welded_bob_json(solver("absolute", R"("end": 0.06, "step": 5e-4)")),
+                   relative_assembly::hung_bob_json("geometrically_exact", R"({"analysis": "static"})", false),
+                   "joint 'weld' assembled (fixed, body 'bob' placed on 'beam:n16' by 0 joint coordinate(s))");
+}
+
 TEST(RelativeAssembly, RigidBodyHungOnAPlateNodeByAnAssembledSphericalJoint) {
   using relative_assembly::plate_bob_json;
   hung_body_checks("plate", plate_bob_json(solver("relative", R"("initial_equilibrium": true, "end": 0.05, "step": 1e-3)")),

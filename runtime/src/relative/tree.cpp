@@ -277,8 +277,8 @@ Formulation choose_formulation(const Model& m, std::string& why) {
   for (const Body& b : m.bodies) n += b.ncoord();
   // Relative when it has at most a third of the absolute coordinates. Measured
   // (tools/bench/formulations/RESULTS.md): the chains and the four-bar (1/12 of the coordinates)
-  // ran faster in relative coordinates, the flexible slider-crank, whose rod stays free (its
-  // joints are at nodes: 24 of 46 coordinates), slower. The threshold lies between those
+  // ran faster in relative coordinates, the flexible slider-crank (its rod, joined at nodes,
+  // free: 24 of 46 coordinates; placed at its point on the crank: 21 of 46), slower. The threshold lies between those
   // measured ratios; where between them the two break even was not measured.
   const bool rel = n > 0 && 3 * t.ns <= n;
   char buf[256];
