@@ -11,8 +11,9 @@ using formulations::num;
 
 /// A 3-D spherical double pendulum: two bars of unequal principal inertias, spherical joints
 /// ground-bar1 at the origin and bar1-bar2 at (0.4, 0, 0), started horizontal and spinning about
-/// tilted axes so that the motion leaves every plane.
-inline std::string spherical_double_pendulum_json(double h, double end, const std::string& formulation) {
+/// tilted axes so that the motion leaves every plane. `universal`: the elbow a universal joint
+/// (axis1 z on bar1, axis2 y on bar2) instead.
+inline std::string spherical_double_pendulum_json(double h, double end, const std::string& formulation, bool universal = false) {
   return R"({"gravity": [0, 0, -9.81],
   "bodies": [
     {"name": "bar1", "type": "rigid", "mass": 1.0, "com": [0.2, 0, 0], "position": [0, 0, 0],
@@ -21,7 +22,8 @@ inline std::string spherical_double_pendulum_json(double h, double end, const st
      "inertia": [[1e-3, 0, 0], [0, 8e-3, 0], [0, 0, 8.5e-3]], "angular_velocity": [-2.0, 1.0, 1.0]}],
   "joints": [
     {"name": "shoulder", "type": "spherical", "body1": "ground", "body2": "bar1", "at": [0, 0, 0]},
-    {"name": "elbow", "type": "spherical", "body1": "bar1", "body2": "bar2", "at": [0.4, 0, 0]}],
+    {"name": "elbow", "type": )" + std::string(universal ? R"("universal", "axis1": [0, 0, 1], "axis2": [0, 1, 0])" : R"("spherical")") +
+         R"(, "body1": "bar1", "body2": "bar2", "at": [0.4, 0, 0]}],
   "solver": {"formulation": ")" + formulation + R"(", "end": )" + num(end) + R"(, "step": )" + num(h) + R"(},
   "outputs": [{"name": "tip", "type": "node_position", "body": "bar2", "at": [0.8, 0, 0]}]})";
 }

@@ -88,6 +88,30 @@ TEST(RelativeAssembly, SphericalDoublePendulumMatchesAbsolute) {
   EXPECT_LT(diff[1], diff[0] / 3);
 }
 
+// The elbow a universal joint: bar2 placed at its point, the joint's one rotation row kept.
+TEST(RelativeAssembly, UniversalJointPlacesAtItsPointAndMatchesAbsolute) {
+  using relative_assembly::spherical_double_pendulum_json;
+  const Model probe = test::model_from(spherical_double_pendulum_json(1e-3, 1.0, "relative", true));
+  ASSERT_TRUE(probe.relative);
+  EXPECT_EQ(probe.relative->ns, 18);
+  EXPECT_EQ(probe.relative->kept_rows, 13);
+  EXPECT_TRUE(has_note(probe, "joint 'elbow' assembled (universal, body 'bar2' placed at its point on 'bar1'; its rotation rows stay constraints)"));
+  double diff[2];
+  int i = 0;
+  for (const double h : {1e-3, 5e-4}) {
+    const Trace rel = run(test::model_from(spherical_double_pendulum_json(h, 1.0, "relative", true)));
+    const Trace abs = run(test::model_from(spherical_double_pendulum_json(h, 1.0, "absolute", true)));
+    diff[i] = (rel.tip - abs.tip).rowwise().norm().maxCoeff();
+    std::printf("universal elbow h = %g: tip apart by %.3e m; energy drift relative %.3e absolute %.3e J; Lz drift relative %.3e absolute %.3e\n",
+                h, diff[i], rel.dE, abs.dE, rel.dLz, abs.dLz);
+    EXPECT_LT(rel.dE, 1e-3 * 0.5 * (1.0 * 9.81 * 0.2 + 0.7 * 9.81 * 0.6));
+    EXPECT_LT(rel.dLz, 1e-3);
+    ++i;
+  }
+  EXPECT_LT(diff[0], 1e-3);
+  EXPECT_LT(diff[1], diff[0] / 3);
+}
+
 // The hung bob: assembled at the node, the static tip of the weight as a point force, held by the
 // relative steps; released from the unloaded configuration, the absolute model's motion. The
 // tip starts at z = 0, so |z| of the point-force tip is the static deflection.

@@ -156,7 +156,7 @@ void build_relative_tree(Model& m) {
   // The rows that stay: all but the tree joints' and the tree bodies' frames.
   for (std::size_t i = 0; i < m.blocks.size(); ++i) {
     const ConstraintBlock& b = m.blocks[i];
-    if (b.kind == BlockKind::Joint && t.tree_joint[static_cast<std::size_t>(b.index)]) continue;
+    if (b.kind == BlockKind::Joint && t.tree_joint[static_cast<std::size_t>(b.index)] == 1) continue;
     if (b.kind == BlockKind::Joint && t.tree_joint[static_cast<std::size_t>(b.index)] == 2 && b.first == 0 && b.rows == 3) continue;
     const RelativeBody* own = b.kind == BlockKind::RigidBody ? &t.bodies[static_cast<std::size_t>(b.index)] : nullptr;
     if (own && !own->free && !own->point) continue;

@@ -3,8 +3,8 @@
 // velocity-transformation scheme after García de Jalón, Cuadrado and co-workers. A spanning
 // tree of the joint graph is chosen; each body reached through a revolute, prismatic,
 // cylindrical or fixed joint between two markers on body frames (not on flexible nodes) is
-// placed by its parent and that joint's coordinates; a body reached through a spherical joint,
-// or through a revolute, universal or fixed joint with a marker on a flexible node (a reduced
+// placed by its parent and that joint's coordinates; a body reached through a spherical or
+// universal joint, or through a revolute or fixed joint with a marker on a flexible node (a reduced
 // body's, an ANCF beam's or plate's), is placed at the joint's point (its position follows the
 // parent's point, its frame keeps its natural coordinates); every other body keeps its natural
 // coordinates z as its own "joint" coordinates (a free base). The relative coordinates s are
