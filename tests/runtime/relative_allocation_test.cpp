@@ -1,13 +1,15 @@
 // After set-up, a step of the relative formulation (FORMULATION.md 18) allocates nothing, as the
 // absolute one (allocation_test.cpp, whose counting operator new/delete this repeats): the
 // four-bar (a cut joint: Newton's multiplier passes and both projections), the flexible
-// slider-crank (a free flexible body, a motion) and a pendulum chain, each step recorded.
+// slider-crank (its rod placed at a point, a motion), a pendulum chain, a spherical double
+// pendulum and a body hung on a beam's node by a spherical joint, each step recorded.
 #include "simeon_rod.hpp"
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
 
 #include "formulation_models.hpp"  // tools/bench/formulations
 #include "simeon_crank.hpp"
+#include "relative_assembly_models.hpp"
 
 #include "ffr/runtime/relative.hpp"
 
@@ -90,6 +92,21 @@ TEST(RelativeAllocation, StepsAllocateNothing) {
     Data data(model);
     initialize(model, data);
     EXPECT_EQ(allocations_in_steps(model, data, 100), 0) << "slider-crank";
+  }
+  // Bodies placed at a joint's point: on a rigid body and the ground, and on an ANCF beam's node.
+  {
+    const Model model = test::model_from(relative_assembly::spherical_double_pendulum_json(1e-3, 1.0, "relative"));
+    ASSERT_TRUE(model.relative->bodies[1].point);
+    Data data(model);
+    initialize(model, data);
+    EXPECT_EQ(allocations_in_steps(model, data, 100), 0) << "spherical double pendulum";
+  }
+  {
+    const Model model = test::model_from(relative_assembly::hung_bob_json("ancf", R"({"formulation": "relative", "end": 1.0, "step": 1e-3})"));
+    ASSERT_TRUE(model.relative->bodies[1].point);
+    Data data(model);
+    initialize(model, data);
+    EXPECT_EQ(allocations_in_steps(model, data, 50), 0) << "bob on a beam node";
   }
 }
 

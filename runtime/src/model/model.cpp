@@ -351,6 +351,7 @@ void finalize(Model& m) {
   }
   if (relative) {
     build_relative_tree(m);
+    m.notes.insert(m.notes.end(), m.relative->assembled.begin(), m.relative->assembled.end());
     m.notes.push_back((formulation_why.empty() ? std::string() : "formulation: " + formulation_why + "; ") + m.relative->description);
   } else if (!formulation_why.empty()) {
     m.notes.push_back("formulation: " + formulation_why);

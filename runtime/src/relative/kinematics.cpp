@@ -39,6 +39,85 @@ void set(VectorXd& q, int o, const Vector3d& r, const Matrix3d& A) {
   Eigen::Map<Matrix3d>(q.data() + o + 3) = A;
 }
 
+// S y for a marker's 3 x nq mode slice (column by column: no temporary).
+Vector3d slice_times(const Matrix3Xd& S, const double* y) {
+  Vector3d v = Vector3d::Zero();
+  for (Eigen::Index k = 0; k < S.cols(); ++k) v += S.col(k) * y[k];
+  return v;
+}
+
+// A body placed at a point (RelativeBody::point): the parent's marker point P, at a node
+// x_p = c_p + phi_p y_p (markers.cpp's point), and the body's own marker point at x_c likewise:
+//   r_c = P - A_c x_c,  P = r_p + A_p x_p,
+// with A_c and y_c the body's own relative coordinates. Both are linear in each body's
+// coordinates, so the Jacobian columns of the parent's coordinates are P's (the parent's columns
+// of R mapped), and the rates and accelerations follow by the product rule.
+void place_at_point(const Model& model, const RelativeTree& t, RelativeWork& w, const RelativeBody& rb, const Body& b,
+                    VectorXd& q, VectorXd& qd, VectorXd& qdd, bool jacobian) {
+  const int o = b.offset, sf = rb.s_first, nq = b.nq;
+  const Marker& mp = model.markers[static_cast<std::size_t>(rb.parent_marker)];
+  const Marker& mc = model.markers[static_cast<std::size_t>(rb.child_marker)];
+  Vector3d P = mp.c, Pd = Vector3d::Zero(), Pdd = Vector3d::Zero(), xp = mp.c;
+  Matrix3d Ap = Matrix3d::Identity();
+  int op = -1;
+  bool pnode = false;
+  if (rb.parent != kGround) {
+    const Body& pb = model.bodies[static_cast<std::size_t>(rb.parent)];
+    op = pb.offset;
+    pnode = mp.node >= 0 && pb.nq > 0;
+    Vector3d py = Vector3d::Zero(), pyd = Vector3d::Zero(), pydd = Vector3d::Zero();
+    if (pnode) {
+      py = slice_times(mp.phi, q.data() + op + 12);
+      pyd = slice_times(mp.phi, qd.data() + op + 12);
+      pydd = slice_times(mp.phi, qdd.data() + op + 12);
+    }
+    xp += py;
+    Ap = frame(q, op);
+    const Matrix3d Apd = frame(qd, op), Apdd = frame(qdd, op);
+    P = pos(q, op) + Ap * xp;
+    Pd = pos(qd, op) + Apd * xp + Ap * pyd;
+    Pdd = pos(qdd, op) + Apdd * xp + 2 * Apd * pyd + Ap * pydd;
+  }
+  q.segment<9>(o + 3) = w.s.segment<9>(sf);
+  qd.segment<9>(o + 3) = w.sd.segment<9>(sf);
+  qdd.segment<9>(o + 3) = w.sdd.segment<9>(sf);
+  if (nq > 0) {
+    q.segment(o + 12, nq) = w.s.segment(sf + 9, nq);
+    qd.segment(o + 12, nq) = w.sd.segment(sf + 9, nq);
+    qdd.segment(o + 12, nq) = w.sdd.segment(sf + 9, nq);
+  }
+  const bool cnode = mc.node >= 0 && nq > 0;
+  Vector3d cy = Vector3d::Zero(), cyd = Vector3d::Zero(), cydd = Vector3d::Zero();
+  if (cnode) {
+    cy = slice_times(mc.phi, q.data() + o + 12);
+    cyd = slice_times(mc.phi, qd.data() + o + 12);
+    cydd = slice_times(mc.phi, qdd.data() + o + 12);
+  }
+  const Vector3d xc = mc.c + cy;
+  const Matrix3d Ac = frame(q, o), Acd = frame(qd, o), Acdd = frame(qdd, o);
+  q.segment<3>(o) = P - Ac * xc;
+  qd.segment<3>(o) = Pd - Acd * xc - Ac * cyd;
+  qdd.segment<3>(o) = Pdd - Acdd * xc - 2 * Acd * cyd - Ac * cydd;
+  if (!jacobian) return;
+  if (op >= 0) {
+    const RelativeBody& pr = t.bodies[static_cast<std::size_t>(rb.parent)];
+    for (int col = pr.col0; col < pr.col0 + pr.ncols; ++col) {
+      const double* c = w.R.col(col).data();
+      const Eigen::Map<const Matrix3d> dA(c + op + 3);
+      Vector3d dP = w.R.col(col).segment<3>(op) + dA * xp;
+      if (pnode) dP += Ap * slice_times(mp.phi, c + op + 12);
+      w.R.col(col).segment<3>(o) = dP;
+    }
+  }
+  for (int a = 0; a < 3; ++a) w.R.block<3, 3>(o, sf + 3 * a).diagonal().setConstant(-xc(a));
+  w.R.block<9, 9>(o + 3, sf).setIdentity();
+  if (nq > 0) {
+    w.R.block(o + 12, sf + 9, nq, nq).setIdentity();
+    if (cnode)
+      for (int k = 0; k < nq; ++k) w.R.col(sf + 9 + k).segment<3>(o) = -(Ac * mc.phi.col(k));
+  }
+}
+
 }  // namespace
 
 void relative_kinematics(const Model& model, Data& data, bool jacobian) {
@@ -55,6 +134,10 @@ void relative_kinematics(const Model& model, Data& data, bool jacobian) {
       qd.segment(o, nc) = w.sd.segment(rb.s_first, nc);
       qdd.segment(o, nc) = w.sdd.segment(rb.s_first, nc);
       if (jacobian) w.R.block(o, rb.s_first, nc, nc).setIdentity();
+      continue;
+    }
+    if (rb.point) {
+      place_at_point(model, t, w, rb, b, q, qd, qdd, jacobian);
       continue;
     }
     const Marker& mk = model.markers[static_cast<std::size_t>(rb.parent_marker)];
@@ -120,6 +203,11 @@ void relative_sync(const Model& model, Data& data) {
     const Body& b = model.bodies[static_cast<std::size_t>(bi)];
     if (rb.free) {
       w.s.segment(rb.s_first, b.ncoord()) = st.q.segment(b.offset, b.ncoord());
+      continue;
+    }
+    if (rb.point) {
+      w.s.segment<9>(rb.s_first) = st.q.segment<9>(b.offset + 3);
+      if (b.nq > 0) w.s.segment(rb.s_first + 9, b.nq) = st.q.segment(b.offset + 12, b.nq);
       continue;
     }
     const Marker& mk = model.markers[static_cast<std::size_t>(rb.parent_marker)];

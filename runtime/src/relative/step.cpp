@@ -58,6 +58,8 @@ void projected_jacobian(const Model& model, Data& data) {
         w.Phis.block(b.row0, rb.col0, b.rows, rb.ncols).noalias() +=
             data.Phiq.block(b.row0, body.offset, b.rows, body.ncoord()).lazyProduct(w.R.block(body.offset, rb.col0, body.ncoord(), rb.ncols));
     }
+    // A joint placed at its point: its point rows vanish along R up to rounding; exactly zero here.
+    if (b.kind == BlockKind::Joint && tree.tree_joint[static_cast<std::size_t>(b.index)] == 2 && b.first == 0) w.Phis.middleRows(b.row0, 3).setZero();
   }
 }
 

@@ -11,21 +11,30 @@
 namespace ffr::runtime {
 namespace {
 
-// A joint that can place its child: the kinds with a rotation about and a slide along the
-// first marker axis (or neither), between two markers rigidly on body frames (a marker on a
-// flexible node moves with the deformation, and a child placed by its non-orthonormal triad
-// would not be rigid), neither body a beam (held at the global frame by its own rows).
-bool tree_capable(const Model& m, const Joint& j) {
-  if (j.type != JointType::Revolute && j.type != JointType::Prismatic && j.type != JointType::Cylindrical &&
-      j.type != JointType::Fixed)
-    return false;
+// How a joint can place the body on its side `child` (the other side the parent): 1 wholly (the
+// kinds with a rotation about and a slide along the first marker axis, or neither, between two
+// markers rigidly on body frames with orthonormal triads: a marker on a flexible node has a
+// first-order triad, and a child placed by it would not be rigid); 2 at its point only (a
+// spherical joint anywhere; a revolute, universal or fixed joint the first way cannot place:
+// the child's position follows the parent's point, exactly as the point rows evaluate it, and
+// the joint's rotation rows stay); 0 not. A beam or plate (frame held at the global frame by its
+// own rows) is never placed.
+int placement(const Model& m, const Joint& j, int child) {
+  const int b1 = m.markers[static_cast<std::size_t>(j.m1)].body, b2 = m.markers[static_cast<std::size_t>(j.m2)].body;
+  if (b1 == b2 || child == kGround || m.bodies[static_cast<std::size_t>(child)].held_frame()) return 0;
+  bool whole = j.type == JointType::Revolute || j.type == JointType::Prismatic || j.type == JointType::Cylindrical ||
+               j.type == JointType::Fixed;
   for (int mk : {j.m1, j.m2}) {
     const Marker& k = m.markers[static_cast<std::size_t>(mk)];
-    if (k.node >= 0) return false;
-    if (k.body != kGround && m.bodies[static_cast<std::size_t>(k.body)].beam) return false;
-    if (!(k.E.transpose() * k.E - Matrix3d::Identity()).isZero(1e-9)) return false;
+    // (A geometrically exact beam's node is a rigid body: a marker there is on its frame.)
+    if (k.node >= 0 && k.body != kGround && m.bodies[static_cast<std::size_t>(k.body)].nq > 0) whole = false;
+    if (k.body != kGround && m.bodies[static_cast<std::size_t>(k.body)].held_frame()) whole = false;
+    if (!(k.E.transpose() * k.E - Matrix3d::Identity()).isZero(1e-9)) whole = false;
   }
-  return m.markers[static_cast<std::size_t>(j.m1)].body != m.markers[static_cast<std::size_t>(j.m2)].body;
+  if (whole) return 1;
+  const bool point = j.type == JointType::Spherical || j.type == JointType::Revolute || j.type == JointType::Universal ||
+                     j.type == JointType::Fixed;
+  return point ? 2 : 0;
 }
 
 // The spanning tree and the relative coordinates (everything but the kept rows).
@@ -44,25 +53,32 @@ void span(const Model& m, RelativeTree& t, int& ntree, int& nfree) {
       queue.pop_front();
       for (std::size_t ji = 0; ji < m.joints.size(); ++ji) {
         const Joint& j = m.joints[ji];
-        if (t.tree_joint[ji] || !tree_capable(m, j)) continue;
+        if (t.tree_joint[ji]) continue;
         const int b1 = m.markers[static_cast<std::size_t>(j.m1)].body, b2 = m.markers[static_cast<std::size_t>(j.m2)].body;
-        int child = -1, pm = -1;
-        if (b1 == p && b2 != kGround && !placed[static_cast<std::size_t>(b2)]) child = b2, pm = j.m1;
-        else if (b2 == p && b1 != kGround && !placed[static_cast<std::size_t>(b1)]) child = b1, pm = j.m2;
+        int child = -1, pm = -1, cm = -1;
+        if (b1 == p && b2 != kGround && !placed[static_cast<std::size_t>(b2)]) child = b2, pm = j.m1, cm = j.m2;
+        else if (b2 == p && b1 != kGround && !placed[static_cast<std::size_t>(b1)]) child = b1, pm = j.m2, cm = j.m1;
         if (child < 0) continue;
+        const int how = placement(m, j, child);
+        if (how == 0) continue;
         RelativeBody& rb = t.bodies[static_cast<std::size_t>(child)];
         rb.free = false;
+        rb.point = how == 2;
         rb.parent = p;
         rb.joint = static_cast<int>(ji);
         rb.parent_marker = pm;
+        rb.child_marker = cm;
         placed[static_cast<std::size_t>(child)] = 1;
-        t.tree_joint[ji] = 1;
+        t.tree_joint[ji] = static_cast<char>(how);
         t.order.push_back(child);
         queue.push_back(child);
         ++ntree;
       }
     }
+    // A beam or plate first: it can carry other bodies but never be placed itself.
     int root = -1;
+    for (int b = 0; b < nb && root < 0; ++b)
+      if (!placed[static_cast<std::size_t>(b)] && m.bodies[static_cast<std::size_t>(b)].held_frame()) root = b;
     for (int b = 0; b < nb && root < 0; ++b)
       if (!placed[static_cast<std::size_t>(b)]) root = b;
     if (root < 0) break;
@@ -79,6 +95,11 @@ void span(const Model& m, RelativeTree& t, int& ntree, int& nfree) {
     if (rb.free) {
       rb.s_first = ns;
       ns += body.ncoord();
+      continue;
+    }
+    if (rb.point) {
+      rb.s_first = ns;
+      ns += 9 + body.nq;
       continue;
     }
     const JointType jt = m.joints[static_cast<std::size_t>(rb.joint)].type;
@@ -108,7 +129,7 @@ void span(const Model& m, RelativeTree& t, int& ntree, int& nfree) {
       }
       add(rb.s_angle, 1);
       add(rb.s_slide, 1);
-      add(rb.s_first, m.bodies[static_cast<std::size_t>(b)].nq);
+      add(rb.s_first, (rb.point ? 9 : 0) + m.bodies[static_cast<std::size_t>(b)].nq);
     }
     rb.col0 = lo < hi ? lo : 0;
     rb.ncols = lo < hi ? hi - lo : 0;
@@ -135,10 +156,14 @@ void build_relative_tree(Model& m) {
   // The rows that stay: all but the tree joints' and the tree bodies' frames.
   for (std::size_t i = 0; i < m.blocks.size(); ++i) {
     const ConstraintBlock& b = m.blocks[i];
-    if (b.kind == BlockKind::Joint && t.tree_joint[static_cast<std::size_t>(b.index)]) continue;
-    if (b.kind == BlockKind::RigidBody && !t.bodies[static_cast<std::size_t>(b.body1)].free) continue;
+    if (b.kind == BlockKind::Joint && t.tree_joint[static_cast<std::size_t>(b.index)] == 1) continue;
+    if (b.kind == BlockKind::Joint && t.tree_joint[static_cast<std::size_t>(b.index)] == 2 && b.first == 0 && b.rows == 3) continue;
+    const RelativeBody* own = b.kind == BlockKind::RigidBody ? &t.bodies[static_cast<std::size_t>(b.index)] : nullptr;
+    if (own && !own->free && !own->point) continue;
     t.kept_blocks.push_back(static_cast<int>(i));
-    t.kept_rows += b.rows;
+    // (A joint placed at its point keeps its rotation rows; its three point rows come first.)
+    const bool point_rows = b.kind == BlockKind::Joint && t.tree_joint[static_cast<std::size_t>(b.index)] == 2 && b.first == 0;
+    t.kept_rows += b.rows - (point_rows ? 3 : 0);
   }
   const auto hessian_pair = [&](int a, int b) {
     if (a == kGround || b == kGround) return;
@@ -162,14 +187,48 @@ void build_relative_tree(Model& m) {
   for (const auto& s : m.springs) pair(s.m1, s.m2);
   for (const auto& s : m.bushings) pair(s.m1, s.m2);
   for (const auto& s : m.friction_dampers) pair(s.m1, s.m2);
+  // A geometrically exact beam's elements join consecutive node bodies (FORMULATION.md 17).
+  for (const GeBeam& gb : m.ge_beams)
+    for (std::size_t k = 0; k + 1 < gb.node_bodies.size(); ++k) {
+      int a = gb.node_bodies[k], b = gb.node_bodies[k + 1];
+      if (a > b) std::swap(a, b);
+      if (std::find(t.pairs.begin(), t.pairs.end(), std::pair{a, b}) == t.pairs.end()) t.pairs.emplace_back(a, b);
+    }
   // What the tree cannot give: the reaction of a joint it satisfies by construction has no
   // multiplier.
   for (std::size_t i = 0; i < m.outputs.size(); ++i) {
     const Output& o = m.outputs[i];
-    if (o.type == OutputType::JointReaction && o.joint >= 0 && t.tree_joint[static_cast<std::size_t>(o.joint)])
+    if (o.type == OutputType::JointReaction && o.joint >= 0 && t.tree_joint[static_cast<std::size_t>(o.joint)] != 0)
       throw ModelError(file, "outputs[" + std::to_string(i) + "] ('" + o.name + "')",
                        "a joint_reaction of joint '" + m.joints[static_cast<std::size_t>(o.joint)].name +
                            "', which the relative formulation satisfies by its coordinates (no multiplier); use \"formulation\": \"absolute\"");
+  }
+  // What was assembled, joint by joint.
+  const auto at_node = [&](int mk) {
+    const Marker& k = m.markers[static_cast<std::size_t>(mk)];
+    return k.body != kGround && k.node >= 0 && m.bodies[static_cast<std::size_t>(k.body)].nq > 0 &&
+           k.node < static_cast<int>(m.bodies[static_cast<std::size_t>(k.body)].nodes.size());
+  };
+  const auto where = [&](int mk) {
+    const Marker& k = m.markers[static_cast<std::size_t>(mk)];
+    if (k.body == kGround) return std::string("the ground");
+    const Body& b = m.bodies[static_cast<std::size_t>(k.body)];
+    if (at_node(mk))
+      return "node '" + b.nodes[static_cast<std::size_t>(k.node)].name + "' of '" + b.name + "'";
+    return "'" + b.name + "'";
+  };
+  for (int b : t.order) {
+    const RelativeBody& rb = t.bodies[static_cast<std::size_t>(b)];
+    if (rb.free) continue;
+    const Joint& j = m.joints[static_cast<std::size_t>(rb.joint)];
+    std::string line = "joint '" + j.name + "' assembled (" + to_string(j.type) + ", body '" + m.bodies[static_cast<std::size_t>(b)].name + "' placed ";
+    if (!rb.point) {
+      line += "on " + where(rb.parent_marker) + " by " + std::to_string((rb.s_angle >= 0) + (rb.s_slide >= 0)) + " joint coordinate(s))";
+    } else {
+      line += "at " + (at_node(rb.parent_marker) ? where(rb.parent_marker) : "its point on " + where(rb.parent_marker));
+      line += j.type == JointType::Spherical ? ")" : "; its rotation rows stay constraints)";
+    }
+    t.assembled.push_back(std::move(line));
   }
   t.description = "relative formulation: " + std::to_string(ns) + " coordinates (absolute: " + std::to_string(m.ncoord) + "), " +
                   std::to_string(ntree) + " bodies placed by their joints, " + std::to_string(nfree) + " free, " +
@@ -190,6 +249,8 @@ RelativeWork::RelativeWork(const Model& model) {
   for (int bi : t.kept_blocks) {
     const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
     keep.segment(b.row0, b.rows).setOnes();
+    // A joint placed at its point: its three point rows hold by construction.
+    if (b.kind == BlockKind::Joint && t.tree_joint[static_cast<std::size_t>(b.index)] == 2 && b.first == 0) keep.segment(b.row0, 3).setZero();
   }
   Phis = MatrixXd::Zero(m, ns);
   Ts = MatrixXd::Zero(ns, ns);
@@ -216,8 +277,8 @@ Formulation choose_formulation(const Model& m, std::string& why) {
   for (const Body& b : m.bodies) n += b.ncoord();
   // Relative when it has at most a third of the absolute coordinates. Measured
   // (tools/bench/formulations/RESULTS.md): the chains and the four-bar (1/12 of the coordinates)
-  // ran faster in relative coordinates, the flexible slider-crank, whose rod stays free (its
-  // joints are at nodes: 24 of 46 coordinates), slower. The threshold lies between those
+  // ran faster in relative coordinates, the flexible slider-crank (its rod, joined at nodes,
+  // free: 24 of 46 coordinates; placed at its point on the crank: 21 of 46), slower. The threshold lies between those
   // measured ratios; where between them the two break even was not measured.
   const bool rel = n > 0 && 3 * t.ns <= n;
   char buf[256];

@@ -3,7 +3,10 @@
 // velocity-transformation scheme after García de Jalón, Cuadrado and co-workers. A spanning
 // tree of the joint graph is chosen; each body reached through a revolute, prismatic,
 // cylindrical or fixed joint between two markers on body frames (not on flexible nodes) is
-// placed by its parent and that joint's coordinates; every other body keeps its natural
+// placed by its parent and that joint's coordinates; a body reached through a spherical or
+// universal joint, or through a revolute or fixed joint with a marker on a flexible node (a reduced
+// body's, an ANCF beam's or plate's), is placed at the joint's point (its position follows the
+// parent's point, its frame keeps its natural coordinates); every other body keeps its natural
 // coordinates z as its own "joint" coordinates (a free base). The relative coordinates s are
 // these joint coordinates, the free bodies' z and every tree body's modal coordinates y. The
 // absolute coordinates are q = q(s), q_dot = R(s) s_dot; the equations of motion are the
@@ -32,7 +35,13 @@ struct RelativeBody {
   int parent_marker = -1;  ///< the joint's marker on the parent
   int s_angle = -1;        ///< its joint angle about the parent marker's axis e (-1: none)
   int s_slide = -1;        ///< its joint slide along that axis (-1: none)
-  int s_first = -1;        ///< free: its first coordinate; tree: its first modal coordinate (-1: none)
+  int s_first = -1;        ///< free: its first coordinate; tree: its first modal coordinate (-1: none);
+                           ///< placed at a point: its nine frame coordinates, then its modal ones
+  /// Placed at a point (a spherical joint, or the point of a joint at a flexible node): its
+  /// position follows the parent's joint point, its frame keeps its natural coordinates (and
+  /// their frame rows), the joint's other rows stay constraints.
+  bool point = false;
+  int child_marker = -1;   ///< placed at a point: the joint's marker on the body itself
   /// The relative coordinates its absolute ones depend on lie in [col0, col0 + ncols): its own
   /// and its ancestors' (R is zero outside, so the products run over this range only).
   int col0 = 0, ncols = 0;
@@ -43,7 +52,8 @@ struct RelativeTree {
   int ns = 0;                         ///< number of relative coordinates
   std::vector<int> order;             ///< bodies, every parent before its children
   std::vector<RelativeBody> bodies;   ///< per body
-  std::vector<char> tree_joint;       ///< per joint: satisfied by construction (its rows dropped)
+  std::vector<char> tree_joint;       ///< per joint: 1 satisfied by construction (its rows dropped),
+                                      ///< 2 its point only (its three point rows dropped, the rest kept)
   std::vector<int> kept_blocks;       ///< constraint blocks that stay constraints
   int kept_rows = 0;
   bool flexible = false;              ///< some body has modal coordinates
@@ -54,6 +64,10 @@ struct RelativeTree {
   /// where the constraint Hessian and the modal acceleration tangent have blocks.
   std::vector<std::pair<int, int>> hessian_pairs;
   std::string description;            ///< what the tree is, for the notes
+  /// One line per joint the tree satisfies (assembled: no multiplier, no constraint row for what
+  /// it places), for the notes: "joint 'hang' assembled (spherical, body 'bob' placed at node
+  /// 'end' of 'beam')".
+  std::vector<std::string> assembled;
 };
 
 /// The relative state and workspace, sized once (relative_step allocates nothing).
