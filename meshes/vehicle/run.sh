@@ -10,7 +10,7 @@ set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 bin=${FFR_BIN:-$here/../../build/bin}
 out=${1:-$here/out}
-end=${2:-13.5}
+end=${2:-15.0}
 mkdir -p "$out"
 cp "$here/frame.geo" "$here/frame.json" "$out/"
 echo "== reduce the ladder frame: steel channel rails and tube cross members (beams), free modes up to 80 Hz (6)"
