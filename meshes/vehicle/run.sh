@@ -4,7 +4,7 @@
 # flat start, drive it up to 10 m/s and over 100 m of the rough road (ffr-sim), plot the cab's
 # vertical acceleration and the frame's twist (plot.py, SVG) and check the results (check.py).
 # Usage: run.sh [OUT_DIR [END_TIME]]   defaults: ./out and 15 s (at rest to 0.5 s, up to speed at
-# 4.5 s, the rough section from about 5 s to 14.8 s); the test runs 1 s (at rest, then speeding up).
+# 4.5 s, the wheels on the rough section from 4.8 s to 15 s); the test runs 6 s (at rest, speeding up, 1 s at speed).
 # The binaries come from build/bin, or from $FFR_BIN.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
