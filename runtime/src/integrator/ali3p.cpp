@@ -145,8 +145,11 @@ double newton_direction(const Model& model, Data& data, int passes, bool exact) 
     if (pass == passes || left < model.settings.tolerance) break;
     data.sigma += data.alpha.cwiseProduct(data.c);
     data.r = data.f;
-    data.tmp = h4 * data.sigma;
-    add_constraint_forces(model, data, data.tmp, data.r);
+    // c (constraint-sized, recomputed at the next pass) holds the forces' multipliers: tmp is
+    // coordinate-sized, and resizing it here made the step allocate and exact_multipliers'
+    // solves into it write past its end.
+    data.c = h4 * data.sigma;
+    add_constraint_forces(model, data, data.c, data.r);
     solve_tangent(data, data.r, data.dq);
   }
   data.state.lambda += data.sigma;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Real-time factor of the examples (the precision chamber; the washing machine's 10 s spin-up):
+# Real-time factor of the examples (the precision chamber; the washing machine's 10 s spin-up; the vehicle's 15 s drive):
 # simulated machine time over the wall time of ffr-sim's time loop (its integration_seconds: no
 # loading, no writing), on one core, best of N runs, with the model's size. Each example's run.sh
 # is run once first (it reduces its parts and writes its model); then ffr-sim is timed on that
@@ -30,3 +30,5 @@ FFR_BIN=$bin bash "$root/meshes/precision_chamber/run.sh" "$work/precision_chamb
 bench precision_chamber "$work/precision_chamber" 2.0
 FFR_BIN=$bin bash "$root/meshes/washing_machine/run.sh" "$work/washing_machine" 10.0 > /dev/null
 bench washing_machine "$work/washing_machine" 10.0
+FFR_BIN=$bin bash "$root/meshes/vehicle/run.sh" "$work/vehicle" 15.0 > /dev/null
+bench vehicle "$work/vehicle" 15.0
