@@ -195,7 +195,7 @@ TEST(FourBar, RedundantRevolutesMatchOneDofModel) {
   EXPECT_LT(a.dE, 2e-4 * std::abs(a.E0));
 }
 
-// exact_multipliers (the projections' and Newton's fallback when their passes stall) with the
+// The exact multipliers (exact_multipliers.cpp: the projections' and Newton's fallback when their passes stall) with the
 // three redundant rows: the correction Y mu it gives for a consistent right-hand side
 // c = Phi_a v must be the one of the KKT system [T Phi_a^T; Phi_a 0] [dx; mu] = [0; c] (dx is
 // unique although mu is not), solved independently by Eigen's complete orthogonal decomposition
@@ -211,7 +211,8 @@ TEST(FourBar, ExactMultipliersMatchTheKktSolutionWithRedundantRows) {
   Eigen::VectorXd v(data.state.q.size());
   for (int i = 0; i < v.size(); ++i) v(i) = std::sin(1.0 + 0.7 * i);
   const Eigen::VectorXd c = data.Phiq.topLeftCorner(na, nf) * v.head(nf);
-  const int rank = exact_multipliers(data, c);
+  const int rank = factor_exact_multipliers(data);
+  solve_exact_multipliers(data, c);
   const Eigen::VectorXd dx = data.projY.topLeftCorner(nf, na) * data.proj_mu.head(na);
 
   Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(nf + na, nf + na);

@@ -385,7 +385,7 @@ TEST(StiffeningOracle, FreeFreeRoundRodSliderCrankMatchesTheGeometricallyExactBe
   // Newton's multiplier passes, contract at 0.99 a pass in a nearly redundant direction (both
   // revolutes hold the out-of-plane rotations of a chain whose nodes have no torsional rotation)
   // and the run stopped at t = 0.0186 s before the solver solved for those multipliers directly
-  // (exact_multipliers, FORMULATION.md 9).
+  // (exact_multipliers.cpp, FORMULATION.md 9).
   std::printf("free-free chain: Ke/M1 %s, %zu stiffening interfaces\n", chain.sid.KeM1.empty() ? "absent" : "present",
               chain.sid.stiffening ? chain.sid.stiffening->interfaces.size() : 0u);
   for (const double h : {5e-5, 1e-5}) {

@@ -116,7 +116,7 @@ std::string newton_failure(const Model& model, const Data& data, double t, int i
 // step (more passes gained nothing more then; see NewtonPolicy::multiplier_passes for the second). At most
 // `passes` passes. Returns the linearised violation left at q - dq, in model lengths.
 //
-// exact: the multipliers solved for at once instead (exact_multipliers), for iterations that
+// exact: the multipliers solved for at once instead (exact_multipliers.cpp), for iterations that
 // contract slowly once the tangent refreshes are spent: the passes converge slowly along nearly
 // redundant constraint directions, and so, through the multipliers they leave, does Newton.
 double newton_direction(const Model& model, Data& data, int passes, bool exact) {
@@ -129,7 +129,8 @@ double newton_direction(const Model& model, Data& data, int passes, bool exact) 
     const int na = data.na, nf = data.nf;
     constraint_times(model, data, data.dq, data.c);
     data.c = data.Phi - data.c;
-    exact_multipliers(data, data.c);
+    factor_exact_multipliers(data);
+    solve_exact_multipliers(data, data.c);
     data.dq.head(nf).noalias() += data.projY.topLeftCorner(nf, na) * data.proj_mu.head(na);
     data.sigma.head(na) = data.proj_mu.head(na) / h4;
     constraint_times(model, data, data.dq, data.c);
@@ -146,7 +147,7 @@ double newton_direction(const Model& model, Data& data, int passes, bool exact) 
     data.sigma += data.alpha.cwiseProduct(data.c);
     data.r = data.f;
     // c (constraint-sized, recomputed at the next pass) holds the forces' multipliers: tmp is
-    // coordinate-sized, and resizing it here made the step allocate and exact_multipliers'
+    // coordinate-sized, and resizing it here made the step allocate and factor_exact_multipliers'
     // solves into it write past its end.
     data.c = h4 * data.sigma;
     add_constraint_forces(model, data, data.c, data.r);

@@ -20,7 +20,7 @@
 
 namespace ffr::runtime {
 
-int exact_multipliers(Data& data, const VectorXd& c) {
+int factor_exact_multipliers(Data& data) {
   const int na = data.na, nf = data.nf;
   // Y, column by column, with the factorised tangent (data.r and data.tmp as work).
   for (int i = 0; i < na; ++i) {
@@ -65,6 +65,14 @@ int exact_multipliers(Data& data, const VectorXd& c) {
       for (int i = k + 1; i < na; ++i) S(i, col) -= S(i, k) * S(col, k);
     rank = k + 1;
   }
+  data.proj_rank = rank;
+  return rank;
+}
+
+void solve_exact_multipliers(Data& data, const VectorXd& c) {
+  const int na = data.na, rank = data.proj_rank;
+  const auto S = data.projS.topLeftCorner(na, na);
+  const std::vector<int>& p = data.proj_order;
   // w = L11^-T L11^-1 c(p)_1, then mu(p) = [w; 0].
   VectorXd& w = data.proj_w;
   for (int i = 0; i < rank; ++i) {
@@ -79,7 +87,6 @@ int exact_multipliers(Data& data, const VectorXd& c) {
   }
   data.proj_mu.head(na).setZero();
   for (int i = 0; i < rank; ++i) data.proj_mu(p[static_cast<std::size_t>(i)]) = w(i);
-  return rank;
 }
 
 }  // namespace ffr::runtime

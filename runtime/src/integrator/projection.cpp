@@ -93,34 +93,41 @@ Projected project_once(const Model& model, Data& data, VectorXd& x, const Vector
   return {res, error, false};
 }
 
-// The W-projection solved directly (exact_multipliers), for when the passes stall. With the
+// The W-projection solved directly (exact_multipliers.cpp), for when the passes stall. With the
 // metric alone factorised, F = W + kq Phi_a^T alpha Phi_a (factorize_metric), the projection
 // satisfies F (x - x*) = -Phi_a^T mu, mu = kq (sigma + alpha c*), c* = Phi_a x* + b: x = x* - Y mu
-// with S mu = c*.
+// with S mu = c*. S is as ill-conditioned as the rows are nearly redundant, so the solve is
+// refined with its residual (a few rounds with the same factor).
 Projected project_exact(const Model& model, Data& data, VectorXd& x, const VectorXd& bias, double time_scale) {
   const SolverSettings& s = model.settings;
   const int na = data.na, nf = data.nf;
   const double unit = time_scale / model.length;
+  const double target = s.policy.projection.residual_fraction * s.tolerance;
   const double inf = std::numeric_limits<double>::infinity();
+  constexpr int refinements = 3;
   constraint_times(model, data, x, data.c);
   data.c.head(na) += bias.head(na);
-  const double res0 = na > 0 ? data.c.head(na).cwiseAbs().maxCoeff() * unit : 0.0;
-  if (res0 <= s.policy.projection.residual_fraction * s.tolerance) return {res0, 0.0, true};
-  exact_multipliers(data, data.c);
-  // sigma as the passes define it (the acceleration projection's reactions read it), then x.
+  double res = na > 0 ? data.c.head(na).cwiseAbs().maxCoeff() * unit : 0.0;
+  if (res <= target) return {res, 0.0, true};
+  factor_exact_multipliers(data);
   const double kq = data.state.k.kq;
-  data.sigma.head(na) = data.proj_mu.head(na) / kq - data.alpha.head(na).cwiseProduct(data.c.head(na));
-  x.head(nf).noalias() -= data.projY.topLeftCorner(nf, na) * data.proj_mu.head(na);
-  constraint_times(model, data, x, data.c);
-  data.c.head(na) += bias.head(na);
-  const double res = na > 0 ? data.c.head(na).cwiseAbs().maxCoeff() * unit : 0.0;
-  if (!std::isfinite(res)) return {res, inf, false};
+  data.sigma.head(na) = -data.alpha.head(na).cwiseProduct(data.c.head(na));  // sigma as the passes define it
+  for (int round = 0; round <= refinements && res > target; ++round) {
+    solve_exact_multipliers(data, data.c);
+    data.sigma.head(na) += data.proj_mu.head(na) / kq;
+    x.head(nf).noalias() -= data.projY.topLeftCorner(nf, na) * data.proj_mu.head(na);
+    constraint_times(model, data, x, data.c);
+    data.c.head(na) += bias.head(na);
+    res = na > 0 ? data.c.head(na).cwiseAbs().maxCoeff() * unit : 0.0;
+    if (!std::isfinite(res)) return {res, inf, false};
+  }
   return {res, 0.0, res < s.tolerance};
 }
 
 // Projects x (saved first). If the factorisation at hand does not converge, the tangent is
-// rebuilt at the current state (when it was built at an earlier one); if the passes still do not
-// converge, the projection is solved directly with the metric alone (project_exact).
+// rebuilt at the current state (when it was built at an earlier one), then replaced by the
+// metric alone, with which the passes are the exact augmented-Lagrangian iteration; if they
+// still do not converge, the projection is solved directly with the metric (project_exact).
 double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias, double time_scale, double t,
                const char* what, bool must_converge) {
   data.vstar = x;
@@ -131,9 +138,13 @@ double project(const Model& model, Data& data, VectorXd& x, const VectorXd& bias
     data.tangent_fresh_step = true;
     r = project_once(model, data, x, bias, time_scale);
   }
+  if (!r.converged && !data.tangent_metric_only) {
+    x = data.vstar;
+    factorize_metric(model, data);
+    r = project_once(model, data, x, bias, time_scale);
+  }
   if (!r.converged) {
     x = data.vstar;
-    if (!data.tangent_metric_only) factorize_metric(model, data);
     r = project_exact(model, data, x, bias, time_scale);
   }
   if (!r.converged && !must_converge) return std::numeric_limits<double>::infinity();

@@ -139,6 +139,7 @@ struct Data {
   /// in place, the pivot order, the multipliers and the pivoted solution [m].
   MatrixXd projY, projS;
   std::vector<int> proj_order;
+  int proj_rank = 0;
   VectorXd proj_mu, proj_w;
   // Motions: values from the C API override the table when set.
   std::vector<char> motion_external;

@@ -77,10 +77,12 @@ void factorize_tangent(Data& data);
 void solve_tangent(Data& data, const VectorXd& rhs, VectorXd& out);
 
 /// The multipliers mu of the rows of the unknowns with Phi_a T^-1 Phi_a^T mu = c (T the factorised
-/// tangent at hand), zero on rows that are numerically combinations of others: data.proj_mu, with
-/// Y = T^-1 Phi_a^T in data.projY (a correction T^-1 Phi_a^T mu is Y mu). Returns the rank used.
-/// c must not be data.r or data.tmp (its work).
-int exact_multipliers(Data& data, const VectorXd& c);
+/// tangent at hand), zero on rows that are numerically combinations of others (exact_multipliers.cpp).
+/// factor_exact_multipliers builds Y = T^-1 Phi_a^T (data.projY; a correction T^-1 Phi_a^T mu is
+/// Y mu) and factorises S = Phi_a Y, returning its rank; solve_exact_multipliers then gives mu
+/// (data.proj_mu) for a c that is neither data.r nor data.tmp.
+int factor_exact_multipliers(Data& data);
+void solve_exact_multipliers(Data& data, const VectorXd& c);
 
 /// Scaled infinity norm of a coordinate increment: each coordinate by its inertia weight
 /// (Model::increment_weight), i.e. in model lengths of the displacement of its body's mass.
