@@ -122,11 +122,12 @@ TEST(BeamElastica, OracleReproducesBisshoppDruckerTable) {
   }
 }
 
-// The cantilever solved statically (16 elements, each formulation) against the table: within
+namespace {
+
+// The cantilever solved statically (16 elements, formulation form) against the table: within
 // 0.5 % of each ratio.
-TEST(BeamElastica, CantileverTipMatchesElasticaWith16Elements) {
+void expect_elastica_tips(const std::string& form) {
   const double k[3] = {1, 2, 5}, u[3] = {0.05643, 0.16064, 0.38763}, w[3] = {0.30172, 0.49346, 0.71379};
-  for (const std::string form : kFormulations)
   for (int i = 0; i < 3; ++i) {
     SCOPED_TRACE(form);
     std::printf("%s:\n", form.c_str());
@@ -149,6 +150,23 @@ TEST(BeamElastica, CantileverTipMatchesElasticaWith16Elements) {
     EXPECT_NEAR(R[2], P, 1e-8 * P);
     EXPECT_NEAR(R[4], -tip[0] * P, 1e-8 * P * kL);
   }
+}
+
+}  // namespace
+
+TEST(BeamElastica, CantileverTipMatchesElasticaWith16Elements) { expect_elastica_tips("ancf"); }
+
+// The geometrically exact beam needs load stepping here (FORMULATION.md 14): about a minute in
+// Release, too long for the sanitizer pass, where its element runs in the other beam tests.
+TEST(BeamElastica, GeometricallyExactCantileverTipMatchesElasticaWith16Elements) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "about a minute in Release: left to the Release pass";
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  GTEST_SKIP() << "about a minute in Release: left to the Release pass";
+#endif
+#endif
+  expect_elastica_tips("geometrically_exact");
 }
 
 // The element's forces are the gradient of its energy, its tangent the derivative of its forces
