@@ -7,47 +7,16 @@
 
 #include "ffr/runtime/step_control.hpp"
 
+#include "counting_new.hpp"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <new>
+#include <vector>
 
-namespace {
-std::atomic<long> g_allocations{0};
-}
-
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void* operator new(std::size_t n, std::align_val_t al) {
-  ++g_allocations;
-  if (void* p = std::aligned_alloc(static_cast<std::size_t>(al), (n + static_cast<std::size_t>(al) - 1) / static_cast<std::size_t>(al) * static_cast<std::size_t>(al))) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n, std::align_val_t al) { return operator new(n, al); }
-// The nothrow forms too (std::stable_partition's temporary buffer uses them): left to the
-// library, they allocated past the count and freed through the replaced delete below, which
-// AddressSanitizer reports as an operator new / free mismatch.
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
-  ++g_allocations;
-  return std::malloc(n ? n : 1);
-}
-void* operator new[](std::size_t n, const std::nothrow_t& t) noexcept { return operator new(n, t); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
 
 // malloc itself, counted apart: Eigen's dynamic matrices allocate through it, not through
 // operator new (glibc's own entry points, __libc_*, do the work). Not under AddressSanitizer,
@@ -159,12 +128,12 @@ void write_sids(const test::TempDir& dir) {
 long allocations_of_recorded_steps(const Model& model, Data& data, int steps) {
   Recorder rec(model, 1000);
   step(model, data);
-  const long before = g_allocations.load();
+  const long before = counted_allocations();
   for (int i = 0; i < steps; ++i) {
     step(model, data);
     rec.record(model, data);
   }
-  return g_allocations.load() - before;
+  return counted_allocations() - before;
 }
 
 }  // namespace
@@ -180,13 +149,13 @@ TEST(Allocation, StepsAllocateNothing) {
   set_external_load(data, 3, 1, Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d::Zero());  // at the flap's node A
   Recorder rec(model, 1000);
   step(model, data);  // first step: nothing left to size
-  const long before = g_allocations.load();
+  const long before = counted_allocations();
   const std::int64_t fact0 = data.stats.factorizations;
   for (int i = 0; i < 150; ++i) {
     step(model, data);
     rec.record(model, data);
   }
-  const long after = g_allocations.load();
+  const long after = counted_allocations();
   std::printf("150 steps: %ld allocations, %lld factorisations\n", after - before,
               static_cast<long long>(data.stats.factorizations - fact0));
   EXPECT_EQ(after - before, 0);
@@ -205,9 +174,9 @@ TEST(Allocation, GeneralizedAlphaAndAdaptiveStepsAllocateNothing) {
     Data data(model);
     initialize(model, data);
     step(model, data);
-    const long before = g_allocations.load();
+    const long before = counted_allocations();
     for (int i = 0; i < 100; ++i) step(model, data);
-    EXPECT_EQ(g_allocations.load() - before, 0) << "generalized-alpha";
+    EXPECT_EQ(counted_allocations() - before, 0) << "generalized-alpha";
   }
   for (const Integrator scheme : {Integrator::Trapezoidal, Integrator::GeneralizedAlpha}) {
     model.settings.integrator = scheme;
@@ -221,12 +190,12 @@ TEST(Allocation, GeneralizedAlphaAndAdaptiveStepsAllocateNothing) {
     StepControl control(model, data);
     Recorder rec(model, 100);
     advance_to(model, data, control, 0.01);
-    const long before = g_allocations.load();
+    const long before = counted_allocations();
     for (int k = 2; k <= 15; ++k) {
       advance_to(model, data, control, 0.01 * k);
       rec.record(model, data);
     }
-    const long after = g_allocations.load();
+    const long after = counted_allocations();
     std::printf("adaptive (%s): %lld steps accepted, %lld rejected, %lld Newton failures; %ld allocations\n",
                 scheme == Integrator::Trapezoidal ? "trapezoidal" : "generalized-alpha", static_cast<long long>(control.accepted),
                 static_cast<long long>(control.rejected), static_cast<long long>(control.newton_failures), after - before);
@@ -448,4 +417,12 @@ TEST(Allocation, GeometricallyExactBeamsAllocateNothing) {
   const long allocations = allocations_of_recorded_steps(model, data, 100);
   std::printf("100 steps with a geometrically exact beam: %ld allocations\n", allocations);
   EXPECT_EQ(allocations, 0);
+}
+
+// The counter sees allocations at all (counting_new.cpp replaces operator new in this program):
+// without it every zero above would hold trivially.
+TEST(Allocation, TheCounterCountsOperatorNew) {
+  const long before = counted_allocations();
+  std::vector<double> v(16, 1.0);
+  EXPECT_EQ(counted_allocations() - before, 1) << v.size();
 }

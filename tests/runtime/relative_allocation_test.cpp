@@ -1,5 +1,5 @@
 // After set-up, a step of the relative formulation (FORMULATION.md 18) allocates nothing, as the
-// absolute one (allocation_test.cpp, whose counting operator new/delete this repeats): the
+// absolute one (allocation_test.cpp; both count with counting_new.cpp): the
 // four-bar (a cut joint: Newton's multiplier passes and both projections), the flexible
 // slider-crank (its rod placed at a point, a motion), a pendulum chain, a spherical double
 // pendulum and a body hung on a beam's node by a spherical joint, each step recorded.
@@ -13,47 +13,11 @@
 
 #include "ffr/runtime/relative.hpp"
 
+#include "counting_new.hpp"
+
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cstdio>
-#include <cstdlib>
-#include <new>
-
-namespace {
-std::atomic<long> g_allocations{0};
-}
-
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void* operator new(std::size_t n, std::align_val_t al) {
-  ++g_allocations;
-  if (void* p = std::aligned_alloc(static_cast<std::size_t>(al), (n + static_cast<std::size_t>(al) - 1) / static_cast<std::size_t>(al) * static_cast<std::size_t>(al))) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n, std::align_val_t al) { return operator new(n, al); }
-// The nothrow forms too (std::stable_partition's temporary buffer uses them): left to the
-// library, they allocated past the count and freed through the replaced delete below, which
-// AddressSanitizer reports as an operator new / free mismatch.
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
-  ++g_allocations;
-  return std::malloc(n ? n : 1);
-}
-void* operator new[](std::size_t n, const std::nothrow_t& t) noexcept { return operator new(n, t); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
 
 using namespace ffr::runtime;
 
@@ -63,12 +27,12 @@ long allocations_in_steps(const Model& model, Data& data, int n) {
   Recorder rec(model, n + 2);
   step(model, data);  // the first step takes the coordinates from the initialized state
   rec.record(model, data);
-  const long before = g_allocations.load();
+  const long before = counted_allocations();
   for (int i = 0; i < n; ++i) {
     step(model, data);
     rec.record(model, data);
   }
-  return g_allocations.load() - before;
+  return counted_allocations() - before;
 }
 
 TEST(RelativeAllocation, StepsAllocateNothing) {
