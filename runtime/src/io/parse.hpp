@@ -6,6 +6,7 @@
 #include "ffr/runtime/model.hpp"
 
 #include <filesystem>
+#include <functional>
 
 namespace ffr::runtime::detail {
 
@@ -41,6 +42,20 @@ Body parse_plate(const Field& b, const std::string& name, ParseContext& ctx);
 /// Refuses joints, forces and loads at a plate that read what its nodes do not carry or that
 /// attach away from its nodes; runs after the forces.
 void check_plate_attachments(const Field& root, ParseContext& ctx);
+
+/// What attaches to a body, as the attachment checks see it: a joint (its JSON entry and the
+/// parsed joint), or a force element or load (its entry, kind, markers; m2 < 0 for a load).
+enum class AttachmentKind { Spring, FrictionDamper, Bushing, Force, Torque };
+struct AttachedElement {
+  const Field& where;
+  AttachmentKind kind;
+  int m1, m2;
+};
+/// Calls joint(entry, joint) for every joint (not couplers) and force(attachment) for every
+/// spring-damper, friction damper, bushing and point load, matching the JSON entries with the
+/// parsed elements in order (attachments.cpp).
+void visit_attachments(const Field& root, const Model& m, const std::function<void(const Field&, const Joint&)>& joint,
+                       const std::function<void(const AttachedElement&)>& force);
 
 /// Body index by name (kGround for "ground"); fails naming `f` if unknown.
 int body_ref(const Field& f, const Model& m);

@@ -136,52 +136,33 @@ void check_beam_attachments(const Field& root, ParseContext& ctx) {
       where.fail("attaches to beam '" + m.ge_beams[static_cast<std::size_t>(g)].name +
                  "' without a node: give node1/node2 (n0 ... nN, start, end)");
   };
-  // The joints list also holds couplers, which are not in Model::joints: entries are matched in order.
-  const std::size_t njson = root.has("joints") ? root.at("joints").size() : 0;
-  for (std::size_t i = 0, j = 0; i < njson && j < m.joints.size(); ++i) {
-    const Field f = root.at("joints").at(i);
-    if (f.at("type").string() == "coupler") continue;
-    const Joint& jt = m.joints[j++];
+  const auto joint = [&](const Field& f, const Joint& jt) {
     node_only(f, jt.m1);
     node_only(f, jt.m2);
-    if (!on_beam(m, jt.m1) && !on_beam(m, jt.m2)) continue;
+    if (!on_beam(m, jt.m1) && !on_beam(m, jt.m2)) return;
     // A node has a position and a slope; its axes are the slope's small rotation, exact only
     // for rows that hold the slope's direction against the ground (a clamp).
     const bool to_ground = m.markers[static_cast<std::size_t>(jt.m1)].body == kGround ||
                            m.markers[static_cast<std::size_t>(jt.m2)].body == kGround;
-    if (jt.type == JointType::Spherical || (jt.type == JointType::Fixed && to_ground)) continue;
+    if (jt.type == JointType::Spherical || (jt.type == JointType::Fixed && to_ground)) return;
     f.at("type").fail(std::string("a ") + to_string(jt.type) +
                       " joint at a beam node is not supported: the ancf node has no rotation beyond its slope's "
                       "direction (spherical joints, and fixed joints to the ground, are)");
-  }
-  if (!root.has("forces")) return;
-  const Field forces = root.at("forces");
-  // The forces list mixes kinds; their markers are found again by kind, in the order parsed.
-  std::size_t ispring = 0, ibush = 0, ifric = 0, iload = 0;
-  for (std::size_t i = 0; i < forces.size(); ++i) {
-    const Field f = forces.at(i);
-    const std::string type = f.at("type").string();
-    if (type == "spring_damper") {
-      const SpringDamper& s = m.springs[ispring++];
-      node_only(f, s.m1);
-      node_only(f, s.m2);
-    } else if (type == "friction_damper") {
-      const FrictionDamper& s = m.friction_dampers[ifric++];
-      node_only(f, s.m1);
-      node_only(f, s.m2);
-    } else if (type == "bushing") {
-      const Bushing& s = m.bushings[ibush++];
-      for (const int mk : {s.m1, s.m2})
-        if (ge_beam_of(m, m.markers[static_cast<std::size_t>(mk)].body) >= 0) node_only(f, mk);
-      if (on_beam(m, s.m1) || on_beam(m, s.m2))
-        f.at("type").fail("a bushing at a beam node is not supported: the ancf node has no rotation beyond its slope's direction");
-    } else if (type == "point_force" || type == "point_torque") {
-      const PointLoad& l = m.loads[iload++];
-      node_only(f, l.marker);
-      if (l.torque && on_beam(m, l.marker))
-        f.at("type").fail("a point torque at a beam node is not supported: the ancf node has no rotation beyond its slope's direction");
+  };
+  const auto force = [&](const AttachedElement& a) {
+    if (a.kind == AttachmentKind::Bushing) {
+      for (const int mk : {a.m1, a.m2})
+        if (ge_beam_of(m, m.markers[static_cast<std::size_t>(mk)].body) >= 0) node_only(a.where, mk);
+      if (on_beam(m, a.m1) || on_beam(m, a.m2))
+        a.where.at("type").fail("a bushing at a beam node is not supported: the ancf node has no rotation beyond its slope's direction");
+      return;
     }
-  }
+    node_only(a.where, a.m1);
+    if (a.m2 >= 0) node_only(a.where, a.m2);
+    if (a.kind == AttachmentKind::Torque && on_beam(m, a.m1))
+      a.where.at("type").fail("a point torque at a beam node is not supported: the ancf node has no rotation beyond its slope's direction");
+  };
+  visit_attachments(root, m, joint, force);
 }
 
 }  // namespace ffr::runtime::detail

@@ -80,50 +80,31 @@ void check_plate_attachments(const Field& root, ParseContext& ctx) {
       where.fail("attaches to plate '" + m.bodies[static_cast<std::size_t>(mk.body)].name +
                  "' away from its nodes: give node1/node2 (n<i>_<j>)");
   };
-  // The joints list also holds couplers, which are not in Model::joints: entries are matched in order.
-  const std::size_t njson = root.has("joints") ? root.at("joints").size() : 0;
-  for (std::size_t i = 0, j = 0; i < njson && j < m.joints.size(); ++i) {
-    const Field f = root.at("joints").at(i);
-    if (f.at("type").string() == "coupler") continue;
-    const Joint& jt = m.joints[j++];
+  const auto joint = [&](const Field& f, const Joint& jt) {
     node_only(f, jt.m1);
     node_only(f, jt.m2);
-    if (!on_plate(m, jt.m1) && !on_plate(m, jt.m2)) continue;
+    if (!on_plate(m, jt.m1) && !on_plate(m, jt.m2)) return;
     // A node's axes are its gradients' linearised turn: exact only for rows that hold them
     // against the ground (a point clamp).
     const bool to_ground = m.markers[static_cast<std::size_t>(jt.m1)].body == kGround ||
                            m.markers[static_cast<std::size_t>(jt.m2)].body == kGround;
-    if (jt.type == JointType::Spherical || (jt.type == JointType::Fixed && to_ground)) continue;
+    if (jt.type == JointType::Spherical || (jt.type == JointType::Fixed && to_ground)) return;
     f.at("type").fail(std::string("a ") + to_string(jt.type) +
                       " joint at a plate node is not supported: the node's rotation is its gradients' linearised turn "
                       "(spherical joints, and fixed joints to the ground, are; an edge is held by the plate's supports)");
-  }
-  if (!root.has("forces")) return;
-  const Field forces = root.at("forces");
-  // The forces list mixes kinds; their markers are found again by kind, in the order parsed.
-  std::size_t ispring = 0, ibush = 0, ifric = 0, iload = 0;
-  for (std::size_t i = 0; i < forces.size(); ++i) {
-    const Field f = forces.at(i);
-    const std::string type = f.at("type").string();
-    if (type == "spring_damper") {
-      const SpringDamper& s = m.springs[ispring++];
-      node_only(f, s.m1);
-      node_only(f, s.m2);
-    } else if (type == "friction_damper") {
-      const FrictionDamper& s = m.friction_dampers[ifric++];
-      node_only(f, s.m1);
-      node_only(f, s.m2);
-    } else if (type == "bushing") {
-      const Bushing& s = m.bushings[ibush++];
-      if (on_plate(m, s.m1) || on_plate(m, s.m2))
-        f.at("type").fail("a bushing at a plate node is not supported: the node's rotation is its gradients' linearised turn");
-    } else if (type == "point_force" || type == "point_torque") {
-      const PointLoad& l = m.loads[iload++];
-      node_only(f, l.marker);
-      if (l.torque && on_plate(m, l.marker))
-        f.at("type").fail("a point torque at a plate node is not supported: the node's rotation is its gradients' linearised turn");
+  };
+  const auto force = [&](const AttachedElement& a) {
+    if (a.kind == AttachmentKind::Bushing) {
+      if (on_plate(m, a.m1) || on_plate(m, a.m2))
+        a.where.at("type").fail("a bushing at a plate node is not supported: the node's rotation is its gradients' linearised turn");
+      return;
     }
-  }
+    node_only(a.where, a.m1);
+    if (a.m2 >= 0) node_only(a.where, a.m2);
+    if (a.kind == AttachmentKind::Torque && on_plate(m, a.m1))
+      a.where.at("type").fail("a point torque at a plate node is not supported: the node's rotation is its gradients' linearised turn");
+  };
+  visit_attachments(root, m, joint, force);
 }
 
 }  // namespace ffr::runtime::detail
