@@ -6,9 +6,21 @@
 #include "ffr/preproc/solver/eigen_solver.hpp"
 #include "ffr/preproc/solver/shift_invert_ops.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace ffr::preproc::detail {
+
+/// Next request size when every converged eigenvalue is still below lambda_max (a
+/// max_frequency_hz reduction): the eigenvalue count of a 3D body grows like lambda^{3/2}
+/// (Weyl's law), so extrapolate with that exponent and at least double. Shared by the serial
+/// EigenSolver and the distributed SLEPc path, so both ask for the same sizes.
+inline int grow_nev(int nev, double top, double lambda_max, double sigma) {
+  const double ratio = (lambda_max - sigma) / std::max(top - sigma, 1e-300);
+  const double est = 1.2 * nev * std::pow(ratio, 1.5);
+  return static_cast<int>(std::min(std::max(2.0 * nev, est), 1e9));
+}
 
 struct LanczosRequest {
   int nev = 0;

@@ -67,15 +67,6 @@ Eigen::VectorXd start_vector(Eigen::Index n, const Deflation& d) {
   return v;
 }
 
-// Next request size when every converged eigenvalue is still below lambda_max: the
-// eigenvalue count of a 3D body grows like lambda^{3/2} (Weyl's law), so extrapolate with
-// that exponent and at least double.
-int grow_nev(int nev, double top, double lambda_max, double sigma) {
-  const double ratio = (lambda_max - sigma) / std::max(top - sigma, 1e-300);
-  const double est = 1.2 * nev * std::pow(ratio, 1.5);
-  return static_cast<int>(std::min(std::max(2.0 * nev, est), 1e9));
-}
-
 }  // namespace
 
 EigenSolver::EigenSolver(EigenOptions options) : options_(std::move(options)) {}
@@ -308,7 +299,7 @@ struct EigenSolver::Run {
         fail(EigenStatus::BadInput, os.str());
         throw EigenSolverError(os.str());
       }
-      nev = static_cast<int>(std::min<std::int64_t>({static_cast<std::int64_t>(grow_nev(nev, top, o.lambda_max, o.sigma)),
+      nev = static_cast<int>(std::min<std::int64_t>({static_cast<std::int64_t>(detail::grow_nev(nev, top, o.lambda_max, o.sigma)),
                                                      static_cast<std::int64_t>(o.max_modes) + 1,
                                                      static_cast<std::int64_t>(n_eff)}));
     }

@@ -15,7 +15,7 @@
 #include <stdexcept>
 
 #if FFR_HAVE_SLEPC
-#include <slepceps.h>
+#include "petsc_support.hpp"
 
 #include <algorithm>
 #include <numeric>
@@ -26,33 +26,6 @@ namespace ffr::preproc::detail {
 
 #if FFR_HAVE_SLEPC
 namespace {
-
-void check(PetscErrorCode ierr, const char* call) {
-  if (ierr == 0) return;
-  const char* text = nullptr;
-  PetscErrorMessage(ierr, &text, nullptr);
-  std::ostringstream o;
-  o << "slepc backend: " << call << " failed: " << (text ? text : "PETSc error") << " (PETSc error " << ierr << ")";
-  throw std::runtime_error(o.str());
-}
-
-// Owners of PETSc objects, destroyed on every way out.
-struct MatGuard {
-  Mat m = nullptr;
-  ~MatGuard() { if (m) MatDestroy(&m); }
-};
-struct VecGuard {
-  Vec v = nullptr;
-  ~VecGuard() { if (v) VecDestroy(&v); }
-};
-struct EpsGuard {
-  EPS e = nullptr;
-  ~EpsGuard() { if (e) EPSDestroy(&e); }
-};
-struct ScatterGuard {
-  VecScatter s = nullptr;
-  ~ScatterGuard() { if (s) VecScatterDestroy(&s); }
-};
 
 // Rows [r0, r1) of the symmetric matrix A (either triangle implied by `storage`) in CSR with
 // global, ascending column indices: what MatCreateMPIAIJWithArrays copies for this rank.
@@ -245,10 +218,7 @@ Eigen::MatrixXd distributed_spd_solve(const SparseRef& A, SymmetricStorage sA, c
   if (rank == 0) r0 = 0;
   MatGuard Ad;
   Ad.m = distributed_matrix(A, sA, n_local, r0);
-  struct KspGuard {
-    KSP k = nullptr;
-    ~KspGuard() { if (k) KSPDestroy(&k); }
-  } ksp;
+  KspGuard ksp;
   PC pc = nullptr;
   check(KSPCreate(PETSC_COMM_WORLD, &ksp.k), "KSPCreate");
   check(KSPSetOperators(ksp.k, Ad.m, Ad.m), "KSPSetOperators");

@@ -19,7 +19,7 @@
 #include <stdexcept>
 
 #if FFR_HAVE_SLEPC
-#include <slepceps.h>
+#include "petsc_support.hpp"
 #endif
 
 namespace ffr::preproc::detail {
@@ -33,15 +33,6 @@ std::int64_t rows_of(std::int64_t n, int rank, int size) { return n / size + (ra
 #if FFR_HAVE_SLEPC
 
 namespace {
-
-void check(PetscErrorCode ierr, const char* call) {
-  if (ierr == 0) return;
-  const char* text = nullptr;
-  PetscErrorMessage(ierr, &text, nullptr);
-  std::ostringstream o;
-  o << "slepc backend: " << call << " failed: " << (text ? text : "PETSc error") << " (PETSc error " << ierr << ")";
-  throw std::runtime_error(o.str());
-}
 
 bool several() { return parallel_session_active(); }
 
@@ -126,13 +117,6 @@ Mat summed_matrix(const SparseMatrix& A, bool upper, PetscInt n_local) {
   MatDestroy(&B);
   check(MatSetOption(C, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   return C;
-}
-
-int grow_nev(int nev, double top, double lambda_max, double sigma) {
-  // As EigenSolver: Weyl's law (count ~ lambda^{3/2}) and at least double.
-  const double ratio = (lambda_max - sigma) / std::max(top - sigma, 1e-300);
-  const double est = 1.2 * nev * std::pow(ratio, 1.5);
-  return static_cast<int>(std::min(std::max(2.0 * nev, est), 1e9));
 }
 
 }  // namespace
