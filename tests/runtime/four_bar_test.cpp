@@ -5,6 +5,7 @@
 // the same mechanism (crank angle theta as the only coordinate, closed-form loop closure,
 // Lagrange's equation m(theta) theta'' + m'(theta) theta'^2 / 2 = -V'(theta)) integrated with
 // classical RK4 at a much smaller step.
+#include "formulation_models.hpp"  // tools/bench/formulations
 #include "support.hpp"
 
 #include <Eigen/QR>
@@ -17,49 +18,10 @@ using namespace ffr::runtime;
 
 namespace {
 
-// Geometry: ground pivots O = (0,0) and C = (d,0); crank a, coupler b, rocker c (crank-rocker).
-constexpr double a = 0.2, b = 0.5, c = 0.4, d = 0.45, g = 9.81;
-constexpr double ma = 1.0, mb = 2.0, mc = 1.5;
-
-struct Pose {
-  Eigen::Vector2d A, B;
-  double phi_b, phi_c;  // coupler and rocker angles
-};
-
-// Loop closure: B at distance b from A and c from C (the branch with B above the line A-C).
-Pose pose(double th) {
-  Pose p;
-  p.A = Eigen::Vector2d(a * std::cos(th), a * std::sin(th));
-  const Eigen::Vector2d C(d, 0);
-  const Eigen::Vector2d AC = C - p.A;
-  const double L = AC.norm();
-  const double x = (b * b - c * c + L * L) / (2 * L), y = std::sqrt(b * b - x * x);
-  const Eigen::Vector2d e = AC / L, n(-e(1), e(0));
-  p.B = p.A + x * e + y * n;
-  p.phi_b = std::atan2(p.B(1) - p.A(1), p.B(0) - p.A(0));
-  p.phi_c = std::atan2(p.B(1) - C(1), p.B(0) - C(0));
-  return p;
-}
-
-// Centres of mass (mid-points) and angles of the three bars as functions of theta.
-struct Config {
-  Eigen::Vector2d G[3];
-  double phi[3];
-};
-Config config(double th) {
-  const Pose p = pose(th);
-  Config k;
-  k.G[0] = 0.5 * p.A;
-  k.G[1] = 0.5 * (p.A + p.B);
-  k.G[2] = 0.5 * (Eigen::Vector2d(d, 0) + p.B);
-  k.phi[0] = th;
-  k.phi[1] = p.phi_b;
-  k.phi[2] = p.phi_c;
-  return k;
-}
-
-const double mass[3] = {ma, mb, mc}, len[3] = {a, b, c};
-double inertia(int i) { return mass[i] * len[i] * len[i] / 12; }
+// The mechanism (geometry, loop closure, bars, model file): tools/bench/formulations.
+using namespace formulations::four_bar;
+using formulations::num;
+constexpr double th0 = kTheta0, w0 = kOmega0;
 
 // Generalised mass m(theta) = sum m |dG/dth|^2 + I (dphi/dth)^2 and potential V(theta).
 double gmass(double th) {
@@ -85,66 +47,12 @@ double accel(double th, double w) {
   return (-dV - 0.5 * dM * w * w) / gmass(th);
 }
 
-// Rigid-bar JSON: frame at the bar's first joint, x axis along the bar, COM at mid-length.
-std::string bar(const char* name, int i, const Eigen::Vector2d& origin, double phi, const Eigen::Vector2d& vG, double w) {
-  const double m = mass[i], L = len[i], I = inertia(i);
-  Eigen::Matrix3d R = Eigen::AngleAxisd(phi, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::Matrix3d Ig = R * Eigen::Vector3d(1e-5, I, I).asDiagonal() * R.transpose();
-  const Eigen::Vector3d com = Eigen::Vector3d(origin(0), origin(1), 0) + R * Eigen::Vector3d(L / 2, 0, 0);
-  // Velocity of the frame origin from the COM velocity: v_O = v_G - w x (G - O).
-  const Eigen::Vector3d vO = Eigen::Vector3d(vG(0), vG(1), 0) - Eigen::Vector3d(0, 0, w).cross(R * Eigen::Vector3d(L / 2, 0, 0));
-  char buf[1024];
-  std::snprintf(buf, sizeof buf,
-                R"({"name": "%s", "type": "rigid", "mass": %.17g, "com": [%.17g, %.17g, 0], "position": [%.17g, %.17g, 0],
-     "orientation": [[%.17g, %.17g, 0], [%.17g, %.17g, 0], [0, 0, 1]],
-     "inertia": [[%.17g, %.17g, 0], [%.17g, %.17g, 0], [0, 0, %.17g]],
-     "velocity": [%.17g, %.17g, 0], "angular_velocity": [0, 0, %.17g]})",
-                name, m, com(0), com(1), origin(0), origin(1), R(0, 0), R(0, 1), R(1, 0), R(1, 1), Ig(0, 0), Ig(0, 1), Ig(1, 0),
-                Ig(1, 1), Ig(2, 2), vO(0), vO(1), w);
-  return buf;
-}
-
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.17g", v);
-  return b;
-}
-
 struct Outcome {
   double worst, violation, dE, E0;
   std::size_t notes;
 };
 
-constexpr double th0 = 0.3, w0 = 6.0;
-
-// The four-bar started at crank angle th0 with crank rate w0 (consistent velocities from the
-// one-DOF model).
-std::string four_bar_json(double h) {
-  // Consistent initial velocities from the one-DOF model.
-  const double e = 1e-7;
-  const Config kp = config(th0 + e), km = config(th0 - e);
-  Eigen::Vector2d vG[3];
-  double w[3];
-  for (int i = 0; i < 3; ++i) {
-    vG[i] = (kp.G[i] - km.G[i]) / (2 * e) * w0;
-    w[i] = (kp.phi[i] - km.phi[i]) / (2 * e) * w0;
-  }
-  const Pose p0 = pose(th0);
-  std::string json = R"({"gravity": [0, -9.81, 0], "bodies": [)" + bar("crank", 0, {0, 0}, th0, vG[0], w[0]) + ",\n" +
-                     bar("coupler", 1, p0.A, p0.phi_b, vG[1], w[1]) + ",\n" + bar("rocker", 2, {d, 0}, p0.phi_c, vG[2], w[2]) +
-                     R"(],
-  "joints": [
-    {"name": "O", "type": "revolute", "body1": "ground", "body2": "crank", "at": [0, 0, 0], "axis": [0, 0, 1]},
-    {"name": "A", "type": "revolute", "body1": "crank", "body2": "coupler", "at": [)" +
-                     num(p0.A(0)) + ", " + num(p0.A(1)) + R"(, 0], "axis": [0, 0, 1]},
-    {"name": "B", "type": "revolute", "body1": "coupler", "body2": "rocker", "at": [)" +
-                     num(p0.B(0)) + ", " + num(p0.B(1)) + R"(, 0], "axis": [0, 0, 1]},
-    {"name": "C", "type": "revolute", "body1": "rocker", "body2": "ground", "at": [0.45, 0, 0], "axis": [0, 0, 1]}
-  ],
-  "solver": {"end": 1.0, "step": )" + num(h) + R"(}
-})";
-  return json;
-}
+std::string four_bar_json(double h) { return json(h, 1.0, "absolute"); }
 
 Outcome run(double h) {
   const double T = 1.0;

@@ -2,6 +2,7 @@
 // (MODEL_FILE.md "Outputs", FORMULATION.md 13), each against a reference computed here
 // independently of the runtime: statics by hand, a planar Newton-Euler solution of a four-bar,
 // rigid-body kinematics v = v_O + omega x r, and finite differences of positions.
+#include "formulation_models.hpp"  // tools/bench/formulations
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
 
@@ -20,12 +21,6 @@ namespace {
 constexpr double g = 9.81;
 
 using test::output;
-
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.17g", v);
-  return b;
-}
 
 }  // namespace
 
@@ -91,34 +86,18 @@ TEST(Reaction, FixedJointCarriesWeightAndMoment) {
 // ---- the four-bar against planar Newton-Euler ---------------------------------------------
 namespace {
 
-// The four-bar of four_bar_test.cpp: crank a, coupler b, rocker c, ground pivots O = (0, 0) and
-// C = (d, 0), bars uniform (centre of mass mid-length), gravity -y.
-constexpr double a = 0.2, b = 0.5, c = 0.4, d = 0.45;
-const double mass[3] = {1.0, 2.0, 1.5}, len[3] = {a, b, c};
-double inertia(int i) { return mass[i] * len[i] * len[i] / 12; }
+// The four-bar of tools/bench/formulations (the one four_bar_test.cpp runs): crank a, coupler
+// b, rocker c, ground pivots O = (0, 0) and C = (d, 0), bars uniform, gravity -y.
+using formulations::four_bar::d;
+using formulations::four_bar::inertia;
+using formulations::four_bar::mass;
+using formulations::four_bar::pose;
 
-struct Pose {
-  Eigen::Vector2d A, B;
-  double phi[3];
-};
-Pose pose(double th) {
-  Pose p;
-  p.A = Eigen::Vector2d(a * std::cos(th), a * std::sin(th));
-  const Eigen::Vector2d C(d, 0), AC = C - p.A;
-  const double L = AC.norm(), x = (b * b - c * c + L * L) / (2 * L), y = std::sqrt(b * b - x * x);
-  const Eigen::Vector2d e = AC / L, n(-e(1), e(0));
-  p.B = p.A + x * e + y * n;
-  p.phi[0] = th;
-  p.phi[1] = std::atan2(p.B(1) - p.A(1), p.B(0) - p.A(0));
-  p.phi[2] = std::atan2(p.B(1), p.B(0) - d);
-  return p;
-}
 // Centres of mass and angles as a vector [G0x, G0y, phi0, G1x, ...] of theta.
 Eigen::Matrix<double, 9, 1> config(double th) {
-  const Pose p = pose(th);
-  const Eigen::Vector2d G[3] = {0.5 * p.A, 0.5 * (p.A + p.B), 0.5 * (Eigen::Vector2d(d, 0) + p.B)};
+  const formulations::four_bar::Config k = formulations::four_bar::config(th);
   Eigen::Matrix<double, 9, 1> v;
-  for (int i = 0; i < 3; ++i) v.segment<3>(3 * i) << G[i], p.phi[i];
+  for (int i = 0; i < 3; ++i) v.segment<3>(3 * i) << k.G[i], k.phi[i];
   return v;
 }
 
@@ -133,7 +112,7 @@ Eigen::Matrix<double, 8, 1> newton_euler(double th, double w, double al) {
   const auto k0 = config(th), kp = config(th + e), km = config(th - e);
   const Eigen::Matrix<double, 9, 1> d1 = (kp - km) / (2 * e), d2 = (kp - 2 * k0 + km) / (e * e);
   const Eigen::Matrix<double, 9, 1> acc = d2 * w * w + d1 * al;  // second derivative in time
-  const Pose p = pose(th);
+  const formulations::four_bar::Pose p = pose(th);
   const Eigen::Vector2d O(0, 0), C(d, 0);
   Eigen::Matrix<double, 9, 8> Aeq = Eigen::Matrix<double, 9, 8>::Zero();
   Eigen::Matrix<double, 9, 1> rhs;
@@ -159,55 +138,17 @@ Eigen::Matrix<double, 8, 1> newton_euler(double th, double w, double al) {
   return Aeq.colPivHouseholderQr().solve(rhs);
 }
 
-std::string bar(const char* name, int i, const Eigen::Vector2d& origin, double phi, const Eigen::Vector2d& vG, double w) {
-  const double m = mass[i], L = len[i], I = inertia(i);
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(phi, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::Matrix3d Ig = R * Eigen::Vector3d(1e-5, I, I).asDiagonal() * R.transpose();
-  const Eigen::Vector3d com = Eigen::Vector3d(origin(0), origin(1), 0) + R * Eigen::Vector3d(L / 2, 0, 0);
-  const Eigen::Vector3d vO = Eigen::Vector3d(vG(0), vG(1), 0) - Eigen::Vector3d(0, 0, w).cross(R * Eigen::Vector3d(L / 2, 0, 0));
-  char buf[1024];
-  std::snprintf(buf, sizeof buf,
-                R"({"name": "%s", "type": "rigid", "mass": %.17g, "com": [%.17g, %.17g, 0], "position": [%.17g, %.17g, 0],
-     "orientation": [[%.17g, %.17g, 0], [%.17g, %.17g, 0], [0, 0, 1]],
-     "inertia": [[%.17g, %.17g, 0], [%.17g, %.17g, 0], [0, 0, %.17g]],
-     "velocity": [%.17g, %.17g, 0], "angular_velocity": [0, 0, %.17g]})",
-                name, m, com(0), com(1), origin(0), origin(1), R(0, 0), R(0, 1), R(1, 0), R(1, 1), Ig(0, 0), Ig(0, 1), Ig(1, 0),
-                Ig(1, 1), Ig(2, 2), vO(0), vO(1), w);
-  return buf;
-}
-
 }  // namespace
 
 // The runtime's reactions of the four pins against the Newton-Euler pin forces for the motion
 // it computed (its crank angle, rate and acceleration): the in-plane forces (the out-of-plane
 // components and torques of a closed planar loop are redundant, not unique).
 TEST(Reaction, FourBarMatchesPlanarNewtonEuler) {
-  const double th0 = 0.3, w0 = 6.0, h = 5e-4;
-  const double e = 1e-7;
-  const auto kp = config(th0 + e), km = config(th0 - e);
-  Eigen::Vector2d vG[3];
-  double w[3];
-  for (int i = 0; i < 3; ++i) {
-    vG[i] = (kp.segment<2>(3 * i) - km.segment<2>(3 * i)) / (2 * e) * w0;
-    w[i] = (kp(3 * i + 2) - km(3 * i + 2)) / (2 * e) * w0;
-  }
-  const Pose p0 = pose(th0);
-  const std::string json = R"({"gravity": [0, -9.81, 0], "bodies": [)" + bar("crank", 0, {0, 0}, th0, vG[0], w[0]) + ",\n" +
-                           bar("coupler", 1, p0.A, p0.phi[1], vG[1], w[1]) + ",\n" + bar("rocker", 2, {d, 0}, p0.phi[2], vG[2], w[2]) +
-                           R"(],
-  "joints": [
-    {"name": "O", "type": "revolute", "body1": "ground", "body2": "crank", "at": [0, 0, 0], "axis": [0, 0, 1]},
-    {"name": "A", "type": "revolute", "body1": "crank", "body2": "coupler", "at": [)" +
-                           num(p0.A(0)) + ", " + num(p0.A(1)) + R"(, 0], "axis": [0, 0, 1]},
-    {"name": "B", "type": "revolute", "body1": "coupler", "body2": "rocker", "at": [)" +
-                           num(p0.B(0)) + ", " + num(p0.B(1)) + R"(, 0], "axis": [0, 0, 1]},
-    {"name": "C", "type": "revolute", "body1": "rocker", "body2": "ground", "at": [0.45, 0, 0], "axis": [0, 0, 1]}
-  ],
-  "solver": {"end": 1.0, "step": )" + num(h) + R"(},
-  "outputs": [{"name": "O", "type": "joint_reaction", "joint": "O"}, {"name": "A", "type": "joint_reaction", "joint": "A"},
-              {"name": "B", "type": "joint_reaction", "joint": "B"}, {"name": "C", "type": "joint_reaction", "joint": "C"},
-              {"name": "rate", "type": "joint_rate", "joint": "O"}, {"name": "w", "type": "body_angular_velocity", "body": "crank"}]
-})";
+  const double th0 = formulations::four_bar::kTheta0, h = 5e-4;
+  const std::string json = formulations::four_bar::json(h, 1.0, "absolute", R"("outputs": [
+    {"name": "O", "type": "joint_reaction", "joint": "O"}, {"name": "A", "type": "joint_reaction", "joint": "A"},
+    {"name": "B", "type": "joint_reaction", "joint": "B"}, {"name": "C", "type": "joint_reaction", "joint": "C"},
+    {"name": "rate", "type": "joint_rate", "joint": "O"}, {"name": "w", "type": "body_angular_velocity", "body": "crank"}])");
   const Model model = test::model_from(json);
   Data data(model);
   initialize(model, data);

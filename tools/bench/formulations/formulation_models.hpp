@@ -1,6 +1,6 @@
 #pragma once
-// The models both the formulation benchmark (main.cpp) and the relative formulation's tests
-// (tests/runtime/relative_formulation_test.cpp) run, as model-file text with a chosen
+// The models both the formulation benchmark (main.cpp) and the runtime's tests (the relative
+// formulation's, the four-bar's and the reactions') run, as model-file text with a chosen
 // "formulation" (FORMULATION.md 18): a planar pendulum chain of rigid links and the four-bar of
 // four_bar_test.cpp (crank-rocker, started at a consistent state).
 #include <Eigen/Geometry>
@@ -90,8 +90,9 @@ inline std::string bar(const char* name, int i, const Eigen::Vector2d& origin, d
 }
 
 /// Four revolute joints about z, the crank at kTheta0 turning at kOmega0 (the other bars'
-/// velocities from the loop closure: a consistent start), gravity along -y.
-inline std::string json(double h, double end, const std::string& formulation) {
+/// velocities from the loop closure: a consistent start), gravity along -y. `extra`: further
+/// members of the model object (e.g. `"outputs": [...]`), appended as given.
+inline std::string json(double h, double end, const std::string& formulation, const std::string& extra = "") {
   const double e = 1e-7;
   const Config kp = config(kTheta0 + e), km = config(kTheta0 - e);
   Eigen::Vector2d vG[3];
@@ -112,8 +113,8 @@ inline std::string json(double h, double end, const std::string& formulation) {
          num(p0.B(0)) + ", " + num(p0.B(1)) + R"(, 0], "axis": [0, 0, 1]},
     {"name": "C", "type": "revolute", "body1": "rocker", "body2": "ground", "at": [0.45, 0, 0], "axis": [0, 0, 1]}
   ],
-  "solver": {"formulation": ")" + formulation + R"(", "end": )" + num(end) + R"(, "step": )" + num(h) + R"(}
-})";
+  "solver": {"formulation": ")" + formulation + R"(", "end": )" + num(end) + R"(, "step": )" + num(h) + "}" +
+         (extra.empty() ? std::string() : ",\n  " + extra) + "\n}";
 }
 }  // namespace four_bar
 
