@@ -2,7 +2,8 @@
 // absolute one (allocation_test.cpp; both count with counting_new.cpp): the
 // four-bar (a cut joint: Newton's multiplier passes and both projections), the flexible
 // slider-crank (its rod placed at a point, a motion), a pendulum chain, a spherical double
-// pendulum and a body hung on a beam's node by a spherical joint, each step recorded.
+// pendulum, a body hung on a beam's node by a spherical joint, and the four-bar under
+// generalized-alpha, each step recorded.
 #include "simeon_rod.hpp"
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
@@ -71,6 +72,16 @@ TEST(RelativeAllocation, StepsAllocateNothing) {
     Data data(model);
     initialize(model, data);
     EXPECT_EQ(allocations_in_steps(model, data, 50), 0) << "bob on a beam node";
+  }
+  // Generalized-alpha (its start step is inside the first, uncounted step).
+  {
+    std::string json = formulations::four_bar::json(1e-3, 1.0, "relative");
+    json.insert(json.find("\"solver\": {") + 11, R"("integrator": "generalized_alpha", "spectral_radius": 0.8, )");
+    const Model model = test::model_from(json);
+    ASSERT_EQ(model.settings.integrator, Integrator::GeneralizedAlpha);
+    Data data(model);
+    initialize(model, data);
+    EXPECT_EQ(allocations_in_steps(model, data, 100), 0) << "four-bar, generalized-alpha";
   }
 }
 

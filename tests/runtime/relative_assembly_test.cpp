@@ -177,8 +177,11 @@ TEST(RelativeAssembly, RigidBodyWeldedToAGeometricallyExactBeamEnd) {
   using relative_assembly::welded_bob_json;
   const Model m = test::model_from(welded_bob_json(solver("relative", R"("end": 0.01, "step": 1e-3)")));
   ASSERT_TRUE(m.relative);
-  for (std::size_t b = 0; b < m.bodies.size(); ++b)
-    if (m.bodies[b].name == "bob") EXPECT_TRUE(!m.relative->bodies[b].free && !m.relative->bodies[b].point);
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    if (m.bodies[b].name == "bob") {
+      EXPECT_TRUE(!m.relative->bodies[b].free && !m.relative->bodies[b].point);
+    }
+  }
   hung_body_checks("welded on a geometrically exact beam", welded_bob_json(solver("relative", R"("initial_equilibrium": true, "end": 0.05, "step": 1e-3)")),
                    welded_bob_json(solver("relative", R"("end": 0.06, "step": 5e-4)")),
                    welded_bob_json(solver("absolute", R"("end": 0.06, "step": 5e-4)")),

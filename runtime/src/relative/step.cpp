@@ -1,6 +1,7 @@
 // One ALI3-P step in the relative coordinates (relative.hpp, FORMULATION.md 18): the absolute
-// step's trapezoidal rule, augmented-Lagrangian Newton iteration and projections (ali3p.cpp,
-// FORMULATION.md 9) with the absolute residual and tangent projected by R = dq/ds:
+// step's scheme (the trapezoidal rule or generalized-alpha, scheme_coefficients.cpp),
+// augmented-Lagrangian Newton iteration and projections (ali3p.cpp, FORMULATION.md 9) with the
+// absolute residual and tangent projected by R = dq/ds (h^2/4 below is the scheme's kq):
 //   f(s) = h^2/4 R^T [M q_ddot - Q + Phi_q^T (lambda + alpha Phi)]            (kept rows)
 //   T    = R^T (M + h/2 C + h^2/4 K) R + h^2/4 (Phi_q R)^T alpha (Phi_q R)
 // The tangent leaves out the derivatives of R itself (the curvature of q(s), of the size of the
@@ -13,6 +14,8 @@
 #include "ffr/runtime/errors.hpp"
 #include "ffr/runtime/integrator.hpp"
 #include "ffr/runtime/kinematics.hpp"
+#include "ffr/runtime/scheme.hpp"
+#include "ffr/runtime/state.hpp"
 #include "../forces/forces.hpp"
 
 #include <cmath>
@@ -182,6 +185,55 @@ double project(const Model& model, Data& data, VectorXd& x, const VectorXd& b, d
   return res;
 }
 
+// Generalized-alpha in s, as the absolute step has it in q (scheme_coefficients.cpp): with the
+// pseudo-acceleration a of s, s_dot = c1 s + sd_hat and s_ddot = c2 s + sdd_hat.
+StepCoefficients alpha_coefficients(const AlphaParameters& p, double h) {
+  StepCoefficients k;
+  k.h = k.h_prev = h;
+  k.c1 = p.gamma / (p.beta * h);
+  k.c2 = (1 - p.alpha_m) / ((1 - p.alpha_f) * p.beta * h * h);
+  k.kv = k.c1 / k.c2;
+  k.kq = 1 / k.c2;
+  return k;
+}
+
+// The start of generalized-alpha (start_generalized_alpha of the absolute step): a_0 stands for
+// the acceleration at t_0 + (alpha_m - alpha_f) h, taken from one trapezoidal step that is then
+// undone, a_0 = s_ddot_0 + (alpha_m - alpha_f) (s_ddot_1 - s_ddot_0).
+void start_alpha(const Model& model, Data& data, double h) {
+  RelativeWork& w = *data.relative;
+  const AlphaParameters p = AlphaParameters::from_spectral_radius(model.settings.spectral_radius);
+  const double delta = p.alpha_m - p.alpha_f;
+  w.a = w.sdd;
+  if (delta == 0) return;  // rho_inf = 1: a_n = s_ddot_n, the trapezoidal rule
+  save_state(data, data.start);
+  w.start_s = w.s;
+  w.start_sd = w.sd;
+  w.start_sdd = w.sdd;
+  const auto undo = [&] {
+    data.scheme.start_step = false;
+    restore_state(data.start, data);
+    w.s = w.start_s;
+    w.sd = w.start_sd;
+    w.sdd = w.start_sdd;
+    w.have_previous = false;
+    // The absolute state is the one these s describe again: no new sync at the next step.
+    w.q_last = data.state.q;
+    w.qd_last = data.state.qd;
+    w.t_last = data.state.t;
+  };
+  data.scheme.start_step = true;
+  try {
+    relative_step(model, data, h);
+  } catch (...) {
+    undo();
+    throw;
+  }
+  w.a = w.start_sdd + delta * (w.sdd - w.start_sdd);
+  undo();
+  --data.stats.steps;  // not a step of the run
+}
+
 }  // namespace
 
 void relative_step(const Model& model, Data& data, double h) {
@@ -191,14 +243,29 @@ void relative_step(const Model& model, Data& data, double h) {
   State& st = data.state;
   // A state this formulation did not produce (initialize, restore_state): take s from it.
   if (!(st.t == w.t_last) || st.q != w.q_last || st.qd != w.qd_last) relative_sync(model, data);
-  st.k = trapezoidal_coefficients(h);
+  // (The start step of generalized-alpha is a trapezoidal one.)
+  const bool alpha = s.integrator == Integrator::GeneralizedAlpha && !data.scheme.start_step;
+  if (alpha && !w.have_previous) start_alpha(model, data, h);
+  const AlphaParameters ap = AlphaParameters::from_spectral_radius(alpha ? s.spectral_radius : 1.0);
+  st.k = alpha ? alpha_coefficients(ap, h) : trapezoidal_coefficients(h);
   const StepCoefficients& k = st.k;
   const double h2 = h * h, t1 = st.t + h;
   w.s0 = w.s;
   w.sd0 = w.sd;
   w.sdd0 = w.sdd;
-  w.sd_hat = -(k.c1 * w.s0 + w.sd0);
-  w.sdd_hat = -(k.c2 * w.s0 + (4.0 / h) * w.sd0 + w.sdd0);
+  if (alpha) {
+    // A new step size: a's lead over s_ddot is rescaled with h (set_step_coefficients).
+    if (w.have_previous && h != w.h_prev && w.h_prev > 0) w.a = w.sdd0 + (h / w.h_prev) * (w.a - w.sdd0);
+    // w.f: a_{n+1} - s_{n+1} / (beta h^2) (set_step_predictors' base; w.f is free until the loop).
+    const double bh2 = ap.beta * h2;
+    w.f = (-1.0 / bh2) * w.s0 - (h / bh2) * w.sd0 - ((0.5 - ap.beta) / ap.beta) * w.a;
+    w.sd_hat = w.sd0 + (h * (1 - ap.gamma)) * w.a + (h * ap.gamma) * w.f;
+    w.sdd_hat = ((1 - ap.alpha_m) / (1 - ap.alpha_f)) * w.f + (ap.alpha_m / (1 - ap.alpha_f)) * w.a -
+                (ap.alpha_f / (1 - ap.alpha_f)) * w.sdd0;
+  } else {
+    w.sd_hat = -(k.c1 * w.s0 + w.sd0);
+    w.sdd_hat = -(k.c2 * w.s0 + (4.0 / h) * w.sd0 + w.sdd0);
+  }
   // The absolute step's predictor (ali3p.cpp), in s.
   if (w.have_previous) {
     const double r = h / w.h_prev;
@@ -313,6 +380,10 @@ void relative_step(const Model& model, Data& data, double h) {
     update_bodies(model, data);
     update_markers(model, data);
   }
+  // Generalized-alpha's recurrence advanced with the projected accelerations (finish_step_scheme).
+  if (alpha)
+    w.a = ((1 - ap.alpha_f) / (1 - ap.alpha_m)) * w.sdd + (ap.alpha_f / (1 - ap.alpha_m)) * w.sdd0 -
+          (ap.alpha_m / (1 - ap.alpha_m)) * w.a;
   data.reaction_lambda = st.lambda;
   detail::commit_friction(model, data, h);
   st.t = t1;

@@ -142,9 +142,6 @@ void span(const Model& m, RelativeTree& t, int& ntree, int& nfree) {
 void build_relative_tree(Model& m) {
   const std::string& file = m.source;
   const SolverSettings& st = m.settings;
-  if (st.integrator != Integrator::Trapezoidal)
-    throw ModelError(file, "solver.formulation",
-                     "\"relative\" integrates with the trapezoidal rule only; remove solver.integrator or use \"absolute\"");
   if (st.adaptive)
     throw ModelError(file, "solver.formulation",
                      "\"relative\" takes fixed steps only; give solver.step a number or use \"absolute\"");
@@ -240,6 +237,7 @@ RelativeWork::RelativeWork(const Model& model) {
   const RelativeTree& t = *model.relative;
   const int ns = t.ns, n = model.ncoord, m = model.nconstraints;
   s = sd = sdd = s0 = sd0 = sdd0 = sdd_prev = sd_hat = sdd_hat = VectorXd::Zero(ns);
+  a = start_s = start_sd = start_sdd = VectorXd::Zero(ns);
   f = ds = scale = VectorXd::Zero(ns);
   rel_A.assign(model.bodies.size(), Matrix3d::Identity());
   rel_p.assign(model.bodies.size(), Vector3d::Zero());
@@ -266,8 +264,8 @@ RelativeWork::RelativeWork(const Model& model) {
 
 // The Auto rule: see FORMULATION.md section 18 for the measurements behind it.
 Formulation choose_formulation(const Model& m, std::string& why) {
-  if (m.settings.integrator != Integrator::Trapezoidal || m.settings.adaptive) {
-    why = "absolute (solver.formulation \"auto\": the relative formulation takes fixed trapezoidal steps only)";
+  if (m.settings.adaptive) {
+    why = "absolute (solver.formulation \"auto\": the relative formulation takes fixed steps only)";
     return Formulation::Absolute;
   }
   RelativeTree t;

@@ -74,6 +74,9 @@ struct RelativeTree {
 struct RelativeWork {
   explicit RelativeWork(const Model& model);
   VectorXd s, sd, sdd, s0, sd0, sdd0, sdd_prev, sd_hat, sdd_hat;
+  /// Generalized-alpha's pseudo-acceleration of s (scheme_coefficients.cpp's a, in s), and the
+  /// coordinates, rates and accelerations kept across its start step.
+  VectorXd a, start_s, start_sd, start_sdd;
   double h_prev = 0;
   bool have_previous = false;
   /// The tree bodies' pose in their parent marker's triad when the coordinates were last taken
@@ -104,8 +107,8 @@ void build_relative_tree(Model& model);
 /// The Auto rule (FORMULATION.md section 18): Relative or Absolute for this model, and why.
 Formulation choose_formulation(const Model& model, std::string& why);
 
-/// One trapezoidal ALI3-P step of h in the relative coordinates (step() calls it when the model
-/// has a relative tree). Allocation-free.
+/// One ALI3-P step of h in the relative coordinates, trapezoidal or generalized-alpha as the
+/// model's solver says (step() calls it when the model has a relative tree). Allocation-free.
 void relative_step(const Model& model, Data& data, double h);
 
 /// Takes the relative coordinates, rates and accelerations from the absolute state of data
