@@ -3,7 +3,8 @@
 (centre of mass and driver's seat; central differences of the sampled velocities) and the frame's
 elastic twist (the front spring seats' vertical deflection difference less the rear ones', over
 the rails' distance 0.9 m) over time, with the road height under the front left wheel.
-Usage: plot.py RESULTS.csv OUT_DIR"""
+With a second results file (the relative formulation's run), its cab acceleration is drawn too.
+Usage: plot.py RESULTS.csv OUT_DIR [RELATIVE.csv]"""
 import csv
 import sys
 
@@ -46,8 +47,13 @@ def accel(k):
 
 ta, a_cab = accel("cab_velocity[2]")
 _, a_seat = accel("seat_velocity[2]")
-svg(f"{out}/cab_acceleration.svg", "Cab vertical acceleration", "time [s]", "acceleration [m/s^2]",
-    [("driver's seat", ta, a_seat), ("cab centre of mass", ta, a_cab)])
+curves = [("driver's seat", ta, a_seat), ("cab centre of mass", ta, a_cab)]
+if len(sys.argv) > 3:
+    rel = list(csv.DictReader(open(sys.argv[3])))
+    tr, vr = [float(r["time"]) for r in rel], [float(r["cab_velocity[2]"]) for r in rel]
+    curves.append(("cab centre of mass, relative formulation", tr[1:-1],
+                   [(vr[i + 1] - vr[i - 1]) / (tr[i + 1] - tr[i - 1]) for i in range(1, len(tr) - 1)]))
+svg(f"{out}/cab_acceleration.svg", "Cab vertical acceleration", "time [s]", "acceleration [m/s^2]", curves)
 twist = [1e3 * ((a - b) - (c - d)) / 0.9 for a, b, c, d in
          zip(col("twist_fl[2]"), col("twist_fr[2]"), col("twist_rl[2]"), col("twist_rr[2]"))]
 svg(f"{out}/frame_twist.svg", "Frame twist (front against rear, elastic)", "time [s]", "twist [mrad]", [("twist", t, twist)])
