@@ -255,6 +255,25 @@ TEST(BeamElastica, BadInputIsRefusedNamingTheField) {
   test::expect_error(with("\"node2\": \"start\"", "\"at\": [0, 0, 0]"), "joints[0]", "away from its nodes");
 }
 
+// A rigid body welded (fixed joint) to an ancf beam's node is refused, naming why: the element is
+// gradient-deficient (Gerstmayr & Shabana 2006: a node carries its position and one slope), so
+// its node has no triad for the body's frame to follow, and the message says what to use instead.
+// The geometrically exact beam's node does carry one (beam_ge_test.cpp welds a body to it).
+TEST(BeamElastica, FixedJointOfABodyToAnAncfNodeIsRefusedNamingWhy) {
+  std::string json = cantilever_json(1, 4, R"({"analysis": "static"})");
+  json.replace(json.find("}}],"), 4, R"(}}, {"name": "bob", "type": "rigid", "mass": 0.5, "com": [1, 0, 0],
+      "inertia": [[1e-4, 0, 0], [0, 1e-4, 0], [0, 0, 1e-4]]}],)");
+  const std::string clamp = R"("node2": "start"})";
+  json.replace(json.find(clamp), clamp.size(),
+               R"("node2": "start"}, {"name": "weld", "type": "fixed", "body1": "beam", "node1": "end", "body2": "bob"})");
+  test::expect_error(json, "joints[1].type", "gradient-deficient");
+  test::expect_error(json, "joints[1].type", "geometrically_exact");
+  // The same weld with the body as body1 and the node as body2.
+  const std::string weld = R"("body1": "beam", "node1": "end", "body2": "bob")";
+  json.replace(json.find(weld), weld.size(), R"("body1": "bob", "body2": "beam", "node2": "end")");
+  test::expect_error(json, "joints[1].type", "no triad");
+}
+
 // A dynamic run: the cantilever settled under a tip load that is removed within the first step
 // vibrates at its first bending frequency (Euler-Bernoulli, beta L = 1.8751; the static shape is
 // almost all first mode; 2e-3 covers the trapezoidal period error (omega h)^2 / 12 = 2.3e-4 and the

@@ -98,7 +98,12 @@ void ReissnerBeam::internal(const Eigen::VectorXd& u, Eigen::VectorXd& f, Eigen:
   if (K) *K = Eigen::MatrixXd::Zero(ndof(), ndof());
   for (int e = 0; e < n; ++e) {
     // Curvature relative to the straight reference: theta is absolute, so k = dtheta/ds.
-    const ElementStrains s = strains(u.segment<6>(3 * e), L0);
+    ElementStrains s = strains(u.segment<6>(3 * e), L0);
+    if (green_axial) {  // Gamma = G1 + G1^2 / 2: dGamma = (1 + G1) dG1, ddGamma = dG1 dG1^T + (1 + G1) ddG1
+      s.ddG1 = s.dG1 * s.dG1.transpose() + (1 + s.G1) * s.ddG1;
+      s.dG1 *= 1 + s.G1;
+      s.G1 += 0.5 * s.G1 * s.G1;
+    }
     f.segment<6>(3 * e) += L0 * (EA * s.G1 * s.dG1 + GA * s.G2 * s.dG2 + EI * s.k * s.dk);
     if (K)
       K->block<6, 6>(3 * e, 3 * e) += L0 * (EA * s.dG1 * s.dG1.transpose() + GA * s.dG2 * s.dG2.transpose() +
@@ -110,7 +115,8 @@ double ReissnerBeam::strain_energy(const Eigen::VectorXd& u) const {
   const double L0 = L / n;
   double U = 0;
   for (int e = 0; e < n; ++e) {
-    const ElementStrains s = strains(u.segment<6>(3 * e), L0);
+    ElementStrains s = strains(u.segment<6>(3 * e), L0);
+    if (green_axial) s.G1 += 0.5 * s.G1 * s.G1;
     U += 0.5 * L0 * (EA * s.G1 * s.G1 + GA * s.G2 * s.G2 + EI * s.k * s.k);
   }
   return U;

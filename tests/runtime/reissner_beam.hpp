@@ -26,6 +26,10 @@ struct ReissnerBeam {
   // Undeformed straight beam from (x0, y0) along the angle phi0, n elements of length L / n.
   double L = 1, x0 = 0, y0 = 0, phi0 = 0;
   int n = 20;
+  // The axial energy's strain: false, G1 (the theory above, a linear force-stretch law); true,
+  // the Green strain of the stretch, Gamma = ((1 + G1)^2 - 1) / 2 = G1 + G1^2 / 2, EA Gamma^2 / 2
+  // (the axial law of the ANCF beams of Berzeri & Shabana, for large stretches).
+  bool green_axial = false;
 
   int ndof() const { return 3 * (n + 1); }
   /// Reference configuration (x, y, theta per node).

@@ -145,6 +145,14 @@ void check_beam_attachments(const Field& root, ParseContext& ctx) {
     const bool to_ground = m.markers[static_cast<std::size_t>(jt.m1)].body == kGround ||
                            m.markers[static_cast<std::size_t>(jt.m2)].body == kGround;
     if (jt.type == JointType::Spherical || (jt.type == JointType::Fixed && to_ground)) return;
+    // A weld to a moving body would need the node's full triad: the element is gradient-deficient
+    // (position and one slope per node, no cross-section gradients), so the body's turn about the
+    // slope would follow nothing (FORMULATION.md 15).
+    if (jt.type == JointType::Fixed)
+      f.at("type").fail("a fixed joint between a body and an ancf beam node is not supported: the ancf beam is "
+                        "gradient-deficient (a node carries its position and one slope, no cross-section axes), so "
+                        "there is no triad for the body to follow; use \"formulation\": \"geometrically_exact\", "
+                        "whose nodes carry a triad, or a spherical joint");
     f.at("type").fail(std::string("a ") + to_string(jt.type) +
                       " joint at a beam node is not supported: the ancf node has no rotation beyond its slope's "
                       "direction (spherical joints, and fixed joints to the ground, are)");
