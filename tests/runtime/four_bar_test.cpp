@@ -5,7 +5,7 @@
 // the same mechanism (crank angle theta as the only coordinate, closed-form loop closure,
 // Lagrange's equation m(theta) theta'' + m'(theta) theta'^2 / 2 = -V'(theta)) integrated with
 // classical RK4 at a much smaller step.
-#include "formulation_models.hpp"  // tools/bench/formulations
+#include "four_bar_oracle.hpp"
 #include "support.hpp"
 
 #include <Eigen/QR>
@@ -18,34 +18,11 @@ using namespace ffr::runtime;
 
 namespace {
 
-// The mechanism (geometry, loop closure, bars, model file): tools/bench/formulations.
+// The mechanism (geometry, loop closure, bars, model file): tools/bench/formulations; its
+// one-degree-of-freedom oracle: four_bar_oracle.hpp.
 using namespace formulations::four_bar;
 using formulations::num;
-constexpr double th0 = kTheta0, w0 = kOmega0;
-
-// Generalised mass m(theta) = sum m |dG/dth|^2 + I (dphi/dth)^2 and potential V(theta).
-double gmass(double th) {
-  const double e = 1e-6;
-  const Config p = config(th + e), m = config(th - e);
-  double M = 0;
-  for (int i = 0; i < 3; ++i) {
-    const Eigen::Vector2d dG = (p.G[i] - m.G[i]) / (2 * e);
-    const double dphi = (p.phi[i] - m.phi[i]) / (2 * e);
-    M += mass[i] * dG.squaredNorm() + inertia(i) * dphi * dphi;
-  }
-  return M;
-}
-double potential(double th) {
-  const Config k = config(th);
-  double V = 0;
-  for (int i = 0; i < 3; ++i) V += mass[i] * g * k.G[i](1);
-  return V;
-}
-double accel(double th, double w) {
-  const double e = 1e-5;
-  const double dM = (gmass(th + e) - gmass(th - e)) / (2 * e), dV = (potential(th + e) - potential(th - e)) / (2 * e);
-  return (-dV - 0.5 * dM * w * w) / gmass(th);
-}
+constexpr double th0 = kTheta0;
 
 struct Outcome {
   double worst, violation, dE, E0;
@@ -63,20 +40,7 @@ Outcome run(double h) {
   for (const auto& n : notes) std::printf("note: %s\n", n.c_str());
 
   // Oracle: RK4 on the one-DOF equation.
-  double th = th0, wv = w0;
-  const double hr = 1e-5;
-  std::vector<double> ref;  // theta at every runtime step
-  for (int s = 0; s < static_cast<int>(T / h); ++s) {
-    for (int k = 0; k < static_cast<int>(h / hr + 0.5); ++k) {
-      const double k1 = wv, l1 = accel(th, wv);
-      const double k2 = wv + 0.5 * hr * l1, l2 = accel(th + 0.5 * hr * k1, k2);
-      const double k3 = wv + 0.5 * hr * l2, l3 = accel(th + 0.5 * hr * k2, k3);
-      const double k4 = wv + hr * l3, l4 = accel(th + hr * k3, k4);
-      th += hr / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-      wv += hr / 6 * (l1 + 2 * l2 + 2 * l3 + l4);
-    }
-    ref.push_back(th);
-  }
+  const std::vector<double> ref = test::four_bar_oracle::crank_angles(h, static_cast<int>(T / h));  // theta at every runtime step
   double worst = 0, worst_violation = 0;
   const double E0 = energy(model, data).total();
   double worst_dE = 0;

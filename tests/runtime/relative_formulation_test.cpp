@@ -15,6 +15,7 @@
 #include "synthetic_bodies.hpp"
 
 #include "formulation_models.hpp"  // tools/bench/formulations
+#include "four_bar_oracle.hpp"
 
 #include "ffr/runtime/relative.hpp"
 
@@ -59,31 +60,7 @@ TEST(RelativeFormulation, CompoundPendulumMatchesOneDofOracle) {
 
 using namespace formulations::four_bar;
 
-// The oracle's generalised mass m(theta) = sum m |dG/dth|^2 + I (dphi/dth)^2 and potential V(theta).
-double gmass(double th) {
-  const double e = 1e-6;
-  const Config p = config(th + e), m = config(th - e);
-  double M = 0;
-  for (int i = 0; i < 3; ++i) {
-    const Eigen::Vector2d dG = (p.G[i] - m.G[i]) / (2 * e);
-    const double dphi = (p.phi[i] - m.phi[i]) / (2 * e);
-    M += mass[i] * dG.squaredNorm() + inertia(i) * dphi * dphi;
-  }
-  return M;
-}
-double potential(double th) {
-  const Config k = config(th);
-  double V = 0;
-  for (int i = 0; i < 3; ++i) V += mass[i] * g * k.G[i](1);
-  return V;
-}
-double accel(double th, double w) {
-  const double e = 1e-5;
-  const double dM = (gmass(th + e) - gmass(th - e)) / (2 * e), dV = (potential(th + e) - potential(th - e)) / (2 * e);
-  return (-dV - 0.5 * dM * w * w) / gmass(th);
-}
-
-constexpr double kTh0 = kTheta0, kW0 = kOmega0, kFourBarEnd = 1.0;
+constexpr double kTh0 = kTheta0, kFourBarEnd = 1.0;
 
 std::string four_bar_json(double h, const char* formulation) { return formulations::four_bar::json(h, kFourBarEnd, formulation); }
 
@@ -108,21 +85,7 @@ FourBarRun run_four_bar(double h, const char* formulation) {
 }
 
 std::vector<double> four_bar_oracle(double h) {
-  double th = kTh0, wv = kW0;
-  const double hr = 1e-5;
-  std::vector<double> ref;
-  for (int s = 0; s < static_cast<int>(kFourBarEnd / h + 0.5); ++s) {
-    for (int k = 0; k < static_cast<int>(h / hr + 0.5); ++k) {
-      const double k1 = wv, l1 = accel(th, wv);
-      const double k2 = wv + 0.5 * hr * l1, l2 = accel(th + 0.5 * hr * k1, k2);
-      const double k3 = wv + 0.5 * hr * l2, l3 = accel(th + 0.5 * hr * k2, k3);
-      const double k4 = wv + hr * l3, l4 = accel(th + hr * k3, k4);
-      th += hr / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-      wv += hr / 6 * (l1 + 2 * l2 + 2 * l3 + l4);
-    }
-    ref.push_back(th);
-  }
-  return ref;
+  return test::four_bar_oracle::crank_angles(h, static_cast<int>(kFourBarEnd / h + 0.5));
 }
 
 double worst_difference(const std::vector<double>& x, const std::vector<double>& y) {
