@@ -300,3 +300,30 @@ TEST(InterfaceStiffening, CouplerTorqueReachesTheInterfaceOfItsJoint) {
   EXPECT_LT(FA.norm(), 1e-12 * M.norm());
   EXPECT_EQ(L.col(1).norm(), 0.0);
 }
+
+// What stays refused: a spring between two points of one rigid body (it would exert nothing),
+// and a bushing within one flexible body unless it joins two different nodes; each names the
+// file and the field.
+TEST(InterfaceStiffening, ElementsWithinOneBodyAreRefusedWhereMeaningless) {
+  test::TempDir dir("iface_refused");
+  test::write_sid_file(free_chain_sid(11, 1.0, 1e5, 50, 6), dir / "rod.sid.h5");
+  auto message = [&](const std::string& json) {
+    try {
+      test::model_from(json, dir.path);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string rigid = message(R"({
+  "bodies": [{"name": "box", "type": "rigid", "mass": 1, "com": [0, 0, 0], "inertia": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}],
+  "forces": [{"type": "spring_damper", "body1": "box", "at1": [0, 0, 0], "body2": "box", "at2": [1, 0, 0], "k": 1}],
+  "solver": {"end": 0.1, "step": 1e-3}})");
+  const std::string one_node = message("{" + kBody + R"(,
+  "forces": [{"type": "bushing", "body1": "rod", "node1": "A", "body2": "rod", "node2": "A", "stiffness": [1, 1, 1, 1, 1, 1]}],
+  "solver": {"end": 0.1, "step": 1e-3}})");
+  std::printf("refused: %s\nrefused: %s\n", rigid.c_str(), one_node.c_str());
+  EXPECT_NE(rigid.find("test-model.json: forces[0].body2: a spring needs two different bodies, or two points of one flexible body"),
+            std::string::npos);
+  EXPECT_NE(one_node.find("forces[0].body2: within one flexible body, give two different nodes"), std::string::npos);
+}
