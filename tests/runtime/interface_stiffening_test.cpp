@@ -327,3 +327,63 @@ TEST(InterfaceStiffening, ElementsWithinOneBodyAreRefusedWhereMeaningless) {
             std::string::npos);
   EXPECT_NE(one_node.find("forces[0].body2: within one flexible body, give two different nodes"), std::string::npos);
 }
+
+// The tangents K = -dQ/dq and C = -dQ/dq_dot of a spring-damper and a bushing between two nodes
+// of one flexible body (both ends' terms land in the same block) against central differences
+// of their generalized forces: the model with the elements less the same body without them, at
+// a deformed, moving state (stiffening off: the interface loads' feedback is a frozen load in
+// the tangent, FORMULATION.md 7).
+TEST(InterfaceStiffening, ElementWithinOneBodyTangentsMatchFiniteDifferences) {
+  test::TempDir dir("iface_same_body_fd");
+  test::write_sid_file(free_chain_sid(11, 1.0, 1e5, 50, 6), dir / "rod.sid.h5");
+  std::string rod = kRod;
+  rod.replace(rod.find(R"("stiffening": true)"), 18, R"("stiffening": false)");
+  const std::string tail = R"(, "solver": {"end": 0.1, "step": 1e-3}})";
+  const Model bare = test::model_from(R"({"bodies": [)" + rod + "]" + tail, dir.path);
+  const Model with = test::model_from(R"({"bodies": [)" + rod + R"(], "forces": [
+    {"type": "spring_damper", "body1": "rod", "node1": "A", "body2": "rod", "node2": "B", "k": 1000, "c": 3, "length0": 0.9, "preload": 50},
+    {"type": "bushing", "body1": "rod", "node1": "A", "body2": "rod", "node2": "B", "stiffness": [100, 200, 300, 4, 5, 6],
+     "damping": [1, 2, 3, 0.1, 0.2, 0.3], "preload": {"force": [30, -20, 10], "torque": [1, 2, -3]}}])" + tail,
+                                      dir.path);
+  Data db(bare), dw(with);
+  const int n = static_cast<int>(dw.state.q.size());
+  Eigen::VectorXd q = dw.state.q, qd = Eigen::VectorXd::Zero(n);
+  const Body& b = with.bodies[0];
+  q.segment(b.offset + 12, b.nq) += Eigen::VectorXd::LinSpaced(b.nq, 0.01, -0.01);
+  q.segment<3>(b.offset) += Eigen::Vector3d(0.01, -0.02, 0.03);
+  qd.segment(b.offset + 12, b.nq) = Eigen::VectorXd::LinSpaced(b.nq, 0.3, -0.2);
+  qd.segment<3>(b.offset) = Eigen::Vector3d(0.1, 0.2, -0.1);
+  auto forces = [&](const Model& m, Data& d, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
+    d.state.q = x;
+    d.state.qd = v;
+    update_bodies(m, d);
+    update_markers(m, d);
+    generalized_forces(m, d, 0);
+    return Eigen::VectorXd(d.Q);
+  };
+  auto element_q = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& v) -> Eigen::VectorXd {
+    return forces(with, dw, x, v) - forces(bare, db, x, v);
+  };
+  forces(with, dw, q, qd);
+  force_tangents(with, dw, 0);
+  forces(bare, db, q, qd);
+  force_tangents(bare, db, 0);
+  const Eigen::MatrixXd K = dw.K - db.K, C = dw.C - db.C;
+  const double eps = 1e-6;
+  Eigen::MatrixXd Kfd(n, n), Cfd(n, n);
+  for (int j = 0; j < n; ++j) {
+    Eigen::VectorXd a = q, c = q, va = qd, vc = qd;
+    a(j) += eps;
+    c(j) -= eps;
+    va(j) += eps;
+    vc(j) -= eps;
+    Kfd.col(j) = -(element_q(a, qd) - element_q(c, qd)) / (2 * eps);
+    Cfd.col(j) = -(element_q(q, va) - element_q(q, vc)) / (2 * eps);
+  }
+  const double ek = (K - Kfd).cwiseAbs().maxCoeff() / Kfd.cwiseAbs().maxCoeff();
+  const double ec = (C - Cfd).cwiseAbs().maxCoeff() / Cfd.cwiseAbs().maxCoeff();
+  std::printf("spring and bushing within one body: K vs central differences %.2e of max %.3e, C %.2e of max %.3e\n", ek,
+              Kfd.cwiseAbs().maxCoeff(), ec, Cfd.cwiseAbs().maxCoeff());
+  EXPECT_LT(ek, 1e-6);
+  EXPECT_LT(ec, 1e-6);
+}

@@ -55,13 +55,10 @@ InterfaceSite site_of(const Model& model, const Data& data, const Marker* marker
   return s;
 }
 
-}  // namespace
-
-namespace {
-
 // Calls fn(slot, node, F, QA) for each joint, motion or coupler of body i that acts on it through
-// a marker on one of its stiffening interfaces: its generalized force -Phi_q^T lam over the body's frame columns (F on
-// r0, QA on the nine columns of A), with the last evaluated constraint Jacobian.
+// a marker on one of its stiffening interfaces: its generalized force -Phi_q^T lam over the
+// body's frame columns (F on r0, QA on the nine columns of A), with the last evaluated
+// constraint Jacobian.
 template <class Fn>
 void for_each_joint_load(const Model& model, const Data& data, std::size_t i, const VectorXd& lam, Fn&& fn) {
   const Body& b = model.bodies[i];

@@ -10,7 +10,7 @@ namespace ffr::runtime::detail {
 double spring_force(const Model& model, const SpringDamper& s, const Data& data);
 /// ends (optional): each end's generalized force over its body's 12 frame columns (column 0
 /// marker 1's end, column 1 marker 2's; zero on the ground), for the interface-load stiffening
-/// of an element between two points of one body (InterfaceLoadCapture::add_end_loads).
+/// of an element between two points of one body (add_end_loads).
 void spring_forces(const Model& model, const SpringDamper& s, Data& data, Eigen::Matrix<double, 12, 2>* ends = nullptr);
 void spring_tangents(const Model& model, const SpringDamper& s, Data& data);
 double spring_energy(const Model& model, const SpringDamper& s, const Data& data);
