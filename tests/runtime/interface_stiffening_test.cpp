@@ -1,12 +1,14 @@
 // The interface-load stiffening (FORMULATION.md 7) from force elements whose two ends sit on one
-// flexible body, and the stiffening's dependence on the multipliers in Newton's direction.
+// flexible body and from couplers, and the stiffening's dependence on the multipliers in
+// Newton's direction.
 //
 // Sources: statics (the load of an element at each of its ends is its own force and torque
 // there, computed here from the ends' positions and the elements' laws as the outputs report
-// them); Euler's column (a pinned-pinned Euler-Bernoulli beam under an axial compression P
-// vibrates at f0 sqrt(1 - P/Pcr), Pcr = pi^2 EI / L^2; S. Timoshenko, D. H. Young, W. Weaver,
-// "Vibration Problems in Engineering", 4th ed., Wiley 1974, sec. 5.13); central finite
-// differences of the Newton residual.
+// them; a coupler's torque -length lambda, MODEL_FILE.md); Euler's column (a pinned-pinned
+// Euler-Bernoulli beam under an axial compression P vibrates at f0 sqrt(1 - P/Pcr),
+// Pcr = pi^2 EI / L^2; S. Timoshenko, D. H. Young, W. Weaver, "Vibration Problems in
+// Engineering", 4th ed., Wiley 1974, sec. 5.13); central finite differences of the Newton
+// residual over the multipliers and of the elements' forces over q and q_dot.
 #include "ffr/runtime/constraints.hpp"
 #include "ffr/runtime/dynamics.hpp"
 #include "ffr/runtime/integrator.hpp"
