@@ -59,7 +59,8 @@ using namespace ffr::runtime;
 namespace {
 
 // Every kind of element: a driven crank, a flexible rod, a slider, a flexible flap on a bushing,
-// springs, point forces and torques.
+// springs (one between two nodes of the flap, its interface A one of them), point forces and
+// torques.
 const char* kMixedModel = R"({
   "gravity": [0, -9.81, 0],
   "bodies": [
@@ -80,7 +81,8 @@ const char* kMixedModel = R"({
     {"type": "spring_damper", "body1": "ground", "at1": [0.3, 0.3, 0], "body2": "rod", "node2": "M", "k": 100, "c": 1},
     {"type": "bushing", "body1": "flap", "node1": "B", "body2": "ground", "stiffness": [1e3, 1e3, 1e3, 10, 10, 10], "damping": [1, 1, 1, 0.1, 0.1, 0.1]},
     {"type": "point_force", "body": "rod", "node": "M", "table": {"t": [0, 1], "value": [[0, 1, 0], [0, -1, 0]]}},
-    {"type": "point_torque", "body": "flap", "node": "C", "table": {"t": [0, 1], "value": [[0, 0, 0.1], [0, 0, 0.2]]}}
+    {"type": "point_torque", "body": "flap", "node": "C", "table": {"t": [0, 1], "value": [[0, 0, 0.1], [0, 0, 0.2]]}},
+    {"type": "spring_damper", "body1": "flap", "node1": "A", "body2": "flap", "node2": "C", "k": 50, "c": 0.5, "preload": 1}
   ],
   "solver": {"end": 0.2, "step": 1e-3},
   "outputs": [

@@ -87,7 +87,8 @@ double bushing_energy(const Model& model, const Bushing& bu, Data& data) {
   return e;
 }
 
-void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_q, bool tangents) {
+void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_q, bool tangents,
+                    Eigen::Matrix<double, 12, 2>* ends) {
   const int mk[2] = {bu.m1, bu.m2};
   const Marker* mm[2] = {&model.markers[bu.m1], &model.markers[bu.m2]};
   const MarkerData* md[2] = {&data.markers[bu.m1], &data.markers[bu.m2]};
@@ -116,6 +117,12 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
   for (int side = 0; side < 2 && add_q; ++side)
     if (nb[side])
       data.Q.segment(offset(model, body[side]), nb[side]).noalias() -= g.middleCols(col0[side], nb[side]).transpose() * F;
+  // Each end's own part, from its own columns of g (also when both ends are on one body).
+  if (ends) {
+    ends->setZero();
+    for (int side = 0; side < 2; ++side)
+      if (nb[side]) ends->col(side).noalias() = -(g.middleCols(col0[side], 12).transpose() * F);
+  }
   if (!tangents) return;
 
   auto Kc = data.fK.topLeftCorner(ntot, ntot);

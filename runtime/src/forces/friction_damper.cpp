@@ -64,9 +64,10 @@ double friction_force(const Model& model, const FrictionDamper& f, const Frictio
   return st.valid ? friction_tension(f, fs, st).T : 0.0;
 }
 
-void friction_forces(const Model& model, const FrictionDamper& f, const FrictionState& fs, Data& data) {
+void friction_forces(const Model& model, const FrictionDamper& f, const FrictionState& fs, Data& data,
+                     Eigen::Matrix<double, 12, 2>* ends) {
   const LineState st = line_state(model, f.m1, f.m2, data);
-  if (st.valid) add_line_force(model, f.m1, f.m2, st, friction_tension(f, fs, st).T, data);
+  add_line_force(model, f.m1, f.m2, st, st.valid ? friction_tension(f, fs, st).T : 0.0, data, ends);
 }
 
 void friction_tangents(const Model& model, const FrictionDamper& f, const FrictionState& fs, Data& data) {

@@ -11,21 +11,29 @@ void generalized_forces(const Model& model, Data& data, double t) {
   // The interface loads before the bodies (their stiffening reads them): the joints', then each
   // force element's, taken from what it adds to Q, so the elements come first.
   interface_loads(model, data);
+  // An element between two points of one body gives each end's load itself (add_end_loads).
+  Eigen::Matrix<double, 12, 2> ends;
   for (const SpringDamper& s : model.springs) {
     const InterfaceLoadCapture at(model, data, s.m1, s.m2);
-    detail::spring_forces(model, s, data);
+    const bool same = detail::same_body_interfaces(model, data, s.m1, s.m2);
+    detail::spring_forces(model, s, data, same ? &ends : nullptr);
     at.add_to_interfaces(model, data);
+    if (same) detail::add_end_loads(model, data, s.m1, s.m2, ends);
   }
   for (const Bushing& b : model.bushings) {
     const InterfaceLoadCapture at(model, data, b.m1, b.m2);
-    detail::bushing_forces(model, b, data, true, false);
+    const bool same = detail::same_body_interfaces(model, data, b.m1, b.m2);
+    detail::bushing_forces(model, b, data, true, false, same ? &ends : nullptr);
     at.add_to_interfaces(model, data);
+    if (same) detail::add_end_loads(model, data, b.m1, b.m2, ends);
   }
   for (std::size_t i = 0; i < model.friction_dampers.size(); ++i) {
     const FrictionDamper& f = model.friction_dampers[i];
     const InterfaceLoadCapture at(model, data, f.m1, f.m2);
-    detail::friction_forces(model, f, data.state.friction[i], data);
+    const bool same = detail::same_body_interfaces(model, data, f.m1, f.m2);
+    detail::friction_forces(model, f, data.state.friction[i], data, same ? &ends : nullptr);
     at.add_to_interfaces(model, data);
+    if (same) detail::add_end_loads(model, data, f.m1, f.m2, ends);
   }
   for (const Tire& ty : model.tires) {
     const InterfaceLoadCapture at(model, data, ty.marker, -1);

@@ -19,10 +19,14 @@ LineState line_state(const Model& model, int m1, int m2, const Data& data) {
   return st;
 }
 
-void add_line_force(const Model& model, int m1, int m2, const LineState& st, double T, Data& data) {
+void add_line_force(const Model& model, int m1, int m2, const LineState& st, double T, Data& data,
+                    Eigen::Matrix<double, 12, 2>* ends) {
+  if (ends) ends->setZero();
   if (!st.valid) return;
   const Vector3d f2 = -T * st.n;
   const int b1 = model.markers[m1].body, b2 = model.markers[m2].body;
+  if (ends && b1 != kGround) ends->col(0).noalias() = -(data.markers[m1].Jp.leftCols<12>().transpose() * f2);
+  if (ends && b2 != kGround) ends->col(1).noalias() = data.markers[m2].Jp.leftCols<12>().transpose() * f2;
   if (b1 != kGround) data.Q.segment(offset(model, b1), ncoord(model, b1)).noalias() -= data.markers[m1].Jp.transpose() * f2;
   if (b2 != kGround) data.Q.segment(offset(model, b2), ncoord(model, b2)).noalias() += data.markers[m2].Jp.transpose() * f2;
 }

@@ -17,8 +17,10 @@ struct LineState {
 };
 
 LineState line_state(const Model& model, int m1, int m2, const Data& data);
-/// Q += the generalized forces of tension T.
-void add_line_force(const Model& model, int m1, int m2, const LineState& st, double T, Data& data);
+/// Q += the generalized forces of tension T; ends (optional): each end's over its body's 12
+/// frame columns (spring_forces).
+void add_line_force(const Model& model, int m1, int m2, const LineState& st, double T, Data& data,
+                    Eigen::Matrix<double, 12, 2>* ends = nullptr);
 /// K, C += -dQ/dq, -dQ/dq_dot of a tension T(l, l_dot) with dT/dl = kl and dT/dl_dot = cl.
 void add_line_tangents(const Model& model, int m1, int m2, const LineState& st, double T, double kl, double cl,
                        Data& data);

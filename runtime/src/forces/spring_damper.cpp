@@ -42,9 +42,9 @@ double spring_force(const Model& model, const SpringDamper& s, const Data& data)
   return st.valid ? tension(s, st).F : 0.0;
 }
 
-void spring_forces(const Model& model, const SpringDamper& s, Data& data) {
+void spring_forces(const Model& model, const SpringDamper& s, Data& data, Eigen::Matrix<double, 12, 2>* ends) {
   const LineState st = line_state(model, s.m1, s.m2, data);
-  if (st.valid) add_line_force(model, s.m1, s.m2, st, tension(s, st).F, data);
+  add_line_force(model, s.m1, s.m2, st, st.valid ? tension(s, st).F : 0.0, data, ends);
 }
 
 double spring_energy(const Model& model, const SpringDamper& s, const Data& data) {

@@ -108,7 +108,9 @@ std::string newton_failure(const Model& model, const Data& data, double t, int i
 // The Newton direction dq at the current iterate, with the multipliers driven towards the
 // linearised constraints Phi - Phi_q dq = 0 by augmented-Lagrangian passes that reuse the
 // factorised tangent (no new evaluation):
-//   sigma += alpha (Phi - Phi_q dq),  dq = T^-1 (f + h^2/4 Phi_q^T sigma),  lambda += sigma.
+//   sigma += alpha (Phi - Phi_q dq),  dq = T^-1 (f + h^2/4 (Phi_q^T + G) sigma),  lambda += sigma,
+// G = -dQ/dlambda the multipliers' load on stiffening interfaces (add_interface_multiplier_forces),
+// so the passes solve Newton's equations in q and lambda together.
 // Without them the multipliers lag one penalty update per Newton iteration, which converges
 // only linearly where the penalty is weak against the tangent (a loop closed through an
 // elastic body). One pass costs a solve and two products with Phi_q, far less than an
@@ -151,6 +153,9 @@ double newton_direction(const Model& model, Data& data, int passes, bool exact) 
     // solves into it write past its end.
     data.c = h4 * data.sigma;
     add_constraint_forces(model, data, data.c, data.r);
+    // The multipliers also load the flexible bodies' interfaces, which stiffens them (the
+    // equations' derivative in lambda, FORMULATION.md 7).
+    detail::add_interface_multiplier_forces(model, data, data.c, data.r);
     solve_tangent(data, data.r, data.dq);
   }
   data.state.lambda += data.sigma;

@@ -92,7 +92,9 @@ int ge_beam_node(const Field& f, const Model& m, int g, int& body);
 /// Global initial position of a node.
 Vector3d node_position(const Model& m, int body, int node);
 /// The common point of a two-body connection (joint or bushing) from at / node1 / node2.
-void connection_points(const Field& j, const Model& m, Attachment& a1, Attachment& a2);
+/// within_flexible: body1 may be body2 when it is flexible and joined at two different nodes
+/// (a bushing between two nodes of one body).
+void connection_points(const Field& j, const Model& m, Attachment& a1, Attachment& a2, bool within_flexible = false);
 /// Adds a marker for an attachment with the global triad E; returns its index.
 int add_marker(Model& m, const Attachment& a, const Matrix3d& E);
 

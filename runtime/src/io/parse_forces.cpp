@@ -65,7 +65,10 @@ void parse_forces(const Field& root, ParseContext& ctx) {
       s.name = element_name(f, i);
       const Attachment a1 = end_point(f, m, "body1", "at1", "node1", "offset1");
       const Attachment a2 = end_point(f, m, "body2", "at2", "node2", "offset2");
-      if (a1.body == a2.body) f.at("body2").fail("a spring needs two different bodies");
+      // Two points of one flexible body (a tendon, a strut) load its modes; on a rigid body it
+      // would exert nothing.
+      if (a1.body == a2.body && (a1.body == kGround || !m.bodies[a1.body].flexible))
+        f.at("body2").fail("a spring needs two different bodies, or two points of one flexible body");
       // k or force_table (one of them), c or damping_table (at most one).
       if (auto t = f.find("force_table")) {
         if (f.has("k")) f.at("k").fail("give either k or force_table");
@@ -92,7 +95,8 @@ void parse_forces(const Field& root, ParseContext& ctx) {
       fd.name = element_name(f, i);
       const Attachment a1 = end_point(f, m, "body1", "at1", "node1", "offset1");
       const Attachment a2 = end_point(f, m, "body2", "at2", "node2", "offset2");
-      if (a1.body == a2.body) f.at("body2").fail("a friction damper needs two different bodies");
+      if (a1.body == a2.body && (a1.body == kGround || !m.bodies[a1.body].flexible))
+        f.at("body2").fail("a friction damper needs two different bodies, or two points of one flexible body");
       fd.force = f.at("force").positive();
       if (auto k = f.find("series_stiffness")) {
         fd.series_stiffness = k->positive();
@@ -112,7 +116,7 @@ void parse_forces(const Field& root, ParseContext& ctx) {
       Bushing bu;
       bu.name = element_name(f, i);
       Attachment a1, a2;
-      connection_points(f, m, a1, a2);
+      connection_points(f, m, a1, a2, true);
       Matrix3d E = Matrix3d::Identity();
       if (auto ax = f.find("axes")) {
         // Rows as written are the bushing's x, y, z axes (global).

@@ -88,12 +88,17 @@ JointType joint_type(const Field& f) {
 /// Resolves the common point of a two-body connection: `at`, else the first node given, else the
 /// frame origin of a flexible body (docs/contract.md: "a flexible body without either is joined at its
 /// frame origin"). Each side without a node is attached rigidly to its frame at that point.
-void connection_points(const Field& j, const Model& m, Attachment& a1, Attachment& a2) {
+void connection_points(const Field& j, const Model& m, Attachment& a1, Attachment& a2, bool within_flexible) {
   a1.body = body_ref(j.at("body1"), m);
   a2.body = body_ref(j.at("body2"), m);
-  if (a1.body == a2.body) j.at("body2").fail("a connection needs two different bodies");
+  const bool within = within_flexible && a1.body == a2.body && a1.body != kGround && m.bodies[a1.body].flexible;
+  if (a1.body == a2.body && !within)
+    j.at("body2").fail(within_flexible ? "a connection needs two different bodies, or two nodes of one flexible body"
+                                       : "a connection needs two different bodies");
   if (auto n = j.find("node1")) a1.node = node_ref(*n, m, a1.body);
   if (auto n = j.find("node2")) a2.node = node_ref(*n, m, a2.body);
+  if (within && (a1.node < 0 || a2.node < 0 || a1.node == a2.node))
+    j.at("body2").fail("within one flexible body, give two different nodes (node1, node2)");
   // `at` with a node would put the node's side at the node and the other side at `at`: refused.
   if (j.has("at") && (a1.node >= 0 || a2.node >= 0))
     j.at("at").fail(std::string("give either at or ") + (a1.node >= 0 ? "node1" : "node2") +
