@@ -194,8 +194,8 @@ void motion_row(const Model& model, const Data& data, int m, double t, Rows& r) 
 detail::JacobianBlock block_columns(const Model& model, Data& data, const ConstraintBlock& b, int body);
 
 // A coupler's row w (theta1 - ratio theta2): the two coordinates' rows added, each joint's
-// gradient into its own two bodies' columns (the block may touch three bodies: two shafts in a
-// moving carrier).
+// gradient into its own two bodies' columns (the block may touch four bodies: two shafts in a
+// moving carrier, or each in its own housing).
 void coupler_row(const Model& model, Data& data, const ConstraintBlock& b, Rows& r) {
   const Coupler& c = model.couplers[b.index];
   const double w = c.c1 == JointCoordinate::Angle ? model.length : 1.0;
