@@ -12,13 +12,14 @@
   most 1.3 times it plus 0.5 J (the tub's vibration and the unbalance's translation add a little);
 - the belt: the rotor turns (relative to the tub) at 11.25 times the drum's rate, to 1e-6;
 - the tub stays within its cabinet (the hub moves less than 50 mm from where it settled).
-Usage: check.py RESULTS.csv END_TIME"""
+Usage: check.py RESULTS.csv END_TIME [FORMULATION]   (make_model.py's; "relative" adds the housings)"""
 import csv
 import math
 import sys
 
 rows = list(csv.DictReader(open(sys.argv[1])))
 end = float(sys.argv[2])
+housed = len(sys.argv) > 3 and sys.argv[3] == "relative"
 assert rows, "no samples"
 for r in rows:
     for k, v in r.items():
@@ -34,6 +35,8 @@ tub = shell + 6.0 + 15.0                      # shell, motor, counterweight (tub
 # door's opening (radius 0.2 m) and the 0.6 x 0.6 m top and floor.
 cabinet = (4 * 0.6 * 0.85 - math.pi * 0.2 ** 2 + 2 * 0.6 * 0.6) * 0.0015 * rho
 mass = tub + cabinet + 7.5 + 1.2              # cabinet, drum with unbalance, rotor (make_model.py)
+if housed:
+    mass += 2 * 0.2                           # the two bearing housings of the relative model (make_model.py)
 weight = mass * g
 feet = ["foot_front_left", "foot_front_right", "foot_rear_left", "foot_rear_right"]
 r0 = rows[0]

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Writes model.json: the washing machine of 'Flexible multibody simulation of a washing
 machine' type models (elastic tub on springs and friction dampers in a cabinet on four feet).
-Usage: make_model.py [END_TIME] > model.json
+Usage: make_model.py [END_TIME [FORMULATION [STEP]]] > model.json
+  (defaults: 10 s, "absolute", 0.25 ms; "relative" carries the drum's and the rotor's shafts in
+  rigid bearing housings on the tub, so that their spin is a joint angle, README.md)
 
 Global axes: x along the drum's axis (front +x), z up; the floor is z = 0. The tub's mesh
 (tub.geo: rear wall at x = 0, open front at x = 0.35) is placed with its axis at height 0.45.
@@ -12,9 +14,14 @@ import json
 import sys
 
 end = float(sys.argv[1]) if len(sys.argv) > 1 else 10.0
+formulation = sys.argv[2] if len(sys.argv) > 2 else "absolute"
+assert formulation in ("relative", "absolute"), "FORMULATION is relative or absolute"
+step = float(sys.argv[3]) if len(sys.argv) > 3 else 2.5e-4
+housed = formulation == "relative"
 RATIO = 11.25
 TUB = (-0.175, 0.0, 0.45)  # position of the tub's mesh frame
 RPM = 3.141592653589793 / 30
+HOUSING = 0.2  # [kg] each bearing housing (below)
 
 
 def tub(p):  # a point given in the tub's mesh frame, globally
@@ -36,11 +43,31 @@ bodies = [
      "comment": "7 kg drum (radius 0.25 m) with a 0.5 kg unbalance at its radius, initially at +y"},
     {"name": "rotor", "type": "rigid", "mass": 1.2, "com": tub([0.175, 0, -0.37]),
      "inertia": [[0.002, 0, 0], [0, 0.003, 0], [0, 0, 0.003]]},
-]
+    # The bearings' housings: rigid parts bolted to the tub (the drum's to the rigid hub disk of
+    # the rear wall, the rotor's end shield to the motor's mounting point), which do not turn.
+    # Each shaft turns in its housing; its spin is then a joint angle of the relative formulation
+    # (a revolute between two rigid frames), where a revolute on the shell's node could place the
+    # spinning body only at its point, its frame turning in natural coordinates (FORMULATION.md 18).
+] + [
+    {"name": "bearing_housing", "type": "rigid", "mass": HOUSING, "com": tub([0, 0, 0]),
+     "inertia": [[2e-4, 0, 0], [0, 1.1e-4, 0], [0, 0, 1.1e-4]]},
+    {"name": "end_shield", "type": "rigid", "mass": HOUSING, "com": tub([0.175, 0, -0.37]),
+     "inertia": [[2e-4, 0, 0], [0, 1.1e-4, 0], [0, 0, 1.1e-4]]},
+] * housed
 joints = [
     {"name": "bearing", "type": "revolute", "body1": "tub", "node1": "hub", "body2": "drum", "axis": [1, 0, 0]},
     {"name": "motor_shaft", "type": "revolute", "body1": "tub", "node1": "motor", "offset1": [0, 0, -0.07],
      "body2": "rotor", "axis": [1, 0, 0]},
+] if not housed else [
+    {"name": "housing_mount", "type": "fixed", "body1": "tub", "node1": "hub", "body2": "bearing_housing"},
+    {"name": "shield_mount", "type": "fixed", "body1": "tub", "node1": "motor", "offset1": [0, 0, -0.07],
+     "body2": "end_shield"},
+    {"name": "bearing", "type": "revolute", "body1": "bearing_housing", "body2": "drum", "at": tub([0, 0, 0]),
+     "axis": [1, 0, 0]},
+    {"name": "motor_shaft", "type": "revolute", "body1": "end_shield", "body2": "rotor", "at": tub([0.175, 0, -0.37]),
+     "axis": [1, 0, 0]},
+]
+joints += [
     {"name": "belt", "type": "coupler", "joint1": "motor_shaft", "joint2": "bearing", "ratio": RATIO},
 ]
 # Three springs from the cabinet's top cross members to the tub, preloaded to carry the tub about where it is
@@ -89,8 +116,8 @@ model = {
     # 4e-8 of the model length (0.61 m, the cabinet's feet from its centre of mass); the default
     # 1e-10 sat 400 times below it and cost 3.7 Newton iterations a step, 1e-8 costs 2.6 and moves
     # the outputs by a hundredth of what halving the step moves them (README.md).
-    "solver": {"end": end, "step": 2.5e-4, "output_every": 20, "initial_equilibrium": True,
-               "newton_tolerance": 1e-8},
+    "solver": {"end": end, "step": step, "output_every": max(1, round(5e-3 / step)), "initial_equilibrium": True,
+               "newton_tolerance": 1e-8, "formulation": formulation},
     "outputs": [{"name": "drum_speed", "type": "joint_rate", "joint": "bearing"},
                 {"name": "rotor_speed", "type": "joint_rate", "joint": "motor_shaft"},
                 {"name": "drum_omega", "type": "body_angular_velocity", "body": "drum"},

@@ -64,7 +64,7 @@ void for_each_joint_load(const Model& model, const Data& data, std::size_t i, co
   const Body& b = model.bodies[i];
   const int o = b.offset, body = static_cast<int>(i);
   for (const ConstraintBlock& blk : model.blocks) {
-    if (blk.kind == BlockKind::RigidBody || (blk.body1 != body && blk.body2 != body && blk.body3 != body)) continue;
+    if (blk.kind == BlockKind::RigidBody || (blk.body1 != body && blk.body2 != body && blk.body3 != body && blk.body4 != body)) continue;
     const Marker* mk = nullptr;
     if (blk.kind == BlockKind::Coupler) {
       // A coupler's rows load body i through the markers its two joints have on it: it acts at

@@ -188,7 +188,7 @@ void motion_hessian(const Model& model, Data& data, const Motion& mo, double lam
 
 // A coupler's row w (theta1 - ratio theta2): the two coordinates' Hessians (an angle's carries
 // the model length itself, coordinate_hessian), each over its own joint's two bodies (the
-// coupler may touch three: two shafts in a moving carrier).
+// coupler may touch four: two shafts in a moving carrier, or each in its own housing).
 void coupler_hessian(const Model& model, Data& data, const ConstraintBlock& b, double lam, Target& T) {
   const Coupler& c = model.couplers[b.index];
   const double w = c.c1 == JointCoordinate::Angle ? 1.0 : 1.0 / model.length;  // the row's w over the length

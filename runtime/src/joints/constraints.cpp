@@ -194,8 +194,8 @@ void motion_row(const Model& model, const Data& data, int m, double t, Rows& r) 
 detail::JacobianBlock block_columns(const Model& model, Data& data, const ConstraintBlock& b, int body);
 
 // A coupler's row w (theta1 - ratio theta2): the two coordinates' rows added, each joint's
-// gradient into its own two bodies' columns (the block may touch three bodies: two shafts in a
-// moving carrier).
+// gradient into its own two bodies' columns (the block may touch four bodies: two shafts in a
+// moving carrier, or each in its own housing).
 void coupler_row(const Model& model, Data& data, const ConstraintBlock& b, Rows& r) {
   const Coupler& c = model.couplers[b.index];
   const double w = c.c1 == JointCoordinate::Angle ? model.length : 1.0;
@@ -342,10 +342,10 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
       add(J1, o, o, 3, 9, 9);
       continue;
     }
-    // The block's distinct integrated bodies (a joint's two, a coupler's up to three): the
+    // The block's distinct integrated bodies (a joint's two, a coupler's up to four): the
     // rows of a joint within one body are in Phiq once, so each body counts once.
-    int bodies[3], nbod = 0;
-    for (int body : {b.body1, b.body2, b.body3}) {
+    int bodies[4], nbod = 0;
+    for (int body : {b.body1, b.body2, b.body3, b.body4}) {
       if (!integrated(data, body)) continue;
       bool seen = false;
       for (int k = 0; k < nbod; ++k) seen = seen || bodies[k] == body;

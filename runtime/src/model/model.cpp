@@ -144,7 +144,7 @@ void order_blocks(Model& m) {
   const auto active = [&](const ConstraintBlock& b) {
     if (b.kind == BlockKind::RigidBody && m.bodies[b.body1].frame_locked) return false;  // holds: the frame is known
     if (b.held_by_lock) return false;  // a locked body's prismatic rotational rows: both frames known
-    return integrated(b.body1) || integrated(b.body2) || integrated(b.body3);
+    return integrated(b.body1) || integrated(b.body2) || integrated(b.body3) || integrated(b.body4);
   };
   std::stable_partition(m.blocks.begin(), m.blocks.end(), active);
   int row = 0;
@@ -306,19 +306,19 @@ void finalize(Model& m) {
     m.blocks.push_back({BlockKind::Motion, static_cast<int>(i), 0, 1, m.markers[jt.m1].body, m.markers[jt.m2].body});
   }
   for (std::size_t i = 0; i < m.couplers.size(); ++i) {
-    // Its row touches the bodies of both joints: at most three besides the ground (the loader
-    // refuses more), body1, body2, body3 of the block in the order met.
+    // Its row touches the bodies of both joints: at most four besides the ground, body1 to body4
+    // of the block in the order met.
     const Coupler& c = m.couplers[i];
-    int b[3] = {kGround, kGround, kGround}, n = 0;
+    int b[4] = {kGround, kGround, kGround, kGround}, n = 0;
     for (int j : {c.joint1, c.joint2})
       for (int mk : {m.joints[j].m1, m.joints[j].m2}) {
         const int body = m.markers[mk].body;
-        if (body == kGround || body == b[0] || body == b[1] || body == b[2]) continue;
-        if (n == 3) throw ModelError(m.source, "couplers", "a coupler's joints move more than three bodies");
+        if (body == kGround || body == b[0] || body == b[1] || body == b[2] || body == b[3]) continue;
         b[n++] = body;
       }
     ConstraintBlock blk{BlockKind::Coupler, static_cast<int>(i), 0, 1, b[0], b[1]};
     blk.body3 = b[2];
+    blk.body4 = b[3];
     m.blocks.push_back(blk);
   }
   order_blocks(m);

@@ -51,8 +51,10 @@ void projected_jacobian(const Model& model, Data& data) {
   for (int bi : tree.kept_blocks) {
     const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
     w.Phis.middleRows(b.row0, b.rows).setZero();
-    for (int x : {b.body1, b.body2, b.body3}) {
-      if (x == kGround || (x == b.body2 && b.body2 == b.body1) || (x == b.body3 && (b.body3 == b.body1 || b.body3 == b.body2))) continue;
+    for (int x : {b.body1, b.body2, b.body3, b.body4}) {
+      // (The block's bodies are distinct but for a joint's two on one body; a coupler's are
+      // distinct, model.cpp.)
+      if (x == kGround || (x == b.body2 && b.body2 == b.body1)) continue;
       const RelativeBody& rb = tree.bodies[static_cast<std::size_t>(x)];
       const Body& body = model.bodies[static_cast<std::size_t>(x)];
       if (rb.free)  // its block of R is the identity

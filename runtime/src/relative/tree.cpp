@@ -169,8 +169,8 @@ void build_relative_tree(Model& m) {
   };
   for (int bi : t.kept_blocks) {
     const ConstraintBlock& b = m.blocks[static_cast<std::size_t>(bi)];
-    for (int x : {b.body1, b.body2, b.body3})
-      for (int y : {b.body1, b.body2, b.body3}) hessian_pair(x, y);
+    for (int x : {b.body1, b.body2, b.body3, b.body4})
+      for (int y : {b.body1, b.body2, b.body3, b.body4}) hessian_pair(x, y);
   }
   for (int b = 0; b < static_cast<int>(m.bodies.size()); ++b)
     if (m.bodies[static_cast<std::size_t>(b)].nq > 0) hessian_pair(b, b);

@@ -331,9 +331,10 @@ struct ConstraintBlock {
   /// which hold while the frames are known (held_by_lock, see order_blocks).
   int first = 0;
   bool held_by_lock = false;
-  /// A coupler's third body (a belt between two shafts turning in a moving body): its two
-  /// joints' bodies besides the ground are body1, body2, body3 in the order met.
-  int body3 = kGround;
+  /// A coupler's third and fourth bodies (a belt between two shafts turning in a moving body, or
+  /// each in its own housing): its two joints' bodies besides the ground are body1, body2,
+  /// body3, body4 in the order met.
+  int body3 = kGround, body4 = kGround;
 };
 
 /// The step's integration scheme (FORMULATION.md section 9, scheme.hpp).
