@@ -51,10 +51,10 @@ std::uint64_t product(const Shape& s) {
 
 // File image callbacks that let HDF5 use the caller's bytes where it would copy them (into the
 // property list, each copy of the list, the core driver): the image is opened read-only, so
-// nothing writes to it, and the caller keeps it alive until the file is closed (the Reader's
-// constructor). What HDF5 reads is the same bytes; only the copies (three of the whole file per
-// open) are spared. The scheme of the high-level library's H5LTopen_file_image with
-// H5LT_FILE_IMAGE_DONT_COPY, without linking that library. HDF5 copies the user data with every
+// nothing writes to it, and the caller keeps it alive as long as the Reader (h5.hpp). What
+// HDF5 reads is the same bytes; only the copies (three of the whole file per open) are spared.
+// The scheme of the high-level library's H5LTopen_file_image with H5LT_FILE_IMAGE_DONT_COPY,
+// without linking that library. HDF5 copies the user data with every
 // copy of the property list (the file keeps one until it is closed): counted, freed with the last.
 struct BorrowedImage {
   const void* bytes;
