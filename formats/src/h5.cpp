@@ -49,6 +49,38 @@ std::uint64_t product(const Shape& s) {
   return p;
 }
 
+// File image callbacks that let HDF5 use the caller's bytes where it would copy them (into the
+// property list, each copy of the list, the core driver): the image is opened read-only, so
+// nothing writes to it, and the caller keeps it alive as long as the Reader (h5.hpp). What
+// HDF5 reads is the same bytes; only the copies (three of the whole file per open) are spared.
+// The scheme of the high-level library's H5LTopen_file_image with H5LT_FILE_IMAGE_DONT_COPY,
+// without linking that library. HDF5 copies the user data with every
+// copy of the property list (the file keeps one until it is closed): counted, freed with the last.
+struct BorrowedImage {
+  const void* bytes;
+  std::size_t size;
+  int users;
+};
+void* image_malloc(std::size_t size, H5FD_file_image_op_t, void* udata) {
+  auto* image = static_cast<BorrowedImage*>(udata);
+  return size == image->size ? const_cast<void*>(image->bytes) : nullptr;
+}
+void* image_memcpy(void* dest, const void* src, std::size_t size, H5FD_file_image_op_t, void* udata) {
+  auto* image = static_cast<BorrowedImage*>(udata);
+  return dest == image->bytes && src == image->bytes && size == image->size ? dest : nullptr;
+}
+void* image_realloc(void*, std::size_t, H5FD_file_image_op_t, void*) { return nullptr; }
+herr_t image_free(void*, H5FD_file_image_op_t, void*) { return 0; }
+void* image_udata_copy(void* udata) {
+  ++static_cast<BorrowedImage*>(udata)->users;
+  return udata;
+}
+herr_t image_udata_free(void* udata) {
+  auto* image = static_cast<BorrowedImage*>(udata);
+  if (--image->users == 0) delete image;
+  return 0;
+}
+
 }  // namespace
 
 namespace {
@@ -309,12 +341,18 @@ Reader::Reader(const void* image, std::size_t size, std::string display_name) : 
   silence();
   file_bytes_ = size;
   if (size < 8) fail("", "not an HDF5 file");
-  // The core driver without a backing store reads the image (copied into the property list,
-  // then into the driver). It refuses an image whose name exists on disk ("file already
+  // The core driver without a backing store reads the image (the caller's bytes, not a copy:
+  // image_malloc above). It refuses an image whose name exists on disk ("file already
   // exists"), so it gets a name no file can have (below a file, not a folder), not the display name.
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS));
-  if (!fapl.valid() || H5Pset_fapl_core(fapl.get(), 1 << 16, 0) < 0 ||
-      H5Pset_file_image(fapl.get(), const_cast<void*>(image), size) < 0)
+  if (!fapl.valid() || H5Pset_fapl_core(fapl.get(), 1 << 16, 0) < 0)
+    fail("", "cannot hold the file image (" + last_error_text() + ")");
+  auto* borrowed = new BorrowedImage{image, size, 1};
+  H5FD_file_image_callbacks_t callbacks{image_malloc,     image_memcpy,     image_realloc, image_free,
+                                        image_udata_copy, image_udata_free, borrowed};
+  const herr_t set = H5Pset_file_image_callbacks(fapl.get(), &callbacks);
+  image_udata_free(borrowed);  // the property list holds its own reference (a counted copy)
+  if (set < 0 || H5Pset_file_image(fapl.get(), const_cast<void*>(image), size) < 0)
     fail("", "cannot hold the file image (" + last_error_text() + ")");
   file_ = Handle(H5Fopen("/dev/null/ffr-file-image", H5F_ACC_RDONLY, fapl.get()));
   if (!file_.valid()) {

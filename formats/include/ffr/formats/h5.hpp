@@ -107,7 +107,8 @@ class Reader {
  public:
   /// Opens read-only. Throws FormatError if missing, unreadable, not HDF5, or truncated.
   explicit Reader(const std::filesystem::path& path, std::string display_name = {});
-  /// Opens the bytes of an HDF5 file held in memory (HDF5's core driver on a copy of them),
+  /// Opens the bytes of an HDF5 file held in memory (HDF5's core driver on them, not copied:
+  /// they must outlive the Reader),
   /// named `display_name` in every message; everything after the open is the same reading as
   /// from a file. The fuzzing of the SID reader uses it (tools/fuzz/), to spare a file per input.
   Reader(const void* image, std::size_t size, std::string display_name);
