@@ -144,9 +144,8 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
       const Vector3d& xb = value(*md[sb], t.kb);
       const double w = F(i) * t.coef;
       if (nb[sa] && nb[sb] && w != 0) {
-        // (Coefficient-based, depth three: Eigen's blocked product spent most of its time packing.)
-        Kc.block(col0[sa], col0[sb], nb[sa], nb[sb]).noalias() += w * jac(*md[sa], t.ka).transpose().lazyProduct(jac(*md[sb], t.kb));
-        Kc.block(col0[sb], col0[sa], nb[sb], nb[sa]).noalias() += w * jac(*md[sb], t.kb).transpose().lazyProduct(jac(*md[sa], t.ka));
+        Kc.block(col0[sa], col0[sb], nb[sa], nb[sb]).noalias() += w * jac(*md[sa], t.ka).transpose() * jac(*md[sb], t.kb);
+        Kc.block(col0[sb], col0[sa], nb[sb], nb[sa]).noalias() += w * jac(*md[sb], t.kb).transpose() * jac(*md[sa], t.ka);
       }
       if (on_node(model, *mm[sa]) && w != 0) add_jt_f_derivative(slice(*mm[sa], t.ka), xb, w, Kc.block(col0[sa], col0[sa], nb[sa], nb[sa]));
       if (on_node(model, *mm[sb]) && w != 0) add_jt_f_derivative(slice(*mm[sb], t.kb), xa, w, Kc.block(col0[sb], col0[sb], nb[sb], nb[sb]));
@@ -161,14 +160,15 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
         add_jt_f_derivative_times(slice(*mm[sb], t.kb), xa, t.coef, z.segment(col0[sb], nb[sb]), HZ.row(i).segment(col0[sb], nb[sb]));
     }
   }
-  // K = sum_i k_i g_i^T g_i + c_i g_i^T (H_i z)^T + F_i H_i = g^T (diag(k) g + diag(c) HZ) + ...,
-  // C = g^T diag(c) g: one product of depth six each (coefficient-based, lazyProduct: no
-  // temporaries, the step stays allocation-free), where twelve rank-one updates each passed over
-  // the whole [ntot, ntot] block. HZ is reused for the weighted rows.
-  for (int i = 0; i < 6; ++i) HZ.row(i) = slope(i) * g.row(i) + bu.c(i) * HZ.row(i);
-  Kc.noalias() += g.transpose().lazyProduct(HZ);
-  for (int i = 0; i < 6; ++i) HZ.row(i) = bu.c(i) * g.row(i);
-  Cc.noalias() = g.transpose().lazyProduct(HZ);
+  // K = sum_i k_i g_i^T g_i + c_i g_i^T (H_i z)^T + F_i H_i,  C = sum_i c_i g_i^T g_i (outer
+  // products with scalar factors: no temporaries, the step stays allocation-free).
+  Cc.setZero();
+  for (int i = 0; i < 6; ++i) {
+    if (slope(i) != 0) Kc.noalias() += slope(i) * g.row(i).transpose() * g.row(i);
+    if (bu.c(i) == 0) continue;
+    Kc.noalias() += bu.c(i) * g.row(i).transpose() * HZ.row(i);
+    Cc.noalias() += bu.c(i) * g.row(i).transpose() * g.row(i);
+  }
   for (int a = 0; a < 2; ++a)
     for (int b = 0; b < 2; ++b)
       if (nb[a] && nb[b]) {

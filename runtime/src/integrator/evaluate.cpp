@@ -24,10 +24,14 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
   const int nf = data.nf;
   force_tangents(model, data, t);
   auto W = data.W.topLeftCorner(nf, nf);
-  // Over the tangent blocks (tangent_blocks.hpp): W, C and K are zero outside them.
-  detail::for_each_tangent_block(model, data, true, [&](int r0, int nr, int c0, int nc) {
-    data.W.block(r0, c0, nr, nc) = k.kv * data.C.block(r0, c0, nr, nc) + k.kq * data.K.block(r0, c0, nr, nc);
-  });
+  // Over the tangent blocks where that pays (tangent_blocks.hpp): W, C and K are zero outside them.
+  if (detail::tangent_blocks_pay(model, data)) {
+    detail::for_each_tangent_block(model, data, true, [&](int r0, int nr, int c0, int nc) {
+      data.W.block(r0, c0, nr, nc) = k.kv * data.C.block(r0, c0, nr, nc) + k.kq * data.K.block(r0, c0, nr, nc);
+    });
+  } else {
+    W = k.kv * data.C.topLeftCorner(nf, nf) + k.kq * data.K.topLeftCorner(nf, nf);  // one pass
+  }
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
     if (!data.integrated[i]) continue;
@@ -41,8 +45,12 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
 
 namespace {
 
-// T = W over the unknowns' tangent blocks (both zero outside them).
+// T = W over the unknowns' tangent blocks (both zero outside them), or whole where that is cheaper.
 void copy_tangent_blocks(const Model& model, Data& data) {
+  if (!detail::tangent_blocks_pay(model, data)) {
+    data.T.topLeftCorner(data.nf, data.nf) = data.W.topLeftCorner(data.nf, data.nf);
+    return;
+  }
   detail::for_each_tangent_block(model, data, true, [&](int r0, int nr, int c0, int nc) {
     data.T.block(r0, c0, nr, nc) = data.W.block(r0, c0, nr, nc);
   });
