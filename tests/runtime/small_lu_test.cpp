@@ -56,6 +56,29 @@ TEST(SmallLU, BlockSparseTangentPatternMatchesFullPivoting) {
   EXPECT_LT(solve_difference(A, rng), 1e-12);
 }
 
+TEST(SmallLU, ChainOfBodiesMatchesFullPivoting) {
+  // Seventeen "bodies" of 12 coordinates, each coupled to the next (a geometrically exact
+  // beam's node bodies, a chain of links): a block band, most of the matrix outside the
+  // envelope the elimination follows. Weak diagonals force row swaps inside the band and fill
+  // beyond the blocks; a second matrix also couples the first body with the last (a closed loop:
+  // one long row and column of blocks, the envelope spanning the matrix).
+  std::mt19937 rng(17);
+  const int nb = 17, b = 12, n = nb * b;
+  MatrixXd A = MatrixXd::Zero(n, n);
+  for (int k = 0; k < nb; ++k) {
+    A.block(k * b, k * b, b, b) = random_matrix(b, rng);
+    if (k + 1 < nb) {
+      A.block(k * b, (k + 1) * b, b, b) = random_matrix(b, rng);
+      A.block((k + 1) * b, k * b, b, b) = random_matrix(b, rng);
+    }
+  }
+  for (int i = 0; i < n; i += 5) A(i, i) = 0.0;  // pivots from further down
+  EXPECT_LT(solve_difference(A, rng), 1e-9);
+  A.block(0, (nb - 1) * b, b, b) = random_matrix(b, rng);
+  A.block((nb - 1) * b, 0, b, b) = random_matrix(b, rng);
+  EXPECT_LT(solve_difference(A, rng), 1e-9);
+}
+
 TEST(SmallLU, ZeroDiagonalNeedsPivotingFromBelowTheZeros) {
   // Column 0 is zero except in its last row: the pivot comes from the bottom, and the row swap
   // moves nonzeros below other columns' last nonzeros.

@@ -3,6 +3,7 @@
 // elements still act on the integrated bodies they join it to.
 #include "ffr/runtime/dynamics.hpp"
 #include "forces.hpp"
+#include "../integrator/tangent_blocks.hpp"
 
 namespace ffr::runtime {
 
@@ -57,8 +58,17 @@ void generalized_forces(const Model& model, Data& data, double t) {
 }
 
 void force_tangents(const Model& model, Data& data, double t) {
-  data.K.setZero();
-  data.C.setZero();
+  // Zero outside the tangent blocks already (tangent_blocks.hpp): only these are cleared where
+  // that pays.
+  if (detail::tangent_blocks_pay(model, data)) {
+    detail::for_each_tangent_block(model, data, false, [&](int r0, int nr, int c0, int nc) {
+      data.K.block(r0, c0, nr, nc).setZero();
+      data.C.block(r0, c0, nr, nc).setZero();
+    });
+  } else {
+    data.K.setZero();
+    data.C.setZero();
+  }
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     if (!data.integrated[i]) continue;
     const Body& b = model.bodies[i];

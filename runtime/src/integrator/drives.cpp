@@ -80,6 +80,11 @@ void set_unknowns(const Model& model, Data& data, bool eliminate) {
   data.na = model.nactive;
   data.nblocks = model.active_blocks;
   for (std::size_t i = 0; i < model.bodies.size(); ++i) data.integrated[i] = model.bodies[i].driven() ? 0 : 1;
+  // The evaluations clear only the Jacobian's blocks in use (constraints.cpp): the columns of the
+  // bodies driven from now on and the rows of the blocks among them, once here. The rest is
+  // kept: the first evaluation's interface loads (stiffening) read the last Jacobian.
+  data.Phiq.bottomRows(data.Phiq.rows() - data.na).setZero();
+  data.Phiq.rightCols(data.Phiq.cols() - data.nf).setZero();
   data.tangent_valid = false;
   drive_bodies(model, data, data.state.t);
 }

@@ -3,6 +3,7 @@
 #include "ffr/runtime/dynamics.hpp"
 #include "ffr/runtime/integrator.hpp"
 #include "ffr/runtime/kinematics.hpp"
+#include "tangent_blocks.hpp"
 
 #include <cmath>
 #include <limits>
@@ -23,7 +24,14 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
   const int nf = data.nf;
   force_tangents(model, data, t);
   auto W = data.W.topLeftCorner(nf, nf);
-  W = k.kv * data.C.topLeftCorner(nf, nf) + k.kq * data.K.topLeftCorner(nf, nf);  // one pass
+  // Over the tangent blocks where that pays (tangent_blocks.hpp): W, C and K are zero outside them.
+  if (detail::tangent_blocks_pay(model, data)) {
+    detail::for_each_tangent_block(model, data, true, [&](int r0, int nr, int c0, int nc) {
+      data.W.block(r0, c0, nr, nc) = k.kv * data.C.block(r0, c0, nr, nc) + k.kq * data.K.block(r0, c0, nr, nc);
+    });
+  } else {
+    W = k.kv * data.C.topLeftCorner(nf, nf) + k.kq * data.K.topLeftCorner(nf, nf);  // one pass
+  }
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
     if (!data.integrated[i]) continue;
@@ -35,10 +43,25 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
   refresh_constraint_tangent(model, data, lam, modal_acceleration);
 }
 
+namespace {
+
+// T = W over the unknowns' tangent blocks (both zero outside them), or whole where that is cheaper.
+void copy_tangent_blocks(const Model& model, Data& data) {
+  if (!detail::tangent_blocks_pay(model, data)) {
+    data.T.topLeftCorner(data.nf, data.nf) = data.W.topLeftCorner(data.nf, data.nf);
+    return;
+  }
+  detail::for_each_tangent_block(model, data, true, [&](int r0, int nr, int c0, int nc) {
+    data.T.block(r0, c0, nr, nc) = data.W.block(r0, c0, nr, nc);
+  });
+}
+
+}  // namespace
+
 void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& lam, bool modal_acceleration) {
   const double kq = data.state.k.kq;
   // The rows' penalties data.alpha were set by step() at its start.
-  data.T.topLeftCorner(data.nf, data.nf) = data.W.topLeftCorner(data.nf, data.nf);
+  copy_tangent_blocks(model, data);
   add_penalty_tangent(model, data, data.alpha, kq, data.T);
   // The constraint forces' own derivative, with the multipliers of the current iterate.
   add_constraint_hessian(model, data, lam, kq, data.T);
@@ -52,7 +75,7 @@ void refresh_constraint_tangent(const Model& model, Data& data, const VectorXd& 
 }
 
 void factorize_metric(const Model& model, Data& data) {
-  data.T.topLeftCorner(data.nf, data.nf) = data.W.topLeftCorner(data.nf, data.nf);
+  copy_tangent_blocks(model, data);
   add_penalty_tangent(model, data, data.alpha, data.state.k.kq, data.T);
   factorize_tangent(data);
   // Not Newton's tangent: a step that would keep it (reuse_jacobian) builds its own.

@@ -22,6 +22,7 @@
 #include "ffr/runtime/integrator.hpp"
 #include "ffr/runtime/kinematics.hpp"
 #include "dense_products.hpp"
+#include "tangent_blocks.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -65,7 +66,20 @@ Projected project_once(const Model& model, Data& data, VectorXd& x, const Vector
       data.r.head(data.nf).setZero();
     } else {
       data.tmp = x - data.vstar;
-      detail::times(data.W, data.nf, data.nf, data.tmp, data.r, false);
+      // Row block by row block over each body's coupled columns where that pays
+      // (tangent_blocks.hpp): W is zero outside them.
+      const Eigen::Index ld = data.W.rows();
+      if (detail::tangent_blocks_pay(model, data)) {
+        for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+          if (!data.integrated[i]) continue;
+          const Body& b = model.bodies[i];
+          int lo = 0, hi = 0;
+          detail::coupled_columns(model, data, static_cast<int>(i), lo, hi);
+          detail::times(data.W.data() + lo * ld + b.offset, ld, b.ncoord(), hi - lo, data.tmp.data() + lo, data.r.data() + b.offset, false);
+        }
+      } else {
+        detail::times(data.W, data.nf, data.nf, data.tmp, data.r, false);
+      }
     }
     data.c = h4 * (data.sigma + data.alpha.cwiseProduct(data.c));
     add_constraint_forces(model, data, data.c, data.r);

@@ -118,6 +118,32 @@ inline void update_trailing_column(double* a, Index ld, Index k0, Index blocks, 
   }
 }
 
+// The first i in [lo, hi] with c[i] != 0 (hi + 1 when none), and the last i in [lo, hi] with
+// c[i] != 0 (lo - 1 when none), four entries at a time: the scans over a column's zeros were
+// most of a factorisation of a banded tangent once the elimination followed its envelope. (A NaN
+// counts as nonzero, as in the scalar tests.)
+inline Index first_nonzero(const double* c, Index lo, Index hi) {
+  Index i = lo;
+  for (; i + 3 <= hi; i += 4) {
+    const detail::simd::m4 nz = detail::simd::load(c + i) != detail::simd::v4{};
+    if (nz[0] | nz[1] | nz[2] | nz[3]) break;
+  }
+  for (; i <= hi; ++i)
+    if (c[i] != 0.0) return i;
+  return hi + 1;
+}
+
+inline Index last_nonzero(const double* c, Index lo, Index hi) {
+  Index i = hi;
+  for (; i - 3 >= lo; i -= 4) {
+    const detail::simd::m4 nz = detail::simd::load(c + i - 3) != detail::simd::v4{};
+    if (nz[0] | nz[1] | nz[2] | nz[3]) break;
+  }
+  for (; i >= lo; --i)
+    if (c[i] != 0.0) return i;
+  return lo - 1;
+}
+
 }  // namespace
 
 // The kernels are plain loops over raw columns, compiled at -O3 and for AVX2 as well
@@ -126,15 +152,36 @@ inline void update_trailing_column(double* a, Index ld, Index k0, Index blocks, 
 // partial pivoting inside the panel, each swap applied to the whole row at once, then the
 // trailing columns updated once for the whole panel. Unblocked, a factorisation of the
 // benchmark's tangent made about a thousand AXPYs of 10 to 40 entries.
+//
+// The envelope: each row's last nonzero column and each column's last nonzero row (bounds,
+// found in one pass over the matrix and widened by every swap and update that can fill in).
+// With them the row swaps, the pivot column's search for its last nonzero and the loop over
+// the trailing columns stop where the rows and columns end, instead of running over all n: on
+// a tangent whose bodies are coupled in a chain (a geometrically exact beam's node bodies, a
+// chain of links) most of the matrix lies outside the envelope, and those loops were most of
+// a factorisation. The arithmetic is the same as without the bounds (they skip only columns
+// and rows of zeros, which the loops left as they were).
 FFR_RT_CLONES
 bool SmallLU::factorize() {
   const Index n = n_, ld = ld_;
   double* a = buffer_.data() + kPad;
   ok_ = false;
-  for (Index k = 0; k < n; ++k) row_of_(k) = static_cast<int>(k);
-  for (Index j = 0; j < n; ++j) {  // the zero rows around each column (kPad)
+  // lower_ and upper_ (the solves' spans, set at the end) hold the bounds meanwhile.
+  int* col_last = lower_.data();  // column j: zero below this row
+  int* row_last = upper_.data();  // row i: zero right of this column
+  for (Index k = 0; k < n; ++k) {
+    row_of_(k) = static_cast<int>(k);
+    row_last[k] = static_cast<int>(k);
+  }
+  for (Index j = 0; j < n; ++j) {  // the zero rows around each column (kPad), and the bounds
     std::fill(a + j * ld - kPad, a + j * ld, 0.0);
     std::fill(a + j * ld + n, a + j * ld + n + kPad, 0.0);
+    // The rows between the column's first and last nonzero may reach column j (the columns go
+    // in ascending order, so the last such column stays).
+    const double* c = a + j * ld;
+    const Index first = first_nonzero(c, 0, n - 1), last = last_nonzero(c, first, n - 1);
+    for (Index i = first; i <= last; ++i) row_last[i] = std::max(row_last[i], static_cast<int>(j));
+    col_last[j] = static_cast<int>(std::max(j, last));
   }
   for (Index k0 = 0; k0 < n; k0 += kPanel) {
     const Index p1 = std::min(n, k0 + kPanel);
@@ -143,29 +190,46 @@ bool SmallLU::factorize() {
     for (Index k = k0; k < p1; ++k) {
       double* ck = a + k * ld;
       // Rows below the column's last nonzero take no part in this step.
-      Index last = n - 1;
-      while (last > k && ck[last] == 0.0) --last;
+      const Index last = std::max(k, last_nonzero(ck, k + 1, col_last[k]));
       Index p = 0;
       const double big = pivot_search(ck, k, last, p);
       if (!(big > 0.0)) return false;  // exactly zero column (or NaN)
       if (p != k) {
-        for (Index j = 0; j < n; ++j) std::swap(a[k + j * ld], a[p + j * ld]);
+        // Row k's nonzeros move down to row p: the columns they land in reach row p now.
+        const Index end = std::max(row_last[k], row_last[p]);
+        for (Index j = 0; j <= end; ++j) {
+          std::swap(a[k + j * ld], a[p + j * ld]);
+          if (a[p + j * ld] != 0.0) col_last[j] = std::max(col_last[j], static_cast<int>(p));
+        }
         std::swap(row_of_(k), row_of_(p));
+        std::swap(row_last[k], row_last[p]);
       }
       last_panel = std::max(last_panel, last);
-      if (last > k) eliminate_in_panel(a, ld, k, last, p1);
+      if (last > k) {
+        eliminate_in_panel(a, ld, k, last, p1);
+        // Rows k+1 .. last may fill in the panel's columns after k, down to row last.
+        const int fill = std::min(row_last[k], static_cast<int>(p1 - 1));
+        for (Index i = k + 1; i <= last; ++i) row_last[i] = std::max(row_last[i], fill);
+        for (Index j = k + 1; j < p1; ++j) col_last[j] = std::max(col_last[j], static_cast<int>(last));
+      }
     }
     // (Only the last panel can be narrower, and no columns follow it.)
+    // The trailing columns with a nonzero in the panel's rows end at the panel rows' last column.
+    Index end = p1 - 1;
+    for (Index i = k0; i < p1; ++i) end = std::max(end, static_cast<Index>(row_last[i]));
     const Index blocks = blocks_of_four(k0 + kPanel, last_panel);
-    for (Index j = p1; j < n; ++j) update_trailing_column<kPanel>(a, ld, k0, blocks, j);
+    for (Index j = p1; j <= end; ++j) update_trailing_column<kPanel>(a, ld, k0, blocks, j);
+    // The update fills rows p1 .. last_panel of those columns.
+    if (end >= p1) {
+      for (Index i = p1; i <= last_panel; ++i) row_last[i] = std::max(row_last[i], static_cast<int>(end));
+      for (Index j = p1; j <= end; ++j) col_last[j] = std::max(col_last[j], static_cast<int>(last_panel));
+    }
   }
   // Nonzero spans of each column of L and U for the solves.
   for (Index k = 0; k < n; ++k) {
     const double* ck = a + k * ld;
-    Index lo = n - 1;
-    while (lo > k && ck[lo] == 0.0) --lo;
-    Index up = 0;
-    while (up < k && ck[up] == 0.0) ++up;
+    const Index lo = std::max(k, last_nonzero(ck, k + 1, col_last[k]));
+    const Index up = first_nonzero(ck, 0, k - 1);  // k when none
     lower_(k) = static_cast<int>(lo);
     upper_(k) = static_cast<int>(up);
     inv_diag_(k) = 1.0 / ck[k];

@@ -239,16 +239,54 @@ Vector3d motion_target(const Model& model, const Data& data, int m, double t) {
 
 namespace {
 
+// The column ranges [first, first + count) of a block's distinct integrated bodies (a joint
+// within one body counts it once: its rows are in Phiq once, see Rows). Phiq is zero outside
+// the blocks' rows and these columns.
+struct BlockColumns {
+  int ranges = 0;
+  int first[4], count[4];
+};
+
+BlockColumns block_column_ranges(const Model& model, const Data& data, const ConstraintBlock& b) {
+  BlockColumns c;
+  for (int body : {b.body1, b.body2, b.body3, b.body4}) {  // (a coupler may join four)
+    if (!integrated(data, body)) continue;
+    const Body& B = model.bodies[static_cast<std::size_t>(body)];
+    bool seen = false;
+    for (int k = 0; k < c.ranges; ++k) seen = seen || c.first[k] == B.offset;
+    if (seen) continue;
+    c.first[c.ranges] = B.offset;
+    c.count[c.ranges] = B.ncoord();
+    ++c.ranges;
+  }
+  return c;
+}
+
+// True when the blocks' rows times their bodies' columns cover less than half of the unknowns'
+// na x nf Jacobian: then the passes block by block are cheaper than the dense ones (not so on a
+// model of a few large bodies, whose blocks span most of it).
+bool block_columns_pay(const Model& model, const Data& data) {
+  long area = 0;
+  for (int bi = 0; bi < data.nblocks; ++bi) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
+    const BlockColumns c = block_column_ranges(model, data, b);
+    for (int k = 0; k < c.ranges; ++k) area += static_cast<long>(b.rows) * c.count[k];
+  }
+  return 2 * area < static_cast<long>(data.na) * data.nf;
+}
+
 void evaluate_rows(const Model& model, Data& data, double t, bool jacobian, bool all_blocks) {
-  // The Jacobian is assembled dense (the products use it several times per Newton iteration),
-  // the blocks adding into it. It is zeroed whole, in one pass over contiguous memory: zeroing
-  // each block's columns took a memset call per column of a few rows (3-5 % of a step).
+  // The Jacobian is stored dense, the blocks adding into it, and zero outside the blocks' rows
+  // and their bodies' columns (block_column_ranges; set_unknowns clears it whole when the
+  // bodies in use change): only those are cleared, each block's just before it is written. (A system of many bodies, such as a
+  // geometrically exact beam's node bodies, touches a few percent of the dense matrix.)
   // With all_blocks, every block's values: those among driven bodies hold by construction,
   // and their values check that (step(), once a step); only the blocks of the unknowns have
   // Jacobian columns. Otherwise the blocks of the unknowns alone: the projections' biases
   // (nothing reads the others' rates) and the later iterates of a step (the others' values do
   // not change within it).
-  if (jacobian) data.Phiq.setZero();
+  const bool by_block = block_columns_pay(model, data);
+  if (jacobian && !by_block) data.Phiq.setZero();
   const std::size_t nb = all_blocks ? model.blocks.size() : static_cast<std::size_t>(data.nblocks);
   if (all_blocks)
     data.Phit.setZero();
@@ -257,6 +295,10 @@ void evaluate_rows(const Model& model, Data& data, double t, bool jacobian, bool
   for (std::size_t bi = 0; bi < nb; ++bi) {
     const ConstraintBlock& b = model.blocks[bi];
     const bool active = static_cast<int>(bi) < data.nblocks;
+    if (jacobian && active && by_block) {
+      const BlockColumns c = block_column_ranges(model, data, b);
+      for (int k = 0; k < c.ranges; ++k) data.Phiq.block(b.row0, c.first[k], b.rows, c.count[k]).setZero();
+    }
     Rows r{data.Phi.segment(b.row0, b.rows), data.Phit.segment(b.row0, b.rows), data.gamma.segment(b.row0, b.rows),
            block_columns(model, data, b, b.body1), block_columns(model, data, b, b.body2), jacobian && active, b.first};
     switch (b.kind) {
@@ -292,15 +334,46 @@ void update_angle_references(const Model& model, Data& data) {
   }
 }
 
+// The products go block by block over the blocks' bodies' columns (block_column_ranges): a
+// row touches the coordinates of its bodies alone, so the dense m x n products did mostly
+// multiplications by zero on models of many bodies.
 void add_constraint_forces(const Model& model, const Data& data, const VectorXd& lam, VectorXd& out) {
-  (void)model;
-  detail::add_transpose_times(data.Phiq, data.na, data.nf, lam, out);
+  if (!block_columns_pay(model, data)) {
+    detail::add_transpose_times(data.Phiq, data.na, data.nf, lam, out);
+    return;
+  }
+  const Eigen::Index ld = data.Phiq.rows();
+  for (int bi = 0; bi < data.nblocks; ++bi) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
+    const BlockColumns c = block_column_ranges(model, data, b);
+    const double* l = lam.data() + b.row0;
+    for (int k = 0; k < c.ranges; ++k) {
+      const double* J = data.Phiq.data() + c.first[k] * ld + b.row0;
+      double* y = out.data() + c.first[k];
+      for (int j = 0; j < c.count[k]; ++j) {  // one short dot product a column
+        double s = 0.0;
+        for (int i = 0; i < b.rows; ++i) s += J[j * ld + i] * l[i];
+        y[j] += s;
+      }
+    }
+  }
 }
 
 void constraint_times(const Model& model, const Data& data, const VectorXd& v, VectorXd& out) {
-  (void)model;
-  detail::times(data.Phiq, data.na, data.nf, v, out, false);
-  out.tail(out.size() - data.na).setZero();  // the rows among driven bodies have no unknowns
+  if (!block_columns_pay(model, data)) {
+    detail::times(data.Phiq, data.na, data.nf, v, out, false);
+    out.tail(out.size() - data.na).setZero();  // the rows among driven bodies have no unknowns
+    return;
+  }
+  const Eigen::Index ld = data.Phiq.rows();
+  out.setZero();  // (the rows among driven bodies have no unknowns)
+  for (int bi = 0; bi < data.nblocks; ++bi) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
+    const BlockColumns c = block_column_ranges(model, data, b);
+    for (int k = 0; k < c.ranges; ++k)
+      detail::times(data.Phiq.data() + c.first[k] * ld + b.row0, ld, b.rows, c.count[k], v.data() + c.first[k],
+                    out.data() + b.row0, true);
+  }
 }
 
 void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, double f, MatrixXd& T) {

@@ -1,0 +1,85 @@
+#pragma once
+// The blocks of K, C, W and T that can be nonzero: each body's diagonal block, and the two
+// blocks between a pair of bodies that a force element (spring, bushing, friction damper), a
+// geometrically exact beam's element or a constraint block (its penalty term and second
+// derivatives) joins. A tyre, a load and a body's own terms stay in its diagonal block. Outside
+// these blocks the four matrices are zero (set so at construction, never written), so the step
+// clears, combines and multiplies them over the blocks alone: on a model of many bodies (a
+// chain, a geometrically exact beam's node bodies) the dense n x n passes were most of what the
+// tangent cost besides its LU. Whatever adds a term between two bodies must be listed here
+// (tests/runtime/tangent_blocks_test.cpp checks every kind of element).
+
+#include "ffr/runtime/data.hpp"
+#include "ffr/runtime/model.hpp"
+
+#include <algorithm>
+
+namespace ffr::runtime::detail {
+
+/// f(a, b) for each pair of distinct bodies whose off-diagonal blocks can be nonzero (a pair may
+/// come more than once, in either order). Both bodies integrated with integrated_only.
+template <class F>
+void for_each_coupled_pair(const Model& model, const Data& data, bool integrated_only, F&& f) {
+  const auto pair = [&](int a, int b) {
+    if (a == kGround || b == kGround || a == b) return;
+    if (integrated_only && !(integrated(data, a) && integrated(data, b))) return;
+    f(a, b);
+  };
+  const auto body = [&](int marker) { return model.markers[static_cast<std::size_t>(marker)].body; };
+  for (const SpringDamper& s : model.springs) pair(body(s.m1), body(s.m2));
+  for (const Bushing& s : model.bushings) pair(body(s.m1), body(s.m2));
+  for (const FrictionDamper& s : model.friction_dampers) pair(body(s.m1), body(s.m2));
+  for (const GeBeam& g : model.ge_beams)
+    for (std::size_t k = 0; k + 1 < g.node_bodies.size(); ++k) pair(g.node_bodies[k], g.node_bodies[k + 1]);
+  for (const ConstraintBlock& b : model.blocks) {
+    const int bodies[4] = {b.body1, b.body2, b.body3, b.body4};  // (a coupler may join four)
+    for (int x = 0; x < 4; ++x)
+      for (int y = x + 1; y < 4; ++y) pair(bodies[x], bodies[y]);
+  }
+}
+
+/// g(row0, rows, col0, cols) for each tangent block: every body's diagonal block, then both
+/// blocks of each coupled pair. A block may be visited more than once: for idempotent work
+/// (clearing, assigning) only.
+template <class G>
+void for_each_tangent_block(const Model& model, const Data& data, bool integrated_only, G&& g) {
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    if (integrated_only && !data.integrated[i]) continue;
+    const Body& b = model.bodies[i];
+    g(b.offset, b.ncoord(), b.offset, b.ncoord());
+  }
+  for_each_coupled_pair(model, data, integrated_only, [&](int i, int j) {
+    const Body& bi = model.bodies[static_cast<std::size_t>(i)];
+    const Body& bj = model.bodies[static_cast<std::size_t>(j)];
+    g(bi.offset, bi.ncoord(), bj.offset, bj.ncoord());
+    g(bj.offset, bj.ncoord(), bi.offset, bi.ncoord());
+  });
+}
+
+/// True when the integrated bodies' tangent blocks cover less than half of the unknowns' nf x nf
+/// matrix (blocks visited twice counted twice): then the passes over the blocks are cheaper than
+/// the dense ones. On a model of a few large, mutually coupled bodies (a washing machine's tub,
+/// cabinet, drum and rotor) the blocks cover most of the matrix, and the many small block
+/// operations cost more than one vectorised pass over it.
+inline bool tangent_blocks_pay(const Model& model, const Data& data) {
+  long area = 0;
+  for_each_tangent_block(model, data, true, [&](int, int nr, int, int nc) { area += static_cast<long>(nr) * nc; });
+  return 2 * area < static_cast<long>(data.nf) * data.nf;
+}
+
+/// The columns [lo, hi) that cover an integrated body's own block and the blocks of the
+/// integrated bodies coupled with it: its rows of W and T are zero outside them.
+inline void coupled_columns(const Model& model, const Data& data, int body, int& lo, int& hi) {
+  const Body& b = model.bodies[static_cast<std::size_t>(body)];
+  lo = b.offset;
+  hi = b.offset + b.ncoord();
+  for_each_coupled_pair(model, data, true, [&](int i, int j) {
+    const int other = i == body ? j : j == body ? i : -1;
+    if (other < 0) return;
+    const Body& o = model.bodies[static_cast<std::size_t>(other)];
+    lo = std::min(lo, o.offset);
+    hi = std::max(hi, o.offset + o.ncoord());
+  });
+}
+
+}  // namespace ffr::runtime::detail
