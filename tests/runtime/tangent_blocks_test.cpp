@@ -79,6 +79,30 @@ const char* kCarrier = R"({
   "solver": {"end": 0.2, "step": 1e-3, "eliminate_driven_bodies": false}
 })";
 
+// A belt between two shafts each turning in its own housing (a coupler whose row touches four
+// bodies), the housings fixed to a turning carrier.
+const char* kHoused = R"({
+  "gravity": [0, -9.81, 0],
+  "bodies": [
+    {"name": "c", "type": "rigid", "mass": 5, "com": [0, 0, 0], "inertia": [[1.2, 0, 0], [0, 1.2, 0], [0, 0, 2]]},
+    {"name": "ha", "type": "rigid", "mass": 0.2, "com": [0.5, 0, 0], "inertia": [[1e-3, 0, 0], [0, 1e-3, 0], [0, 0, 1e-3]]},
+    {"name": "hb", "type": "rigid", "mass": 0.2, "com": [-0.5, 0, 0], "inertia": [[1e-3, 0, 0], [0, 1e-3, 0], [0, 0, 1e-3]]},
+    {"name": "a", "type": "rigid", "mass": 1, "com": [0.5, 0, 0], "inertia": [[0.15, 0, 0], [0, 0.15, 0], [0, 0, 0.2]]},
+    {"name": "b", "type": "rigid", "mass": 2, "com": [-0.5, 0, 0], "inertia": [[0.03, 0, 0], [0, 0.03, 0], [0, 0, 0.05]]}
+  ],
+  "joints": [
+    {"name": "jc", "type": "revolute", "body1": "ground", "body2": "c", "at": [0, 0, 0], "axis": [0, 0, 1]},
+    {"name": "fa", "type": "fixed", "body1": "c", "body2": "ha", "at": [0.5, 0, 0]},
+    {"name": "fb", "type": "fixed", "body1": "c", "body2": "hb", "at": [-0.5, 0, 0]},
+    {"name": "ja", "type": "revolute", "body1": "ha", "body2": "a", "at": [0.5, 0, 0], "axis": [0, 0, 1]},
+    {"name": "jb", "type": "revolute", "body1": "hb", "body2": "b", "at": [-0.5, 0, 0], "axis": [0, 0, 1]},
+    {"name": "belt", "type": "coupler", "joint1": "jb", "joint2": "ja", "ratio": 3}
+  ],
+  "motions": [{"joint": "jc", "speed": {"t": [0, 1], "value": [0, 2]}}],
+  "forces": [{"type": "point_torque", "body": "a", "table": {"t": [0, 1], "value": [[0, 0, 1.3], [0, 0, 1.3]]}}],
+  "solver": {"end": 0.2, "step": 1e-3, "eliminate_driven_bodies": false}
+})";
+
 const char* kGeBeam = R"({
   "gravity": [0, 0, -9.81],
   "bodies": [
@@ -159,7 +183,7 @@ void check_model(const char* name, const Model& model) {
   std::vector<std::vector<char>> jin(static_cast<std::size_t>(model.nconstraints), std::vector<char>(static_cast<std::size_t>(model.ncoord), 0));
   for (int bi = 0; bi < data.nblocks; ++bi) {
     const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
-    for (int body : {b.body1, b.body2, b.body3}) {
+    for (int body : {b.body1, b.body2, b.body3, b.body4}) {
       if (!integrated(data, body)) continue;
       const Body& B = model.bodies[static_cast<std::size_t>(body)];
       for (int i = b.row0; i < b.row0 + b.rows; ++i)
@@ -214,5 +238,6 @@ TEST(TangentBlocks, EveryTermInsideTheBlocksAndBlockProductsAsDense) {
   write_sids(dir);
   check_model("mixed", test::model_from(kMixed, dir.path));
   check_model("carrier, tyre", test::model_from(kCarrier, dir.path));
+  check_model("housed shafts, coupler of four bodies", test::model_from(kHoused, dir.path));
   check_model("beams", test::model_from(kGeBeam, dir.path));
 }
