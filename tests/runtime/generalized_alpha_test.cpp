@@ -4,11 +4,8 @@
 //   I_O theta'' = m g d cos(theta) integrated by classical Runge-Kutta at a far smaller step);
 // - rho_inf = 1 gives the trapezoidal rule's states (the benchmark's flexible slider-crank);
 // - the numerical damping of a single linear mode (a spring-mass) per step against the
-//   amplification matrix of Chung & Hulbert ("A time integration algorithm for structural
-//   dynamics with improved numerical dissipation: the generalized-alpha method", J. Appl. Mech.
-//   60, 1993), built here from their equations: Newmark's two relations and the balance
-//   (1 - alpha_m) a_{n+1} + alpha_m a_n + omega^2 ((1 - alpha_f) d_{n+1} + alpha_f d_n) = 0,
-//   with alpha_m, alpha_f, beta, gamma from rho_inf (their eq. 25 and 17-19).
+//   amplification matrix of Chung & Hulbert, built from their equations (alpha_amplification.hpp).
+#include "alpha_amplification.hpp"
 #include "support.hpp"
 
 #include "models.hpp"  // tools/models: the benchmark's slider-crank
@@ -16,11 +13,9 @@
 #include "ffr/formats/synthetic.hpp"
 #include "synthetic_bodies.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <complex>
 #include <cstdio>
 #include <string>
 
@@ -80,16 +75,6 @@ EndErrors pendulum_errors(double h, double end, double rho, double w0) {
   // (The sign of Phi_q^T lambda is the equations' convention: M q'' + Phi_q^T lambda = Q.)
   return {std::abs(joint_coordinate(model, data, 0, JointCoordinate::Angle) - th),
           (data.state.qdd.segment<3>(o + 3) - udd).cwiseAbs().maxCoeff(), (force.segment<3>(o) + R).cwiseAbs().maxCoeff()};
-}
-
-// Chung & Hulbert's amplification matrix of (d, v, a) for d'' + omega^2 d = 0, one step of h.
-Eigen::Matrix3d amplification(double rho, double omega, double h) {
-  const double am = (2 * rho - 1) / (rho + 1), af = rho / (rho + 1);
-  const double g = 0.5 - am + af, b = 0.25 * (1 - am + af) * (1 - am + af), w2 = omega * omega;
-  Eigen::Matrix3d L, R;
-  L << 1, 0, -b * h * h, 0, 1, -g * h, (1 - af) * w2, 0, 1 - am;
-  R << 1, h, h * h * (0.5 - b), 0, 1, h * (1 - g), -af * w2, 0, -am;
-  return L.partialPivLu().solve(R);
 }
 
 }  // namespace
@@ -181,38 +166,12 @@ TEST(GeneralizedAlpha, DampingOfOneModePerStepIsTheAnalyticAmplification) {
       const Model model = test::model_from(buf);
       Data data(model);
       initialize(model, data);
-      const Eigen::Matrix3d A = amplification(rho, omega, h);
-      Eigen::EigenSolver<Eigen::Matrix3d> es(A);
-      const Eigen::Matrix3cd V = es.eigenvectors(), Vinv = V.inverse();
-      const Eigen::Vector3cd lam = es.eigenvalues();
-      // The component that decays slowest, at the spectral radius (for omega h below about 1 the
-      // principal pair, a complex-conjugate one of which either will do).
-      int p = 0;
-      for (int k = 1; k < 3; ++k)
-        if (std::abs(lam(k)) > std::abs(lam(p)) + 1e-14) p = k;
-      const double spectral = std::abs(lam(p));
-      const auto state = [&] {
-        // d, v, a of the x coordinate: a is the scheme's pseudo-acceleration (Chung & Hulbert's a).
-        return Eigen::Vector3cd(data.state.q(0) - x_rest, data.state.qd(0), data.state.a(0));
-      };
-      // From the state after the first step (the first step's own a_0 is the start's,
-      // start_generalized_alpha, set inside it).
-      step(model, data);
-      const std::complex<double> c0 = (Vinv * state())(p);
-      const double size0 = (Vinv * state()).norm();  // the round-off below is relative to the state
-      std::complex<double> c_prev = c0;
-      double worst = 0;
-      int checked = 0;
-      for (std::int64_t i = 1; i < step_count(model); ++i) {
-        step(model, data);
-        const std::complex<double> c = (Vinv * state())(p);
-        // (Until the component has decayed to the round-off of the state.)
-        if (std::abs(c_prev) > 1e-8 * size0) {
-          worst = std::max(worst, std::abs(std::abs(c / c_prev) - spectral));
-          ++checked;
-        }
-        c_prev = c;
-      }
+      // d, v, a of the x coordinate: a is the scheme's pseudo-acceleration (Chung & Hulbert's a).
+      const test::ModeDecay m = test::measure_mode_decay(
+          rho, omega, h, step_count(model), [&] { step(model, data); },
+          [&] { return Eigen::Vector3cd(data.state.q(0) - x_rest, data.state.qd(0), data.state.a(0)); });
+      const double spectral = m.spectral, worst = m.worst;
+      const int checked = m.checked;
       std::printf("rho_inf %.1f, omega h %4.1f: spectral radius %.6f; the state's component decays by it to %.1e in each of %d steps\n",
                   rho, Omega, spectral, worst, checked);
       EXPECT_GE(checked, 3);

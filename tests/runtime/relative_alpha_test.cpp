@@ -5,22 +5,20 @@
 //   independent oracle of support.hpp (its one-degree-of-freedom equation by classical RK4);
 // - rho_inf = 1 gives the relative trapezoidal step's states (a pendulum chain of five links);
 // - the numerical damping of one linear mode per step (a mass on a prismatic joint held by a
-//   spring: one slide coordinate) against the amplification matrix of Chung & Hulbert ("A time
-//   integration algorithm for structural dynamics with improved numerical dissipation: the
-//   generalized-alpha method", J. Appl. Mech. 60, 1993), built here from their equations;
+//   spring: one slide coordinate) against the amplification matrix of Chung & Hulbert
+//   (alpha_amplification.hpp);
 // - the four-bar (a loop: one cut joint, kept rows, projections) against the absolute
 //   formulation's generalized-alpha at the same rho_inf: two second-order discretisations of the
 //   same equations, so their difference falls as h^2.
 #include "formulation_models.hpp"  // tools/bench/formulations
+#include "alpha_amplification.hpp"
 #include "support.hpp"
 
 #include "ffr/runtime/relative.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <complex>
 #include <cstdio>
 #include <string>
 
@@ -44,16 +42,6 @@ double pendulum_angle(double h, double end, double rho) {
   initialize(model, data);
   for (std::int64_t i = 0; i < step_count(model); ++i) step(model, data);
   return joint_coordinate(model, data, 0, JointCoordinate::Angle);
-}
-
-// Chung & Hulbert's amplification matrix of (d, v, a) for d'' + omega^2 d = 0, one step of h.
-Eigen::Matrix3d amplification(double rho, double omega, double h) {
-  const double am = (2 * rho - 1) / (rho + 1), af = rho / (rho + 1);
-  const double g = 0.5 - am + af, b = 0.25 * (1 - am + af) * (1 - am + af), w2 = omega * omega;
-  Eigen::Matrix3d L, R;
-  L << 1, 0, -b * h * h, 0, 1, -g * h, (1 - af) * w2, 0, 1 - am;
-  R << 1, h, h * h * (0.5 - b), 0, 1, h * (1 - g), -af * w2, 0, -am;
-  return L.partialPivLu().solve(R);
 }
 
 // The model text with generalized-alpha keys in its "solver" object.
@@ -130,31 +118,12 @@ TEST(RelativeAlpha, DampingOfOneModePerStepIsTheAnalyticAmplification) {
       ASSERT_EQ(model.relative->ns, 1);
       Data data(model);
       initialize(model, data);
-      const Eigen::Matrix3d A = amplification(rho, omega, h);
-      Eigen::EigenSolver<Eigen::Matrix3d> es(A);
-      const Eigen::Matrix3cd V = es.eigenvectors(), Vinv = V.inverse();
-      const Eigen::Vector3cd lam = es.eigenvalues();
-      int p = 0;
-      for (int k = 1; k < 3; ++k)
-        if (std::abs(lam(k)) > std::abs(lam(p)) + 1e-14) p = k;
-      const double spectral = std::abs(lam(p));
       const RelativeWork& w = *data.relative;
-      const auto state = [&] { return Eigen::Vector3cd(w.s(0) + d_start, w.sd(0), w.a(0)); };
-      step(model, data);  // (the first step's a_0 is the start's)
-      const std::complex<double> c0 = (Vinv * state())(p);
-      const double size0 = (Vinv * state()).norm();
-      std::complex<double> c_prev = c0;
-      double worst = 0;
-      int checked = 0;
-      for (std::int64_t i = 1; i < step_count(model); ++i) {
-        step(model, data);
-        const std::complex<double> c = (Vinv * state())(p);
-        if (std::abs(c_prev) > 1e-8 * size0) {
-          worst = std::max(worst, std::abs(std::abs(c / c_prev) - spectral));
-          ++checked;
-        }
-        c_prev = c;
-      }
+      const test::ModeDecay m = test::measure_mode_decay(
+          rho, omega, h, step_count(model), [&] { step(model, data); },
+          [&] { return Eigen::Vector3cd(w.s(0) + d_start, w.sd(0), w.a(0)); });
+      const double spectral = m.spectral, worst = m.worst;
+      const int checked = m.checked;
       std::printf("relative, rho_inf %.1f, omega h %4.1f: spectral radius %.6f; the slide's component decays by it to %.1e in each of %d steps\n",
                   rho, Omega, spectral, worst, checked);
       EXPECT_GE(checked, 3);
