@@ -60,7 +60,7 @@ void generalized_forces(const Model& model, Data& data, double t) {
 void force_tangents(const Model& model, Data& data, double t) {
   // Zero outside the tangent blocks already (tangent_blocks.hpp): only these are cleared where
   // that pays.
-  if (detail::tangent_blocks_pay(model, data)) {
+  if (data.tangent_blocks_pay) {
     detail::for_each_tangent_block(model, data, false, [&](int r0, int nr, int c0, int nc) {
       data.K.block(r0, c0, nr, nc).setZero();
       data.C.block(r0, c0, nr, nc).setZero();

@@ -10,6 +10,7 @@
 #include "ffr/runtime/constraints.hpp"
 #include "ffr/runtime/integrator.hpp"
 #include "ffr/runtime/kinematics.hpp"
+#include "tangent_blocks.hpp"
 
 #include <Eigen/Geometry>
 
@@ -17,6 +18,12 @@
 
 namespace ffr::runtime {
 namespace {
+
+// Once per set of unknowns: whether the step's passes go block by block (tangent_blocks.hpp).
+void decide_block_passes(const Model& model, Data& data) {
+  data.tangent_blocks_pay = detail::decide_tangent_blocks_pay(model, data);
+  data.block_columns_pay = detail::decide_block_columns_pay(model, data);
+}
 
 Matrix3d skew(const Vector3d& w) {
   Matrix3d s;
@@ -54,6 +61,7 @@ void set_unknowns(const Model& model, Data& data, bool eliminate) {
     data.na = model.nconstraints;
     data.nblocks = static_cast<int>(model.blocks.size());
     std::fill(data.integrated.begin(), data.integrated.end(), 1);
+    decide_block_passes(model, data);
     return;
   }
   update_bodies(model, data);
@@ -86,6 +94,7 @@ void set_unknowns(const Model& model, Data& data, bool eliminate) {
   data.Phiq.bottomRows(data.Phiq.rows() - data.na).setZero();
   data.Phiq.rightCols(data.Phiq.cols() - data.nf).setZero();
   data.tangent_valid = false;
+  decide_block_passes(model, data);
   drive_bodies(model, data, data.state.t);
 }
 

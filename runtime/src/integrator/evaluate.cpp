@@ -25,7 +25,7 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
   force_tangents(model, data, t);
   auto W = data.W.topLeftCorner(nf, nf);
   // Over the tangent blocks where that pays (tangent_blocks.hpp): W, C and K are zero outside them.
-  if (detail::tangent_blocks_pay(model, data)) {
+  if (data.tangent_blocks_pay) {
     detail::for_each_tangent_block(model, data, true, [&](int r0, int nr, int c0, int nc) {
       data.W.block(r0, c0, nr, nc) = k.kv * data.C.block(r0, c0, nr, nc) + k.kq * data.K.block(r0, c0, nr, nc);
     });
@@ -47,7 +47,7 @@ namespace {
 
 // T = W over the unknowns' tangent blocks (both zero outside them), or whole where that is cheaper.
 void copy_tangent_blocks(const Model& model, Data& data) {
-  if (!detail::tangent_blocks_pay(model, data)) {
+  if (!data.tangent_blocks_pay) {
     data.T.topLeftCorner(data.nf, data.nf) = data.W.topLeftCorner(data.nf, data.nf);
     return;
   }

@@ -69,7 +69,7 @@ Projected project_once(const Model& model, Data& data, VectorXd& x, const Vector
       // Row block by row block over each body's coupled columns where that pays
       // (tangent_blocks.hpp): W is zero outside them.
       const Eigen::Index ld = data.W.rows();
-      if (detail::tangent_blocks_pay(model, data)) {
+      if (data.tangent_blocks_pay) {
         for (std::size_t i = 0; i < model.bodies.size(); ++i) {
           if (!data.integrated[i]) continue;
           const Body& b = model.bodies[i];

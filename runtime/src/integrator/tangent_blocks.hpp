@@ -61,11 +61,15 @@ void for_each_tangent_block(const Model& model, const Data& data, bool integrate
 /// the dense ones. On a model of a few large, mutually coupled bodies (a washing machine's tub,
 /// cabinet, drum and rotor) the blocks cover most of the matrix, and the many small block
 /// operations cost more than one vectorised pass over it.
-inline bool tangent_blocks_pay(const Model& model, const Data& data) {
+inline bool decide_tangent_blocks_pay(const Model& model, const Data& data) {
   long area = 0;
   for_each_tangent_block(model, data, true, [&](int, int nr, int, int nc) { area += static_cast<long>(nr) * nc; });
   return 2 * area < static_cast<long>(data.nf) * data.nf;
 }
+
+/// True when the constraint blocks' rows times their integrated bodies' columns cover less than
+/// half of the unknowns' na x nf Jacobian (constraints.cpp).
+bool decide_block_columns_pay(const Model& model, const Data& data);
 
 /// The columns [lo, hi) that cover an integrated body's own block and the blocks of the
 /// integrated bodies coupled with it: its rows of W and T are zero outside them.

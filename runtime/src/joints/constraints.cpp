@@ -4,6 +4,7 @@
 #include "rows.hpp"
 #include "weighted_gram.hpp"
 #include "../integrator/dense_products.hpp"
+#include "../integrator/tangent_blocks.hpp"
 
 #include <cmath>
 
@@ -262,19 +263,6 @@ BlockColumns block_column_ranges(const Model& model, const Data& data, const Con
   return c;
 }
 
-// True when the blocks' rows times their bodies' columns cover less than half of the unknowns'
-// na x nf Jacobian: then the passes block by block are cheaper than the dense ones (not so on a
-// model of a few large bodies, whose blocks span most of it).
-bool block_columns_pay(const Model& model, const Data& data) {
-  long area = 0;
-  for (int bi = 0; bi < data.nblocks; ++bi) {
-    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
-    const BlockColumns c = block_column_ranges(model, data, b);
-    for (int k = 0; k < c.ranges; ++k) area += static_cast<long>(b.rows) * c.count[k];
-  }
-  return 2 * area < static_cast<long>(data.na) * data.nf;
-}
-
 void evaluate_rows(const Model& model, Data& data, double t, bool jacobian, bool all_blocks) {
   // The Jacobian is stored dense, the blocks adding into it, and zero outside the blocks' rows
   // and their bodies' columns (block_column_ranges; set_unknowns clears it whole when the
@@ -285,7 +273,7 @@ void evaluate_rows(const Model& model, Data& data, double t, bool jacobian, bool
   // Jacobian columns. Otherwise the blocks of the unknowns alone: the projections' biases
   // (nothing reads the others' rates) and the later iterates of a step (the others' values do
   // not change within it).
-  const bool by_block = block_columns_pay(model, data);
+  const bool by_block = data.block_columns_pay;
   if (jacobian && !by_block) data.Phiq.setZero();
   const std::size_t nb = all_blocks ? model.blocks.size() : static_cast<std::size_t>(data.nblocks);
   if (all_blocks)
@@ -311,6 +299,19 @@ void evaluate_rows(const Model& model, Data& data, double t, bool jacobian, bool
 }
 
 }  // namespace
+
+// The blocks' rows times their bodies' columns against the whole na x nf Jacobian: below half,
+// the passes block by block are cheaper than the dense ones (not so on a model of a few large
+// bodies, whose blocks span most of it).
+bool detail::decide_block_columns_pay(const Model& model, const Data& data) {
+  long area = 0;
+  for (int bi = 0; bi < data.nblocks; ++bi) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
+    const BlockColumns c = block_column_ranges(model, data, b);
+    for (int k = 0; k < c.ranges; ++k) area += static_cast<long>(b.rows) * c.count[k];
+  }
+  return 2 * area < static_cast<long>(data.na) * data.nf;
+}
 
 void evaluate_constraints(const Model& model, Data& data, double t, Scope scope) {
   evaluate_rows(model, data, t, true, scope == Scope::All);
@@ -338,7 +339,7 @@ void update_angle_references(const Model& model, Data& data) {
 // row touches the coordinates of its bodies alone, so the dense m x n products did mostly
 // multiplications by zero on models of many bodies.
 void add_constraint_forces(const Model& model, const Data& data, const VectorXd& lam, VectorXd& out) {
-  if (!block_columns_pay(model, data)) {
+  if (!data.block_columns_pay) {
     detail::add_transpose_times(data.Phiq, data.na, data.nf, lam, out);
     return;
   }
@@ -360,7 +361,7 @@ void add_constraint_forces(const Model& model, const Data& data, const VectorXd&
 }
 
 void constraint_times(const Model& model, const Data& data, const VectorXd& v, VectorXd& out) {
-  if (!block_columns_pay(model, data)) {
+  if (!data.block_columns_pay) {
     detail::times(data.Phiq, data.na, data.nf, v, out, false);
     out.tail(out.size() - data.na).setZero();  // the rows among driven bodies have no unknowns
     return;

@@ -105,6 +105,10 @@ struct Data {
   std::vector<Run> unknown_runs;
   VectorXd lu_work;             ///< the right-hand side gathered to the unknowns
   std::vector<char> integrated;           ///< per body: its coordinates are unknowns now
+  /// Whether the step's passes over the tangent blocks and over the constraint blocks' columns
+  /// are cheaper than the dense ones for the unknowns now (tangent_blocks.hpp): decided by
+  /// set_unknowns, the only place the unknowns change; false (the dense passes) until then.
+  bool tangent_blocks_pay = false, block_columns_pay = false;
   std::vector<DriveReference> drive_ref;  ///< per body (driven bodies only)
 
   // Per-element work.
