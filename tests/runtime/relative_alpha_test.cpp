@@ -161,3 +161,26 @@ TEST(RelativeAlpha, FourBarAgreesWithTheAbsoluteFormulationToSecondOrder) {
   EXPECT_LT(diff[1], 1e-4);
   EXPECT_GT(order, 1.7);
 }
+
+// A copied Data is a branch of the simulation: it carries the relative workspace's step state (the
+// generalized-alpha pseudo-accelerations, the joint coordinates) as its own. Two copies stepped in
+// turn must each follow the states of one copy stepped alone; a workspace shared between copies
+// would mix their step states.
+TEST(RelativeAlpha, CopiedDataStepsOnItsOwn) {
+  Model model = test::model_from(with_alpha(formulations::pendulum_chain_json(5, 1e-3, 0.2, "relative"), 0.8));
+  model.settings.newton_tolerance = 1e-14;
+  ASSERT_TRUE(model.relative);
+  Data start(model);
+  initialize(model, start);
+  for (int i = 0; i < 20; ++i) step(model, start);
+  Data alone = start, x = start, y = start;
+  ASSERT_NE(&*x.relative, &*start.relative);
+  for (int i = 0; i < 20; ++i) step(model, alone);
+  for (int i = 0; i < 20; ++i) {
+    step(model, x);
+    step(model, y);
+  }
+  EXPECT_GT(scaled_norm(model, alone.state.q - start.state.q), 1e-3);
+  EXPECT_EQ(scaled_norm(model, x.state.q - alone.state.q), 0.0);
+  EXPECT_EQ(scaled_norm(model, y.state.q - alone.state.q), 0.0);
+}

@@ -41,7 +41,7 @@ Data::Data(const Model& model) : state(model), start(model) {
   projS = MatrixXd::Zero(m, m);
   proj_order.assign(static_cast<std::size_t>(m), 0);
   proj_mu = proj_w = VectorXd::Zero(m);
-  if (model.relative) relative = std::make_shared<RelativeWork>(model);  // FORMULATION.md 18
+  if (model.relative) relative = Owned<RelativeWork>::make(model);  // FORMULATION.md 18
 
   int nb_max = 12;
   bodies.resize(model.bodies.size());

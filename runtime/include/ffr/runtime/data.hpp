@@ -3,6 +3,7 @@
 // (and initialize()), a time step allocates nothing: all work goes into these members.
 
 #include "ffr/runtime/model.hpp"
+#include "ffr/runtime/owned.hpp"
 #include "ffr/runtime/scheme.hpp"
 #include "ffr/runtime/small_lu.hpp"
 #include "ffr/runtime/state.hpp"
@@ -177,7 +178,7 @@ struct Data {
   VectorXd penalty_rows;        ///< work: the penalty weights of one block's rows
 
   /// The relative formulation's state and workspace (relative.hpp); null for the absolute one.
-  std::shared_ptr<RelativeWork> relative;
+  Owned<RelativeWork> relative;
 };
 
 /// Which bodies and markers an update covers: all, or those of the unknowns alone (the ground's
