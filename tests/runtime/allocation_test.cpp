@@ -1,6 +1,7 @@
 // After set-up, a time step allocates nothing: global operator new/delete are replaced to count,
 // and many steps (with every kind of element, the tangent refreshed and reused, the projections,
 // and the recording of outputs) must leave the count unchanged.
+#include "mixed_model.hpp"
 #include "simeon_rod.hpp"
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
@@ -61,30 +62,13 @@ namespace {
 // Every kind of element: a driven crank, a flexible rod, a slider, a flexible flap on a bushing,
 // springs (one between two nodes of the flap, its interface A one of them), point forces and
 // torques.
-const char* kMixedModel = R"({
-  "gravity": [0, -9.81, 0],
-  "bodies": [
-    {"name": "crank", "type": "rigid", "mass": 0.36, "com": [0.075, 0, 0], "inertia": [[1e-6, 0, 0], [0, 7e-4, 0], [0, 0, 7e-4]]},
-    {"name": "rod", "type": "flexible", "sid": "rod.sid.h5", "position": [0.15, 0, 0], "damping": {"ratio": 0.01}},
-    {"name": "slider", "type": "rigid", "mass": 0.075, "com": [0.45, 0, 0], "inertia": [[1e-6, 0, 0], [0, 1e-6, 0], [0, 0, 1e-6]]},
-    {"name": "flap", "type": "flexible", "sid": "lumpy.sid.h5", "position": [0, 0.5, 0]}
-  ],
-  "joints": [
-    {"name": "hub", "type": "revolute", "body1": "ground", "body2": "crank", "at": [0, 0, 0], "axis": [0, 0, 1]},
-    {"name": "pin", "type": "revolute", "body1": "crank", "body2": "rod", "node2": "A", "axis": [0, 0, 1]},
-    {"name": "wrist", "type": "revolute", "body1": "rod", "body2": "slider", "node1": "B", "axis": [0, 0, 1]},
-    {"name": "guide", "type": "prismatic", "body1": "ground", "body2": "slider", "at": [0.45, 0, 0], "axis": [1, 0, 0]},
-    {"name": "hinge", "type": "spherical", "body1": "ground", "body2": "flap", "node2": "A"}
-  ],
-  "motions": [{"joint": "hub", "table": {"t": [0, 0.1, 1], "value": [0, 1, 30]}}],
-  "forces": [
+const std::string kMixedModel = test::mixed_model_json(R"([
     {"type": "spring_damper", "body1": "ground", "at1": [0.3, 0.3, 0], "body2": "rod", "node2": "M", "k": 100, "c": 1},
     {"type": "bushing", "body1": "flap", "node1": "B", "body2": "ground", "stiffness": [1e3, 1e3, 1e3, 10, 10, 10], "damping": [1, 1, 1, 0.1, 0.1, 0.1]},
     {"type": "point_force", "body": "rod", "node": "M", "table": {"t": [0, 1], "value": [[0, 1, 0], [0, -1, 0]]}},
     {"type": "point_torque", "body": "flap", "node": "C", "table": {"t": [0, 1], "value": [[0, 0, 0.1], [0, 0, 0.2]]}},
     {"type": "spring_damper", "body1": "flap", "node1": "A", "body2": "flap", "node2": "C", "k": 50, "c": 0.5, "preload": 1}
-  ],
-  "solver": {"end": 0.2, "step": 1e-3},
+  ])", R"("solver": {"end": 0.2, "step": 1e-3},
   "outputs": [
     {"name": "tip", "type": "node_deformation", "body": "rod", "node": "M"},
     {"name": "tip_xyz", "type": "node_position", "body": "rod", "node": "M"},
@@ -98,33 +82,7 @@ const char* kMixedModel = R"({
     {"name": "spin", "type": "body_angular_velocity", "body": "flap"},
     {"name": "spring_force", "type": "element_force", "force": "forces[0]"},
     {"name": "bushing_force", "type": "element_force", "force": "forces[1]"}
-  ]
-})";
-
-// Every stiffening member (FORMULATION.md 7): the rod's Ke/M1, the flap's load cases with the
-// interface loads at its hinge, prestress, and Ke/M1.
-void write_sids(const test::TempDir& dir) {
-  ffr::formats::Sid rod = test::simeon_rod_sid();
-  rod.KeM1 = test::simeon_rod_ke_m1();
-  test::write_sid_file(rod, dir / "rod.sid.h5");
-  ffr::formats::Sid flap = test::lumpy_body(3, 4, true, 0.01);
-  const double k = flap.Ke.cwiseAbs().maxCoeff();
-  for (int m = 0; m < 3; ++m) flap.KeM1.push_back(0.1 * k * Eigen::Matrix3d::Identity() * (m + 1));
-  flap.ksigma.M0 = Eigen::Vector3d(1e-3, 0, 0) * k;
-  flap.ksigma.M1 = 0.01 * k * Eigen::Matrix3d::Identity();
-  // Load cases of a realistic size (a unit acceleration changes the stiffness by 1e-5): they
-  // are evaluated at the iterate's accelerations, which carry 4/h^2 times the predictor's error.
-  flap.stiffening.emplace();
-  flap.stiffening->K0t.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
-  flap.stiffening->K0r.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
-  flap.stiffening->K0om.assign(3, ffr::formats::MatX6::Constant(3, 6, 1e-5 * k));
-  ffr::formats::Stiffening::Interface itf;
-  itf.name = "A";
-  itf.K0F.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
-  itf.K0M.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
-  flap.stiffening->interfaces.push_back(itf);
-  test::write_sid_file(flap, dir / "lumpy.sid.h5");
-}
+  ])");
 
 // The allocations of `steps` steps, each recorded, after one step that leaves nothing to size.
 long allocations_of_recorded_steps(const Model& model, Data& data, int steps) {
@@ -138,11 +96,20 @@ long allocations_of_recorded_steps(const Model& model, Data& data, int steps) {
   return counted_allocations() - before;
 }
 
+// Initialises `model` in `data`, then the allocations of `steps` recorded steps, printed with what
+// the model holds.
+long allocations_from_start(const Model& model, Data& data, int steps, const char* what) {
+  initialize(model, data);
+  const long allocations = allocations_of_recorded_steps(model, data, steps);
+  std::printf("%d steps with %s: %ld allocations\n", steps, what, allocations);
+  return allocations;
+}
+
 }  // namespace
 
 TEST(Allocation, StepsAllocateNothing) {
   test::TempDir dir("alloc");
-  write_sids(dir);
+  test::write_mixed_sids(dir);
   const Model model = test::model_from(kMixedModel, dir.path);
   ASSERT_TRUE(model.bodies[1].modal_stress && model.bodies[3].modal_stress && model.bodies[3].prestress);
   ASSERT_EQ(model.bodies[3].stiffening->interfaces.size(), 1u);
@@ -168,7 +135,7 @@ TEST(Allocation, StepsAllocateNothing) {
 // error estimates, rejected steps restored from the saved state, steps landing on output times).
 TEST(Allocation, GeneralizedAlphaAndAdaptiveStepsAllocateNothing) {
   test::TempDir dir("alloc_schemes");
-  write_sids(dir);
+  test::write_mixed_sids(dir);
   Model model = test::model_from(kMixedModel, dir.path);
   model.settings.integrator = Integrator::GeneralizedAlpha;
   model.settings.spectral_radius = 0.6;
@@ -214,7 +181,7 @@ TEST(Allocation, GeneralizedAlphaAndAdaptiveStepsAllocateNothing) {
 TEST(Allocation, StepsCallNoMalloc) {
   if (!FFR_COUNT_MALLOC) GTEST_SKIP() << "malloc is not counted under AddressSanitizer";
   test::TempDir dir("alloc_malloc");
-  write_sids(dir);
+  test::write_mixed_sids(dir);
   Model model = test::model_from(kMixedModel, dir.path);
   for (const Integrator scheme : {Integrator::Trapezoidal, Integrator::GeneralizedAlpha}) {
     model.settings.integrator = scheme;
@@ -242,7 +209,7 @@ TEST(Allocation, StepsCallNoMalloc) {
 // linear load tables, the energy output with the dissipated energy.
 TEST(Allocation, CouplersFrictionAndTablesAllocateNothing) {
   test::TempDir dir("alloc_elements");
-  write_sids(dir);
+  test::write_mixed_sids(dir);
   const Model model = test::model_from(R"({
   "gravity": [0, -9.81, 0],
   "bodies": [
@@ -284,7 +251,7 @@ TEST(Allocation, CouplersFrictionAndTablesAllocateNothing) {
 // flexible body (the node terms of its tangent), their contact outputs recorded.
 TEST(Allocation, TyresAllocateNothing) {
   test::TempDir dir("alloc_tyres");
-  write_sids(dir);
+  test::write_mixed_sids(dir);
   const Model model = test::model_from(R"({
   "gravity": [0, -9.81, 0],
   "roads": [{"name": "bumpy", "direction": [1, 0, 0], "s": [-5, -1, 0, 0.5, 1, 2, 5], "height": [0, 0, 0.002, -0.002, 0.003, 0, 0]},
@@ -338,10 +305,7 @@ TEST(Allocation, CouplerInAMovingCarrierAllocatesNothing) {
   "outputs": [{"name": "belt_rate", "type": "joint_rate", "joint": "jb"}]
 })");
   Data data(model);
-  initialize(model, data);
-  const long allocations = allocations_of_recorded_steps(model, data, 150);
-  std::printf("150 steps with a coupler over three bodies: %ld allocations\n", allocations);
-  EXPECT_EQ(allocations, 0);
+  EXPECT_EQ(allocations_from_start(model, data, 150, "a coupler over three bodies"), 0);
   EXPECT_GT(joint_coordinate_rate(model, data, 2, JointCoordinate::Angle), 0.1);  // it turned
 }
 
@@ -365,10 +329,7 @@ TEST(Allocation, BeamBodiesAllocateNothing) {
               {"name": "v", "type": "node_velocity", "body": "beam", "node": "n3"}]
 })");
   Data data(model);
-  initialize(model, data);
-  const long allocations = allocations_of_recorded_steps(model, data, 100);
-  std::printf("100 steps with a beam body: %ld allocations\n", allocations);
-  EXPECT_EQ(allocations, 0);
+  EXPECT_EQ(allocations_from_start(model, data, 100, "a beam body"), 0);
 }
 
 // A plate body (FORMULATION.md 16): an edge clamped, strain-rate damping, a rigid body hung at a
@@ -388,10 +349,7 @@ TEST(Allocation, PlateBodiesAllocateNothing) {
               {"name": "v", "type": "node_velocity", "body": "plate", "node": "n1_1"}]
 })");
   Data data(model);
-  initialize(model, data);
-  const long allocations = allocations_of_recorded_steps(model, data, 100);
-  std::printf("100 steps with a plate body: %ld allocations\n", allocations);
-  EXPECT_EQ(allocations, 0);
+  EXPECT_EQ(allocations_from_start(model, data, 100, "a plate body"), 0);
 }
 
 // A geometrically exact beam (FORMULATION.md 17): pinned by a revolute joint, a rigid body fixed
@@ -415,10 +373,7 @@ TEST(Allocation, GeometricallyExactBeamsAllocateNothing) {
               {"name": "v", "type": "node_velocity", "body": "beam", "node": "n3"}]
 })");
   Data data(model);
-  initialize(model, data);
-  const long allocations = allocations_of_recorded_steps(model, data, 100);
-  std::printf("100 steps with a geometrically exact beam: %ld allocations\n", allocations);
-  EXPECT_EQ(allocations, 0);
+  EXPECT_EQ(allocations_from_start(model, data, 100, "a geometrically exact beam"), 0);
 }
 
 // The counter sees allocations at all (counting_new.cpp replaces operator new in this program):

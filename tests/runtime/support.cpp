@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -112,6 +113,21 @@ std::string initialize_refusal(const Model& model) {
     return e.what();
   }
   return "";
+}
+
+SideBySide step_side_by_side(const Model& a, const Model& b) {
+  Data da(a), db(b);
+  initialize(a, da);
+  initialize(b, db);
+  SideBySide r;
+  const VectorXd q_start = da.state.q;
+  for (std::int64_t i = 0; i < step_count(a); ++i) {
+    step(a, da);
+    step(b, db);
+    r.apart = std::max(r.apart, scaled_norm(a, da.state.q - db.state.q));
+    r.motion = std::max(r.motion, scaled_norm(a, da.state.q - q_start));
+  }
+  return r;
 }
 
 }  // namespace ffr::runtime::test

@@ -57,4 +57,13 @@ std::vector<double> output(const Model& model, Data& data, const std::string& na
 /// The message of the SolverError that initialize throws on `model` (empty if none).
 std::string initialize_refusal(const Model& model);
 
+/// Two models of the same coordinates stepped side by side from their initial states, over the
+/// first's step count: the largest scaled distance between their coordinates after a step, and
+/// the largest scaled motion of the first from its start (how far there was to go astray).
+struct SideBySide {
+  double apart = 0;
+  double motion = 0;
+};
+SideBySide step_side_by_side(const Model& a, const Model& b);
+
 }  // namespace ffr::runtime::test

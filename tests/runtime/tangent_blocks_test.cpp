@@ -5,6 +5,7 @@
 // to a sentinel value before the tangents and the Jacobian are rebuilt, and must keep it (a term
 // added between two bodies that set_tangent_blocks does not know would change it); and the
 // block products with Phi_q against Eigen's dense products with the same matrix (the oracle).
+#include "mixed_model.hpp"
 #include "simeon_rod.hpp"
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
@@ -29,31 +30,13 @@ constexpr double kSentinel = 0.75;
 // Ke/M1, a slider, a flexible flap with stiffening interface loads on a bushing, springs, point
 // loads; couplers, friction dampers with and without series springs, a bushing between two
 // bodies, tables; tyres; a geometrically exact beam with a body fixed to its end; an ancf beam.
-const char* kMixed = R"({
-  "gravity": [0, -9.81, 0],
-  "bodies": [
-    {"name": "crank", "type": "rigid", "mass": 0.36, "com": [0.075, 0, 0], "inertia": [[1e-6, 0, 0], [0, 7e-4, 0], [0, 0, 7e-4]]},
-    {"name": "rod", "type": "flexible", "sid": "rod.sid.h5", "position": [0.15, 0, 0], "damping": {"ratio": 0.01}},
-    {"name": "slider", "type": "rigid", "mass": 0.075, "com": [0.45, 0, 0], "inertia": [[1e-6, 0, 0], [0, 1e-6, 0], [0, 0, 1e-6]]},
-    {"name": "flap", "type": "flexible", "sid": "lumpy.sid.h5", "position": [0, 0.5, 0]}
-  ],
-  "joints": [
-    {"name": "hub", "type": "revolute", "body1": "ground", "body2": "crank", "at": [0, 0, 0], "axis": [0, 0, 1]},
-    {"name": "pin", "type": "revolute", "body1": "crank", "body2": "rod", "node2": "A", "axis": [0, 0, 1]},
-    {"name": "wrist", "type": "revolute", "body1": "rod", "body2": "slider", "node1": "B", "axis": [0, 0, 1]},
-    {"name": "guide", "type": "prismatic", "body1": "ground", "body2": "slider", "at": [0.45, 0, 0], "axis": [1, 0, 0]},
-    {"name": "hinge", "type": "spherical", "body1": "ground", "body2": "flap", "node2": "A"}
-  ],
-  "motions": [{"joint": "hub", "table": {"t": [0, 0.1, 1], "value": [0, 1, 30]}}],
-  "forces": [
+const std::string kMixed = test::mixed_model_json(R"([
     {"type": "spring_damper", "body1": "slider", "at1": [0.45, 0, 0], "body2": "rod", "node2": "M", "k": 100, "c": 1},
     {"type": "bushing", "body1": "flap", "node1": "B", "body2": "rod", "node2": "M", "stiffness": [1e3, 1e3, 1e3, 10, 10, 10], "damping": [1, 1, 1, 0.1, 0.1, 0.1]},
     {"type": "friction_damper", "body1": "slider", "at1": [0.45, 0.1, 0], "body2": "flap", "node2": "C", "force": 0.5, "series_stiffness": 300},
     {"type": "point_force", "body": "rod", "node": "M", "table": {"t": [0, 1], "value": [[0, 1, 0], [0, -1, 0]]}},
     {"type": "point_torque", "body": "flap", "node": "C", "table": {"t": [0, 1], "value": [[0, 0, 0.1], [0, 0, 0.2]]}}
-  ],
-  "solver": {"end": 0.2, "step": 1e-3}
-})";
+  ])", R"("solver": {"end": 0.2, "step": 1e-3})");
 
 const char* kCarrier = R"({
   "gravity": [0, -9.81, 0],
@@ -122,24 +105,6 @@ const char* kGeBeam = R"({
              {"type": "spring_damper", "body1": "beam", "node1": "n2", "body2": "arm", "node2": "end", "k": 10, "c": 0.1}],
   "solver": {"end": 0.2, "step": 1e-3}
 })";
-
-void write_sids(const test::TempDir& dir) {
-  ffr::formats::Sid rod = test::simeon_rod_sid();
-  rod.KeM1 = test::simeon_rod_ke_m1();
-  test::write_sid_file(rod, dir / "rod.sid.h5");
-  ffr::formats::Sid flap = test::lumpy_body(3, 4, true, 0.01);
-  const double k = flap.Ke.cwiseAbs().maxCoeff();
-  flap.stiffening.emplace();
-  flap.stiffening->K0t.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
-  flap.stiffening->K0r.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
-  flap.stiffening->K0om.assign(3, ffr::formats::MatX6::Constant(3, 6, 1e-5 * k));
-  ffr::formats::Stiffening::Interface itf;
-  itf.name = "A";
-  itf.K0F.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
-  itf.K0M.assign(3, ffr::formats::MatX3::Constant(3, 3, 1e-5 * k));
-  flap.stiffening->interfaces.push_back(itf);
-  test::write_sid_file(flap, dir / "lumpy.sid.h5");
-}
 
 // Per coordinate pair: inside a tangent block (of the bodies integrated now, or of all bodies).
 std::vector<std::vector<char>> tangent_mask(const Model& model, const Data& data, bool integrated_only) {
@@ -235,7 +200,7 @@ void check_model(const char* name, const Model& model) {
 
 TEST(TangentBlocks, EveryTermInsideTheBlocksAndBlockProductsAsDense) {
   test::TempDir dir("tangent_blocks");
-  write_sids(dir);
+  test::write_mixed_sids(dir);
   check_model("mixed", test::model_from(kMixed, dir.path));
   check_model("carrier, tyre", test::model_from(kCarrier, dir.path));
   check_model("housed shafts, coupler of four bodies", test::model_from(kHoused, dir.path));
