@@ -2,8 +2,9 @@
 // "Welds"): the node's axes are the exact Gram-Schmidt triad of its gradients r_x, r_y. Checked
 // against references nobody here computed:
 // - the rows' Jacobian, velocity and acceleration terms and second derivatives against central
-//   differences of the rows themselves, at a strongly deformed state with the welded node turned
-//   by 70 degrees (off the constraint manifold on purpose);
+//   differences of the rows themselves, at a strongly deformed state with a welded node turned
+//   by 70 degrees (off the constraint manifold on purpose), rigid bodies and a flexible body's
+//   node welded;
 // - a cantilever plate strip with a rigid tip bar welded at its two tip nodes, the bar's centre of
 //   mass beyond the tip: small-deflection tip deflection and slope against Kirchhoff plate-strip
 //   (Euler-Bernoulli with EI = D b, nu = 0) theory for the bar's weight and moment plus the
@@ -14,8 +15,10 @@
 // - a large-rotation swing of a welded body on a soft strip: energy conserved to the trapezoidal
 //   rule's second order, and the body's axes against the node's triad computed here from the
 //   gradients (an independent Gram-Schmidt) to the solver's tolerance;
+// - the relative formulation's swing against the absolute one's;
 // - bad input refused naming the field.
 #include "support.hpp"
+#include "synthetic_bodies.hpp"
 
 #include "ffr/runtime/constraints.hpp"
 #include "ffr/runtime/dynamics.hpp"
@@ -69,14 +72,17 @@ Eigen::Matrix3d gram_schmidt(const Eigen::Vector3d& rx, const Eigen::Vector3d& r
 }
 
 // A free plate (2 x 1 elements) with two rigid bodies welded at two nodes, one on each side of
-// its joint (body1 and body2), with axes not along the plate's.
+// its joint (body1 and body2), with axes not along the plate's, and a flexible (reduced) body
+// welded by a node of its own (node rotation slices) to a third.
 struct Weld : ::testing::Test {
+  test::TempDir dir{"plate_weld"};
   Model model;
   std::unique_ptr<Data> data;
   VectorXd q, qd, qdd;
   double t = 0.2;
 
   void SetUp() override {
+    test::write_sid_file(test::lumpy_body(3), dir / "lumpy.sid.h5");
     model = test::model_from(R"({"gravity": [0, 0, -9.81],
       "bodies": [
         {"name": "plate", "type": "plate", "corners": [[0, 0, 0], [0.4, 0, 0], [0.4, 0.3, 0], [0, 0.3, 0]], "elements": [2, 1],
@@ -84,11 +90,14 @@ struct Weld : ::testing::Test {
         {"name": "bob", "type": "rigid", "mass": 0.5, "com": [0.45, 0.3, 0.05],
          "inertia": [[1e-3, 0, 0], [0, 2e-3, 0], [0, 0, 1.5e-3]]},
         {"name": "arm", "type": "rigid", "mass": 0.3, "com": [0.2, -0.05, -0.02],
-         "inertia": [[1e-3, 1e-4, 0], [1e-4, 2e-3, 0], [0, 0, 1.5e-3]]}],
+         "inertia": [[1e-3, 1e-4, 0], [1e-4, 2e-3, 0], [0, 0, 1.5e-3]]},
+        {"name": "flex", "type": "flexible", "sid": "lumpy.sid.h5", "position": [0, 0.3, 0.05], "modal_coordinates": [0.01, -0.02, 0.015]}],
       "joints": [
         {"name": "weld", "type": "fixed", "body1": "plate", "node1": "n2_1", "body2": "bob", "axis": [0.3, 0.4, 0.866]},
-        {"name": "weld2", "type": "fixed", "body1": "arm", "body2": "plate", "node2": "n1_0", "axis": [1, 0, 0]}],
-      "solver": {"end": 1, "step": 1e-3}})");
+        {"name": "weld2", "type": "fixed", "body1": "arm", "body2": "plate", "node2": "n1_0", "axis": [1, 0, 0]},
+        {"name": "weld3", "type": "fixed", "body1": "flex", "node1": "B", "body2": "plate", "node2": "n0_1", "axis": [0, 1, 0]}],
+      "solver": {"end": 1, "step": 1e-3}})",
+                             dir.path);
     data = std::make_unique<Data>(model);
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(-1, 1);
