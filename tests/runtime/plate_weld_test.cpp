@@ -349,6 +349,14 @@ TEST(PlateWeld, BadInputIsRefusedNamingTheField) {
     return s.replace(at, from.size(), to);
   };
   EXPECT_EQ(test::error_of(good), "");
+  // The runtime says how each weld is held (as it says which joints it assembled).
+  const Model m = test::model_from(good);
+  int weld_notes = 0;
+  for (const auto& n : m.notes)
+    if (n.find("(fixed) at node") != std::string::npos && n.find("exact triad") != std::string::npos &&
+        n.find("not assembled") != std::string::npos)
+      ++weld_notes;
+  EXPECT_EQ(weld_notes, 2);
   test::expect_error(with("\"node1\": \"n4_0\"", "\"node1\": \"n9_0\""), "joints[0].node1", "has no node 'n9_0'");
   test::expect_error(with("\"type\": \"fixed\", \"body1\": \"strip\"", "\"type\": \"revolute\", \"axis\": [0, 1, 0], \"body1\": \"strip\""),
                      "joints[0].type", "not supported");
