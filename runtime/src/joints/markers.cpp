@@ -117,8 +117,9 @@ void marker_rates(const Model& model, const Marker& mk, const Data& data, Marker
       md.eb[k].noalias() += bd.A * detail::triad_axis_second(T, mk.triad_R.col(k), z);
     }
   }
-  for (int k = 0; k < 3 && !(on_node && mk.triad >= 0); ++k) {
-    if (!mk.axes[k]) continue;
+  const bool triad = on_node && mk.triad >= 0;
+  for (int k = 0; k < 3; ++k) {
+    if (!mk.axes[k] || triad) continue;  // (a triad's axes are done above)
     md.ed[k].noalias() = bd.Ad * md.ebar[k];
     if (on_node) {
       const Vector3d py = slice_times(mk.phiE[k], yd);
