@@ -383,3 +383,24 @@ TEST(Allocation, TheCounterCountsOperatorNew) {
   std::vector<double> v(16, 1.0);
   EXPECT_EQ(counted_allocations() - before, 1) << v.size();
 }
+
+// A rigid body welded to a plate node (FORMULATION.md 16, "Welds"): the node's exact triad in
+// the rows, their bias and second derivatives; in both formulations (the relative one places the
+// body at the node's point and keeps the weld's rotation rows).
+TEST(Allocation, PlateWeldsAllocateNothing) {
+  for (const std::string formulation : {"absolute", "relative"}) {
+    const Model model = test::model_from(R"({
+  "gravity": [0, 0, -9.81],
+  "bodies": [
+    {"name": "plate", "type": "plate", "corners": [[0, 0, 0], [0.4, 0, 0], [0.4, 0.3, 0], [0, 0.3, 0]], "elements": [2, 1],
+     "thickness": 0.005, "E": 7e10, "nu": 0.33, "rho": 2700, "supports": {"x0": "clamped"}},
+    {"name": "bob", "type": "rigid", "mass": 0.2, "com": [0.45, 0.15, -0.05], "inertia": [[1e-4, 0, 0], [0, 1e-4, 0], [0, 0, 1e-4]]}
+  ],
+  "joints": [{"name": "weld", "type": "fixed", "body1": "plate", "node1": "n2_1", "body2": "bob", "axis": [0, 0.6, 0.8]}],
+  "solver": {"end": 0.2, "step": 1e-3, "formulation": ")" + formulation + R"("},
+  "outputs": [{"name": "energy", "type": "energy"}]
+})");
+    Data data(model);
+    EXPECT_EQ(allocations_from_start(model, data, 100, ("a plate weld, " + formulation).c_str()), 0);
+  }
+}

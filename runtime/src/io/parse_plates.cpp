@@ -2,6 +2,7 @@
 // and the checks that what attaches to a plate reads only what its nodes carry.
 #include "ffr/runtime/plate.hpp"
 #include "parse.hpp"
+#include "../bodies/plate_triad.hpp"
 
 #include <cmath>
 
@@ -68,6 +69,21 @@ bool on_plate(const Model& m, int marker) {
   return mk.body != kGround && m.bodies[static_cast<std::size_t>(mk.body)].plate != nullptr;
 }
 
+// A weld's marker on a plate node reads the node's exact triad (Marker::triad): the
+// Gram-Schmidt frame of its gradients r_x, r_y, and its axes E in that frame as it is at the
+// start (the weld's constant relative orientation).
+void use_node_triad(Marker& mk, const Body& b) {
+  const int k = 12 * mk.node;
+  mk.triad = k + 3;
+  mk.triad_x0 = b.plate->q0.segment<3>(k + 3);
+  mk.triad_y0 = b.plate->q0.segment<3>(k + 6);
+  detail::PlateTriad T;
+  detail::plate_triad(mk.triad_x0 + b.y0.segment<3>(k + 3), mk.triad_y0 + b.y0.segment<3>(k + 6), T);
+  Matrix3d T0;
+  for (int i = 0; i < 3; ++i) T0.col(i) = T.t[i];
+  mk.triad_R = T0.transpose() * mk.E;
+}
+
 }  // namespace
 
 void check_plate_attachments(const Field& root, ParseContext& ctx) {
@@ -84,14 +100,30 @@ void check_plate_attachments(const Field& root, ParseContext& ctx) {
     node_only(f, jt.m1);
     node_only(f, jt.m2);
     if (!on_plate(m, jt.m1) && !on_plate(m, jt.m2)) return;
-    // A node's axes are its gradients' linearised turn: exact only for rows that hold them
-    // against the ground (a point clamp).
+    // A node's linearised axes are exact only for rows that hold them against the ground (a
+    // point clamp, linear rows). A weld to a moving body reads the node's exact triad instead
+    // (FORMULATION.md 16, "Welds"): its rows are exact at any rotation.
     const bool to_ground = m.markers[static_cast<std::size_t>(jt.m1)].body == kGround ||
                            m.markers[static_cast<std::size_t>(jt.m2)].body == kGround;
     if (jt.type == JointType::Spherical || (jt.type == JointType::Fixed && to_ground)) return;
+    if (jt.type == JointType::Fixed) {
+      std::string where;
+      for (int mi : {jt.m1, jt.m2}) {
+        if (!on_plate(m, mi)) continue;
+        Marker& mk = ctx.model.markers[static_cast<std::size_t>(mi)];
+        const Body& b = m.bodies[static_cast<std::size_t>(mk.body)];
+        use_node_triad(mk, b);
+        where += std::string(where.empty() ? "" : " and ") + "node '" + b.nodes[static_cast<std::size_t>(mk.node)].name +
+                 "' of plate '" + b.name + "'";
+      }
+      ctx.model.notes.push_back("joint '" + jt.name + "' (fixed) at " + where +
+                                ": its rotation rows hold the node's exact triad (the Gram-Schmidt frame of r_x, r_y) and "
+                                "stay constraint rows (not assembled)");
+      return;
+    }
     f.at("type").fail(std::string("a ") + to_string(jt.type) +
                       " joint at a plate node is not supported: the node's rotation is its gradients' linearised turn "
-                      "(spherical joints, and fixed joints to the ground, are; an edge is held by the plate's supports)");
+                      "(spherical and fixed joints are; an edge is held by the plate's supports)");
   };
   const auto force = [&](const AttachedElement& a) {
     if (a.kind == AttachmentKind::Bushing) {

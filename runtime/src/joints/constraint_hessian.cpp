@@ -8,6 +8,7 @@
 //                  N = x g_y - y g_x
 #include "ffr/runtime/constraints.hpp"
 
+#include "../bodies/plate_triad.hpp"
 #include "../forces/force_helpers.hpp"
 #include "weighted_gram.hpp"
 
@@ -21,6 +22,12 @@ struct Quantity {
   const Matrix3Xd* S = nullptr;
   int side = 0;
   double sign = 1;
+  /// An axis of a plate node's exact triad (Marker::triad): its second derivatives are the
+  /// triad's, not a constant slice's.
+  const Marker* triad = nullptr;
+  int axis = 0;
+  const Matrix3d* A = nullptr;
+  const double* y = nullptr;
 };
 
 struct Expr {
@@ -51,8 +58,38 @@ Quantity quantity(const Model& model, const Data& data, int marker, int k, int s
   q.v = k < 0 ? &md.p : &md.e[k];
   if (!integrated(data, mk.body)) return q;  // the ground or a driven body: no unknowns
   q.J = k < 0 ? &md.Jp : &md.Je[k];
+  if (detail::on_node(model, mk) && k >= 0 && mk.triad >= 0) {
+    q.triad = &mk;
+    q.axis = k;
+    q.A = &data.bodies[mk.body].A;
+    q.y = data.state.q.data() + model.bodies[mk.body].offset + 12;
+    return q;
+  }
   if (detail::on_node(model, mk)) q.S = &detail::slice(mk, k);
   return q;
+}
+
+// c * d(J^T f)/dz of a triad axis e = A ebar(y), ebar = T(r_x, r_y) R_k: the frame-y products
+// (the y columns are A G, G = d ebar / d(r_x, r_y), as add_jt_f_derivative's A S) and the y-y
+// block f . A D2ebar (plate_triad.hpp).
+void add_triad(Target& T, const Quantity& q, const Vector3d& f, double c) {
+  const Marker& mk = *q.triad;
+  detail::PlateTriad tr;
+  detail::plate_triad(mk.triad_x0 + Eigen::Map<const Vector3d>(q.y + mk.triad),
+                      mk.triad_y0 + Eigen::Map<const Vector3d>(q.y + mk.triad + 3), tr);
+  detail::Matrix36 G;
+  detail::triad_axis(tr, mk.triad_R.col(q.axis), &G);
+  detail::Matrix66 H;
+  detail::triad_axis_hessian(tr, mk.triad_R.col(q.axis), q.A->transpose() * f, H);
+  const double s = c * q.sign;
+  auto M = T.M->block(T.off[q.side], T.off[q.side], T.nb[q.side], T.nb[q.side]);
+  const int y0 = 12 + mk.triad;
+  for (int j = 0; j < 6; ++j)
+    for (int a = 0; a < 3; ++a) {
+      M.block<3, 1>(3 + 3 * a, y0 + j) += (s * G(a, j)) * f;
+      M.block<1, 3>(y0 + j, 3 + 3 * a) += (s * G(a, j)) * f.transpose();
+    }
+  M.block<6, 6>(y0, y0) += s * H;
 }
 
 Expr one(Quantity a) {
@@ -70,6 +107,7 @@ Expr two(Quantity a, Quantity b) {
 }
 
 void add_node(Target& T, const Quantity& q, const Vector3d& f, double c) {
+  if (q.triad && c != 0) add_triad(T, q, f, c);
   if (!q.S || c == 0) return;
   detail::add_jt_f_derivative(*q.S, f, c * q.sign, T.M->block(T.off[q.side], T.off[q.side], T.nb[q.side], T.nb[q.side]));
 }

@@ -3,6 +3,8 @@
 // acceleration bias J_dot z_dot = 2 A_dot phi y_dot (FORMULATION.md section 5).
 #include "ffr/runtime/kinematics.hpp"
 
+#include "../bodies/plate_triad.hpp"
+
 namespace ffr::runtime {
 namespace {
 
@@ -26,6 +28,14 @@ void local_jacobian(const Matrix3d& A, const Vector3d& x, const Matrix3Xd* S, bo
     else
       J.rightCols(J.cols() - 12).setZero();
   }
+}
+
+// A plate node's exact triad (Marker::triad): the Gram-Schmidt frame of its gradients.
+detail::PlateTriad node_triad(const Marker& mk, const double* y) {
+  detail::PlateTriad T;
+  detail::plate_triad(mk.triad_x0 + Eigen::Map<const Vector3d>(y + mk.triad), mk.triad_y0 + Eigen::Map<const Vector3d>(y + mk.triad + 3),
+                      T);
+  return T;
 }
 
 }  // namespace
@@ -52,6 +62,20 @@ void marker_kinematics(const Model& model, const Marker& mk, const Data& data, M
   md.p = data.state.q.segment<3>(o);
   md.p.noalias() += bd.A * md.xbar;
   local_jacobian(bd.A, md.xbar, on_node ? &mk.phi : nullptr, true, md.Jp);
+  if (on_node && mk.triad >= 0) {
+    // ebar_k = T R_k, exact at any rotation; its columns in y are A dT R_k / d(r_x, r_y).
+    const detail::PlateTriad T = node_triad(mk, y);
+    for (int k = 0; k < 3; ++k) {
+      if (!mk.axes[k]) continue;
+      detail::Matrix36 G;
+      md.ebar[k] = detail::triad_axis(T, mk.triad_R.col(k), &G);
+      md.e[k].noalias() = bd.A * md.ebar[k];
+      local_jacobian(bd.A, md.ebar[k], nullptr, false, md.Je[k]);
+      md.Je[k].block<3, 6>(0, 12 + mk.triad).noalias() = bd.A * G;
+    }
+    marker_rates(model, mk, data, md);
+    return;
+  }
   for (int k = 0; k < 3; ++k) {
     if (!mk.axes[k]) continue;  // nothing reads it (Marker::axes)
     md.ebar[k] = mk.E.col(k);
@@ -77,8 +101,25 @@ void marker_rates(const Model& model, const Marker& mk, const Data& data, Marker
     md.pd.noalias() += bd.A * py;
     md.pb.noalias() = 2.0 * bd.Ad * py;
   }
+  if (on_node && mk.triad >= 0) {
+    // e_dd = A_dd ebar + 2 A_d G y_d + A (G y_dd + D2ebar[y_d, y_d]): the bias is all but the
+    // frame's and y's accelerations.
+    const detail::PlateTriad T = node_triad(mk, data.state.q.data() + o + 12);
+    const detail::Vector6 z = Eigen::Map<const detail::Vector6>(yd + mk.triad);
+    for (int k = 0; k < 3; ++k) {
+      if (!mk.axes[k]) continue;
+      detail::Matrix36 G;
+      detail::triad_axis(T, mk.triad_R.col(k), &G);
+      const Vector3d Gz = G * z;
+      md.ed[k].noalias() = bd.Ad * md.ebar[k];
+      md.ed[k].noalias() += bd.A * Gz;
+      md.eb[k].noalias() = 2.0 * bd.Ad * Gz;
+      md.eb[k].noalias() += bd.A * detail::triad_axis_second(T, mk.triad_R.col(k), z);
+    }
+  }
+  const bool triad = on_node && mk.triad >= 0;
   for (int k = 0; k < 3; ++k) {
-    if (!mk.axes[k]) continue;
+    if (!mk.axes[k] || triad) continue;  // (a triad's axes are done above)
     md.ed[k].noalias() = bd.Ad * md.ebar[k];
     if (on_node) {
       const Vector3d py = slice_times(mk.phiE[k], yd);
@@ -121,7 +162,10 @@ Vector3d initial_marker_axis(const Model& model, const Marker& mk, int k) {
   if (mk.body == kGround) return mk.E.col(k);
   const Body& b = model.bodies[mk.body];
   Vector3d x = mk.E.col(k);
-  if (mk.node >= 0 && b.nq > 0) x += mk.phiE[k] * b.y0;
+  if (mk.node >= 0 && b.nq > 0 && mk.triad >= 0)
+    x = detail::triad_axis(node_triad(mk, b.y0.data()), mk.triad_R.col(k));
+  else if (mk.node >= 0 && b.nq > 0)
+    x += mk.phiE[k] * b.y0;
   return b.A0 * x;
 }
 

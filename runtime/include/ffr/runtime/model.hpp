@@ -189,6 +189,13 @@ struct Marker {
   /// The axes something reads (joint rows, joint coordinates, bushings; set by finalize): the
   /// others, their rates and Jacobians are not computed (left zero).
   std::array<bool, 3> axes{true, true, true};
+  /// >= 0: the marker is on a plate node and reads the node's exact triad (FORMULATION.md 16,
+  /// "Welds"): the index in y of the node's r_x (r_y follows at + 3). Its axes are then
+  /// A T(r_x, r_y) triad_R.col(k), T the Gram-Schmidt triad of the gradients, instead of the
+  /// linearised E_k + phiE_k y. Set for a fixed joint between a plate node and a moving body.
+  int triad = -1;
+  Vector3d triad_x0 = Vector3d::Zero(), triad_y0 = Vector3d::Zero();  ///< the node's reference r_x, r_y (local)
+  Matrix3d triad_R = Matrix3d::Identity();  ///< E in the reference triad T0: T0^T E (column k: axis k's weights)
 };
 
 enum class JointType { Revolute, Spherical, Fixed, Prismatic, Cylindrical, Universal };
