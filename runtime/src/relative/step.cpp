@@ -6,8 +6,9 @@
 //   T    = R^T (M + h/2 C + h^2/4 K) R + h^2/4 (Phi_q R)^T alpha (Phi_q R)
 //          + R^T (h M + h^2/4 C) R_dot + h^2/4 [R^T M Ra + sum_k (dR/ds_k)^T F]
 // the last line R's derivatives (R_dot = dR/dt, Ra = dq_ddot/ds at fixed rates, F the absolute
-// residual force; FORMULATION.md 18), so that Newton contracts quadratically. The projections
-// weigh by the tangent without them (a metric: symmetric up to the force elements' terms).
+// residual force M q_ddot - Q + Phi_q^T lambda; FORMULATION.md 18), so that Newton contracts
+// quadratically. The projections weigh by the tangent without them (a metric: symmetric up to
+// the force elements' terms).
 #include "ffr/runtime/relative.hpp"
 
 #include "ffr/runtime/constraints.hpp"
@@ -150,27 +151,39 @@ void refresh(const Model& model, Data& data, double t) {
     // with R_dot linear in s_dot, so kq dq_ddot/ds = R + 2 kv R_dot + kq Ra and kq dq_dot/ds =
     // kv R + kq R_dot: the gyroscopic coupling R^T (2 kv M + kq C) R_dot and the curvature in the
     // accelerations kq R^T M Ra (M is block diagonal; C couples the force elements' pairs).
+    // (M's terms in one product: M (2 kv R_dot + kq Ra); C's, where C is not zero, with R_dot.)
     for (std::size_t i = 0; i < model.bodies.size(); ++i) {
-      if (tree.bodies[i].free) continue;
+      const RelativeBody& rb = tree.bodies[i];
+      if (rb.free) continue;
       const Body& b = model.bodies[i];
       const int o = b.offset, nb = b.ncoord();
+      w.Z.block(o, rb.col0, nb, rb.ncols) = (2 * k.kv) * w.Rd.block(o, rb.col0, nb, rb.ncols) + k.kq * w.Ra.block(o, rb.col0, nb, rb.ncols);
       auto Wb = w.Wb.topLeftCorner(nb, nb);
-      Wb = (2 * k.kv) * data.bodies[i].M + k.kq * data.C.block(o, o, nb, nb);
+      Wb = data.bodies[i].M;
+      add(static_cast<int>(i), static_cast<int>(i), &w.Z);
+      if (data.C.block(o, o, nb, nb).isZero(0.0)) continue;
+      Wb = k.kq * data.C.block(o, o, nb, nb);
       add(static_cast<int>(i), static_cast<int>(i), &w.Rd);
-      Wb = k.kq * data.bodies[i].M;
-      add(static_cast<int>(i), static_cast<int>(i), &w.Ra);
     }
     for (const auto& [i, j] : tree.pairs) {
       const Body& bi = model.bodies[static_cast<std::size_t>(i)];
       const Body& bj = model.bodies[static_cast<std::size_t>(j)];
       const int oi = bi.offset, ni = bi.ncoord(), oj = bj.offset, nj = bj.ncoord();
-      w.Wb.topLeftCorner(ni, nj) = k.kq * data.C.block(oi, oj, ni, nj);
-      add(i, j, &w.Rd);
-      w.Wb.topLeftCorner(nj, ni) = k.kq * data.C.block(oj, oi, nj, ni);
-      add(j, i, &w.Rd);
+      if (!data.C.block(oi, oj, ni, nj).isZero(0.0)) {
+        w.Wb.topLeftCorner(ni, nj) = k.kq * data.C.block(oi, oj, ni, nj);
+        add(i, j, &w.Rd);
+      }
+      if (!data.C.block(oj, oi, nj, ni).isZero(0.0)) {
+        w.Wb.topLeftCorner(nj, ni) = k.kq * data.C.block(oj, oi, nj, ni);
+        add(j, i, &w.Rd);
+      }
     }
     // The curvature of q(s) weighted by the absolute residual force F = M q_ddot - Q + Phi_q^T
-    // lambda_eff (w.g holds the first two, assemble_residual): kq sum_k (dR/ds_k)^T F.
+    // lambda (w.g holds the first two, assemble_residual): kq sum_k (dR/ds_k)^T F. The
+    // multipliers without the iterate's penalty forces alpha Phi, as the constraint Hessian above
+    // (FORMULATION.md 9): with them, far from the solution (the predictor), Newton on the
+    // benchmark's flexible slider-crank took 6 to 8 iterations instead of 3 or 4 and stopped
+    // converging at 0.031 s.
     w.force = w.g;
     for (int bi : tree.kept_blocks) {
       const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
@@ -178,7 +191,7 @@ void refresh(const Model& model, Data& data, double t) {
         if (x == kGround || (x == b.body2 && b.body2 == b.body1)) continue;
         const Body& body = model.bodies[static_cast<std::size_t>(x)];
         w.force.segment(body.offset, body.ncoord()).noalias() +=
-            data.Phiq.block(b.row0, body.offset, b.rows, body.ncoord()).transpose() * data.lambda_eff.segment(b.row0, b.rows);
+            data.Phiq.block(b.row0, body.offset, b.rows, body.ncoord()).transpose() * data.state.lambda.segment(b.row0, b.rows);
       }
     }
     relative_curvature(model, data, k.kq, w.Ts);

@@ -241,7 +241,7 @@ RelativeWork::RelativeWork(const Model& model) {
   f = ds = scale = VectorXd::Zero(ns);
   rel_A.assign(model.bodies.size(), Matrix3d::Identity());
   rel_p.assign(model.bodies.size(), Vector3d::Zero());
-  R = Rd = Ra = MatrixXd::Zero(n, ns);
+  R = Rd = Ra = Z = MatrixXd::Zero(n, ns);
   force = VectorXd::Zero(n);
   frame_force.assign(model.bodies.size(), Eigen::Matrix<double, 3, 4>::Zero());
   weight = VectorXd::Ones(ns);

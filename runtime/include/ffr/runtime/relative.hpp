@@ -89,6 +89,7 @@ struct RelativeWork {
   MatrixXd Rd;
   /// dq_ddot/ds at fixed s_dot and s_ddot [n, ns]: the curvature of q(s) in q_ddot.
   MatrixXd Ra;
+  MatrixXd Z;  ///< work [n, ns]: 2 kv R_dot + kq Ra (the tangent's mass terms, one product)
   /// The absolute residual force M q_ddot - Q + Phi_q^T (lambda + alpha Phi) [n], and per body
   /// the part of it (with its descendants') that acts on its frame coordinates r, A ([3 x 4]:
   /// force, then A's nine entries), for the curvature term sum_k (dR/ds_k)^T F.
