@@ -14,7 +14,7 @@
 //    analytic reflected-inertia result of coupler_test.cpp (J. L. Meriam & L. G. Kraige,
 //    "Engineering Mechanics: Dynamics", gear trains): the housings are welded to the carrier, so
 //    alpha = (T - (I_a + r I_b) beta) / (I_a + r^2 I_b), in both formulations.
-#include "simeon_rod.hpp"
+#include "relative_rod_rotor.hpp"
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
 
@@ -41,40 +41,6 @@ std::string num(double x) {
   return b;
 }
 
-// Simeon's rod with its tip node's small rotations: the lateral shapes sin(pi x / L) and
-// sin(2 pi x / L) of the SID (simeon_rod.cpp: the node slices phi(1, 0), phi(1, 1)) turn the
-// section at x = L about z by their slopes, pi / L cos(pi) and 2 pi / L cos(2 pi); the axial
-// shapes turn nothing. Without them the housing would not follow the rod's bending.
-ffr::formats::Sid rod_with_tip_rotations() {
-  ffr::formats::Sid s = test::simeon_rod_sid();
-  const double L = test::SimeonData::L2;
-  auto& B = s.nodes[2];
-  B.psi = Eigen::Matrix3Xd::Zero(3, 4);
-  B.psi(2, 0) = M_PI / L * std::cos(M_PI);
-  B.psi(2, 1) = 2 * M_PI / L * std::cos(2 * M_PI);
-  return s;
-}
-
-// The rod (hinged about z at its frame origin, along x, in gravity -y), a 20 g housing welded to
-// its tip node B, and a 50 g rotor turning in the housing about the rod's axis x, its centre of
-// mass 2 mm off the axis (an unbalance whose centrifugal force bends the rod), driven by a speed
-// ramp to 400 rad/s over the 0.2 s.
-std::string rod_rotor_json(double h, const char* formulation) {
-  const double L = test::SimeonData::L2;
-  const std::string tip = "[" + num(L) + ", 0, 0]";
-  return std::string(R"({"gravity": [0, -9.81, 0],
-    "bodies": [{"name": "rod", "type": "flexible", "sid": "rod.sid.h5"},
-      {"name": "housing", "type": "rigid", "mass": 0.02, "com": )") + tip + R"(, "inertia": [[2e-6, 0, 0], [0, 1.2e-6, 0], [0, 0, 1.2e-6]]},
-      {"name": "rotor", "type": "rigid", "mass": 0.05, "com": [)" + num(L + 0.01) + R"(, 0.002, 0], "inertia": [[1e-5, 0, 0], [0, 6e-6, 0], [0, 0, 6e-6]]}],
-    "joints": [{"name": "hinge", "type": "revolute", "body1": "ground", "body2": "rod", "at": [0, 0, 0], "axis": [0, 0, 1]},
-               {"name": "mount", "type": "fixed", "body1": "rod", "node1": "B", "body2": "housing"},
-               {"name": "shaft", "type": "revolute", "body1": "housing", "body2": "rotor", "at": )" + tip + R"(, "axis": [1, 0, 0]}],
-    "motions": [{"joint": "shaft", "speed": {"t": [0, 0.2], "value": [0, 400], "interpolation": "linear"}}],
-    "solver": {"formulation": ")" + formulation + R"(", "end": 0.2, "step": )" + num(h) + R"(},
-    "outputs": [{"name": "tip", "type": "node_position", "body": "rod", "node": "B"},
-                {"name": "mass", "type": "node_position", "body": "rotor", "at": [)" + num(L + 0.01) + R"(, 0.002, 0]}]})";
-}
-
 struct RodRotor {
   Eigen::Vector3d tip, mass;
   Eigen::VectorXd y;
@@ -82,7 +48,7 @@ struct RodRotor {
 };
 
 RodRotor run_rod_rotor(double h, const char* formulation, const std::filesystem::path& dir) {
-  const Model model = test::model_from(rod_rotor_json(h, formulation), dir);
+  const Model model = test::model_from(test::rod_rotor_json(h, formulation), dir);
   if (std::string(formulation) == "relative") {
     EXPECT_TRUE(has_note(model, "joint 'mount' assembled (fixed, body 'housing' placed at node 'B' of 'rod'"));
     EXPECT_TRUE(has_note(model, "joint 'shaft' assembled (revolute, body 'rotor' placed on 'housing' by 1 joint coordinate(s))"));
@@ -100,7 +66,7 @@ RodRotor run_rod_rotor(double h, const char* formulation, const std::filesystem:
 
 TEST(RelativeWashing, RotorInAHousingOnAFlexibleNodeMatchesAbsolute) {
   test::TempDir dir("relative_rod_rotor");
-  test::write_sid_file(rod_with_tip_rotations(), dir / "rod.sid.h5");
+  test::write_sid_file(test::rod_with_tip_rotations(), dir / "rod.sid.h5");
   double d_tip[2], d_hinge[2], d_y[2], d_mass[2];
   int i = 0;
   for (const double h : {5e-4, 2.5e-4}) {

@@ -58,14 +58,15 @@ void place_at_point(const Model& model, const RelativeTree& t, RelativeWork& w, 
   const Marker& mp = model.markers[static_cast<std::size_t>(rb.parent_marker)];
   const Marker& mc = model.markers[static_cast<std::size_t>(rb.child_marker)];
   Vector3d P = mp.c, Pd = Vector3d::Zero(), Pdd = Vector3d::Zero(), xp = mp.c;
-  Matrix3d Ap = Matrix3d::Identity();
+  Matrix3d Ap = Matrix3d::Identity(), Apd = Matrix3d::Zero(), Apdd = Matrix3d::Zero();
+  Vector3d pyd = Vector3d::Zero(), pydd = Vector3d::Zero();
   int op = -1;
   bool pnode = false;
   if (rb.parent != kGround) {
     const Body& pb = model.bodies[static_cast<std::size_t>(rb.parent)];
     op = pb.offset;
     pnode = mp.node >= 0 && pb.nq > 0;
-    Vector3d py = Vector3d::Zero(), pyd = Vector3d::Zero(), pydd = Vector3d::Zero();
+    Vector3d py = Vector3d::Zero();
     if (pnode) {
       py = slice_times(mp.phi, q.data() + op + 12);
       pyd = slice_times(mp.phi, qd.data() + op + 12);
@@ -73,7 +74,8 @@ void place_at_point(const Model& model, const RelativeTree& t, RelativeWork& w, 
     }
     xp += py;
     Ap = frame(q, op);
-    const Matrix3d Apd = frame(qd, op), Apdd = frame(qdd, op);
+    Apd = frame(qd, op);
+    Apdd = frame(qdd, op);
     P = pos(q, op) + Ap * xp;
     Pd = pos(qd, op) + Apd * xp + Ap * pyd;
     Pdd = pos(qdd, op) + Apdd * xp + 2 * Apd * pyd + Ap * pydd;
@@ -107,14 +109,31 @@ void place_at_point(const Model& model, const RelativeTree& t, RelativeWork& w, 
       Vector3d dP = w.R.col(col).segment<3>(op) + dA * xp;
       if (pnode) dP += Ap * slice_times(mp.phi, c + op + 12);
       w.R.col(col).segment<3>(o) = dP;
+      // Its rate (R_dot): the product rule on the same map.
+      const double* cd = w.Rd.col(col).data();
+      const Eigen::Map<const Matrix3d> dAd(cd + op + 3);
+      Vector3d dPd = w.Rd.col(col).segment<3>(op) + dAd * xp + dA * pyd;
+      if (pnode) dPd += Apd * slice_times(mp.phi, c + op + 12) + Ap * slice_times(mp.phi, cd + op + 12);
+      w.Rd.col(col).segment<3>(o) = dPd;
+      // dP_ddot/ds at fixed rates (the modal rows of R_dot and Ra are zero: y's rates are s's).
+      const Eigen::Map<const Matrix3d> dAa(w.Ra.col(col).data() + op + 3);
+      Vector3d dPa = w.Ra.col(col).segment<3>(op) + dAa * xp + 2 * (dAd * pyd) + dA * pydd;
+      if (pnode) dPa += Apdd * slice_times(mp.phi, c + op + 12);
+      w.Ra.col(col).segment<3>(o) = dPa;
     }
   }
   for (int a = 0; a < 3; ++a) w.R.block<3, 3>(o, sf + 3 * a).diagonal().setConstant(-xc(a));
+  for (int a = 0; a < 3; ++a) w.Rd.block<3, 3>(o, sf + 3 * a).diagonal().setConstant(-cyd(a));
+  for (int a = 0; a < 3; ++a) w.Ra.block<3, 3>(o, sf + 3 * a).diagonal().setConstant(-cydd(a));
   w.R.block<9, 9>(o + 3, sf).setIdentity();
   if (nq > 0) {
     w.R.block(o + 12, sf + 9, nq, nq).setIdentity();
     if (cnode)
-      for (int k = 0; k < nq; ++k) w.R.col(sf + 9 + k).segment<3>(o) = -(Ac * mc.phi.col(k));
+      for (int k = 0; k < nq; ++k) {
+        w.R.col(sf + 9 + k).segment<3>(o) = -(Ac * mc.phi.col(k));
+        w.Rd.col(sf + 9 + k).segment<3>(o) = -(Acd * mc.phi.col(k));
+        w.Ra.col(sf + 9 + k).segment<3>(o) = -(Acdd * mc.phi.col(k));
+      }
   }
 }
 
@@ -124,7 +143,11 @@ void relative_kinematics(const Model& model, Data& data, bool jacobian) {
   const RelativeTree& t = *model.relative;
   RelativeWork& w = *data.relative;
   VectorXd &q = data.state.q, &qd = data.state.qd, &qdd = data.state.qdd;
-  if (jacobian) w.R.setZero();
+  if (jacobian) {
+    w.R.setZero();
+    w.Rd.setZero();
+    w.Ra.setZero();
+  }
   for (int bi : t.order) {
     const RelativeBody& rb = t.bodies[static_cast<std::size_t>(bi)];
     const Body& b = model.bodies[static_cast<std::size_t>(bi)];
@@ -133,7 +156,7 @@ void relative_kinematics(const Model& model, Data& data, bool jacobian) {
       q.segment(o, nc) = w.s.segment(rb.s_first, nc);
       qd.segment(o, nc) = w.sd.segment(rb.s_first, nc);
       qdd.segment(o, nc) = w.sdd.segment(rb.s_first, nc);
-      if (jacobian) w.R.block(o, rb.s_first, nc, nc).setIdentity();
+      if (jacobian) w.R.block(o, rb.s_first, nc, nc).setIdentity();  // (R_dot's block: zero)
       continue;
     }
     if (rb.point) {
@@ -165,8 +188,9 @@ void relative_kinematics(const Model& model, Data& data, bool jacobian) {
     const Vector3d kd = k1 * thd + ks * xd;  // rate of k
     set(q, o, rp + Ap * k, Ap * N);
     set(qd, o, rpd + Apd * k + Ap * kd, Apd * N + Ap * N1 * thd);
-    set(qdd, o, rpdd + Apdd * k + 2 * Apd * kd + Ap * (k2 * (thd * thd) + k1 * thdd + ks * xdd),
-        Apdd * N + 2 * thd * Apd * N1 + Ap * (N2 * (thd * thd) + N1 * thdd));
+    const Vector3d kdd = k2 * (thd * thd) + k1 * thdd + ks * xdd;  // k's acceleration, A_p fixed
+    const Matrix3d Ndd = N2 * (thd * thd) + N1 * thdd;
+    set(qdd, o, rpdd + Apdd * k + 2 * Apd * kd + Ap * kdd, Apdd * N + 2 * thd * Apd * N1 + Ap * Ndd);
     if (b.nq > 0) {
       q.segment(o + 12, b.nq) = w.s.segment(rb.s_first, b.nq);
       qd.segment(o + 12, b.nq) = w.sd.segment(rb.s_first, b.nq);
@@ -178,18 +202,133 @@ void relative_kinematics(const Model& model, Data& data, bool jacobian) {
     if (op >= 0) {
       const RelativeBody& pb = t.bodies[static_cast<std::size_t>(rb.parent)];
       for (int col = pb.col0; col < pb.col0 + pb.ncols; ++col) {
-        const Eigen::Map<const Matrix3d> dA(w.R.col(col).data() + op + 3);
-        if (dA.isZero(0.0) && w.R.col(col).segment<3>(op).isZero(0.0)) continue;
+        const Eigen::Map<const Matrix3d> dA(w.R.col(col).data() + op + 3), dAd(w.Rd.col(col).data() + op + 3);
+        const Eigen::Map<const Matrix3d> dAa(w.Ra.col(col).data() + op + 3);
+        if (dA.isZero(0.0) && w.R.col(col).segment<3>(op).isZero(0.0) && dAd.isZero(0.0) && w.Rd.col(col).segment<3>(op).isZero(0.0) &&
+            dAa.isZero(0.0) && w.Ra.col(col).segment<3>(op).isZero(0.0))
+          continue;
         w.R.col(col).segment<3>(o) = w.R.col(col).segment<3>(op) + dA * k;
         Eigen::Map<Matrix3d>(w.R.col(col).data() + o + 3) = dA * N;
+        // R_dot = dR/dt, the product rule on the same map (k and N turn with the angle).
+        w.Rd.col(col).segment<3>(o) = w.Rd.col(col).segment<3>(op) + dAd * k + dA * kd;
+        Eigen::Map<Matrix3d>(w.Rd.col(col).data() + o + 3) = dAd * N + thd * (dA * N1);
+        // dq_ddot/ds at fixed rates: q_ddot's recursion with the parent's q, q_dot, q_ddot
+        // replaced by their derivatives R, R_dot, Ra.
+        w.Ra.col(col).segment<3>(o) = w.Ra.col(col).segment<3>(op) + dAa * k + 2 * (dAd * kd) + dA * kdd;
+        Eigen::Map<Matrix3d>(w.Ra.col(col).data() + o + 3) = dAa * N + (2 * thd) * (dAd * N1) + dA * Ndd;
       }
     }
     if (rb.s_angle >= 0) {
+      // (d/dth: k -> k1 -> k2 -> -k1, N likewise: rot_x''' = -rot_x'.)
       w.R.col(rb.s_angle).segment<3>(o) = Ap * k1;
       Eigen::Map<Matrix3d>(w.R.col(rb.s_angle).data() + o + 3) = Ap * N1;
+      w.Rd.col(rb.s_angle).segment<3>(o) = Apd * k1 + thd * (Ap * k2);
+      Eigen::Map<Matrix3d>(w.Rd.col(rb.s_angle).data() + o + 3) = Apd * N1 + thd * (Ap * N2);
+      w.Ra.col(rb.s_angle).segment<3>(o) = Apdd * k1 + (2 * thd) * (Apd * k2) + Ap * (k2 * thdd - k1 * (thd * thd));
+      Eigen::Map<Matrix3d>(w.Ra.col(rb.s_angle).data() + o + 3) = Apdd * N1 + (2 * thd) * (Apd * N2) + Ap * (N2 * thdd - N1 * (thd * thd));
     }
-    if (rb.s_slide >= 0) w.R.col(rb.s_slide).segment<3>(o) = Ap * ks;
+    if (rb.s_slide >= 0) {
+      w.R.col(rb.s_slide).segment<3>(o) = Ap * ks;
+      w.Rd.col(rb.s_slide).segment<3>(o) = Apd * ks;
+      w.Ra.col(rb.s_slide).segment<3>(o) = Apdd * ks;
+    }
     if (b.nq > 0) w.R.block(o + 12, rb.s_first, b.nq, b.nq).setIdentity();
+  }
+}
+
+void relative_curvature(const Model& model, Data& data, double factor, MatrixXd& Ts) {
+  const RelativeTree& t = *model.relative;
+  RelativeWork& w = *data.relative;
+  const VectorXd& q = data.state.q;
+  const VectorXd& F = w.force;
+  for (int bi : t.order) {
+    const Body& b = model.bodies[static_cast<std::size_t>(bi)];
+    w.frame_force[static_cast<std::size_t>(bi)] << F.segment<3>(b.offset), Eigen::Map<const Matrix3d>(F.data() + b.offset + 3);
+  }
+  const auto frobenius = [](const Matrix3d& X, const double* y) { return X.cwiseProduct(Eigen::Map<const Matrix3d>(y)).sum(); };
+  // Children before parents: a body's frame force then holds its descendants' (mapped by the
+  // transposed placements), which see its coordinates only through its frame.
+  for (auto it = t.order.rbegin(); it != t.order.rend(); ++it) {
+    const int bi = *it;
+    const RelativeBody& rb = t.bodies[static_cast<std::size_t>(bi)];
+    if (rb.free) continue;
+    const Body& b = model.bodies[static_cast<std::size_t>(bi)];
+    const Eigen::Matrix<double, 3, 4>& ff = w.frame_force[static_cast<std::size_t>(bi)];
+    const Vector3d Fr = ff.col(0);
+    const Matrix3d FA = ff.rightCols<3>();
+    const Marker& mp = model.markers[static_cast<std::size_t>(rb.parent_marker)];
+    int op = -1;
+    Matrix3d Ap = Matrix3d::Identity();
+    const RelativeBody* pr = nullptr;
+    const Body* pb = nullptr;
+    if (rb.parent != kGround) {
+      pr = &t.bodies[static_cast<std::size_t>(rb.parent)];
+      pb = &model.bodies[static_cast<std::size_t>(rb.parent)];
+      op = pb->offset;
+      Ap = frame(q, op);
+    }
+    if (rb.point) {
+      // r = P - A x_c: bilinear in the body's own frame A and modes y (x_c = c + phi y), and
+      // P = r_p + A_p (c_p + phi_p y_p) in the parent's frame and modes.
+      const Marker& mc = model.markers[static_cast<std::size_t>(rb.child_marker)];
+      const int sf = rb.s_first;
+      if (mc.node >= 0 && b.nq > 0)
+        for (int k = 0; k < b.nq; ++k)
+          for (int a = 0; a < 9; ++a) {
+            const double v = -factor * Fr(a % 3) * mc.phi(a / 3, k);
+            Ts(sf + a, sf + 9 + k) += v;
+            Ts(sf + 9 + k, sf + a) += v;
+          }
+      if (op < 0) continue;
+      Vector3d xp = mp.c;
+      if (mp.node >= 0 && pb->nq > 0) {
+        const int ym = pr->free ? pr->s_first + 12 : (pr->point ? pr->s_first + 9 : pr->s_first);
+        for (int k = 0; k < pb->nq; ++k) {
+          xp += mp.phi.col(k) * q(op + 12 + k);
+          const Matrix3d B = Fr * mp.phi.col(k).transpose();
+          for (int col = pr->col0; col < pr->col0 + pr->ncols; ++col) {
+            const double v = factor * frobenius(B, w.R.col(col).data() + op + 3);
+            Ts(col, ym + k) += v;
+            Ts(ym + k, col) += v;
+          }
+        }
+      }
+      Eigen::Matrix<double, 3, 4>& fp = w.frame_force[static_cast<std::size_t>(rb.parent)];
+      fp.col(0) += Fr;
+      fp.rightCols<3>() += Fr * xp.transpose();
+      continue;
+    }
+    // Wholly placed: r = r_p + A_p k(th, x), A = A_p N(th).
+    const Matrix3d& relA = w.rel_A[static_cast<std::size_t>(bi)];
+    const Vector3d& relp = w.rel_p[static_cast<std::size_t>(bi)];
+    const double th = rb.s_angle >= 0 ? w.s(rb.s_angle) : 0.0, x = rb.s_slide >= 0 ? w.s(rb.s_slide) : 0.0;
+    const Matrix3d& E = mp.E;
+    const Matrix3d R0 = rot_x(th, 0), R1 = rot_x(th, 1), R2 = rot_x(th, 2);
+    const Vector3d ks = E.col(0), k = mp.c + E * (R0 * relp) + x * ks, k1 = E * (R1 * relp), k2 = E * (R2 * relp);
+    const Matrix3d N = E * R0 * relA, N1 = E * R1 * relA, N2 = E * R2 * relA;
+    if (rb.s_angle >= 0) {
+      Ts(rb.s_angle, rb.s_angle) += factor * (Fr.dot(Ap * k2) + FA.cwiseProduct(Ap * N2).sum());
+      if (op >= 0) {
+        const Matrix3d B = Fr * k1.transpose() + FA * N1.transpose();
+        for (int col = pr->col0; col < pr->col0 + pr->ncols; ++col) {
+          const double v = factor * frobenius(B, w.R.col(col).data() + op + 3);
+          Ts(col, rb.s_angle) += v;
+          Ts(rb.s_angle, col) += v;
+        }
+      }
+    }
+    if (rb.s_slide >= 0 && op >= 0) {
+      const Matrix3d B = Fr * ks.transpose();
+      for (int col = pr->col0; col < pr->col0 + pr->ncols; ++col) {
+        const double v = factor * frobenius(B, w.R.col(col).data() + op + 3);
+        Ts(col, rb.s_slide) += v;
+        Ts(rb.s_slide, col) += v;
+      }
+    }
+    if (op < 0) continue;
+    Eigen::Matrix<double, 3, 4>& fp = w.frame_force[static_cast<std::size_t>(rb.parent)];
+    fp.col(0) += Fr;
+    fp.rightCols<3>() += Fr * k.transpose() + FA * N.transpose();
   }
 }
 

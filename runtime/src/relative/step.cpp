@@ -4,9 +4,11 @@
 // absolute residual and tangent projected by R = dq/ds (h^2/4 below is the scheme's kq):
 //   f(s) = h^2/4 R^T [M q_ddot - Q + Phi_q^T (lambda + alpha Phi)]            (kept rows)
 //   T    = R^T (M + h/2 C + h^2/4 K) R + h^2/4 (Phi_q R)^T alpha (Phi_q R)
-// The tangent leaves out the derivatives of R itself (the curvature of q(s), of the size of the
-// accelerations times h^2/4): Newton then contracts linearly, by O(h^2 omega^2), and the
-// acceptance test measures that contraction (the same test as the absolute step's).
+//          + R^T (h M + h^2/4 C) R_dot + h^2/4 [R^T M Ra + sum_k (dR/ds_k)^T F]
+// the last line R's derivatives (R_dot = dR/dt, Ra = dq_ddot/ds at fixed rates, F the absolute
+// residual force M q_ddot - Q + Phi_q^T lambda; FORMULATION.md 18), so that Newton contracts
+// quadratically. The projections weigh by the tangent without them (a metric: symmetric up to
+// the force elements' terms).
 #include "ffr/runtime/relative.hpp"
 
 #include "ffr/runtime/constraints.hpp"
@@ -76,18 +78,21 @@ void refresh(const Model& model, Data& data, double t) {
   const StepCoefficients& k = data.state.k;
   force_tangents(model, data, t);
   w.Ts.setZero();
-  // Ts += R_i^T X R_j over the bodies' column ranges, X = Wb's top-left ni x nj.
-  const auto add = [&](int i, int j) {
+  // Ts += R_i^T X Y_j over the bodies' column ranges, X = Wb's top-left ni x nj, Y = R or R_dot
+  // (a free body's R_dot is zero: nothing to add).
+  const auto add = [&](int i, int j, const MatrixXd* rate = nullptr) {
     const RelativeBody& ri = tree.bodies[static_cast<std::size_t>(i)];
     const RelativeBody& rj = tree.bodies[static_cast<std::size_t>(j)];
     const Body& bi = model.bodies[static_cast<std::size_t>(i)];
     const Body& bj = model.bodies[static_cast<std::size_t>(j)];
     const int ni = bi.ncoord(), nj = bj.ncoord();
+    if (rate && rj.free) return;
+    const MatrixXd& Y = rate ? *rate : w.R;
     // (Coefficient-based products: see projected_jacobian. A free body's block of R is the
     // identity: no product on its side.)
     auto Ts = w.Ts.block(ri.col0, rj.col0, ri.ncols, rj.ncols);
     if (rj.free) w.WR.topLeftCorner(ni, rj.ncols) = w.Wb.topLeftCorner(ni, nj);
-    else w.WR.topLeftCorner(ni, rj.ncols).noalias() = w.Wb.topLeftCorner(ni, nj).lazyProduct(w.R.block(bj.offset, rj.col0, nj, rj.ncols));
+    else w.WR.topLeftCorner(ni, rj.ncols).noalias() = w.Wb.topLeftCorner(ni, nj).lazyProduct(Y.block(bj.offset, rj.col0, nj, rj.ncols));
     if (ri.free) Ts += w.WR.topLeftCorner(ni, rj.ncols);
     else Ts.noalias() += w.R.block(bi.offset, ri.col0, ni, ri.ncols).transpose().lazyProduct(w.WR.topLeftCorner(ni, rj.ncols));
   };
@@ -136,6 +141,61 @@ void refresh(const Model& model, Data& data, double t) {
     w.PA = data.alpha.asDiagonal() * w.Phis;
     w.Ts.noalias() += k.kq * (w.Phis.transpose() * w.PA);
   }
+  if (w.exact_tangent) {
+    // What the projections weigh by (project): the tangent so far, R^T W R and the constraints'
+    // terms, symmetric up to the force elements' own; the terms below are Newton's only (they
+    // are not symmetric and scale with the rates: the gyroscopic one with h Omega).
+    w.Tm = w.Ts;
+    w.metric_stale = true;
+    // The rates' dependence on s through R: q_dot = R s_dot and q_ddot = R s_ddot + R_dot s_dot
+    // with R_dot linear in s_dot, so kq dq_ddot/ds = R + 2 kv R_dot + kq Ra and kq dq_dot/ds =
+    // kv R + kq R_dot: the gyroscopic coupling R^T (2 kv M + kq C) R_dot and the curvature in the
+    // accelerations kq R^T M Ra (M is block diagonal; C couples the force elements' pairs).
+    // (M's terms in one product: M (2 kv R_dot + kq Ra); C's, where C is not zero, with R_dot.)
+    for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+      const RelativeBody& rb = tree.bodies[i];
+      if (rb.free) continue;
+      const Body& b = model.bodies[i];
+      const int o = b.offset, nb = b.ncoord();
+      w.Z.block(o, rb.col0, nb, rb.ncols) = (2 * k.kv) * w.Rd.block(o, rb.col0, nb, rb.ncols) + k.kq * w.Ra.block(o, rb.col0, nb, rb.ncols);
+      auto Wb = w.Wb.topLeftCorner(nb, nb);
+      Wb = data.bodies[i].M;
+      add(static_cast<int>(i), static_cast<int>(i), &w.Z);
+      if (data.C.block(o, o, nb, nb).isZero(0.0)) continue;
+      Wb = k.kq * data.C.block(o, o, nb, nb);
+      add(static_cast<int>(i), static_cast<int>(i), &w.Rd);
+    }
+    for (const auto& [i, j] : tree.pairs) {
+      const Body& bi = model.bodies[static_cast<std::size_t>(i)];
+      const Body& bj = model.bodies[static_cast<std::size_t>(j)];
+      const int oi = bi.offset, ni = bi.ncoord(), oj = bj.offset, nj = bj.ncoord();
+      if (!data.C.block(oi, oj, ni, nj).isZero(0.0)) {
+        w.Wb.topLeftCorner(ni, nj) = k.kq * data.C.block(oi, oj, ni, nj);
+        add(i, j, &w.Rd);
+      }
+      if (!data.C.block(oj, oi, nj, ni).isZero(0.0)) {
+        w.Wb.topLeftCorner(nj, ni) = k.kq * data.C.block(oj, oi, nj, ni);
+        add(j, i, &w.Rd);
+      }
+    }
+    // The curvature of q(s) weighted by the absolute residual force F = M q_ddot - Q + Phi_q^T
+    // lambda (w.g holds the first two, assemble_residual): kq sum_k (dR/ds_k)^T F. The
+    // multipliers without the iterate's penalty forces alpha Phi, as the constraint Hessian above
+    // (FORMULATION.md 9): with them, far from the solution (the predictor), Newton on the
+    // benchmark's flexible slider-crank took 6 to 8 iterations instead of 3 or 4 and stopped
+    // converging at 0.031 s.
+    w.force = w.g;
+    for (int bi : tree.kept_blocks) {
+      const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
+      for (int x : {b.body1, b.body2, b.body3, b.body4}) {
+        if (x == kGround || (x == b.body2 && b.body2 == b.body1)) continue;
+        const Body& body = model.bodies[static_cast<std::size_t>(x)];
+        w.force.segment(body.offset, body.ncoord()).noalias() +=
+            data.Phiq.block(b.row0, body.offset, b.rows, body.ncoord()).transpose() * data.state.lambda.segment(b.row0, b.rows);
+      }
+    }
+    relative_curvature(model, data, k.kq, w.Ts);
+  }
   const auto d = w.Ts.diagonal().array().abs();
   w.scale = (d > 0).select(d.sqrt().inverse(), 1.0);
   w.lu.compute(w.scale.asDiagonal() * w.Ts * w.scale.asDiagonal());
@@ -147,6 +207,23 @@ void solve(RelativeWork& w, Data& data, const VectorXd& rhs, VectorXd& out) {
   out = w.scale.cwiseProduct(rhs);
   w.lu.solve_in_place(out);
   out.array() *= w.scale.array();
+}
+
+// The same with the projections' metric (refresh): the tangent without the rate and curvature
+// terms, factorised when first needed after a refresh.
+void solve_metric(RelativeWork& w, Data& data, const VectorXd& rhs, VectorXd& out) {
+  if (!w.exact_tangent) return solve(w, data, rhs, out);
+  if (w.metric_stale) {
+    const auto d = w.Tm.diagonal().array().abs();
+    w.scale_m = (d > 0).select(d.sqrt().inverse(), 1.0);
+    w.lu_m.compute(w.scale_m.asDiagonal() * w.Tm * w.scale_m.asDiagonal());
+    ++data.stats.factorizations;
+    w.metric_stale = false;
+  }
+  ++data.stats.solves;
+  out = w.scale_m.cwiseProduct(rhs);
+  w.lu_m.solve_in_place(out);
+  out.array() *= w.scale_m.array();
 }
 
 // out(kept rows) = Phis v.
@@ -181,7 +258,7 @@ double project(const Model& model, Data& data, VectorXd& x, const VectorXd& b, d
     w.r = data.alpha.cwiseProduct(w.c);
     w.f.setZero();
     add_phis_t(model, w, w.r, kq, w.f);
-    solve(w, data, w.f, w.ds);
+    solve_metric(w, data, w.f, w.ds);
     x -= w.ds;
   }
   return res;
@@ -236,11 +313,43 @@ void start_alpha(const Model& model, Data& data, double h) {
   --data.stats.steps;  // not a step of the run
 }
 
+// The iterate's rates and accelerations (affine in s through the scheme), its absolute state and
+// the model's evaluation there.
+void evaluate_at_s(const Model& model, Data& data, double t1) {
+  RelativeWork& w = *data.relative;
+  const StepCoefficients& k = data.state.k;
+  w.sd = k.c1 * w.s + w.sd_hat;
+  w.sdd = k.c2 * w.s + w.sdd_hat;
+  relative_kinematics(model, data, true);
+  evaluate(model, data, t1);
+}
+
+// w.f = kq R^T [M q_ddot - Q + Phi_q^T (lambda + alpha Phi)] at the evaluated iterate.
+void assemble_residual(const Model& model, Data& data) {
+  RelativeWork& w = *data.relative;
+  State& st = data.state;
+  data.lambda_eff = st.lambda + data.alpha.cwiseProduct(data.Phi);
+  // (The constraint forces through Phi_q R on the kept rows: the dropped rows' multipliers
+  // are zero, and the product over all of the dense Phi_q cost as much as the rest.)
+  if (model.relative->kept_rows > 0) projected_jacobian(model, data);
+  mass_times(model, data, st.qdd, w.g);
+  w.g -= data.Q;
+  w.f.noalias() = w.R.transpose() * w.g;
+  add_phis_t(model, w, data.lambda_eff, 1.0, w.f);
+  w.f *= st.k.kq;
+}
+
 }  // namespace
 
-void relative_step(const Model& model, Data& data, double h) {
+void relative_residual(const Model& model, Data& data, double t) {
+  evaluate_at_s(model, data, t);
+  assemble_residual(model, data);
+}
+
+void relative_tangent(const Model& model, Data& data, double t) { refresh(model, data, t); }
+
+void relative_begin_step(const Model& model, Data& data, double h) {
   const SolverSettings& s = model.settings;
-  const NewtonPolicy& p = s.policy.newton;
   RelativeWork& w = *data.relative;
   State& st = data.state;
   // A state this formulation did not produce (initialize, restore_state): take s from it.
@@ -251,7 +360,7 @@ void relative_step(const Model& model, Data& data, double h) {
   const AlphaParameters ap = AlphaParameters::from_spectral_radius(alpha ? s.spectral_radius : 1.0);
   st.k = alpha ? alpha_coefficients(ap, h) : trapezoidal_coefficients(h);
   const StepCoefficients& k = st.k;
-  const double h2 = h * h, t1 = st.t + h;
+  const double h2 = h * h;
   w.s0 = w.s;
   w.sd0 = w.sd;
   w.sdd0 = w.sdd;
@@ -279,27 +388,28 @@ void relative_step(const Model& model, Data& data, double h) {
   penalty_weights(model, data, data.W, s.penalty * k.c2, data.alpha);
   data.alpha.array() *= w.keep.array();
   st.lambda.array() *= w.keep.array();
+}
+
+void relative_step(const Model& model, Data& data, double h) {
+  const SolverSettings& s = model.settings;
+  const NewtonPolicy& p = s.policy.newton;
+  RelativeWork& w = *data.relative;
+  State& st = data.state;
+  relative_begin_step(model, data, h);
+  const bool alpha = s.integrator == Integrator::GeneralizedAlpha && !data.scheme.start_step;
+  const AlphaParameters ap = AlphaParameters::from_spectral_radius(alpha ? s.spectral_radius : 1.0);
+  const StepCoefficients& k = st.k;
+  const double h2 = h * h, t1 = st.t + h;
   double inc = 0, prev_inc = 0, viol = 0, left = 0;
   bool refresh_now = true, converged = false;
   int refreshes = 0, it = 0;
   for (it = 1; it <= s.max_iterations; ++it) {
-    w.sd = k.c1 * w.s + w.sd_hat;
-    w.sdd = k.c2 * w.s + w.sdd_hat;
-    relative_kinematics(model, data, true);
-    evaluate(model, data, t1);
+    evaluate_at_s(model, data, t1);
     viol = violation(model, data);
     if (!std::isfinite(viol) || !st.q.allFinite())
       throw SolverError(t1, viol, "Newton did not converge at t = " + fmt(t1) + " s (relative formulation): the state is not finite. Try a smaller step (solver.step = " + fmt(0.5 * h) + ")");
     if (it > 1) st.lambda += data.alpha.cwiseProduct(data.Phi);
-    data.lambda_eff = st.lambda + data.alpha.cwiseProduct(data.Phi);
-    // (The constraint forces through Phi_q R on the kept rows: the dropped rows' multipliers
-    // are zero, and the product over all of the dense Phi_q cost as much as the rest.)
-    if (model.relative->kept_rows > 0) projected_jacobian(model, data);
-    mass_times(model, data, st.qdd, w.g);
-    w.g -= data.Q;
-    w.f.noalias() = w.R.transpose() * w.g;
-    add_phis_t(model, w, data.lambda_eff, 1.0, w.f);
-    w.f *= k.kq;
+    assemble_residual(model, data);
     const bool refreshed = refresh_now;
     if (refresh_now) {
       refresh(model, data, t1);

@@ -241,7 +241,9 @@ RelativeWork::RelativeWork(const Model& model) {
   f = ds = scale = VectorXd::Zero(ns);
   rel_A.assign(model.bodies.size(), Matrix3d::Identity());
   rel_p.assign(model.bodies.size(), Vector3d::Zero());
-  R = MatrixXd::Zero(n, ns);
+  R = Rd = Ra = Z = MatrixXd::Zero(n, ns);
+  force = VectorXd::Zero(n);
+  frame_force.assign(model.bodies.size(), Eigen::Matrix<double, 3, 4>::Zero());
   weight = VectorXd::Ones(ns);
   keep = VectorXd::Zero(m);
   for (int bi : t.kept_blocks) {
@@ -251,7 +253,9 @@ RelativeWork::RelativeWork(const Model& model) {
     if (b.kind == BlockKind::Joint && t.tree_joint[static_cast<std::size_t>(b.index)] == 2 && b.first == 0) keep.segment(b.row0, 3).setZero();
   }
   Phis = MatrixXd::Zero(m, ns);
-  Ts = MatrixXd::Zero(ns, ns);
+  Ts = Tm = MatrixXd::Zero(ns, ns);
+  scale_m = VectorXd::Ones(ns);
+  lu_m.resize(std::max(ns, 1));
   int nb_max = 12;
   for (const Body& b : model.bodies) nb_max = std::max(nb_max, b.ncoord());
   Wb = MatrixXd::Zero(nb_max, nb_max);

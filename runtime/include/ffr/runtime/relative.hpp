@@ -84,6 +84,20 @@ struct RelativeWork {
   std::vector<Matrix3d> rel_A;
   std::vector<Vector3d> rel_p;
   MatrixXd R;              ///< dq/ds [n, ns]
+  /// dR/dt = d(R s_dot)/ds at fixed s_dot [n, ns]: q_ddot = R s_ddot + R_dot s_dot, and the
+  /// tangent's rate term d(R_dot s_dot)/d(s_dot) = 2 R_dot (FORMULATION.md 18).
+  MatrixXd Rd;
+  /// dq_ddot/ds at fixed s_dot and s_ddot [n, ns]: the curvature of q(s) in q_ddot.
+  MatrixXd Ra;
+  MatrixXd Z;  ///< work [n, ns]: 2 kv R_dot + kq Ra (the tangent's mass terms, one product)
+  /// The absolute residual force M q_ddot - Q + Phi_q^T (lambda + alpha Phi) [n], and per body
+  /// the part of it (with its descendants') that acts on its frame coordinates r, A ([3 x 4]:
+  /// force, then A's nine entries), for the curvature term sum_k (dR/ds_k)^T F.
+  VectorXd force;
+  std::vector<Eigen::Matrix<double, 3, 4>> frame_force;
+  /// false: the tangent without the derivatives of R (as before they were added; the tests
+  /// compare Newton's contraction with and without them).
+  bool exact_tangent = true;
   VectorXd weight;         ///< per relative coordinate: the scaled size of the displacement it causes
   VectorXd keep;           ///< per constraint row: 1 kept, 0 satisfied by the tree
   MatrixXd Phis;           ///< Phi_q R on the kept rows [m, ns] (zero elsewhere)
@@ -92,6 +106,12 @@ struct RelativeWork {
   MatrixXd PA;             ///< work [m, ns]: alpha times Phis
   SmallLU lu;
   VectorXd scale;
+  /// The projections' metric: the tangent without R's derivatives (refresh), its factors and
+  /// scaling, and whether it was rebuilt since it was last factorised.
+  MatrixXd Tm;
+  SmallLU lu_m;
+  VectorXd scale_m;
+  bool metric_stale = true;
   VectorXd f, ds, r, sigma, c, g, bias, qsave;
   /// The absolute state this formulation last produced: a different one (initialize,
   /// restore_state, the C API) makes the next step take its coordinates from it afresh.
@@ -110,6 +130,20 @@ Formulation choose_formulation(const Model& model, std::string& why);
 /// One ALI3-P step of h in the relative coordinates, trapezoidal or generalized-alpha as the
 /// model's solver says (step() calls it when the model has a relative tree). Allocation-free.
 void relative_step(const Model& model, Data& data, double h);
+
+/// The parts of relative_step, for the tests of its Newton iteration: the step's set-up to t + h
+/// (scheme coefficients, predictor of s, penalty weights); the residual f(s) at RelativeWork::s
+/// (s_dot and s_ddot affine in s through the scheme, the multipliers fixed) into
+/// RelativeWork::f, evaluating the model there; and the tangent df/ds at the last residual's
+/// iterate into RelativeWork::Ts (and factorised).
+void relative_begin_step(const Model& model, Data& data, double h);
+void relative_residual(const Model& model, Data& data, double t);
+void relative_tangent(const Model& model, Data& data, double t);
+
+/// Ts += factor sum_k (dR/ds_k)^T F (symmetric), F = RelativeWork::force: the curvature of q(s)
+/// weighted by the absolute residual force, by the tree's recursion (children's forces carried to
+/// their parents' frames).
+void relative_curvature(const Model& model, Data& data, double factor, MatrixXd& Ts);
 
 /// Takes the relative coordinates, rates and accelerations from the absolute state of data
 /// (consistent with the joints), with every tree joint coordinate zero there.
