@@ -144,7 +144,7 @@ FeBody consistent_rod(const syn::ChainParams& p) {
   if (es.info() != Eigen::Success) throw std::runtime_error("consistent_rod: eigen-solve failed");
   const VectorXd lam = es.eigenvalues();
   const int rigid = p.clamped ? 0 : 5;
-  if (rigid > 0 && !(lam(rigid) > 1e6 * std::abs(lam(rigid - 1))))
+  if (rigid > 0 && !(lam(rigid) > 1e3 * std::abs(lam(rigid - 1))))
     throw std::runtime_error("consistent_rod: no gap after the rigid-body modes");
   const MatrixXd Phi = es.eigenvectors().middleCols(rigid, nq);  // M-orthonormal
   VectorXd X(3 * n);
