@@ -11,11 +11,12 @@
 //    consistent-mass chain rod (33 ... ~1000 DOF) or a TET10 steel bar meshed and reduced by the
 //    preprocessor's library (thousands ... ~1M DOF), with 6 and 30 modes
 //    (tools/models/fe_bodies.hpp);
+//  - loops: the slider-crank (one cut joint) carrying a chain of 1 ... 20 rigid links;
 //  - vehicle: meshes/vehicle's model (prepared by its run.sh) in both formulations, invariants
 //    only (its frame is a beam model: FullMass carries translational mass only).
 // Output: one markdown row per model (stdout) and, with --csv, the same figures for plot.py.
 //
-// Usage: ffr-bench-formulations [--quick] [--part chains|mesh|vehicle|all] [--max-dof N]
+// Usage: ffr-bench-formulations [--quick] [--part chains|mesh|loops|vehicle|all] [--max-dof N]
 //                               [--work DIR] [--vehicle DIR] [--csv FILE]
 #include "fe_bodies.hpp"
 #include "formulation_models.hpp"
@@ -242,6 +243,42 @@ void mesh(const Args& a, const fs::path& dir) {
   }
 }
 
+/// Loops at lower coordinate ratios: the slider-crank (6-mode consistent rod, one cut joint) with
+/// a planar chain of n rigid links hinged to the slider (no gravity: the slider swings it), the
+/// crank at 15 rad/s.
+void loops(const Args& a, const fs::path& dir) {
+  header("### Loops: the slider-crank (one cut joint) carrying a chain of n rigid links on its slider");
+  const bench::FeBody rod = bench::consistent_rod(bench::rod_params(11, 6));
+  ffr::formats::write_sid(rod.sid, dir / "loop_rod.sid.h5");
+  for (int n : a.quick ? std::vector<int>{2} : std::vector<int>{1, 2, 5, 10, 20}) {
+    // The crank at 15 rad/s: at 150 the slider whips the links beyond what Newton follows at 1 ms.
+    std::string json = bench::slider_crank_json("loop_rod.sid.h5", 1e-3, 0.2, 15.0);
+    const double l = 0.1, m = 0.1, I = m * l * l / 12;
+    std::string bodies, joints;
+    for (int i = 0; i < n; ++i) {
+      const double x0 = 0.45 + l * i;
+      bodies += ",\n    {\"name\": \"link" + std::to_string(i) + "\", \"type\": \"rigid\", \"mass\": " + formulations::num(m) +
+                ", \"com\": [" + formulations::num(x0 + 0.5 * l) + ", 0, 0], \"inertia\": [[1e-7, 0, 0], [0, " + formulations::num(I) +
+                ", 0], [0, 0, " + formulations::num(I) + "]]}";
+      joints += ",\n    {\"name\": \"h" + std::to_string(i) + "\", \"type\": \"revolute\", \"body1\": \"" +
+                (i ? "link" + std::to_string(i - 1) : std::string("slider")) + "\", \"body2\": \"link" + std::to_string(i) +
+                "\", \"at\": [" + formulations::num(x0) + ", 0, 0], \"axis\": [0, 0, 1]}";
+    }
+    const std::string bodies_end = "\n  ],\n  \"joints\"", joints_end = "\n  ],\n  \"motions\"";
+    json.insert(json.find(bodies_end), bodies);
+    json.insert(json.find(joints_end), joints);
+    Case c;
+    c.group = "loop";
+    c.name = "slider-crank + " + std::to_string(n) + " links";
+    c.json = json;
+    c.full_mass["rod"] = rod.full_mass;
+    c.dof = rod.dof;
+    c.modes = 6;
+    c.loops = 1;
+    measure(c, dir, a.quick ? 2 : 5);
+  }
+}
+
 void vehicle(const Args& a, const fs::path&) {
   if (a.vehicle.empty()) return;
   header("### The vehicle (meshes/vehicle, prepared by its run.sh; h as in its model)");
@@ -282,7 +319,7 @@ int main(int argc, char** argv) {
     else if (s == "--vehicle") a.vehicle = value();
     else if (s == "--csv") a.csv = value();
     else {
-      std::fprintf(stderr, "usage: ffr-bench-formulations [--quick] [--part chains|mesh|vehicle|all] [--max-dof N] [--work DIR] [--vehicle DIR] [--csv FILE]\n");
+      std::fprintf(stderr, "usage: ffr-bench-formulations [--quick] [--part chains|mesh|loops|vehicle|all] [--max-dof N] [--work DIR] [--vehicle DIR] [--csv FILE]\n");
       return 2;
     }
   }
@@ -297,6 +334,7 @@ int main(int argc, char** argv) {
   const auto dir = bench::temp_dir("formulations");
   if (a.part == "all" || a.part == "chains") chains(a, dir);
   if (a.part == "all" || a.part == "mesh") mesh(a, dir);
+  if (a.part == "all" || a.part == "loops") loops(a, dir);
   if (a.part == "all" || a.part == "vehicle") vehicle(a, dir);
   fs::remove_all(dir);
   if (csv_file) std::fclose(csv_file);
