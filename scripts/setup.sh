@@ -21,6 +21,7 @@ packages=(
   zlib1g-dev
   python3-dev python3-numpy pybind11-dev   # the Python package (python/), for /usr/bin/python3
   unzip                                    # tests/fmu unpacks the FMUs as an importer does
+  python3-matplotlib                       # tools/bench/formulations/plot.py (the study's PNG)
   clang libclang-rt-14-dev   # libFuzzer and the sanitizers of tools/fuzz
   slepc-dev petsc-dev libopenmpi-dev openmpi-bin   # ffr-reduce's slepc backend (docs/cluster.md)
 )

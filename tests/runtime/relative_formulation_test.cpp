@@ -335,7 +335,7 @@ TEST(RelativeFormulation, RefusesWhatItCannotRun) {
 }
 
 TEST(RelativeFormulation, AutoSaysWhatItChose) {
-  // The rule (FORMULATION.md 18): relative when it has at most a third of the absolute coordinates.
+  // The rule (FORMULATION.md 18): relative when it has at most a third of the absolute coordinates in a tree, a fifth with loops.
   const Model chain = test::model_from(formulations::pendulum_chain_json(20, 1e-3, 0.01, "auto"));
   test::TempDir dir("relative_auto");
   test::write_sid_file(test::simeon_rod_sid(), dir / "rod.sid.h5");

@@ -55,7 +55,10 @@ void solid_part(const FeModel& model, const Assembled& fe, const Eigen::MatrixXd
   for (int b = 0; b < 3; ++b) {
     acc.Pdm.row(b) += ones.transpose() * Z(b);
     for (int a = 0; a < 3; ++a) acc.rPdm[a].row(b) += model.mesh->x.col(a).transpose() * Z(b);
-    acc.PPdm[b][b] += Phi_a(b).transpose() * Z(b);
+    // int Phi_a^T Phi_b dm = sum_pq Ms_pq Phi_pa^T Phi_qb: the products of two components of the
+    // same displacement field, nonzero for a != b too (a mode moving a point along x and y at
+    // once), though Ms (x) I3 couples no x DOF with a y DOF. The sample loop below fills a <= b.
+    for (int a = 0; a <= b; ++a) acc.PPdm[a][b] += Phi_a(a).transpose() * Z(b);
   }
 }
 
@@ -161,7 +164,7 @@ void compute_integrals(const FeModel& model, const Assembled& fe, const Eigen::M
     if (error) std::rethrow_exception(error);
     for (const auto& p : parts) total.add(p);
   }
-  // PPdm[b][a] = PPdm[a][b]^T (the sample loop fills a <= b only; the solid part is diagonal).
+  // PPdm[b][a] = PPdm[a][b]^T (the solid part and the sample loop fill a <= b only).
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < a; ++b) total.PPdm[a][b] = total.PPdm[b][a].transpose();
 

@@ -31,8 +31,9 @@ void body_rates(const Body& b, const Data& data, BodyData& bd) {
   const int o = b.offset;
   for (int a = 0; a < 3; ++a) bd.Ad.col(a) = data.state.qd.segment<3>(o + 3 + 3 * a);
   bd.omega = body_omega(bd.A, bd.Ad);
-  // PPdm y_dot feeds only the inertia forces, which a beam's held frame does not have.
-  if (b.nq == 0 || b.beam) return;
+  // PPdm y_dot feeds only the inertia forces, which a beam's held frame does not have, nor a
+  // body whose inertia comes from its FE mass matrix (body_fe_inertia.cpp).
+  if (b.nq == 0 || b.beam || b.full_mass) return;
   // One product with the stacked matrices instead of nine small ones, whose calls cost more
   // than their multiply-adds (through the vectorised kernel of the step's products).
   const Eigen::Index n9 = 9 * b.nq;
@@ -63,6 +64,9 @@ void update_bodies(const Model& model, Data& data, Scope scope) {
       bd.Jc = b.J0;
       continue;
     }
+    // A body whose inertia comes from its FE mass matrix gets md, S and Jc from those products
+    // (fe_mass_matrix, which every evaluation calls before anything reads them).
+    if (b.full_mass) continue;
     const auto y = data.state.q.segment(o + 12, b.nq);
     bd.md = b.rdm;
     bd.md.noalias() += b.Pdm * y;

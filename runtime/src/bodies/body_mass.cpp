@@ -51,14 +51,18 @@ void mass_times(const Model& model, const Data& data, const VectorXd& x, VectorX
 // slider-crank it is what kept Newton from converging quadratically once the tangent had been
 // rebuilt (spectral radius of T^-1 (T_fd - T) 1.6e-4 with it missing, 3.5e-5 with it, the rest
 // spread over the other blocks), at the cost of nine scaled nq x nq sums.
-void add_modal_acceleration_tangent(const Model& model, const Data& data, double scale, MatrixXd& T) {
+void add_modal_acceleration_tangent(const Model& model, Data& data, double scale, MatrixXd& T) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
     // A beam's held frame has no acceleration (Om = 0: FORMULATION.md 15).
     if (b.nq == 0 || b.beam || !data.integrated[i]) continue;
+    auto Tyy = T.block(b.offset + 12, b.offset + 12, b.nq, b.nq);
+    if (b.full_mass) {
+      fe_modal_acceleration_tangent(b, data.bodies[i], scale, Tyy);
+      continue;
+    }
     const BodyData& bd = data.bodies[i];
     const Matrix3d Om = bd.A.transpose() * bd.Add;  // Om(c, a) = A_c . A_dd_a, the weight of PPdm[c][a]
-    auto Tyy = T.block(b.offset + 12, b.offset + 12, b.nq, b.nq);
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < 3; ++c) Tyy += (scale * Om(c, a)) * b.PPdm[c][a];
   }

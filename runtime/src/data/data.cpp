@@ -75,7 +75,7 @@ Data::Data(const Model& model) : state(model), start(model) {
     if (b.full_mass) {
       const auto N3 = b.full_mass->X.size();
       bd.feB = bd.feG = bd.feD = MatrixXd::Zero(N3, nb);
-      bd.few = VectorXd::Zero(N3);
+      bd.few = bd.feg = VectorXd::Zero(N3);
     }
 
     // Initial state as given: frame, rates from the frame's velocity and angular velocity.

@@ -76,7 +76,7 @@ void force_tangents(const Model& model, Data& data, double t) {
     auto Kb = data.K.block(o, o, nb, nb);
     auto Cb = data.C.block(o, o, nb, nb);
     if (b.full_mass)
-      fe_inertia_tangents(b, data.bodies[i], data.state.qd.segment(o, nb), Cb);
+      fe_inertia_tangents(b, data.bodies[i], data.state.qd.segment(o, nb), Kb, Cb);
     else
       body_inertia_tangents(b, data.bodies[i], data.state.qd.segment(o, nb), Kb, Cb);
     body_applied_tangents(b, data.bodies[i], model.gravity, Kb, Cb);

@@ -275,19 +275,32 @@ Formulation choose_formulation(const Model& m, std::string& why) {
   RelativeTree t;
   int ntree = 0, nfree = 0;
   span(m, t, ntree, nfree);
-  int n = 0;
-  for (const Body& b : m.bodies) n += b.ncoord();
-  // Relative when it has at most a third of the absolute coordinates. Measured
-  // (tools/bench/formulations/RESULTS.md): the chains and the four-bar (1/12 of the coordinates)
-  // ran faster in relative coordinates, the flexible slider-crank (its rod, joined at nodes,
-  // free: 24 of 46 coordinates; placed at its point on the crank: 21 of 46), slower. The threshold lies between those
-  // measured ratios; where between them the two break even was not measured.
-  const bool rel = n > 0 && 3 * t.ns <= n;
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%d relative coordinates against %d absolute ones (%d bodies placed by joints, %d free)", t.ns, n, ntree,
-                nfree);
+  int n = 0, flexible = 0, modes = 0;
+  for (const Body& b : m.bodies) {
+    n += b.ncoord();
+    if (b.nq > 0) ++flexible, modes += b.nq;
+  }
+  // Loops: the joints the tree does not place stay constraints (cut joints).
+  int cut = 0;
+  for (const char c : t.tree_joint) cut += c == 0 ? 1 : 0;
+  // Relative when its coordinates are at most a third of the absolute ones in a tree (no cut
+  // joint), a fifth with loops. Measured (tools/bench/formulations/RESULTS.md, side by side in one
+  // run, per-step CPU time): trees ran faster in relative coordinates at ratios 1/12 (rigid
+  // chains) up to 0.26 (five rigid links and a flexible one, 1.4 times), slower from 0.40 (two
+  // rigid links and a flexible one: 0.9 times; the vehicle, 0.61: 0.8; flexible links hinged at
+  // their nodes, 0.83: 0.56 down to 0.02); with one cut joint (the slider-crank carrying a chain
+  // of rigid links) faster at 0.17 (1.1 times) and below, slower from 0.22 (0.9, and 0.6 at 0.33;
+  // the flexible slider-crank alone, 0.40: 0.35): the cut joint's rows, projected through R,
+  // cost the relative step more. The thresholds lie between those measured ratios.
+  const bool rel = n > 0 && (cut == 0 ? 3 * t.ns <= n : 5 * t.ns <= n);
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "%d relative coordinates against %d absolute ones; %zu bodies (%d flexible, %d modes), %d placed by joints, %d free, "
+                "%d cut joint(s)",
+                t.ns, n, m.bodies.size(), flexible, modes, ntree, nfree, cut);
   why = std::string(rel ? "relative" : "absolute") + " (solver.formulation \"auto\": " + buf +
-        "; relative when it has at most a third of the absolute coordinates)";
+        "; relative when it has at most " + (cut == 0 ? "a third of the absolute coordinates without loops" : "a fifth of the absolute coordinates with loops") +
+        ", the measured break-even of FORMULATION.md 18)";
   return rel ? Formulation::Relative : Formulation::Absolute;
 }
 

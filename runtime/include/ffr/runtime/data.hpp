@@ -38,7 +38,7 @@ struct BodyData {
   MatrixXd beam_K, beam_C;      ///< a beam's elastic and damping tangents at the last body_applied_forces [nq, nq]
   Eigen::Matrix<double, 6, Eigen::Dynamic> iface_load;  ///< per stiffening interface: F, M in K
   MatrixXd feB, feG, feD;       ///< co-rotational path only: B, M_FE B, dw/dz_dot [3N, nb]
-  VectorXd few;                 ///< co-rotational path only: 2 A_dot Phi y_dot [3N]
+  VectorXd few, feg;            ///< co-rotational path only: w = 2 A_dot Phi y_dot and M_FE w [3N]
   VectorXd wq;                  ///< work [nq]
 };
 

@@ -21,7 +21,7 @@ void mass_times(const Model& model, const Data& data, const VectorXd& x, VectorX
 
 /// T += scale * d(M(q) q_dd)/dy at frozen q_dd, for the modal block of each integrated flexible
 /// body (FORMULATION.md 9): sum_ab (A_b . A_dd_a) PPdm[b][a]. Needs update_bodies (bd.A, bd.Add).
-void add_modal_acceleration_tangent(const Model& model, const Data& data, double scale, MatrixXd& T);
+void add_modal_acceleration_tangent(const Model& model, Data& data, double scale, MatrixXd& T);
 
 /// data.Q at time t. Needs update_bodies, update_markers and the mass matrices (for nothing
 /// else than the stiffening accelerations, which come from data.state.qdd). A driven body's own terms
@@ -34,11 +34,14 @@ void force_tangents(const Model& model, Data& data, double t);
 
 // ---- the parts, exposed for tests --------------------------------------------------------
 
-/// The co-rotational path of a body with full_mass (see FullMass): mass matrix, then inertia
-/// forces into Qb and their velocity tangent into Cb.
+/// The co-rotational path of a body with full_mass (see FullMass): mass matrix (and md, Jc, S
+/// from it), then inertia forces into Qb, their tangents -dQ/dz, -dQ/dzd into Kb, Cb, and the
+/// modal block of d(M(q) q_dd)/dy times scale into Tyy ([nq, nq]).
 void fe_mass_matrix(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& z);
 void fe_inertia_forces(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<VectorXd> Qb);
-void fe_inertia_tangents(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<MatrixXd> Cb);
+void fe_inertia_tangents(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<MatrixXd> Kb,
+                         Eigen::Ref<MatrixXd> Cb);
+void fe_modal_acceleration_tangent(const Body& b, BodyData& bd, double scale, Eigen::Ref<MatrixXd> Tyy);
 
 /// Velocity-dependent inertia forces of one body (local vector, nb) added to Qb.
 void body_inertia_forces(const Body& b, const BodyData& bd, const Eigen::Ref<const VectorXd>& zd,
