@@ -300,11 +300,11 @@ TEST(Slepc, MumpsOrderingsAndOutOfCoreGiveTheSerialSid) {
     const char* ordering_used;
     const char* storage;
   };
-  for (const Case& c : {Case{R"(, "mumps_ordering": "amd")", "MUMPS: AMD ordering", "in core"},
-                        Case{R"(, "mumps_ordering": "qamd")", "MUMPS: QAMD ordering", "in core"},
-                        Case{R"(, "out_of_core": true, "out_of_core_dir": "ooc")", "MUMPS: PORD ordering", "out of core"},
+  for (const Case& c : {Case{R"(, "mumps_ordering": "amd")", "MUMPS: AMD ordering", "factors in core"},
+                        Case{R"(, "mumps_ordering": "qamd")", "MUMPS: QAMD ordering", "factors in core"},
+                        Case{R"(, "out_of_core": true, "out_of_core_dir": "ooc")", "MUMPS: PORD ordering", "factors out of core"},
                         Case{R"(, "mumps_ordering": "amf", "out_of_core": true, "out_of_core_dir": "ooc")",
-                             "MUMPS: AMF ordering", "out of core"}}) {
+                             "MUMPS: AMF ordering", "factors out of core"}}) {
     SCOPED_TRACE(c.extra);
     test::TempDir dir("slepc_mumps");
     write_mumps_part(dir, c.extra);

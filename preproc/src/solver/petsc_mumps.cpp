@@ -118,17 +118,21 @@ std::string mumps_outcome(PetscErrorCode ierr, const char* call, PC pc, const Mu
   if (choices.ordering() >= 0 && choices.ordering() != 7 && used >= 0 && used != choices.ordering())
     throw std::runtime_error(std::string("slepc backend: MUMPS ordered by ") + ordering_name(used) + ", not by the " +
                              ordering_name(choices.ordering()) +
-                             " asked for (reduction.mumps_ordering): this MUMPS is built without it; choose another "
-                             "ordering (" + mumps_ordering_names() + ")");
+                             " asked for (reduction.mumps_ordering): this MUMPS is built without it; choose one it "
+                             "has (\"pord\", the default, is in every MUMPS; \"amd\", \"amf\", \"qamd\")");
+  PetscInt est_max = 0, est_sum = 0;
   MatMumpsGetInfog(F, 29, &entries);
   MatMumpsGetInfog(F, 18, &mem_max);
   MatMumpsGetInfog(F, 19, &mem_sum);
+  MatMumpsGetInfog(F, 16, &est_max);
+  MatMumpsGetInfog(F, 17, &est_sum);
   PetscInt ooc = 0;
   MatMumpsGetIcntl(F, 22, &ooc);
   std::ostringstream o;
   o << "MUMPS: " << ordering_name(used) << " ordering, " << count_of(entries) << " entries in the factor (INFOG(29)), "
     << mem_max << " MB allocated on the largest rank, " << mem_sum << " MB on all (INFOG(18), INFOG(19)), "
-    << (ooc ? "out of core" : "in core");
+    << "factors " << (ooc ? "out of core" : "in core") << "; in-core estimate " << est_max << " MB on the largest rank, "
+    << est_sum << " MB on all (INFOG(16), INFOG(17))";
   return o.str();
 }
 

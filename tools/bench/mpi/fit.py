@@ -59,7 +59,7 @@ def read(files):
         head = lines[0]
         for l in lines[1:]:
             r = dict(zip(head, l))
-            for k in ("mumps", "factor_entries", "mumps_mb_max", "load_mean_max"):
+            for k in ("mumps", "factor_entries", "mumps_mb_max", "load_mean_max", "mumps_incore_estimate_mb_max"):
                 r.setdefault(k, "-")
             rows.append(r)
     return rows
@@ -71,12 +71,13 @@ def main():
     only = next((a.split("=", 1)[1] for a in sys.argv[1:] if a.startswith("--mumps=")), None)
     rows = read(args)
     rows.sort(key=lambda r: (int(r["dof"]), r["path"] != "serial", r["ranks"], r["mumps"]))
-    print("| size | DOF | path | ranks | MUMPS | wall [s] | peak RSS per rank [MiB] | factor entries | MUMPS MB (largest rank) | load (mean/max) | SID vs serial |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| size | DOF | path | ranks | MUMPS | wall [s] | peak RSS per rank [MiB] | factor entries | MUMPS MB (largest rank) | MUMPS in-core estimate MB | load (mean/max) | SID vs serial |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         name = "serial (default)" if r["path"] == "serial" else "slepc"
         print(f"| {r['size']} | {r['dof']} | {name} | {r['ranks']} | {r['mumps']} | {r['wall_s']} | "
               f"{r['maxrss_mib_per_rank'].replace(',', ' / ')} | {r['factor_entries']} | {r['mumps_mb_max']} | "
+              f"{r['mumps_incore_estimate_mb_max']} | "
               f"{r['load_mean_max']} | {r['diff']} |")
     runs = [(int(r["dof"]), int(r["ranks"]), max(float(x) for x in r["maxrss_mib_per_rank"].split(",")))
             for r in rows if r["path"] != "serial" and r["ranks"] != "-" and r["diff"] in ("equivalent", "-")

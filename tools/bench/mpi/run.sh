@@ -10,7 +10,8 @@
 # Each process runs under /usr/bin/time -v (its own file per rank): wall time and the maximum
 # resident set of every rank; the load average of the machine is sampled every 10 s during the
 # run (mean and largest of the 1-minute figure); rank 0's log gives MUMPS's factor (ordering,
-# entries INFOG(29), MB allocated on the largest rank INFOG(18)). The SIDs of the slepc runs are
+# entries INFOG(29), MB allocated on the largest rank INFOG(18), MUMPS's estimate for an in-core
+# factorization INFOG(16)). The SIDs of the slepc runs are
 # compared with the serial one (ffr-diff --rtol 1e-6). The runs are sequential, niced, one at a
 # time.
 #
@@ -19,8 +20,9 @@
 #
 # Results go to DIR/results.tsv (appended: one line a run) and fit.py turns them into the
 # tables and the memory model of RESULTS.md. A run is skipped when the memory it is expected to
-# need (from the largest run so far of the same path and MUMPS settings, scaled by DOF^1.3),
-# plus 3 GiB kept free for the machine's other work, exceeds MemAvailable.
+# need (from the largest run so far of the same path and MUMPS settings, scaled by the growth
+# between its two largest sizes), plus 3 GiB kept free for the machine's other work, exceeds
+# MemAvailable.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/../../.." && pwd)
@@ -42,7 +44,7 @@ if [ $build = 1 ]; then cmake --build "$root/build" -j 2 --target ffr-reduce ffr
 bin="$root/build/bin"
 mkdir -p "$workdir"
 tsv="$workdir/results.tsv"
-[ -f "$tsv" ] || printf 'size\tdof\tpath\tranks\twall_s\tmaxrss_mib_per_rank\tdiff\tmumps\tfactor_entries\tmumps_mb_max\tload_mean_max\n' > "$tsv"
+[ -f "$tsv" ] || printf 'size\tdof\tpath\tranks\twall_s\tmaxrss_mib_per_rank\tdiff\tmumps\tfactor_entries\tmumps_mb_max\tload_mean_max\tmumps_incore_estimate_mb_max\n' > "$tsv"
 # The MUMPS settings of the slepc runs, as the results name them.
 mumps="${ordering:-default}/$([ $ooc = 1 ] && echo out-of-core || echo in-core)"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -99,22 +101,26 @@ slepc_part() {
 }
 
 # Memory a run is expected to need (MiB): the largest finished run of this path (and, for the
-# slepc ones, these MUMPS settings), scaled by DOF^1.3.
+# slepc ones, these MUMPS settings), scaled by DOF^e, e the growth between its two largest
+# sizes (kept within 1.0 to 1.5; 1.3 with one size only).
 expected_mib() {
   local path=$1 dof=$2
-  awk -F'\t' -v p="$path" -v d="$dof" -v s="$mumps" 'NR>1 && $3==p && (p=="serial" || $8==s) && $6 ~ /^[0-9,]+$/ && $2>best {
-      best=$2; n=split($6,r,","); m=0; for(i=1;i<=n;i++) m+=r[i]; mem=m}
-    END{if (best>0) printf "%d", mem * (d/best)^1.3; else print 0}' "$tsv"
+  awk -F'\t' -v p="$path" -v d="$dof" -v s="$mumps" 'NR>1 && $3==p && (p=="serial" || $8==s) && $6 ~ /^[0-9,]+$/ {
+      n=split($6,r,","); m=0; for(i=1;i<=n;i++) m+=r[i]; mem[$2]=m}
+    END{k=0; for (x in mem) xs[++k]=x+0; if (k==0) {print 0; exit}
+      for (i=1;i<=k;i++) for (j=i+1;j<=k;j++) if (xs[j]>xs[i]) {t=xs[i]; xs[i]=xs[j]; xs[j]=t}
+      e=1.3; if (k>1) {e=log(mem[xs[1]]/mem[xs[2]])/log(xs[1]/xs[2]); if (e<1) e=1; if (e>1.5) e=1.5}
+      printf "%d", mem[xs[1]] * (d/xs[1])^e}' "$tsv"
 }
 
 run_one() {
-  local tag=$1 path=$2 dir dof need out ranks rss wall diff config entries mb sampler load
+  local tag=$1 path=$2 dir dof need out ranks rss wall diff config entries mb est sampler load
   dir="$workdir/$tag" dof=$((3 * $(nodes_of "$workdir/$tag/plate.msh")))
   config=$([ "$path" = serial ] && echo - || echo "$mumps")
   need=$(expected_mib "$path" "$dof")
   if [ $((need + 3072)) -gt "$(avail_mib)" ]; then
     echo "run.sh: $tag $path skipped: expected $need MiB (+3072 kept free), $(avail_mib) MiB available" >&2
-    printf '%s\t%s\t%s\t-\t-\tskipped (expected %s MiB)\t-\t%s\t-\t-\t-\n' "$tag" "$dof" "$path" "$need" "$config" >> "$tsv"
+    printf '%s\t%s\t%s\t-\t-\tskipped (expected %s MiB)\t-\t%s\t-\t-\t-\t-\n' "$tag" "$dof" "$path" "$need" "$config" >> "$tsv"
     return
   fi
   rm -f "$dir/time.$path."* "$dir/$path.sid.h5" "$dir/load.$path"
@@ -138,14 +144,15 @@ run_one() {
   rss=$(for r in $(seq 0 $((ranks - 1))); do maxrss_mib "$dir/time.$path.$r"; echo; done | paste -sd, -)
   entries=$(sed -n 's/.*MUMPS: .* ordering, \([0-9]*\) entries.*/\1/p' "$dir/$path.log" | tail -1)
   mb=$(sed -n 's/.*entries in the factor (INFOG(29)), \([0-9]*\) MB allocated.*/\1/p' "$dir/$path.log" | tail -1)
+  est=$(sed -n 's/.*in-core estimate \([0-9]*\) MB on the largest rank.*/\1/p' "$dir/$path.log" | tail -1)
   diff=-
   if [ ! -f "$out" ]; then
     diff="FAILED (see $path.log)"
   elif [ "$path" != serial ] && [ -f "$dir/serial.sid.h5" ]; then
     if "$bin/ffr-diff" "$dir/serial.sid.h5" "$out" --rtol 1e-6 > "$dir/diff.$path.txt" 2>&1; then diff=equivalent; else diff=DIFFERENT; fi
   fi
-  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$tag" "$dof" "$path" "$ranks" "$wall" "$rss" "$diff" "$config" \
-    "${entries:--}" "${mb:--}" "$load" >> "$tsv"
+  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$tag" "$dof" "$path" "$ranks" "$wall" "$rss" "$diff" "$config" \
+    "${entries:--}" "${mb:--}" "$load" "${est:--}" >> "$tsv"
   echo "run.sh: $tag ($dof DOF) $path [$config]: ${wall} s, max RSS per rank ${rss} MiB, factor ${entries:--} entries, $diff, load $load" >&2
 }
 
