@@ -280,6 +280,112 @@ TEST(Slepc, OneRankFailingEndsTheJobWithoutSid) {
   EXPECT_EQ(stray_files(dir), "");
 }
 
+// The solid bar clamped with the part file's MUMPS settings (reduction.mumps_ordering,
+// out_of_core), written after the backend: the part's own reduction with `extra` keys.
+void write_mumps_part(const test::TempDir& dir, const std::string& extra) {
+  std::string json = part_json(Body::Solid, Method::Clamped, "slepc");
+  json.insert(json.rfind("}}"), extra);
+  test::write_text(dir / "part.geo", kSolidGeo);
+  test::write_text(dir / "part.json", json);
+}
+
+// MUMPS's other fill-reducing orderings and its out-of-core factors change how the factor is
+// computed and stored, not what it is: on two ranks the SID is the serial path's (reference:
+// the serial path, as above; ffr-diff at rtol 1e-6). The out-of-core files, written to the
+// part's out_of_core_dir, are gone afterwards; the log names the ordering MUMPS used (its
+// INFOG(7)) and whether its factor was in core.
+TEST(Slepc, MumpsOrderingsAndOutOfCoreGiveTheSerialSid) {
+  struct Case {
+    const char* extra;
+    const char* ordering_used;
+    const char* storage;
+  };
+  for (const Case& c : {Case{R"(, "mumps_ordering": "amd")", "MUMPS: AMD ordering", "factors in core"},
+                        Case{R"(, "mumps_ordering": "qamd")", "MUMPS: QAMD ordering", "factors in core"},
+                        Case{R"(, "out_of_core": true, "out_of_core_dir": "ooc")", "MUMPS: PORD ordering", "factors out of core"},
+                        Case{R"(, "mumps_ordering": "amf", "out_of_core": true, "out_of_core_dir": "ooc")",
+                             "MUMPS: AMF ordering", "factors out of core"}}) {
+    SCOPED_TRACE(c.extra);
+    test::TempDir dir("slepc_mumps");
+    write_mumps_part(dir, c.extra);
+    fs::create_directory(dir / "ooc");
+    const auto serial = test::run(reduce_command(dir, "serial.sid.h5") + " --backend block");
+    ASSERT_EQ(serial.status, 0) << serial.output;
+    const std::string logged =
+        test::bin("ffr-reduce").string() + " " + (dir / "part.json").string() + " -o " + (dir / "mpi.sid.h5").string();
+    const auto mpi = test::run(mpirun(2, logged));
+    ASSERT_EQ(mpi.status, 0) << mpi.output;
+    EXPECT_NE(mpi.output.find(c.ordering_used), std::string::npos) << mpi.output;
+    EXPECT_NE(mpi.output.find(c.storage), std::string::npos) << mpi.output;
+    const auto diff = test::run(test::bin("ffr-diff").string() + " " + (dir / "serial.sid.h5").string() + " " +
+                                (dir / "mpi.sid.h5").string() + " --rtol 1e-6");
+    EXPECT_EQ(diff.status, 0) << diff.output;
+    EXPECT_TRUE(fs::is_empty(dir / "ooc"));
+  }
+}
+
+// MUMPS failing in its factorization (provoked by a limit of 1 MB of working memory per rank,
+// ICNTL(23), through PETSC_OPTIONS: MUMPS's code -19): the message names the stage, MUMPS's
+// INFOG(1) and what to try; exit status 1 on every rank, no SID and no temporary file.
+TEST(Slepc, MumpsFailureNamesStageCodeAndRemedy) {
+  test::TempDir dir("slepc_mumps_fail");
+  write_mumps_part(dir, "");
+  const auto r = test::run(mpirun(2, reduce_command(dir, "out.sid.h5"), "PETSC_OPTIONS='-st_mat_mumps_icntl_23 1'"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("MUMPS's numerical factorization failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("INFOG(1) = -19"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ICNTL(23)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("out_of_core"), std::string::npos) << r.output;
+  EXPECT_EQ(stray_files(dir), "");
+}
+
+// An ordering this MUMPS may lack (Debian's is built with PORD, AMD, AMF and QAMD only): where
+// MUMPS orders by another method, the run is refused naming the field and the ordering used;
+// where it has METIS, the SID is the serial path's.
+TEST(Slepc, OrderingMumpsLacksIsNamed) {
+  test::TempDir dir("slepc_metis");
+  write_mumps_part(dir, R"(, "mumps_ordering": "metis")");
+  const auto r = test::run(mpirun(2, reduce_command(dir, "mpi.sid.h5")));
+  if (r.status == 0) {
+    const auto serial = test::run(reduce_command(dir, "serial.sid.h5") + " --backend block");
+    ASSERT_EQ(serial.status, 0) << serial.output;
+    const auto diff = test::run(test::bin("ffr-diff").string() + " " + (dir / "serial.sid.h5").string() + " " +
+                                (dir / "mpi.sid.h5").string() + " --rtol 1e-6");
+    EXPECT_EQ(diff.status, 0) << diff.output;
+  } else {
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find("not by the METIS asked for (reduction.mumps_ordering)"), std::string::npos) << r.output;
+    EXPECT_EQ(stray_files(dir), "");
+  }
+}
+
+// The MUMPS keys checked with the part file: an unknown ordering, a key with a serial backend,
+// an out-of-core directory that does not exist or without out_of_core: each names its field,
+// exit status 2, no SID.
+TEST(Slepc, BadMumpsKeysRefused) {
+  struct Case {
+    std::string extra, backend, field, text;
+  };
+  for (const Case& c : {Case{R"(, "mumps_ordering": "nested")", "slepc", "reduction.mumps_ordering", "pord"},
+                        Case{R"(, "out_of_core": true, "out_of_core_dir": "no_such_dir")", "slepc",
+                             "reduction.out_of_core_dir", "not a directory"},
+                        Case{R"(, "out_of_core_dir": ".")", "slepc", "reduction.out_of_core_dir", "\"out_of_core\": true"},
+                        Case{R"(, "out_of_core": "yes")", "slepc", "reduction.out_of_core", ""},
+                        Case{R"(, "mumps_ordering": "amd")", "block", "reduction.mumps_ordering", "only for backend"}}) {
+    SCOPED_TRACE(c.extra);
+    test::TempDir dir("slepc_mumps_keys");
+    std::string json = part_json(Body::Solid, Method::Clamped, c.backend);
+    json.insert(json.rfind("}}"), c.extra);
+    test::write_text(dir / "part.geo", kSolidGeo);
+    test::write_text(dir / "part.json", json);
+    const auto r = test::run(reduce_command(dir, "out.sid.h5"));
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find(c.field), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(c.text), std::string::npos) << r.output;
+    EXPECT_EQ(stray_files(dir), "");
+  }
+}
+
 #else
 
 // Built without SLEPc: the backend is refused at the part file, naming the field, exit status 2.

@@ -197,7 +197,8 @@ InterfaceSpec read_interface(const JsonNode& n) {
 }
 
 ReductionSpec read_reduction(const JsonNode& n) {
-  n.allow_only({"method", "interface", "interfaces", "frame", "modes", "max_frequency_hz", "orthonormalize", "backend", "factorization"});
+  n.allow_only({"method", "interface", "interfaces", "frame", "modes", "max_frequency_hz", "orthonormalize", "backend", "factorization",
+                "mumps_ordering", "out_of_core", "out_of_core_dir"});
   ReductionSpec r;
   const std::string m = n.at("method").string();
   if (m == "free") r.method = ReductionSpec::Method::Free;
@@ -234,6 +235,21 @@ ReductionSpec read_reduction(const JsonNode& n) {
   if (r.backend == "slepc" && !slepc_available())
     n.at("backend").fail("backend \"slepc\" is not built into this program (configure with -DFFR_SLEPC=ON and "
                          "Debian's slepc-dev, petsc-dev and libopenmpi-dev)");
+  // MUMPS's choices: the slepc backend's only (the serial path orders and factorizes itself).
+  for (const char* key : {"mumps_ordering", "out_of_core", "out_of_core_dir"})
+    if (n.has(key) && r.backend != "slepc")
+      n.at(key).fail("only for backend \"slepc\" (MUMPS's factorization); the serial path has its own");
+  if (auto o = n.find("mumps_ordering")) {
+    r.mumps.ordering = o->string();
+    if (mumps_ordering_code(r.mumps.ordering) < 0)
+      o->fail("unknown MUMPS ordering '" + r.mumps.ordering + "' (" + mumps_ordering_names() + ")");
+  }
+  r.mumps.out_of_core = n.boolean_or("out_of_core", false);
+  if (auto d = n.find("out_of_core_dir")) {
+    if (!r.mumps.out_of_core) d->fail("a directory for out-of-core factors needs \"out_of_core\": true");
+    r.mumps.out_of_core_dir = d->string();  // made absolute and checked by load_part
+    if (r.mumps.out_of_core_dir.empty()) d->fail("an empty directory name");
+  }
   r.factorization = n.string_or("factorization", "supernodal");
   if (r.factorization != "supernodal" && r.factorization != "cholmod")
     n.at("factorization").fail("factorization must be \"supernodal\" or \"cholmod\"");
@@ -388,6 +404,14 @@ PartSpec load_part(const std::filesystem::path& path) {
   if (auto is = root.find("interfaces"))
     for (const auto& n : is->items()) p.interfaces.push_back(read_interface(n));
   p.reduction = read_reduction(root.at("reduction"));
+  if (!p.reduction.mumps.out_of_core_dir.empty()) {
+    // Relative to the part file, as the geometry; it must exist and take files on every rank.
+    const JsonNode d = root.at("reduction").at("out_of_core_dir");
+    const std::filesystem::path dir = std::filesystem::absolute(path.parent_path() / p.reduction.mumps.out_of_core_dir);
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec)) d.fail("not a directory: " + dir.string());
+    p.reduction.mumps.out_of_core_dir = dir.string();
+  }
   if (auto d = root.find("damping")) p.damping = read_damping(*d);
   p.stiffening = root.boolean_or("stiffening", false);
   if (auto pl = root.find("preload")) p.preload = read_preload(*pl);

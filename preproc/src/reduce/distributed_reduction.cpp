@@ -121,6 +121,7 @@ ReductionResult DistributedReduction::reduce(Assembled& fe, const ReductionLog& 
     line << "timing: constraints " << t_constraints << " s, SLEPc Krylov-Schur with its MUMPS factorization "
          << modes.solve_seconds << " s (" << modes.iterations << " restarts), checks " << modes.verify_seconds << " s";
     log.message(line.str());
+    if (!modes.factor.empty()) log.message(modes.factor);
   }
   require_no_zero_modes(model_, modes.lambda, free ? "beyond the six rigid-body modes" : "with the interface held");
 

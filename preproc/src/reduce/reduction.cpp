@@ -70,6 +70,7 @@ EigenOptions eigen_options(const ReductionSpec& spec, const PartSpec& part, doub
               : spec.backend == "slepc" ? EigenBackend::Slepc
                                         : EigenBackend::Spectra;
   o.factor = detail::eigen_factor_options(spec);
+  o.mumps = spec.mumps;
   return o;
 }
 
@@ -370,7 +371,7 @@ void craig_bampton_basis(const FeModel& model, const Assembled& fe, const Constr
   Eigen::MatrixXd Psi_i;
   try {
     if (distributed) {
-      Psi_i = -detail::distributed_spd_solve(split.Kii, SymmetricStorage::Full, Eigen::MatrixXd(split.Kib));
+      Psi_i = -detail::distributed_spd_solve(split.Kii, SymmetricStorage::Full, Eigen::MatrixXd(split.Kib), spec.mumps);
     } else {
       factor.factorize(split.Kii);
       Psi_i = -factor.solve(Eigen::MatrixXd(split.Kib));

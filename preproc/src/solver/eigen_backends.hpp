@@ -29,6 +29,7 @@ struct LanczosRequest {
   double tol = 0;
   double sigma = 0;
   const Eigen::VectorXd* v0 = nullptr;  ///< starting vector, already projected by P
+  MumpsOptions mumps;
 };
 
 struct BackendOutcome {
@@ -74,6 +75,7 @@ struct SlepcRequest {
   double tol = 0;
   double sigma = 0;
   const Eigen::VectorXd* v0 = nullptr;  ///< starting vector, already projected by P
+  MumpsOptions mumps;                   ///< its factorization's ordering and out-of-core choice
 };
 
 /// SLEPc's Krylov-Schur, shift-invert with a MUMPS Cholesky factor of K - sigma M, distributed
@@ -89,7 +91,8 @@ BackendOutcome run_slepc(const SparseRef& K, SymmetricStorage sK, const SparseRe
 /// solve a column; collective: every rank passes the same A and B and gets all of X. A failed
 /// factorization (A not definite) throws NotPositiveDefiniteError with column -1 (MUMPS does
 /// not say where); other PETSc failures std::runtime_error.
-Eigen::MatrixXd distributed_spd_solve(const SparseRef& A, SymmetricStorage sA, const Eigen::MatrixXd& B);
+Eigen::MatrixXd distributed_spd_solve(const SparseRef& A, SymmetricStorage sA, const Eigen::MatrixXd& B,
+                                      const MumpsOptions& mumps);
 
 /// All eigenpairs with lambda > sigma of the pencil restricted to the M-orthogonal
 /// complement of the deflation basis, by Eigen's dense solver. n <= a few thousand.

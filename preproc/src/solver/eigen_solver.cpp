@@ -255,7 +255,7 @@ struct EigenSolver::Run {
   detail::BackendOutcome slepc_krylov_schur(int nev, const Eigen::VectorXd& v0) {
     const EigenOptions& o = options();
     const int ncv = o.ncv > 0 ? static_cast<int>(std::min<Eigen::Index>(std::max(o.ncv, nev + 1), n_eff)) : 0;
-    const detail::SlepcRequest req{nev, ncv, o.max_restarts, o.lanczos_tol, o.sigma, &v0};
+    const detail::SlepcRequest req{nev, ncv, o.max_restarts, o.lanczos_tol, o.sigma, &v0, o.mumps};
     return detail::run_slepc(K, sK, M, sM, deflation, req);
   }
 

@@ -5,7 +5,12 @@
 #include <stdexcept>
 
 #if FFR_HAVE_SLEPC
+#include "petsc_support.hpp"
+
 #include <slepcsys.h>  // and MPI's C interface, without its C++ bindings
+
+#include <mutex>
+#include <string>
 #endif
 
 namespace ffr::preproc {
@@ -16,6 +21,28 @@ std::atomic<bool> g_active{false};
 bool parallel_session_active() { return g_active; }
 
 #if FFR_HAVE_SLEPC
+
+namespace {
+std::mutex g_message_mutex;
+std::string g_message;
+
+// PETSc's error handler of the session: the first message of an error (where it was raised:
+// MUMPS's INFOG codes are only in it) kept for the backend's exception, nothing printed, the
+// error code returned as PetscReturnErrorHandler does.
+PetscErrorCode keep_message(MPI_Comm, int, const char*, const char*, PetscErrorCode n, PetscErrorType p, const char* mess,
+                            void*) {
+  if (p == PETSC_ERROR_INITIAL) {
+    std::lock_guard<std::mutex> lock(g_message_mutex);
+    g_message = mess ? mess : "";
+  }
+  return n;
+}
+}  // namespace
+
+std::string detail::last_petsc_message() {
+  std::lock_guard<std::mutex> lock(g_message_mutex);
+  return g_message;
+}
 
 bool slepc_available() { return true; }
 
@@ -28,7 +55,7 @@ ParallelSession::ParallelSession() {
   }
   // Errors come back as codes (the backend turns them into exceptions with PETSc's text) rather
   // than a traceback on stderr; and the process keeps its own handling of signals.
-  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  PetscPushErrorHandler(keep_message, nullptr);
   PetscPopSignalHandler();
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank_);
   MPI_Comm_size(PETSC_COMM_WORLD, &size_);

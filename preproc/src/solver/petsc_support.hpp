@@ -7,16 +7,27 @@
 
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace ffr::preproc::detail {
 
-inline void check(PetscErrorCode ierr, const char* call) {
-  if (ierr == 0) return;
+/// The message PETSc gave with the latest error it raised (the ParallelSession's error handler
+/// keeps it; PETSc's error codes alone say only the kind), empty before any.
+std::string last_petsc_message();
+
+/// Throws the backend's exception for a failed PETSc call, with `detail`: PETSc's message.
+[[noreturn]] inline void fail(PetscErrorCode ierr, const char* call, const std::string& detail) {
   const char* text = nullptr;
   PetscErrorMessage(ierr, &text, nullptr);
   std::ostringstream o;
-  o << "slepc backend: " << call << " failed: " << (text ? text : "PETSc error") << " (PETSc error " << ierr << ")";
+  o << "slepc backend: " << call << " failed: " << (text ? text : "PETSc error");
+  if (!detail.empty()) o << ": " << detail;
+  o << " (PETSc error " << ierr << ")";
   throw std::runtime_error(o.str());
+}
+
+inline void check(PetscErrorCode ierr, const char* call) {
+  if (ierr != 0) fail(ierr, call, last_petsc_message());
 }
 
 struct MatGuard {

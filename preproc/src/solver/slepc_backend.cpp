@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #if FFR_HAVE_SLEPC
+#include "petsc_mumps.hpp"
 #include "petsc_support.hpp"
 
 #include <algorithm>
@@ -165,8 +166,10 @@ BackendOutcome run_slepc(const SparseRef& K, SymmetricStorage sK, const SparseRe
   }
   // PETSC_OPTIONS may adjust the solver (e.g. MUMPS's -st_mat_mumps_icntl_14 workspace on a
   // cluster); EigenSolver's checks of every returned pair still apply.
+  const MumpsChoices mumps(req.mumps, kEigenSolvePrefix);
   check(EPSSetFromOptions(eps.e), "EPSSetFromOptions");
-  check(EPSSolve(eps.e), "EPSSolve");
+  mumps_outcome(EPSSetUp(eps.e), "EPSSetUp", pc, mumps);
+  mumps_outcome(EPSSolve(eps.e), "EPSSolve", pc, mumps);
 
   PetscInt nconv = 0, its = 0;
   check(EPSGetConverged(eps.e, &nconv), "EPSGetConverged");
@@ -205,7 +208,8 @@ BackendOutcome run_slepc(const SparseRef& K, SymmetricStorage sK, const SparseRe
   return out;
 }
 
-Eigen::MatrixXd distributed_spd_solve(const SparseRef& A, SymmetricStorage sA, const Eigen::MatrixXd& B) {
+Eigen::MatrixXd distributed_spd_solve(const SparseRef& A, SymmetricStorage sA, const Eigen::MatrixXd& B,
+                                      const MumpsOptions& mumps_options) {
   if (!parallel_session_active())
     throw std::invalid_argument("distributed solve: needs the program's MPI/SLEPc session (ffr::preproc::ParallelSession)");
   const auto n = static_cast<PetscInt>(A.rows());
@@ -227,14 +231,20 @@ Eigen::MatrixXd distributed_spd_solve(const SparseRef& A, SymmetricStorage sA, c
   check(PCSetType(pc, PCCHOLESKY), "PCSetType");
   check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
   // Options of its own in PETSC_OPTIONS (-ffr_solve_...), apart from the eigen-solve's (-st_...).
-  check(KSPSetOptionsPrefix(ksp.k, "ffr_solve_"), "KSPSetOptionsPrefix");
+  check(KSPSetOptionsPrefix(ksp.k, kSolvePrefix), "KSPSetOptionsPrefix");
+  const MumpsChoices mumps(mumps_options, kSolvePrefix);
   check(KSPSetFromOptions(ksp.k), "KSPSetFromOptions");
-  check(KSPSetUp(ksp.k), "KSPSetUp");
-  PCFailedReason failed = PC_NOERROR;
-  check(PCGetFailedReason(pc, &failed), "PCGetFailedReason");
-  if (failed != PC_NOERROR)
-    throw NotPositiveDefiniteError(std::string("MUMPS's Cholesky factorization failed (") + PCFailedReasons[failed] + ")",
-                                   -1, -1, failed == PC_FACTOR_NUMERIC_ZEROPIVOT);
+  {
+    const PetscErrorCode ierr = KSPSetUp(ksp.k);
+    // A matrix that is not positive definite is the caller's to explain (a mechanism); every
+    // other failure of MUMPS is named by mumps_outcome.
+    PCFailedReason failed = PC_NOERROR;
+    if (ierr == 0) check(PCGetFailedReason(pc, &failed), "PCGetFailedReason");
+    if (failed == PC_FACTOR_NUMERIC_ZEROPIVOT)
+      throw NotPositiveDefiniteError(std::string("MUMPS's Cholesky factorization failed (") + PCFailedReasons[failed] + ")",
+                                     -1, -1, true);
+    mumps_outcome(ierr, "KSPSetUp", pc, mumps);
+  }
   VecGuard b, x, x_all;
   ScatterGuard to_all;
   check(MatCreateVecs(Ad.m, &x.v, &b.v), "MatCreateVecs");
@@ -245,7 +255,7 @@ Eigen::MatrixXd distributed_spd_solve(const SparseRef& A, SymmetricStorage sA, c
     check(VecGetArray(b.v, &a), "VecGetArray");
     std::copy(B.col(c).data() + r0, B.col(c).data() + r0 + n_local, a);
     check(VecRestoreArray(b.v, &a), "VecRestoreArray");
-    check(KSPSolve(ksp.k, b.v, x.v), "KSPSolve");
+    mumps_outcome(KSPSolve(ksp.k, b.v, x.v), "KSPSolve", pc, mumps);
     KSPConvergedReason reason;
     check(KSPGetConvergedReason(ksp.k, &reason), "KSPGetConvergedReason");
     if (reason < 0)
@@ -262,7 +272,7 @@ Eigen::MatrixXd distributed_spd_solve(const SparseRef& A, SymmetricStorage sA, c
 
 #else
 
-Eigen::MatrixXd distributed_spd_solve(const SparseRef&, SymmetricStorage, const Eigen::MatrixXd&) {
+Eigen::MatrixXd distributed_spd_solve(const SparseRef&, SymmetricStorage, const Eigen::MatrixXd&, const MumpsOptions&) {
   throw std::invalid_argument("distributed solve: the slepc backend is not built into this program");
 }
 

@@ -19,6 +19,7 @@
 #include <stdexcept>
 
 #if FFR_HAVE_SLEPC
+#include "petsc_mumps.hpp"
 #include "petsc_support.hpp"
 #endif
 
@@ -310,8 +311,12 @@ DistributedModes DistributedPencil::eigenmodes(const Eigen::MatrixXd& R, const E
     if (!defl.empty()) check(EPSSetDeflationSpace(g.e, static_cast<PetscInt>(defl.size()), defl.data()), "EPSSetDeflationSpace");
     make_vec(v0.data(), g.start);
     check(EPSSetInitialSpace(g.e, 1, &g.start), "EPSSetInitialSpace");
+    const MumpsChoices mumps(o.mumps, kEigenSolvePrefix);
     check(EPSSetFromOptions(g.e), "EPSSetFromOptions");
-    check(EPSSolve(g.e), "EPSSolve");
+    // The set-up factorizes K - sigma M: its failure or its size is known before the iterations.
+    out.factor = mumps_outcome(EPSSetUp(g.e), "EPSSetUp", pc, mumps);
+    if (progress && !out.factor.empty()) progress("slepc: " + out.factor);
+    mumps_outcome(EPSSolve(g.e), "EPSSolve", pc, mumps);
     PetscInt nconv = 0, its = 0;
     check(EPSGetConverged(g.e, &nconv), "EPSGetConverged");
     check(EPSGetIterationNumber(g.e, &its), "EPSGetIterationNumber");

@@ -44,6 +44,7 @@ struct DistributedModes {
   double max_relative_residual = 0, orthonormality_error = 0;
   int iterations = 0, rounds = 0;
   double solve_seconds = 0, verify_seconds = 0;
+  std::string factor;  ///< MUMPS's report on the (last) factor: ordering, entries, memory
 };
 
 class DistributedPencil {

@@ -8,7 +8,8 @@ n DOF on p ranks:   R(n, p) = a + b n + c n^alpha / p
   K and M, its rows of the summed matrices, its part of MUMPS's factor and of the Krylov basis).
 alpha is scanned, (a, b, c) fitted by relative least squares. The check: the model fitted
 without the largest size predicts the largest size's runs.
-Usage: fit.py results.tsv [more.tsv ...]   (the runs of every file, sorted by DOF)
+Usage: fit.py results.tsv [more.tsv ...] [--mumps=pord/in-core]   (the runs of every file, sorted
+by DOF; the model on the slepc runs of the given MUMPS settings only, else on all of them)
 """
 import sys
 
@@ -50,22 +51,44 @@ def model(m, n, p):
     return a + b * n + c * n ** alpha / p
 
 
+def read(files):
+    # Columns by name: results.tsv files written before the MUMPS columns existed still read.
+    rows = []
+    for f in files:
+        lines = [l.rstrip("\n").split("\t") for l in open(f)]
+        head = lines[0]
+        for l in lines[1:]:
+            r = dict(zip(head, l))
+            for k in ("mumps", "factor_entries", "mumps_mb_max", "load_mean_max", "mumps_incore_estimate_mb_max"):
+                r.setdefault(k, "-")
+            rows.append(r)
+    return rows
+
+
 def main():
-    rows = [l.rstrip("\n").split("\t") for f in sys.argv[1:] for l in list(open(f))[1:]]
-    rows.sort(key=lambda r: (int(r[1]), r[2] != "serial", r[3]))
-    print("| size | DOF | path | ranks | wall [s] | peak RSS per rank [MiB] | SID vs serial |")
-    print("|---|---|---|---|---|---|---|")
-    for size, dof, path, ranks, wall, rss, diff in rows:
-        name = "serial (default)" if path == "serial" else "slepc"
-        print(f"| {size} | {dof} | {name} | {ranks} | {wall} | {rss.replace(',', ' / ')} | {diff} |")
-    runs = [(int(r[1]), int(r[3]), max(float(x) for x in r[5].split(","))) for r in rows
-            if r[2] != "serial" and r[3] != "-"]
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    # --mumps SETTINGS: the model on the slepc runs of these MUMPS settings only (e.g. pord/in-core).
+    only = next((a.split("=", 1)[1] for a in sys.argv[1:] if a.startswith("--mumps=")), None)
+    rows = read(args)
+    rows.sort(key=lambda r: (int(r["dof"]), r["path"] != "serial", r["ranks"], r["mumps"]))
+    print("| size | DOF | path | ranks | MUMPS | wall [s] | peak RSS per rank [MiB] | factor entries | MUMPS MB (largest rank) | MUMPS in-core estimate MB | load (mean/max) | SID vs serial |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        name = "serial (default)" if r["path"] == "serial" else "slepc"
+        print(f"| {r['size']} | {r['dof']} | {name} | {r['ranks']} | {r['mumps']} | {r['wall_s']} | "
+              f"{r['maxrss_mib_per_rank'].replace(',', ' / ')} | {r['factor_entries']} | {r['mumps_mb_max']} | "
+              f"{r['mumps_incore_estimate_mb_max']} | "
+              f"{r['load_mean_max']} | {r['diff']} |")
+    runs = [(int(r["dof"]), int(r["ranks"]), max(float(x) for x in r["maxrss_mib_per_rank"].split(",")))
+            for r in rows if r["path"] != "serial" and r["ranks"] != "-" and r["diff"] in ("equivalent", "-")
+            and (only is None or r["mumps"] == only)]
+    label = "slepc runs" + (f", MUMPS {only}" if only else "")
     if len({n for n, _, _ in runs}) < 3:
-        print("\n(fewer than three sizes of slepc runs: no model)")
+        print(f"\n(fewer than three sizes of {label}: no model)")
         return
     m = fit(runs)
     err, alpha, a, b, c = m
-    print(f"\nModel (all slepc runs): R(n, p) = {a:.0f} MiB + {b * 1e3:.3f} MiB per 1000 DOF x n/1000"
+    print(f"\nModel (all {label}): R(n, p) = {a:.0f} MiB + {b * 1e3:.3f} MiB per 1000 DOF x n/1000"
           f" + {c:.3g} MiB x n^{alpha:.2f} / p;  largest relative misfit {100 * err:.1f} %")
     # The check: fitted without a size (and every larger one), the model predicts that size's
     # runs; for the largest size and the one below it.
@@ -80,7 +103,7 @@ def main():
             if n == largest:
                 pr = model(m2, n, p)
                 print(f"- {p} rank(s): predicted {pr:.0f} MiB, measured {r:.0f} MiB ({100 * (pr - r) / r:+.1f} %)")
-    print("\nPredicted peak memory per rank at 10M DOF (the fit on all runs):")
+    print(f"\nPredicted peak memory per rank at 10M DOF (the fit on all {label}):")
     for p in (1, 2, 8, 16, 32, 64, 128):
         print(f"- {p} ranks: {model(m, 10e6, p) / 1024:.1f} GiB per rank ({p * model(m, 10e6, p) / 1024:.0f} GiB in all)")
 

@@ -3,6 +3,7 @@
 // preproc/PART_FILE.md; docs/contract.md lists those outside scripts rely on.
 
 #include "ffr/preproc/elements/element.hpp"
+#include "ffr/preproc/solver/mumps_options.hpp"
 
 #include <Eigen/Core>
 
@@ -84,6 +85,7 @@ struct ReductionSpec {
   std::string backend = "block";        ///< "block", "spectra", "arpack" or "slepc"
   std::string factorization = "supernodal";  ///< "supernodal" or "cholmod" (FactorizationBackend)
   std::uint64_t memory_limit_bytes = 0; ///< refuse factors above this (0: the machine's available memory)
+  MumpsOptions mumps;                   ///< backend "slepc": MUMPS's ordering and out-of-core factors
 };
 
 struct DampingSpec {

@@ -32,6 +32,7 @@
 //   * the library never prints; progress goes to the callback, status to info().
 
 #include "ffr/preproc/solver/cholmod_factor.hpp"
+#include "ffr/preproc/solver/mumps_options.hpp"
 #include "ffr/preproc/solver/sparse_types.hpp"
 
 #include <cstdint>
@@ -88,6 +89,8 @@ struct EigenOptions {
   /// (the mechanism test) applies for sigma >= 0 only: for sigma < 0 small pivots are the
   /// intended nearness of the rigid-body modes (set to 0 internally).
   FactorOptions factor;
+  /// The slepc backend's MUMPS factorization (its ordering, out-of-core factors).
+  MumpsOptions mumps;
 };
 
 /// What the progress callback sees. Counts are cumulative over the whole compute() call.
