@@ -3,6 +3,7 @@
 // K = -dQ/dq, C = -dQ/dq_d, for every joint type, motion type and force element, on a flexible
 // body with node rotations and rotary inertia and on a rigid body, at a generic state (off the
 // constraint manifold on purpose: the derivatives must hold everywhere).
+#include "central_differences.hpp"
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
 
@@ -14,6 +15,9 @@
 using namespace ffr::runtime;
 
 namespace {
+
+using test::central_differences;
+using test::rel_err;
 
 std::string model_json() {
   return R"({
@@ -96,23 +100,6 @@ struct Fixture : ::testing::Test {
     return data->Q;
   }
 };
-
-// Central differences of f: R^n -> R^m at x, column by column.
-template <class F>
-MatrixXd central_differences(const F& f, const VectorXd& x, double eps) {
-  MatrixXd D;
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    VectorXd a = x, b = x;
-    a(i) += eps;
-    b(i) -= eps;
-    const VectorXd col = (f(a) - f(b)) / (2 * eps);
-    if (i == 0) D.resize(col.size(), x.size());
-    D.col(i) = col;
-  }
-  return D;
-}
-
-double rel_err(const MatrixXd& a, const MatrixXd& b) { return (a - b).cwiseAbs().maxCoeff() / std::max(1.0, b.cwiseAbs().maxCoeff()); }
 
 }  // namespace
 

@@ -4,6 +4,7 @@
 // conservation to the trapezoidal rule's order at large amplitude, the joint load that reaches an
 // interface against statics, and refusal of a malformed Ke/M1.
 #include "ffr/formats/h5.hpp"
+#include "central_differences.hpp"
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
 
@@ -19,6 +20,8 @@
 using namespace ffr::runtime;
 
 namespace {
+
+using test::central_differences;
 
 // A Ke/M1 of the stated convention (M1[k] symmetric, not symmetric in k), of size `scale`.
 std::vector<Eigen::MatrixXd> random_ke_m1(int nq, double scale, unsigned seed) {
@@ -50,20 +53,6 @@ const char* kFree = R"({
               "modal_coordinates": [0.05, -0.04, 0.03], "velocity": [0.1, 0, 0], "angular_velocity": [0, 0.5, 1]}],
   "solver": {"end": 0.2, "step": 1e-3}
 })";
-
-template <class F>
-Eigen::MatrixXd central_differences(const F& f, const Eigen::VectorXd& x, double eps) {
-  Eigen::MatrixXd D;
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    Eigen::VectorXd a = x, b = x;
-    a(i) += eps;
-    b(i) -= eps;
-    const Eigen::VectorXd col = (f(a) - f(b)) / (2 * eps);
-    if (i == 0) D.resize(col.size(), x.size());
-    D.col(i) = col;
-  }
-  return D;
-}
 
 }  // namespace
 

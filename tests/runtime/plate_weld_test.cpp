@@ -18,6 +18,7 @@
 //   gradients (an independent Gram-Schmidt) to the solver's tolerance;
 // - the relative formulation's swing against the absolute one's;
 // - bad input refused naming the field.
+#include "central_differences.hpp"
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
 
@@ -40,27 +41,14 @@ using test::output;
 
 namespace {
 
+using test::central_differences;
+using test::rel_err;
+
 std::string num(double v) {
   char b[40];
   std::snprintf(b, sizeof b, "%.17g", v);
   return b;
 }
-
-template <class F>
-MatrixXd central_differences(const F& f, const VectorXd& x, double eps) {
-  MatrixXd D;
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    VectorXd a = x, b = x;
-    a(i) += eps;
-    b(i) -= eps;
-    const VectorXd col = (f(a) - f(b)) / (2 * eps);
-    if (i == 0) D.resize(col.size(), x.size());
-    D.col(i) = col;
-  }
-  return D;
-}
-
-double rel_err(const MatrixXd& a, const MatrixXd& b) { return (a - b).cwiseAbs().maxCoeff() / std::max(1.0, b.cwiseAbs().maxCoeff()); }
 
 // The node's triad from its gradients, written here independently of the runtime's: t1 along
 // r_x, t3 along r_x x r_y, t2 = t3 x t1.

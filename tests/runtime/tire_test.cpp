@@ -14,6 +14,7 @@
 //  - a tyre on a flexible body's node against linear statics from the SID's members;
 //  - the exact tangent against central differences of the generalized forces;
 //  - bad input refused naming the file and field, and ffr-sim's exit status 2.
+#include "central_differences.hpp"
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
 
@@ -30,6 +31,9 @@
 using namespace ffr::runtime;
 
 namespace {
+
+using test::central_differences;
+using test::rel_err;
 
 constexpr double g = 9.81;
 
@@ -451,22 +455,6 @@ std::string tangent_model() {
   "outputs": [{"name": "t1", "type": "element_force", "force": "t1"}, {"name": "t2", "type": "element_force", "force": "t2"}]
 })";
 }
-
-template <class F>
-MatrixXd central_differences(const F& f, const VectorXd& x, double eps) {
-  MatrixXd D;
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    VectorXd a = x, b = x;
-    a(i) += eps;
-    b(i) -= eps;
-    const VectorXd col = (f(a) - f(b)) / (2 * eps);
-    if (i == 0) D.resize(col.size(), x.size());
-    D.col(i) = col;
-  }
-  return D;
-}
-
-double rel_err(const MatrixXd& a, const MatrixXd& b) { return (a - b).cwiseAbs().maxCoeff() / std::max(1.0, b.cwiseAbs().maxCoeff()); }
 
 }  // namespace
 
