@@ -4,6 +4,7 @@
 // body with node rotations and rotary inertia and on a rigid body, at a generic state (off the
 // constraint manifold on purpose: the derivatives must hold everywhere).
 #include "central_differences.hpp"
+#include "state_probe.hpp"
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
 
@@ -57,43 +58,18 @@ std::string model_json() {
 })";
 }
 
-struct Fixture : ::testing::Test {
+struct Fixture : ::testing::Test, test::StateProbe {
   test::TempDir dir{"jac"};
-  Model model;
-  std::unique_ptr<Data> data;
-  VectorXd q, qd, qdd;
   double t = 0.37;
 
   void SetUp() override {
     test::write_sid_file(test::lumpy_body(3), dir / "lumpy.sid.h5");
-    model = test::model_from(model_json(), dir.path);
-    data = std::make_unique<Data>(model);
+    start(test::model_from(model_json(), dir.path), 3);
     // External loads on a node and a frame origin too.
     set_external_load(*data, 0, 2, Eigen::Vector3d(0.5, -1, 2), Eigen::Vector3d(0.1, 0.2, -0.3));
     set_external_load(*data, 1, 0, Eigen::Vector3d::Zero(), Eigen::Vector3d(-0.2, 0.1, 0.4));
-    std::mt19937 rng(3);
-    std::uniform_real_distribution<double> u(-1, 1);
-    q = data->state.q;
-    qd = data->state.qd;
-    for (Eigen::Index i = 0; i < q.size(); ++i) {
-      q(i) += 0.05 * u(rng);
-      qd(i) = u(rng);
-    }
-    qdd = VectorXd::NullaryExpr(q.size(), [&](Eigen::Index) { return u(rng); });
   }
 
-  void set(const VectorXd& a, const VectorXd& b, const VectorXd& c) {
-    data->state.q = a;
-    data->state.qd = b;
-    data->state.qdd = c;
-    update_bodies(model, *data);
-    update_markers(model, *data);
-  }
-  VectorXd constraints(const VectorXd& a, double time) {
-    set(a, qd, qdd);
-    evaluate_constraints(model, *data, time);
-    return data->Phi;
-  }
   VectorXd forces(const VectorXd& a, const VectorXd& b) {
     set(a, b, qdd);
     generalized_forces(model, *data, t);

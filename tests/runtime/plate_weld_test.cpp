@@ -19,6 +19,7 @@
 // - the relative formulation's swing against the absolute one's;
 // - bad input refused naming the field.
 #include "central_differences.hpp"
+#include "state_probe.hpp"
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
 
@@ -63,16 +64,13 @@ Eigen::Matrix3d gram_schmidt(const Eigen::Vector3d& rx, const Eigen::Vector3d& r
 // A free plate (2 x 1 elements) with two rigid bodies welded at two nodes, one on each side of
 // its joint (body1 and body2), with axes not along the plate's, and a flexible (reduced) body
 // welded by a node of its own (node rotation slices) to a third.
-struct Weld : ::testing::Test {
+struct Weld : ::testing::Test, test::StateProbe {
   test::TempDir dir{"plate_weld"};
-  Model model;
-  std::unique_ptr<Data> data;
-  VectorXd q, qd, qdd;
   double t = 0.2;
 
   void SetUp() override {
     test::write_sid_file(test::lumpy_body(3), dir / "lumpy.sid.h5");
-    model = test::model_from(R"({"gravity": [0, 0, -9.81],
+    start(test::model_from(R"({"gravity": [0, 0, -9.81],
       "bodies": [
         {"name": "plate", "type": "plate", "corners": [[0, 0, 0], [0.4, 0, 0], [0.4, 0.3, 0], [0, 0.3, 0]], "elements": [2, 1],
          "thickness": 0.01, "E": 1e7, "nu": 0.3, "rho": 1000},
@@ -86,35 +84,14 @@ struct Weld : ::testing::Test {
         {"name": "weld2", "type": "fixed", "body1": "arm", "body2": "plate", "node2": "n1_0", "axis": [1, 0, 0]},
         {"name": "weld3", "type": "fixed", "body1": "flex", "node1": "B", "body2": "plate", "node2": "n0_1", "axis": [0, 1, 0]}],
       "solver": {"end": 1, "step": 1e-3}})",
-                             dir.path);
-    data = std::make_unique<Data>(model);
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> u(-1, 1);
-    q = data->state.q;
-    qd = data->state.qd;
-    for (Eigen::Index i = 0; i < q.size(); ++i) {
-      q(i) += 0.05 * u(rng);
-      qd(i) = u(rng);
-    }
+                             dir.path), 5);
     // Node n2_1's gradients turned by 70 degrees, stretched and sheared: far beyond a linearisation.
     const int y = model.bodies[0].offset + 12 + 12 * 5;
     const Eigen::Matrix3d R = Eigen::AngleAxisd(70 * M_PI / 180, Eigen::Vector3d(0.2, 1, 0.4).normalized()).toRotationMatrix();
     q.segment<3>(y + 3) = 1.1 * R.col(0) + Eigen::Vector3d(0.02, -0.03, 0.01) - Eigen::Vector3d::UnitX();
     q.segment<3>(y + 6) = 0.9 * R.col(1) + 0.2 * R.col(0) - Eigen::Vector3d::UnitY();
-    qdd = VectorXd::NullaryExpr(q.size(), [&](Eigen::Index) { return u(rng); });
   }
-  void set(const VectorXd& a, const VectorXd& b, const VectorXd& c) {
-    data->state.q = a;
-    data->state.qd = b;
-    data->state.qdd = c;
-    update_bodies(model, *data);
-    update_markers(model, *data);
-  }
-  VectorXd constraints(const VectorXd& a) {
-    set(a, qd, qdd);
-    evaluate_constraints(model, *data, t);
-    return data->Phi;
-  }
+  VectorXd constraints(const VectorXd& a) { return StateProbe::constraints(a, t); }
 };
 
 }  // namespace

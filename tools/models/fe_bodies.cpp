@@ -77,7 +77,8 @@ void integrals_from_mass(const Sparse& Ms, const VectorXd& X, const MatrixXd& Ph
   ffr::preproc::members_from_integrals(sid);
 }
 
-// The cache of a solid bar's FE data: N, nq, X, Phi, then M's triplets (binary, this machine's).
+// The cache of a solid bar's FE data: N, nq, X, Phi, then M's triplets (raw binary in the
+// host's byte order and sizes: a cache, never exchanged).
 void write_cache(const fs::path& p, const ffr::runtime::FullMass& F) {
   std::ofstream f(p, std::ios::binary);
   const long n3 = F.X.size(), nq = F.Phi.cols(), nnz = F.M.nonZeros();

@@ -101,7 +101,7 @@ void measure(const Case& c, const fs::path& dir, int repeats) {
       if (const auto it = c.full_mass.find(b.name); it != c.full_mass.end()) b.full_mass = it->second;
   const bool fe = !c.full_mass.empty();
   Run ai, af, ri, rf;
-  for (int k = 0; k < repeats; ++k) {  // alternating, so all four see the same machine load
+  for (int k = 0; k < repeats; ++k) {  // alternating, so that a change of load from other processes falls on all four alike
     ai = time_model(abs_inv, ai);
     ri = time_model(rel_inv, ri);
     if (fe) {
