@@ -6,6 +6,8 @@
 #include "ffr/runtime/kinematics.hpp"
 #include "ffr/runtime/runtime.hpp"
 
+#include "central_differences.hpp"
+
 #include <memory>
 #include <random>
 
@@ -44,6 +46,26 @@ struct StateProbe {
     set(a, qd, qdd);
     evaluate_constraints(model, *data, time);
     return data->Phi;
+  }
+  /// The constraint Hessian weighted by `lam` (add_constraint_hessian) at the probe's state and
+  /// `time`, and its oracle: central differences of the constraint forces Phi_q^T lam.
+  struct Hessians {
+    MatrixXd H, Hfd;
+  };
+  Hessians constraint_hessians(const VectorXd& lam, double time) {
+    auto force = [&](const VectorXd& a) {
+      constraints(a, time);
+      VectorXd g = VectorXd::Zero(model.ncoord);
+      add_constraint_forces(model, *data, lam, g);
+      return g;
+    };
+    Hessians r;
+    r.Hfd = central_differences(force, q, 1e-6);
+    set(q, qd, qdd);
+    evaluate_constraints(model, *data, time);
+    r.H = MatrixXd::Zero(model.ncoord, model.ncoord);
+    add_constraint_hessian(model, *data, lam, 1.0, r.H);
+    return r;
   }
 };
 
