@@ -132,6 +132,12 @@ int main(int argc, char** argv) {
         throw ffr::cli::UsageError("--backend must be block, spectra, arpack or slepc");
       if (*backend == "slepc" && !ffr::preproc::slepc_available())
         throw ffr::cli::UsageError("--backend slepc: not built into this program (configure with -DFFR_SLEPC=ON)");
+      // The part's MUMPS keys would be ignored without a word by any other backend.
+      const auto& given = part.reduction.mumps.keys_given;
+      if (*backend != "slepc" && !given.empty())
+        throw ffr::cli::UsageError("--backend " + *backend + ": " + pos[0] + " sets reduction." + given.front() +
+                                   ", which only backend \"slepc\" (MUMPS's factorization) reads; remove it from the "
+                                   "part file or run with --backend slepc");
       part.reduction.backend = *backend;
     }
     if (factorization) {

@@ -93,7 +93,8 @@ std::string stray_files(const test::TempDir& dir) {
   std::string s;
   for (const auto& e : fs::directory_iterator(dir.path())) {
     const std::string name = e.path().filename().string();
-    if (name != "part.json" && name != "part.geo" && name != "bad.json" && name != "bad.geo") s += " " + name;
+    if (name != "part.json" && name != "part.geo" && name != "bad.json" && name != "bad.geo" && name != "serial.json")
+      s += " " + name;
   }
   return s;
 }
@@ -281,12 +282,20 @@ TEST(Slepc, OneRankFailingEndsTheJobWithoutSid) {
 }
 
 // The solid bar clamped with the part file's MUMPS settings (reduction.mumps_ordering,
-// out_of_core), written after the backend: the part's own reduction with `extra` keys.
+// out_of_core), written after the backend: the part's own reduction with `extra` keys; beside
+// it serial.json, the same part on the serial path (which refuses MUMPS keys).
 void write_mumps_part(const test::TempDir& dir, const std::string& extra) {
   std::string json = part_json(Body::Solid, Method::Clamped, "slepc");
   json.insert(json.rfind("}}"), extra);
   test::write_text(dir / "part.geo", kSolidGeo);
   test::write_text(dir / "part.json", json);
+  test::write_text(dir / "serial.json", part_json(Body::Solid, Method::Clamped, "block"));
+}
+
+// The serial path's SID of write_mumps_part's part, the reference of the runs with MUMPS keys.
+std::string serial_command(const test::TempDir& dir) {
+  return test::bin("ffr-reduce").string() + " " + (dir / "serial.json").string() + " -o " +
+         (dir / "serial.sid.h5").string() + " --quiet";
 }
 
 // MUMPS's other fill-reducing orderings and its out-of-core factors change how the factor is
@@ -309,7 +318,7 @@ TEST(Slepc, MumpsOrderingsAndOutOfCoreGiveTheSerialSid) {
     test::TempDir dir("slepc_mumps");
     write_mumps_part(dir, c.extra);
     fs::create_directory(dir / "ooc");
-    const auto serial = test::run(reduce_command(dir, "serial.sid.h5") + " --backend block");
+    const auto serial = test::run(serial_command(dir));
     ASSERT_EQ(serial.status, 0) << serial.output;
     const std::string logged =
         test::bin("ffr-reduce").string() + " " + (dir / "part.json").string() + " -o " + (dir / "mpi.sid.h5").string();
@@ -347,7 +356,7 @@ TEST(Slepc, OrderingMumpsLacksIsNamed) {
   write_mumps_part(dir, R"(, "mumps_ordering": "metis")");
   const auto r = test::run(mpirun(2, reduce_command(dir, "mpi.sid.h5")));
   if (r.status == 0) {
-    const auto serial = test::run(reduce_command(dir, "serial.sid.h5") + " --backend block");
+    const auto serial = test::run(serial_command(dir));
     ASSERT_EQ(serial.status, 0) << serial.output;
     const auto diff = test::run(test::bin("ffr-diff").string() + " " + (dir / "serial.sid.h5").string() + " " +
                                 (dir / "mpi.sid.h5").string() + " --rtol 1e-6");
@@ -382,6 +391,22 @@ TEST(Slepc, BadMumpsKeysRefused) {
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find(c.field), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(c.text), std::string::npos) << r.output;
+    EXPECT_EQ(stray_files(dir), "");
+  }
+}
+
+// A serial backend chosen on the command line for a part with MUMPS keys would ignore them:
+// refused naming the option and the first key, exit status 2, no SID.
+TEST(Slepc, SerialBackendOnTheCommandLineRefusesMumpsKeys) {
+  test::TempDir dir("slepc_mumps_cli");
+  write_mumps_part(dir, R"(, "out_of_core": true, "mumps_ordering": "amd")");
+  for (const char* backend : {"block", "spectra", "arpack"}) {
+    SCOPED_TRACE(backend);
+    const auto r = test::run(reduce_command(dir, "out.sid.h5") + " --backend " + backend);
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find(std::string("--backend ") + backend), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("reduction.mumps_ordering"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("part.json"), std::string::npos) << r.output;
     EXPECT_EQ(stray_files(dir), "");
   }
 }

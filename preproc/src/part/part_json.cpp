@@ -236,9 +236,11 @@ ReductionSpec read_reduction(const JsonNode& n) {
     n.at("backend").fail("backend \"slepc\" is not built into this program (configure with -DFFR_SLEPC=ON and "
                          "Debian's slepc-dev, petsc-dev and libopenmpi-dev)");
   // MUMPS's choices: the slepc backend's only (the serial path orders and factorizes itself).
-  for (const char* key : {"mumps_ordering", "out_of_core", "out_of_core_dir"})
-    if (n.has(key) && r.backend != "slepc")
-      n.at(key).fail("only for backend \"slepc\" (MUMPS's factorization); the serial path has its own");
+  for (const char* key : {"mumps_ordering", "out_of_core", "out_of_core_dir"}) {
+    if (!n.has(key)) continue;
+    if (r.backend != "slepc") n.at(key).fail("only for backend \"slepc\" (MUMPS's factorization); the serial path has its own");
+    r.mumps.keys_given.emplace_back(key);
+  }
   if (auto o = n.find("mumps_ordering")) {
     r.mumps.ordering = o->string();
     if (mumps_ordering_code(r.mumps.ordering) < 0)

@@ -4,6 +4,7 @@
 // Options given in PETSC_OPTIONS for the same MUMPS control take precedence.
 
 #include <string>
+#include <vector>
 
 namespace ffr::preproc {
 
@@ -18,6 +19,9 @@ struct MumpsOptions {
   bool out_of_core = false;
   /// Where the out-of-core files go (absolute); empty: the TMPDIR of the ranks, else /tmp.
   std::string out_of_core_dir;
+  /// The MUMPS keys the part file gave (reduction.KEY; in the order above): a backend chosen on the
+  /// command line other than slepc would ignore them, so ffr-reduce refuses it naming the first.
+  std::vector<std::string> keys_given;
 };
 
 /// The ICNTL(7) value of an ordering name; -1 for a name that is not one.
