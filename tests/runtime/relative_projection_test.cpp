@@ -3,7 +3,7 @@
 // the consistent-mass rod of 34 points with 30 modes. The planar mechanism modelled in 3-D holds
 // the rod's out-of-plane rotations at both of its nodes, which its stiff torsion and out-of-plane
 // modes alone can tell apart: the kept rows are nearly redundant, the passes shrink the residual
-// by a few percent each, and the velocity projection used to stop at its pass limit at
+// slowly along them, and the velocity projection used to stop at its pass limit at
 // t = 0.03 ... 0.07 s (h = 1 ms, both inertia routes).
 //
 // No outside reference for this motion: the absolute formulation, whose projections solve the
@@ -24,8 +24,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <string>
 
 using namespace ffr::runtime;
 

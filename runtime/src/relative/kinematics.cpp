@@ -144,7 +144,7 @@ void relative_kinematics(const Model& model, Data& data, bool jacobian) {
   RelativeWork& w = *data.relative;
   VectorXd &q = data.state.q, &qd = data.state.qd, &qdd = data.state.qdd;
   // R and its rates are zero outside each body's rows over its range of columns (written below
-  // only there): zeroed there, not whole (n x ns each, the larger part of a long chain's).
+  // only there): zeroed there, not whole (n x ns each).
   if (jacobian)
     for (int bi : t.order) {
       const RelativeBody& rb = t.bodies[static_cast<std::size_t>(bi)];

@@ -8,9 +8,9 @@
 // are nearly redundant s is tiny and the passes crawl: the planar slider-crank modelled in 3-D
 // holds the rod's out-of-plane rotations at both of its nodes (the revolute it hangs on and the
 // cut joint), which a rigid rod satisfies together and a flexible one only through its stiff
-// torsion and out-of-plane modes (kq K of the highest modes far above the penalty). With 30
-// modes of the consistent rod the residual fell by a few percent a pass and the velocity
-// projection stopped at the pass limit (tools/bench/formulations/RESULTS.md). The absolute
+// torsion and out-of-plane modes (kq K of the highest modes far above the penalty), so s is
+// small there. With 30 modes of the consistent rod the velocity projection stopped at the pass
+// limit (tools/bench/formulations/RESULTS.md), as passes at such a rate would. The absolute
 // step solves the same case directly when its passes stall (projection.cpp, exact_multipliers.cpp);
 // so does this one: with Y = F^-1 Phis^T on the kept rows and S = Phis Y, the correction
 // x <- x - Y mu, S mu = Phis x + b meets the kept rows exactly and is the projection in the

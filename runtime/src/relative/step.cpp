@@ -95,9 +95,9 @@ void refresh(const Model& model, Data& data, double t) {
   // products: WR = X Y_j (times), then R_i^T WR (project_rows), so that terms with the same R_i
   // share the second. A placed body's rows of R past its `top` (RelativeBody::own0) are zero
   // outside its own columns: those rows take part over its own columns only. (In a chain of
-  // bodies placed at points the ancestors' columns then cost 3 rows instead of all 9 + nq + 3:
-  // the products over all rows were most of its step.) (Coefficient-based products: see
-  // projected_jacobian. A free body's block of R is the identity: no product on its side.)
+  // bodies placed at points the ancestors' columns, ever more down the chain, then meet 3 rows
+  // instead of all 12 + nq.) (Coefficient-based products: see projected_jacobian. A free body's
+  // block of R is the identity: no product on its side.)
   // WR (+)= X Y_j, X = Wb's top-left ni x nj (ni rows of WR), over body j's column range.
   const auto times = [&](int ni, int j, const MatrixXd& Y, bool accumulate) {
     const RelativeBody& rj = tree.bodies[static_cast<std::size_t>(j)];
@@ -327,8 +327,7 @@ void assemble_residual(const Model& model, Data& data) {
   if (model.relative->kept_rows > 0) projected_jacobian(model, data);
   mass_times(model, data, st.qdd, w.g);
   w.g -= data.Q;
-  // R^T g by bodies over R's pattern (RelativeBody::own0; the dense product over all of R cost
-  // as much as the rest of a long chain's residual).
+  // R^T g by bodies over R's pattern (RelativeBody::own0), not over all of the n x ns R.
   w.f.setZero();
   for (int bi : model.relative->order) {
     const RelativeBody& rb = model.relative->bodies[static_cast<std::size_t>(bi)];
