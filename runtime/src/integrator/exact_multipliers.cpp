@@ -31,14 +31,23 @@ int factor_exact_multipliers(Data& data) {
   auto S = data.projS.topLeftCorner(na, na);
   for (int i = 0; i < na; ++i)
     detail::times(data.Phiq.data(), data.Phiq.rows(), na, nf, data.projY.col(i).data(), &data.projS(0, i), false);
+  data.proj_rank = pivoted_cholesky(S, data.proj_order, data.proj_mu);
+  return data.proj_rank;
+}
+
+void solve_exact_multipliers(Data& data, const VectorXd& c) {
+  const int na = data.na;
+  pivoted_cholesky_solve(data.projS.topLeftCorner(na, na), data.proj_order, data.proj_rank, c, data.proj_w, data.proj_mu);
+}
+
+int pivoted_cholesky(Eigen::Ref<MatrixXd> S, std::vector<int>& p, VectorXd& own) {
+  const int na = static_cast<int>(S.rows());
   // Pivoted Cholesky S(p, p) = L L^T in S's lower triangle; the trailing block is updated whole
   // (both triangles) so that its rows and columns can be swapped. The pivot is the row whose
   // remaining diagonal is the largest share of its own (the rows mix lengths and angles); a row
   // left with less than redundant_share of it is a combination of the rows before it up to
   // round-off, and so are all the rows left then.
   constexpr double redundant_share = 1e-9;
-  std::vector<int>& p = data.proj_order;
-  VectorXd& own = data.proj_mu;  // each row's own diagonal, by row (mu is written at the end)
   for (int i = 0; i < na; ++i) {
     p[static_cast<std::size_t>(i)] = i;
     own(i) = S(i, i);
@@ -65,16 +74,12 @@ int factor_exact_multipliers(Data& data) {
       for (int i = k + 1; i < na; ++i) S(i, col) -= S(i, k) * S(col, k);
     rank = k + 1;
   }
-  data.proj_rank = rank;
   return rank;
 }
 
-void solve_exact_multipliers(Data& data, const VectorXd& c) {
-  const int na = data.na, rank = data.proj_rank;
-  const auto S = data.projS.topLeftCorner(na, na);
-  const std::vector<int>& p = data.proj_order;
+void pivoted_cholesky_solve(const Eigen::Ref<const MatrixXd>& S, const std::vector<int>& p, int rank, const VectorXd& c, VectorXd& w,
+                            VectorXd& mu) {
   // w = L11^-T L11^-1 c(p)_1, then mu(p) = [w; 0].
-  VectorXd& w = data.proj_w;
   for (int i = 0; i < rank; ++i) {
     double v = c(p[static_cast<std::size_t>(i)]);
     for (int k = 0; k < i; ++k) v -= S(i, k) * w(k);
@@ -85,8 +90,8 @@ void solve_exact_multipliers(Data& data, const VectorXd& c) {
     for (int k = i + 1; k < rank; ++k) v -= S(k, i) * w(k);
     w(i) = v / S(i, i);
   }
-  data.proj_mu.head(na).setZero();
-  for (int i = 0; i < rank; ++i) data.proj_mu(p[static_cast<std::size_t>(i)]) = w(i);
+  mu.head(S.rows()).setZero();
+  for (int i = 0; i < rank; ++i) mu(p[static_cast<std::size_t>(i)]) = w(i);
 }
 
 }  // namespace ffr::runtime

@@ -143,11 +143,14 @@ void relative_kinematics(const Model& model, Data& data, bool jacobian) {
   const RelativeTree& t = *model.relative;
   RelativeWork& w = *data.relative;
   VectorXd &q = data.state.q, &qd = data.state.qd, &qdd = data.state.qdd;
-  if (jacobian) {
-    w.R.setZero();
-    w.Rd.setZero();
-    w.Ra.setZero();
-  }
+  // R and its rates are zero outside each body's rows over its range of columns (written below
+  // only there): zeroed there, not whole (n x ns each).
+  if (jacobian)
+    for (int bi : t.order) {
+      const RelativeBody& rb = t.bodies[static_cast<std::size_t>(bi)];
+      const Body& b = model.bodies[static_cast<std::size_t>(bi)];
+      for (MatrixXd* m : {&w.R, &w.Rd, &w.Ra}) m->block(b.offset, rb.col0, b.ncoord(), rb.ncols).setZero();
+    }
   for (int bi : t.order) {
     const RelativeBody& rb = t.bodies[static_cast<std::size_t>(bi)];
     const Body& b = model.bodies[static_cast<std::size_t>(bi)];

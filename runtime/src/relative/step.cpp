@@ -19,12 +19,17 @@
 #include "ffr/runtime/scheme.hpp"
 #include "ffr/runtime/state.hpp"
 #include "../forces/forces.hpp"
+#include "solves.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
 namespace ffr::runtime {
+
+using namespace relative_detail;
+
 namespace {
 
 std::string fmt(double v) {
@@ -50,8 +55,8 @@ double violation(const Model& model, const Data& data) {
 void projected_jacobian(const Model& model, Data& data) {
   const RelativeTree& tree = *model.relative;
   RelativeWork& w = *data.relative;
-  for (int bi : tree.kept_blocks) {
-    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
+  for (std::size_t kb = 0; kb < tree.kept_blocks.size(); ++kb) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(tree.kept_blocks[kb])];
     w.Phis.middleRows(b.row0, b.rows).setZero();
     for (int x : {b.body1, b.body2, b.body3, b.body4}) {
       // (The block's bodies are distinct but for a joint's two on one body; a coupler's are
@@ -67,41 +72,93 @@ void projected_jacobian(const Model& model, Data& data) {
     }
     // A joint placed at its point: its point rows vanish along R up to rounding; exactly zero here.
     if (b.kind == BlockKind::Joint && tree.tree_joint[static_cast<std::size_t>(b.index)] == 2 && b.first == 0) w.Phis.middleRows(b.row0, 3).setZero();
+    // Where its rows are nonzero, for the products with Phis (solves.cpp, refresh).
+    const auto rows = w.Phis.middleRows(b.row0, b.rows);
+    int lo = 0, hi = tree.ns;
+    while (lo < hi && rows.col(lo).isZero(0.0)) ++lo;
+    while (hi > lo && rows.col(hi - 1).isZero(0.0)) --hi;
+    w.span_lo[kb] = lo;
+    w.span_hi[kb] = hi;
   }
 }
 
 // T = R^T W R + kq Phis^T alpha Phis with W = M + kv C + kq K, by body blocks and the blocks
-// of the force elements' pairs; factorised after the diagonal scaling of factorize_tangent.
+// of the force elements' and the kept rows' pairs, and R's derivatives (the header); factorised
+// after the diagonal scaling of factorize_tangent.
 void refresh(const Model& model, Data& data, double t) {
   const RelativeTree& tree = *model.relative;
   RelativeWork& w = *data.relative;
   const StepCoefficients& k = data.state.k;
   force_tangents(model, data, t);
   w.Ts.setZero();
-  // Ts += R_i^T X Y_j over the bodies' column ranges, X = Wb's top-left ni x nj, Y = R or R_dot
-  // (a free body's R_dot is zero: nothing to add).
-  const auto add = [&](int i, int j, const MatrixXd* rate = nullptr) {
+  // Ts += R_i^T X Y_j over the bodies' column ranges (X a block of W, Y = R or its rates) in two
+  // products: WR = X Y_j (times), then R_i^T WR (project_rows), so that terms with the same R_i
+  // share the second. A placed body's rows of R past its `top` (RelativeBody::own0) are zero
+  // outside its own columns: those rows take part over its own columns only. (In a chain of
+  // bodies placed at points the ancestors' columns, ever more down the chain, then meet 3 rows
+  // instead of all 12 + nq.) (Coefficient-based products: see projected_jacobian. A free body's
+  // block of R is the identity: no product on its side.)
+  // WR (+)= X Y_j, X = Wb's top-left ni x nj (ni rows of WR), over body j's column range.
+  const auto times = [&](int ni, int j, const MatrixXd& Y, bool accumulate) {
+    const RelativeBody& rj = tree.bodies[static_cast<std::size_t>(j)];
+    const Body& bj = model.bodies[static_cast<std::size_t>(j)];
+    const int nj = bj.ncoord();
+    const auto X = w.Wb.topLeftCorner(ni, nj);
+    auto WR = w.WR.topLeftCorner(ni, rj.ncols);
+    if (rj.free) {  // (only with Y = R: a free body's R_dot is zero)
+      if (accumulate) WR += X;
+      else WR = X;
+      return;
+    }
+    const int t = std::min(rj.top, nj), no = rj.col0 + rj.ncols - rj.own0;
+    if (accumulate) WR.noalias() += X.leftCols(t).lazyProduct(Y.block(bj.offset, rj.col0, t, rj.ncols));
+    else WR.noalias() = X.leftCols(t).lazyProduct(Y.block(bj.offset, rj.col0, t, rj.ncols));
+    if (nj > t && no > 0) WR.rightCols(no).noalias() += X.rightCols(nj - t).lazyProduct(Y.block(bj.offset + t, rj.own0, nj - t, no));
+  };
+  // Ts(i's columns, j's columns) += R_i^T WR.
+  const auto project_rows = [&](int i, int j) {
     const RelativeBody& ri = tree.bodies[static_cast<std::size_t>(i)];
     const RelativeBody& rj = tree.bodies[static_cast<std::size_t>(j)];
     const Body& bi = model.bodies[static_cast<std::size_t>(i)];
-    const Body& bj = model.bodies[static_cast<std::size_t>(j)];
-    const int ni = bi.ncoord(), nj = bj.ncoord();
-    if (rate && rj.free) return;
-    const MatrixXd& Y = rate ? *rate : w.R;
-    // (Coefficient-based products: see projected_jacobian. A free body's block of R is the
-    // identity: no product on its side.)
+    const int ni = bi.ncoord();
+    const auto WR = w.WR.topLeftCorner(ni, rj.ncols);
     auto Ts = w.Ts.block(ri.col0, rj.col0, ri.ncols, rj.ncols);
-    if (rj.free) w.WR.topLeftCorner(ni, rj.ncols) = w.Wb.topLeftCorner(ni, nj);
-    else w.WR.topLeftCorner(ni, rj.ncols).noalias() = w.Wb.topLeftCorner(ni, nj).lazyProduct(Y.block(bj.offset, rj.col0, nj, rj.ncols));
-    if (ri.free) Ts += w.WR.topLeftCorner(ni, rj.ncols);
-    else Ts.noalias() += w.R.block(bi.offset, ri.col0, ni, ri.ncols).transpose().lazyProduct(w.WR.topLeftCorner(ni, rj.ncols));
+    if (ri.free) {
+      Ts += WR;
+      return;
+    }
+    const int t = std::min(ri.top, ni), no = ri.col0 + ri.ncols - ri.own0;
+    Ts.noalias() += w.R.block(bi.offset, ri.col0, t, ri.ncols).transpose().lazyProduct(WR.topRows(t));
+    if (ni > t && no > 0)
+      Ts.bottomRows(no).noalias() += w.R.block(bi.offset + t, ri.own0, ni - t, no).transpose().lazyProduct(WR.bottomRows(ni - t));
   };
+  const auto add = [&](int i, int j) {
+    times(model.bodies[static_cast<std::size_t>(i)].ncoord(), j, w.R, false);
+    project_rows(i, j);
+  };
+  // The absolute tangent's iterate-dependent terms (FORMULATION.md 9), projected: the kept rows'
+  // second derivatives with the multipliers (without them the free bodies' frame rows, whose
+  // Hessian is the multiplier times the identity, made Newton diverge on the benchmark's crank
+  // at 150 rad/s and h = 1 ms) and the modal masses' derivative at the iterate's accelerations.
+  // Into the n x n work data.T, then by the blocks where they can be nonzero: a body's own block
+  // with its block of W (one product), the pairs' below.
+  if (!tree.hessian_pairs.empty()) {
+    for (const auto& [i, j] : tree.hessian_pairs) {
+      const Body& bi = model.bodies[static_cast<std::size_t>(i)];
+      const Body& bj = model.bodies[static_cast<std::size_t>(j)];
+      data.T.block(bi.offset, bj.offset, bi.ncoord(), bj.ncoord()).setZero();
+      data.T.block(bj.offset, bi.offset, bj.ncoord(), bi.ncoord()).setZero();
+    }
+    if (tree.kept_rows > 0) add_constraint_hessian(model, data, data.state.lambda, k.kq, data.T);
+    if (tree.flexible) add_modal_acceleration_tangent(model, data, k.kq, data.T);
+  }
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
     const int o = b.offset, nb = b.ncoord();
     auto Wb = w.Wb.topLeftCorner(nb, nb);
     Wb = data.bodies[i].M + k.kv * data.C.block(o, o, nb, nb) + k.kq * data.K.block(o, o, nb, nb);
     body_stiffening_rate_tangents(b, data.bodies[i], data.state.q.segment(o + 12, b.nq), data.state.qd.segment(o + 12, b.nq), k.kv, Wb);
+    if (tree.hessian_self[i]) Wb += data.T.block(o, o, nb, nb);
     add(static_cast<int>(i), static_cast<int>(i));
   }
   for (const auto& [i, j] : tree.pairs) {
@@ -113,33 +170,27 @@ void refresh(const Model& model, Data& data, double t) {
     w.Wb.topLeftCorner(nj, ni) = k.kv * data.C.block(oj, oi, nj, ni) + k.kq * data.K.block(oj, oi, nj, ni);
     add(j, i);
   }
-  // The absolute tangent's iterate-dependent terms (FORMULATION.md 9), projected: the kept rows'
-  // second derivatives with the multipliers (without them the free bodies' frame rows, whose
-  // Hessian is the multiplier times the identity, made Newton diverge on the benchmark's crank
-  // at 150 rad/s and h = 1 ms) and the modal masses' derivative at the iterate's accelerations.
-  // Into the n x n work data.T, then by the blocks where they can be nonzero.
-  if (!tree.hessian_pairs.empty()) {
-    for (const auto& [i, j] : tree.hessian_pairs) {
-      const Body& bi = model.bodies[static_cast<std::size_t>(i)];
-      const Body& bj = model.bodies[static_cast<std::size_t>(j)];
-      data.T.block(bi.offset, bj.offset, bi.ncoord(), bj.ncoord()).setZero();
-      data.T.block(bj.offset, bi.offset, bj.ncoord(), bi.ncoord()).setZero();
-    }
-    if (tree.kept_rows > 0) add_constraint_hessian(model, data, data.state.lambda, k.kq, data.T);
-    if (tree.flexible) add_modal_acceleration_tangent(model, data, k.kq, data.T);
-    for (const auto& [i, j] : tree.hessian_pairs) {
-      const Body& bi = model.bodies[static_cast<std::size_t>(i)];
-      const Body& bj = model.bodies[static_cast<std::size_t>(j)];
-      w.Wb.topLeftCorner(bi.ncoord(), bj.ncoord()) = data.T.block(bi.offset, bj.offset, bi.ncoord(), bj.ncoord());
-      add(i, j);
-      if (i == j) continue;
-      w.Wb.topLeftCorner(bj.ncoord(), bi.ncoord()) = data.T.block(bj.offset, bi.offset, bj.ncoord(), bi.ncoord());
-      add(j, i);
-    }
+  for (const auto& [i, j] : tree.hessian_pairs) {
+    if (i == j) continue;
+    const Body& bi = model.bodies[static_cast<std::size_t>(i)];
+    const Body& bj = model.bodies[static_cast<std::size_t>(j)];
+    w.Wb.topLeftCorner(bi.ncoord(), bj.ncoord()) = data.T.block(bi.offset, bj.offset, bi.ncoord(), bj.ncoord());
+    add(i, j);
+    w.Wb.topLeftCorner(bj.ncoord(), bi.ncoord()) = data.T.block(bj.offset, bi.offset, bj.ncoord(), bi.ncoord());
+    add(j, i);
   }
-  if (tree.kept_rows > 0) {  // (Phis is the current iterate's: step() computed it; zero off the kept rows)
-    w.PA = data.alpha.asDiagonal() * w.Phis;
-    w.Ts.noalias() += k.kq * (w.Phis.transpose() * w.PA);
+  // (Phis is the current iterate's: step() computed it; zero off the kept rows.) Block by kept
+  // block over the columns where its rows are nonzero (projected_jacobian): a body's frame rows
+  // see its own frame only, a joint's rotation rows the two bodies' frames and modes.
+  for (std::size_t kb = 0; kb < tree.kept_blocks.size(); ++kb) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(tree.kept_blocks[kb])];
+    const auto rows = w.Phis.middleRows(b.row0, b.rows);
+    const int lo = w.span_lo[kb], hi = w.span_hi[kb];
+    if (lo == hi) continue;
+    auto PA = w.PA.block(b.row0, lo, b.rows, hi - lo);
+    PA.noalias() = data.alpha.segment(b.row0, b.rows).asDiagonal() * rows.middleCols(lo, hi - lo);
+    PA *= k.kq;
+    w.Ts.block(lo, lo, hi - lo, hi - lo).noalias() += rows.middleCols(lo, hi - lo).transpose().lazyProduct(PA);
   }
   if (w.exact_tangent) {
     // What the projections weigh by (project): the tangent so far, R^T W R and the constraints'
@@ -156,26 +207,30 @@ void refresh(const Model& model, Data& data, double t) {
       const RelativeBody& rb = tree.bodies[i];
       if (rb.free) continue;
       const Body& b = model.bodies[i];
-      const int o = b.offset, nb = b.ncoord();
+      const int o = b.offset, nb = b.ncoord(), bi = static_cast<int>(i);
       w.Z.block(o, rb.col0, nb, rb.ncols) = (2 * k.kv) * w.Rd.block(o, rb.col0, nb, rb.ncols) + k.kq * w.Ra.block(o, rb.col0, nb, rb.ncols);
       auto Wb = w.Wb.topLeftCorner(nb, nb);
       Wb = data.bodies[i].M;
-      add(static_cast<int>(i), static_cast<int>(i), &w.Z);
-      if (data.C.block(o, o, nb, nb).isZero(0.0)) continue;
-      Wb = k.kq * data.C.block(o, o, nb, nb);
-      add(static_cast<int>(i), static_cast<int>(i), &w.Rd);
+      times(nb, bi, w.Z, false);
+      if (!data.C.block(o, o, nb, nb).isZero(0.0)) {
+        Wb = k.kq * data.C.block(o, o, nb, nb);
+        times(nb, bi, w.Rd, true);
+      }
+      project_rows(bi, bi);
     }
     for (const auto& [i, j] : tree.pairs) {
       const Body& bi = model.bodies[static_cast<std::size_t>(i)];
       const Body& bj = model.bodies[static_cast<std::size_t>(j)];
       const int oi = bi.offset, ni = bi.ncoord(), oj = bj.offset, nj = bj.ncoord();
-      if (!data.C.block(oi, oj, ni, nj).isZero(0.0)) {
+      if (!data.C.block(oi, oj, ni, nj).isZero(0.0) && !tree.bodies[static_cast<std::size_t>(j)].free) {
         w.Wb.topLeftCorner(ni, nj) = k.kq * data.C.block(oi, oj, ni, nj);
-        add(i, j, &w.Rd);
+        times(ni, j, w.Rd, false);
+        project_rows(i, j);
       }
-      if (!data.C.block(oj, oi, nj, ni).isZero(0.0)) {
+      if (!data.C.block(oj, oi, nj, ni).isZero(0.0) && !tree.bodies[static_cast<std::size_t>(i)].free) {
         w.Wb.topLeftCorner(nj, ni) = k.kq * data.C.block(oj, oi, nj, ni);
-        add(j, i, &w.Rd);
+        times(nj, i, w.Rd, false);
+        project_rows(j, i);
       }
     }
     // The curvature of q(s) weighted by the absolute residual force F = M q_ddot - Q + Phi_q^T
@@ -200,68 +255,6 @@ void refresh(const Model& model, Data& data, double t) {
   w.scale = (d > 0).select(d.sqrt().inverse(), 1.0);
   w.lu.compute(w.scale.asDiagonal() * w.Ts * w.scale.asDiagonal());
   ++data.stats.factorizations;
-}
-
-void solve(RelativeWork& w, Data& data, const VectorXd& rhs, VectorXd& out) {
-  ++data.stats.solves;
-  out = w.scale.cwiseProduct(rhs);
-  w.lu.solve_in_place(out);
-  out.array() *= w.scale.array();
-}
-
-// The same with the projections' metric (refresh): the tangent without the rate and curvature
-// terms, factorised when first needed after a refresh.
-void solve_metric(RelativeWork& w, Data& data, const VectorXd& rhs, VectorXd& out) {
-  if (!w.exact_tangent) return solve(w, data, rhs, out);
-  if (w.metric_stale) {
-    const auto d = w.Tm.diagonal().array().abs();
-    w.scale_m = (d > 0).select(d.sqrt().inverse(), 1.0);
-    w.lu_m.compute(w.scale_m.asDiagonal() * w.Tm * w.scale_m.asDiagonal());
-    ++data.stats.factorizations;
-    w.metric_stale = false;
-  }
-  ++data.stats.solves;
-  out = w.scale_m.cwiseProduct(rhs);
-  w.lu_m.solve_in_place(out);
-  out.array() *= w.scale_m.array();
-}
-
-// out(kept rows) = Phis v.
-void phis_times(const Model& model, RelativeWork& w, const VectorXd& v, VectorXd& out) {
-  out.setZero();
-  for (int bi : model.relative->kept_blocks) {
-    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
-    out.segment(b.row0, b.rows).noalias() = w.Phis.middleRows(b.row0, b.rows) * v;
-  }
-}
-
-// out += Phis^T lam over the kept rows.
-void add_phis_t(const Model& model, RelativeWork& w, const VectorXd& lam, double factor, VectorXd& out) {
-  for (int bi : model.relative->kept_blocks) {
-    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(bi)];
-    out.noalias() += factor * (w.Phis.middleRows(b.row0, b.rows).transpose() * lam.segment(b.row0, b.rows));
-  }
-}
-
-// A projection of x (s_dot or s_ddot) onto Phis x + b = 0 (b on the kept rows) in the metric of
-// the factorised tangent: x <- x - T^-1 kq Phis^T alpha (Phis x + b) until the residual, times
-// `scale` (h for rates, h^2 for accelerations: lengths), is below the tolerance.
-double project(const Model& model, Data& data, VectorXd& x, const VectorXd& b, double scale) {
-  RelativeWork& w = *data.relative;
-  const double kq = data.state.k.kq;
-  double res = 0;
-  for (int pass = 0; pass < 50; ++pass) {
-    phis_times(model, w, x, w.c);
-    w.c += b.cwiseProduct(w.keep);
-    res = w.c.cwiseAbs().maxCoeff() * scale / model.length;
-    if (res < model.settings.tolerance) return res;
-    w.r = data.alpha.cwiseProduct(w.c);
-    w.f.setZero();
-    add_phis_t(model, w, w.r, kq, w.f);
-    solve_metric(w, data, w.f, w.ds);
-    x -= w.ds;
-  }
-  return res;
 }
 
 // Generalized-alpha in s, as the absolute step has it in q (scheme_coefficients.cpp): with the
@@ -334,7 +327,20 @@ void assemble_residual(const Model& model, Data& data) {
   if (model.relative->kept_rows > 0) projected_jacobian(model, data);
   mass_times(model, data, st.qdd, w.g);
   w.g -= data.Q;
-  w.f.noalias() = w.R.transpose() * w.g;
+  // R^T g by bodies over R's pattern (RelativeBody::own0), not over all of the n x ns R.
+  w.f.setZero();
+  for (int bi : model.relative->order) {
+    const RelativeBody& rb = model.relative->bodies[static_cast<std::size_t>(bi)];
+    const Body& b = model.bodies[static_cast<std::size_t>(bi)];
+    const int o = b.offset, nb = b.ncoord();
+    if (rb.free) {
+      w.f.segment(rb.col0, nb) += w.g.segment(o, nb);
+      continue;
+    }
+    const int t = std::min(rb.top, nb), no = rb.col0 + rb.ncols - rb.own0;
+    w.f.segment(rb.col0, rb.ncols).noalias() += w.R.block(o, rb.col0, t, rb.ncols).transpose() * w.g.segment(o, t);
+    if (nb > t && no > 0) w.f.segment(rb.own0, no).noalias() += w.R.block(o + t, rb.own0, nb - t, no).transpose() * w.g.segment(o + t, nb - t);
+  }
   add_phis_t(model, w, data.lambda_eff, 1.0, w.f);
   w.f *= st.k.kq;
 }
@@ -474,7 +480,7 @@ void relative_step(const Model& model, Data& data, double h) {
   data.stats.last_acceleration_violation = 0;
   if (model.relative->kept_rows > 0) {
     projected_jacobian(model, data);
-    data.stats.last_velocity_violation = project(model, data, w.sd, data.Phit, h);
+    data.stats.last_velocity_violation = relative_project(model, data, w.sd, data.Phit, h);
     if (!(data.stats.last_velocity_violation < s.tolerance))
       throw SolverError(t1, data.stats.last_velocity_violation,
                         "the velocity projection did not converge at t = " + fmt(t1) + " s (relative formulation); try a smaller step (solver.step = " + fmt(0.5 * h) + ")");
@@ -487,7 +493,7 @@ void relative_step(const Model& model, Data& data, double h) {
     constraint_times(model, data, st.qdd, w.sigma);  // (project() works in r and c)
     w.sigma += data.gamma;
     w.sdd = k.c2 * w.s + w.sdd_hat;
-    data.stats.last_acceleration_violation = project(model, data, w.sdd, w.sigma, h2);
+    data.stats.last_acceleration_violation = relative_project(model, data, w.sdd, w.sigma, h2);
     relative_kinematics(model, data, false);
     update_bodies(model, data);
     update_markers(model, data);

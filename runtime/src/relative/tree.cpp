@@ -133,6 +133,12 @@ void span(const Model& m, RelativeTree& t, int& ntree, int& nfree) {
     }
     rb.col0 = lo < hi ? lo : 0;
     rb.ncols = lo < hi ? hi - lo : 0;
+    // Its own columns follow its ancestors' (parents first above).
+    int own = rb.col0 + rb.ncols;
+    for (int c : {rb.s_angle, rb.s_slide, rb.s_first})
+      if (c >= 0) own = std::min(own, c);
+    rb.own0 = rb.free ? rb.col0 : own;
+    rb.top = rb.free ? 0 : rb.point ? 3 : 12;
   }
   for (const Body& b : m.bodies) t.flexible = t.flexible || b.nq > 0;
 }
@@ -174,6 +180,9 @@ void build_relative_tree(Model& m) {
   }
   for (int b = 0; b < static_cast<int>(m.bodies.size()); ++b)
     if (m.bodies[static_cast<std::size_t>(b)].nq > 0) hessian_pair(b, b);
+  t.hessian_self.assign(m.bodies.size(), 0);
+  for (const auto& [a, b] : t.hessian_pairs)
+    if (a == b) t.hessian_self[static_cast<std::size_t>(a)] = 1;
   // Force elements between two bodies couple their blocks of K and C.
   const auto pair = [&](int mk1, int mk2) {
     int a = m.markers[static_cast<std::size_t>(mk1)].body, b = m.markers[static_cast<std::size_t>(mk2)].body;
@@ -252,7 +261,16 @@ RelativeWork::RelativeWork(const Model& model) {
     // A joint placed at its point: its three point rows hold by construction.
     if (b.kind == BlockKind::Joint && t.tree_joint[static_cast<std::size_t>(b.index)] == 2 && b.first == 0) keep.segment(b.row0, 3).setZero();
   }
+  for (int i = 0; i < m; ++i)
+    if (keep(i) != 0) kept.push_back(i);
+  const int k = static_cast<int>(kept.size());
+  projY = MatrixXd::Zero(ns, k);
+  projS = MatrixXd::Zero(k, k);
+  proj_order.assign(static_cast<std::size_t>(k), 0);
+  proj_own = proj_w = proj_mu = proj_c = VectorXd::Zero(k);
   Phis = MatrixXd::Zero(m, ns);
+  span_lo.assign(t.kept_blocks.size(), 0);
+  span_hi.assign(t.kept_blocks.size(), 0);
   Ts = Tm = MatrixXd::Zero(ns, ns);
   scale_m = VectorXd::Ones(ns);
   lu_m.resize(std::max(ns, 1));

@@ -17,7 +17,10 @@
 // Output: one markdown row per model (stdout) and, with --csv, the same figures for plot.py.
 //
 // Usage: ffr-bench-formulations [--quick] [--part chains|mesh|loops|vehicle|all] [--max-dof N]
-//                               [--work DIR] [--vehicle DIR] [--csv FILE]
+//                               [--work DIR] [--vehicle DIR] [--csv FILE] [--only TEXT]
+//                               [--states FILE]
+// (--only: the models whose name contains TEXT, e.g. "flexible chain of 2"; --states: the final
+// absolute coordinates of every run, one line each, to compare two builds' motions.)
 #include "fe_bodies.hpp"
 #include "formulation_models.hpp"
 #include "models.hpp"
@@ -49,7 +52,12 @@ struct Args {
   fs::path work = fs::temp_directory_path() / "ffr_bench_formulations_work";
   fs::path vehicle;
   fs::path csv;
+  std::string only;
+  fs::path states;
 };
+
+std::string only_models;          ///< --only
+std::FILE* states_file = nullptr;  ///< --states
 
 struct Run {
   double us = 0, iterations = 0;
@@ -57,7 +65,7 @@ struct Run {
   std::string error;
 };
 
-Run time_model(const Model& model, Run best) {
+Run time_model(const Model& model, Run best, const std::string& label) {
   try {
     Data data(model);
     initialize(model, data);
@@ -69,6 +77,11 @@ Run time_model(const Model& model, Run best) {
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c1);
     const double cpu_us = 1e6 * static_cast<double>(c1.tv_sec - c0.tv_sec) + 1e-3 * static_cast<double>(c1.tv_nsec - c0.tv_nsec);
     const double us = cpu_us / static_cast<double>(step_count(model));
+    if (states_file && !best.ok) {  // (the first run's: every run of a model ends alike)
+      std::fprintf(states_file, "%s:", label.c_str());
+      for (Eigen::Index i = 0; i < data.state.q.size(); ++i) std::fprintf(states_file, " %.17g", data.state.q(i));
+      std::fprintf(states_file, "\n");
+    }
     if (!best.ok || us < best.us) {
       best.us = us;
       best.iterations = t.iterations_per_step;
@@ -93,6 +106,7 @@ struct Case {
 };
 
 void measure(const Case& c, const fs::path& dir, int repeats) {
+  if (!only_models.empty() && c.name.find(only_models) == std::string::npos) return;
   const Model abs_inv = parse_model(formulations::with_formulation(c.json, "absolute"), dir, c.name + ".json");
   const Model rel_inv = parse_model(formulations::with_formulation(c.json, "relative"), dir, c.name + ".json");
   Model abs_fe = abs_inv, rel_fe = rel_inv;
@@ -102,11 +116,11 @@ void measure(const Case& c, const fs::path& dir, int repeats) {
   const bool fe = !c.full_mass.empty();
   Run ai, af, ri, rf;
   for (int k = 0; k < repeats; ++k) {  // alternating, so that a change of load from other processes falls on all four alike
-    ai = time_model(abs_inv, ai);
-    ri = time_model(rel_inv, ri);
+    ai = time_model(abs_inv, ai, c.name + " abs inv");
+    ri = time_model(rel_inv, ri, c.name + " rel inv");
     if (fe) {
-      af = time_model(abs_fe, af);
-      rf = time_model(rel_fe, rf);
+      af = time_model(abs_fe, af, c.name + " abs fe");
+      rf = time_model(rel_fe, rf, c.name + " rel fe");
     }
   }
   const int nabs = abs_inv.ncoord, nrel = rel_inv.relative ? rel_inv.relative->ns : -1;
@@ -318,8 +332,10 @@ int main(int argc, char** argv) {
     else if (s == "--work") a.work = value();
     else if (s == "--vehicle") a.vehicle = value();
     else if (s == "--csv") a.csv = value();
+    else if (s == "--only") a.only = value();
+    else if (s == "--states") a.states = value();
     else {
-      std::fprintf(stderr, "usage: ffr-bench-formulations [--quick] [--part chains|mesh|loops|vehicle|all] [--max-dof N] [--work DIR] [--vehicle DIR] [--csv FILE]\n");
+      std::fprintf(stderr, "usage: ffr-bench-formulations [--quick] [--part chains|mesh|loops|vehicle|all] [--max-dof N] [--work DIR] [--vehicle DIR] [--csv FILE] [--only TEXT] [--states FILE]\n");
       return 2;
     }
   }
@@ -331,6 +347,11 @@ int main(int argc, char** argv) {
     }
     std::fprintf(csv_file, "group,model,bodies,flexible,modes,loops,fe_dof,coords_abs,coords_rel,rows_rel,abs_inv_us,abs_fe_us,rel_inv_us,rel_fe_us,abs_inv_it,abs_fe_it,rel_inv_it,rel_fe_it\n");
   }
+  only_models = a.only;
+  if (!a.states.empty() && !(states_file = std::fopen(a.states.c_str(), "w"))) {
+    std::fprintf(stderr, "cannot write %s\n", a.states.c_str());
+    return 2;
+  }
   const auto dir = bench::temp_dir("formulations");
   if (a.part == "all" || a.part == "chains") chains(a, dir);
   if (a.part == "all" || a.part == "mesh") mesh(a, dir);
@@ -338,5 +359,6 @@ int main(int argc, char** argv) {
   if (a.part == "all" || a.part == "vehicle") vehicle(a, dir);
   fs::remove_all(dir);
   if (csv_file) std::fclose(csv_file);
+  if (states_file) std::fclose(states_file);
   return 0;
 }

@@ -83,6 +83,14 @@ void solve_tangent(Data& data, const VectorXd& rhs, VectorXd& out);
 /// (data.proj_mu) for a c that is neither data.r nor data.tmp.
 int factor_exact_multipliers(Data& data);
 void solve_exact_multipliers(Data& data, const VectorXd& c);
+/// Their factorisation, for any such S (k x k, symmetric positive semi-definite, both triangles
+/// stored; the relative step's projections use it too): S(p, p) = L L^T in place (L in S's lower
+/// triangle), stopped where the rows left are combinations of the others up to round-off; returns
+/// the rank. `order` (k entries) and `own` (k) are work. pivoted_cholesky_solve: mu [k] with
+/// S mu = c on the independent rows, zero on the others (w [k]: work).
+int pivoted_cholesky(Eigen::Ref<MatrixXd> S, std::vector<int>& order, VectorXd& own);
+void pivoted_cholesky_solve(const Eigen::Ref<const MatrixXd>& S, const std::vector<int>& order, int rank, const VectorXd& c, VectorXd& w,
+                            VectorXd& mu);
 
 /// Scaled infinity norm of a coordinate increment: each coordinate by its inertia weight
 /// (Model::increment_weight), i.e. in model lengths of the displacement of its body's mass.

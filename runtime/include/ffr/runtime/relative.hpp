@@ -45,6 +45,11 @@ struct RelativeBody {
   /// The relative coordinates its absolute ones depend on lie in [col0, col0 + ncols): its own
   /// and its ancestors' (R is zero outside, so the products run over this range only).
   int col0 = 0, ncols = 0;
+  /// A tree body's rows of R (and of its rates) past its first `top` (its position at a point:
+  /// 3; its frame when placed wholly: 12) are zero outside its own columns [own0, col0 + ncols):
+  /// only its position (frame) follows its ancestors. The products of refresh run over that
+  /// pattern (relative/step.cpp).
+  int own0 = 0, top = 0;
 };
 
 /// The spanning tree (built once by finalize, never changed by the step).
@@ -63,6 +68,7 @@ struct RelativeTree {
   /// Pairs of bodies (i <= j) a kept constraint block joins, and each flexible body with itself:
   /// where the constraint Hessian and the modal acceleration tangent have blocks.
   std::vector<std::pair<int, int>> hessian_pairs;
+  std::vector<char> hessian_self;    ///< per body: (b, b) is among hessian_pairs
   std::string description;            ///< what the tree is, for the notes
   /// One line per joint the tree satisfies (assembled: no multiplier, no constraint row for what
   /// it places), for the notes: "joint 'hang' assembled (spherical, body 'bob' placed at node
@@ -101,6 +107,16 @@ struct RelativeWork {
   VectorXd weight;         ///< per relative coordinate: the scaled size of the displacement it causes
   VectorXd keep;           ///< per constraint row: 1 kept, 0 satisfied by the tree
   MatrixXd Phis;           ///< Phi_q R on the kept rows [m, ns] (zero elsewhere)
+  /// Per kept block (RelativeTree::kept_blocks' order): Phis's columns [lo, hi) outside which
+  /// its rows are zero (a body's frame rows see its own frame only), set with Phis.
+  std::vector<int> span_lo, span_hi;
+  std::vector<int> kept;   ///< the kept rows, in order
+  /// The direct projection's work (relative/projection.cpp): Y = Tm^-1 Phis^T of the kept rows
+  /// [ns, kept], S = Phis Y [kept, kept] and its pivoted Cholesky factor, its pivot order, and
+  /// vectors [kept].
+  MatrixXd projY, projS;
+  std::vector<int> proj_order;
+  VectorXd proj_own, proj_w, proj_mu, proj_c;
   MatrixXd Ts;             ///< tangent [ns, ns]
   MatrixXd Wb, WR;         ///< work: a body's (pair's) block of W, and W times R rows
   MatrixXd PA;             ///< work [m, ns]: alpha times Phis

@@ -1,0 +1,51 @@
+// The relative step's solves and products with Phis (solves.hpp).
+#include "solves.hpp"
+
+namespace ffr::runtime::relative_detail {
+
+void solve(RelativeWork& w, Data& data, const VectorXd& rhs, VectorXd& out) {
+  ++data.stats.solves;
+  out = w.scale.cwiseProduct(rhs);
+  w.lu.solve_in_place(out);
+  out.array() *= w.scale.array();
+}
+
+// The same with the projections' metric (refresh): the tangent without the rate and curvature
+// terms, factorised when first needed after a refresh.
+void solve_metric(RelativeWork& w, Data& data, const VectorXd& rhs, VectorXd& out) {
+  if (!w.exact_tangent) return solve(w, data, rhs, out);
+  if (w.metric_stale) {
+    const auto d = w.Tm.diagonal().array().abs();
+    w.scale_m = (d > 0).select(d.sqrt().inverse(), 1.0);
+    w.lu_m.compute(w.scale_m.asDiagonal() * w.Tm * w.scale_m.asDiagonal());
+    ++data.stats.factorizations;
+    w.metric_stale = false;
+  }
+  ++data.stats.solves;
+  out = w.scale_m.cwiseProduct(rhs);
+  w.lu_m.solve_in_place(out);
+  out.array() *= w.scale_m.array();
+}
+
+// out(kept rows) = Phis v, each block over its nonzero columns.
+void phis_times(const Model& model, RelativeWork& w, const VectorXd& v, VectorXd& out) {
+  const RelativeTree& t = *model.relative;
+  out.setZero();
+  for (std::size_t kb = 0; kb < t.kept_blocks.size(); ++kb) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(t.kept_blocks[kb])];
+    const int lo = w.span_lo[kb], len = w.span_hi[kb] - lo;
+    out.segment(b.row0, b.rows).noalias() = w.Phis.block(b.row0, lo, b.rows, len) * v.segment(lo, len);
+  }
+}
+
+// out += factor Phis^T lam over the kept rows, likewise.
+void add_phis_t(const Model& model, RelativeWork& w, const VectorXd& lam, double factor, VectorXd& out) {
+  const RelativeTree& t = *model.relative;
+  for (std::size_t kb = 0; kb < t.kept_blocks.size(); ++kb) {
+    const ConstraintBlock& b = model.blocks[static_cast<std::size_t>(t.kept_blocks[kb])];
+    const int lo = w.span_lo[kb], len = w.span_hi[kb] - lo;
+    out.segment(lo, len).noalias() += factor * (w.Phis.block(b.row0, lo, b.rows, len).transpose() * lam.segment(b.row0, b.rows));
+  }
+}
+
+}  // namespace ffr::runtime::relative_detail
