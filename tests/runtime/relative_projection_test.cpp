@@ -72,7 +72,7 @@ TEST(RelativeProjection, ThirtyModeSliderCrankMatchesAbsolute) {
   const double end = 0.1;  // past the failures at 0.03 ... 0.07 s
   double dx[2], dy[2];
   int i = 0;
-  for (const double h : {1e-3, 5e-4}) {
+  for (const double h : {1e-3, 2.5e-4}) {
     const CrankRun a = run(dir.path, h, end, "absolute"), r = run(dir.path, h, end, "relative");
     EXPECT_LT(r.worst_velocity_violation, 1e-12);
     EXPECT_LT(r.worst_acceleration_violation, 1e-12);
@@ -84,10 +84,13 @@ TEST(RelativeProjection, ThirtyModeSliderCrankMatchesAbsolute) {
                 h, dx[i], dy[i], r.worst_velocity_violation, r.worst_acceleration_violation);
     ++i;
   }
-  // The slider travels 0.3 m; the discretisations' difference shrinks with the step (as h^2
-  // where the modes are resolved; the highest ones, omega h > 1, are not at either step).
-  EXPECT_LT(dx[1], 1e-5);
-  EXPECT_LT(dx[1], 0.5 * dx[0]);
+  // The slider travels 0.3 m; the discretisations' difference shrinks with the step, by at
+  // least a quarter of the h^2 rate over the factor 4 (not monotonically in between: at
+  // h = 0.5 ms the slider's is 2.1e-6 m, the modal one 1.8e-2; the highest modes, omega h > 1,
+  // are resolved at neither end).
+  EXPECT_LT(dx[1], 1e-6);
+  EXPECT_LT(dx[1], 0.25 * dx[0]);
+  EXPECT_LT(dy[1], 0.25 * dy[0]);
   EXPECT_LT(dy[1], 1e-2);
 }
 
