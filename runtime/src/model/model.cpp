@@ -4,6 +4,7 @@
 
 #include "ffr/runtime/errors.hpp"
 #include "ffr/runtime/kinematics.hpp"
+#include "known_frame.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -143,6 +144,7 @@ void order_blocks(Model& m) {
   const auto integrated = [&](int body) { return body != kGround && !m.bodies[body].driven(); };
   const auto active = [&](const ConstraintBlock& b) {
     if (b.kind == BlockKind::RigidBody && m.bodies[b.body1].frame_locked) return false;  // holds: the frame is known
+    if (b.kind == BlockKind::RigidBody && detail::frame_known(m, m.bodies[b.body1])) return false;  // likewise
     if (b.held_by_lock) return false;  // a locked body's prismatic rotational rows: both frames known
     return integrated(b.body1) || integrated(b.body2) || integrated(b.body3) || integrated(b.body4);
   };
@@ -241,14 +243,19 @@ void finalize(Model& m) {
     }
   m.ncoord = off;
   m.nunknown = m.nfree;
-  for (const auto& b : m.bodies)
+  for (const auto& b : m.bodies) {
     if (b.frame_locked) m.nunknown -= 9;
+    if (detail::frame_known(m, b)) m.nunknown -= 12;
+  }
   m.length = size > 0 ? size : 1.0;
   m.mass = m.bodies.empty() ? 1.0 : mass_sum / static_cast<double>(m.bodies.size());
   for (auto& b : m.bodies) {
     b.PPdm_stack.resize(9 * b.nq, b.nq);
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < 3; ++c) b.PPdm_stack.middleRows((3 * a + c) * b.nq, b.nq) = b.PPdm[a][c];
+    b.PPdm_stack_sparse.resize(0, 0);
+    if (b.nq > 0 && 4 * (b.PPdm_stack.array() != 0.0).count() <= b.PPdm_stack.size())
+      b.PPdm_stack_sparse = b.PPdm_stack.sparseView();  // the exact zeros left out
     b.y_scale.resize(b.nq);
     for (int k = 0; k < b.nq; ++k)
       b.y_scale(k) = b.Myy(k, k) > 0 ? m.length * std::sqrt(b.mass / b.Myy(k, k)) : m.length;
