@@ -253,9 +253,6 @@ void finalize(Model& m) {
     b.PPdm_stack.resize(9 * b.nq, b.nq);
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < 3; ++c) b.PPdm_stack.middleRows((3 * a + c) * b.nq, b.nq) = b.PPdm[a][c];
-    b.PPdm_stack_sparse.resize(0, 0);
-    if (b.nq > 0 && 4 * (b.PPdm_stack.array() != 0.0).count() <= b.PPdm_stack.size())
-      b.PPdm_stack_sparse = b.PPdm_stack.sparseView();  // the exact zeros left out
     b.y_scale.resize(b.nq);
     for (int k = 0; k < b.nq; ++k)
       b.y_scale(k) = b.Myy(k, k) > 0 ? m.length * std::sqrt(b.mass / b.Myy(k, k)) : m.length;
