@@ -77,13 +77,19 @@ double element(const AncfBeam& beam, const Vec12& qe, const Vec12& qde, Vec12& f
     // dU/dq = EA eps p + EI (F^T f / g^3 - 3 |f|^2 / g^4 p)
     fe.noalias() += w * (beam.EA * eps * p + beam.EI * (Ff / g3 - 3 * ff / g4 * p));
     if (Ke) {
-      const Mat12 StS = Sx.transpose() * Sx;
+      // The 12 x 12 products are coefficient-based (lazyProduct): Eigen's default for these
+      // fixed sizes is its blocked matrix product, whose packing and dispatch cost more than the
+      // few hundred multiply-adds (with the copies, half of the 16-element pendulum's step).
+      const Mat12 StS = Sx.transpose().lazyProduct(Sx);
       // The second derivative of f . f_frozen: -Sx^T [f]x Sxx + Sxx^T [f]x Sx (symmetric).
       const Eigen::Matrix3d fx = skew(f);
-      const Mat12 Hf = Sxx.transpose() * fx * Sx - Sx.transpose() * fx * Sxx;
-      Mat12 H = beam.EA * (p * p.transpose() + eps * StS);
-      H.noalias() += beam.EI * ((F.transpose() * F + Hf) / g3 - 6 / g4 * (Ff * p.transpose() + p * Ff.transpose()) +
-                                24 * ff / (g4 * g) * p * p.transpose() - 3 * ff / g4 * StS);
+      const Mat312 fxSx = fx * Sx, fxSxx = fx * Sxx;
+      const Mat12 Hf = Sxx.transpose().lazyProduct(fxSx) - Sx.transpose().lazyProduct(fxSxx);
+      const Mat12 pp = p.lazyProduct(p.transpose());
+      const Mat12 Ffp = Ff.lazyProduct(p.transpose());
+      Mat12 H = beam.EA * (pp + eps * StS);
+      H += beam.EI * ((F.transpose().lazyProduct(F) + Hf) / g3 - 6 / g4 * (Ffp + Ffp.transpose()) + 24 * ff / (g4 * g) * pp -
+                      3 * ff / g4 * StS);
       *Ke += w * H;
     }
     if (damp && beam.tau > 0) {
@@ -91,7 +97,7 @@ double element(const AncfBeam& beam, const Vec12& qe, const Vec12& qde, Vec12& f
       // vector k = f / g^(3/2) rates: Q = -tau (EA p p^T + EI Jk^T Jk) q_dot, Jk = dk/dq.
       const double gs = std::sqrt(g);
       const Mat312 Jk = F / (g * gs) - 3 / (g * g * gs) * f * p.transpose();
-      const Mat12 D = beam.tau * (beam.EA * p * p.transpose() + beam.EI * Jk.transpose() * Jk);
+      const Mat12 D = beam.tau * (beam.EA * p.lazyProduct(p.transpose()) + beam.EI * Jk.transpose().lazyProduct(Jk));
       fe.noalias() += w * (D * qde);
       if (Ce) *Ce += w * D;
     }

@@ -7,10 +7,13 @@
 // The motion is exact, not integrated: a revolute drive turns the body's reference pose about
 // the joint's axis through the joint's point by the change of the prescribed angle; a prismatic
 // drive slides it along the axis by the change of the prescribed displacement.
+//
+// An ancf beam's frame is known the same way, where its rows hold it (known_frame.hpp).
 #include "ffr/runtime/constraints.hpp"
 #include "ffr/runtime/integrator.hpp"
 #include "ffr/runtime/kinematics.hpp"
 #include "tangent_blocks.hpp"
+#include "../model/known_frame.hpp"
 
 #include <Eigen/Geometry>
 
@@ -76,7 +79,7 @@ void set_unknowns(const Model& model, Data& data, bool eliminate) {
     for (const Body& b : model.bodies) {  // the integrated ones come in the order of their offsets
       if (b.driven()) continue;
       for (int k = 0; k < b.ncoord(); ++k)
-        if (!(b.frame_locked && k >= 3 && k < 12)) data.unknowns.push_back(b.offset + k);
+        if (!(b.frame_locked && k >= 3 && k < 12) && !(detail::frame_known(model, b) && k < 12)) data.unknowns.push_back(b.offset + k);
     }
   for (std::size_t i = 0; i < data.unknowns.size(); ++i) {
     const int at = static_cast<int>(i), u = data.unknowns[i];
@@ -102,6 +105,14 @@ void drive_bodies(const Model& model, Data& data, double t) {
   if (data.nf == model.ncoord && data.unknowns.empty()) return;  // everything integrated
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
+    if (detail::frame_known(model, b)) {  // an ancf beam's frame: where its rows hold it, r0 = 0, A = I, at rest
+      const int o = b.offset;
+      data.state.q.segment<3>(o).setZero();
+      Eigen::Map<Matrix3d>(data.state.q.data() + o + 3).setIdentity();
+      data.state.qd.segment<12>(o).setZero();
+      data.state.qdd.segment<12>(o).setZero();
+      continue;
+    }
     if (b.frame_locked) {  // it slides only: the frame as it was, at rest
       const int o = b.offset;
       Eigen::Map<Matrix3d>(data.state.q.data() + o + 3) = data.drive_ref[i].A;

@@ -183,6 +183,9 @@ bool SmallLU::factorize() {
     for (Index i = first; i <= last; ++i) row_last[i] = std::max(row_last[i], static_cast<int>(j));
     col_last[j] = static_cast<int>(std::max(j, last));
   }
+  // The columns before `left` are zero from the current pivot row down (their last nonzero
+  // rows are above it, and rows there change no more): a row swap starts at it.
+  Index left = 0;
   for (Index k0 = 0; k0 < n; k0 += kPanel) {
     const Index p1 = std::min(n, k0 + kPanel);
     // Last nonzero row of the panel's columns of L: the trailing update runs down to it.
@@ -197,7 +200,8 @@ bool SmallLU::factorize() {
       if (p != k) {
         // Row k's nonzeros move down to row p: the columns they land in reach row p now.
         const Index end = std::max(row_last[k], row_last[p]);
-        for (Index j = 0; j <= end; ++j) {
+        while (left < k && col_last[left] < k) ++left;
+        for (Index j = left; j <= end; ++j) {
           std::swap(a[k + j * ld], a[p + j * ld]);
           if (a[p + j * ld] != 0.0) col_last[j] = std::max(col_last[j], static_cast<int>(p));
         }
