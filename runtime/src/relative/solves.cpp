@@ -3,12 +3,20 @@
 
 namespace ffr::runtime::relative_detail {
 
-void solve(RelativeWork& w, Data& data, const VectorXd& rhs, VectorXd& out) {
+namespace {
+
+// out = D LU^-1 D rhs for the factor of D T D (D = diag(scale)).
+template <class Lu>
+void scaled_solve(Lu& lu, const VectorXd& scale, Data& data, const VectorXd& rhs, VectorXd& out) {
   ++data.stats.solves;
-  out = w.scale.cwiseProduct(rhs);
-  w.lu.solve_in_place(out);
-  out.array() *= w.scale.array();
+  out = scale.cwiseProduct(rhs);
+  lu.solve_in_place(out);
+  out.array() *= scale.array();
 }
+
+}  // namespace
+
+void solve(RelativeWork& w, Data& data, const VectorXd& rhs, VectorXd& out) { scaled_solve(w.lu, w.scale, data, rhs, out); }
 
 // The same with the projections' metric (refresh): the tangent without the rate and curvature
 // terms, factorised when first needed after a refresh.
@@ -21,10 +29,7 @@ void solve_metric(RelativeWork& w, Data& data, const VectorXd& rhs, VectorXd& ou
     ++data.stats.factorizations;
     w.metric_stale = false;
   }
-  ++data.stats.solves;
-  out = w.scale_m.cwiseProduct(rhs);
-  w.lu_m.solve_in_place(out);
-  out.array() *= w.scale_m.array();
+  scaled_solve(w.lu_m, w.scale_m, data, rhs, out);
 }
 
 // out(kept rows) = Phis v, each block over its nonzero columns.
