@@ -78,8 +78,9 @@ void set_unknowns(const Model& model, Data& data, bool eliminate) {
   if (model.nunknown < model.nfree)
     for (const Body& b : model.bodies) {  // the integrated ones come in the order of their offsets
       if (b.driven()) continue;
+      const int known = detail::first_known_frame_coord(model, b);
       for (int k = 0; k < b.ncoord(); ++k)
-        if (!(b.frame_locked && k >= 3 && k < 12) && !(detail::frame_known(model, b) && k < 12)) data.unknowns.push_back(b.offset + k);
+        if (k < known || k >= 12) data.unknowns.push_back(b.offset + k);
     }
   for (std::size_t i = 0; i < data.unknowns.size(); ++i) {
     const int at = static_cast<int>(i), u = data.unknowns[i];

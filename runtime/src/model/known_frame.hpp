@@ -12,4 +12,10 @@ namespace ffr::runtime::detail {
 
 inline bool frame_known(const Model& model, const Body& b) { return b.beam != nullptr && model.settings.eliminate_driven; }
 
+/// The first of a body's frame coordinates [first, 12) that are known, not integrated: 0 for a
+/// known frame (above), 3 for a locked one (Body::frame_locked: its rotation), 12 for none.
+inline int first_known_frame_coord(const Model& model, const Body& b) {
+  return frame_known(model, b) ? 0 : b.frame_locked ? 3 : 12;
+}
+
 }  // namespace ffr::runtime::detail

@@ -143,8 +143,8 @@ void find_drives(Model& m) {
 void order_blocks(Model& m) {
   const auto integrated = [&](int body) { return body != kGround && !m.bodies[body].driven(); };
   const auto active = [&](const ConstraintBlock& b) {
-    if (b.kind == BlockKind::RigidBody && m.bodies[b.body1].frame_locked) return false;  // holds: the frame is known
-    if (b.kind == BlockKind::RigidBody && detail::frame_known(m, m.bodies[b.body1])) return false;  // likewise
+    // holds: the frame's rows see known coordinates only (a locked or known frame)
+    if (b.kind == BlockKind::RigidBody && detail::first_known_frame_coord(m, m.bodies[b.body1]) < 12) return false;
     if (b.held_by_lock) return false;  // a locked body's prismatic rotational rows: both frames known
     return integrated(b.body1) || integrated(b.body2) || integrated(b.body3) || integrated(b.body4);
   };
@@ -243,10 +243,7 @@ void finalize(Model& m) {
     }
   m.ncoord = off;
   m.nunknown = m.nfree;
-  for (const auto& b : m.bodies) {
-    if (b.frame_locked) m.nunknown -= 9;
-    if (detail::frame_known(m, b)) m.nunknown -= 12;
-  }
+  for (const auto& b : m.bodies) m.nunknown -= 12 - detail::first_known_frame_coord(m, b);
   m.length = size > 0 ? size : 1.0;
   m.mass = m.bodies.empty() ? 1.0 : mass_sum / static_cast<double>(m.bodies.size());
   for (auto& b : m.bodies) {
