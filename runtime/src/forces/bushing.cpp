@@ -30,7 +30,6 @@ const DotTerm kTerms[6][2] = {
 
 const Vector3d& value(const MarkerData& md, int k) { return k < 0 ? md.p : md.e[k]; }
 const Vector3d& rate(const MarkerData& md, int k) { return k < 0 ? md.pd : md.ed[k]; }
-const Matrix3N& jac(const MarkerData& md, int k) { return k < 0 ? md.Jp : md.Je[k]; }
 
 Vector6d measures(const Bushing& bu, const Data& data) {
   const MarkerData* md[2] = {&data.markers[bu.m1], &data.markers[bu.m2]};
@@ -89,18 +88,21 @@ double bushing_energy(const Model& model, const Bushing& bu, Data& data) {
 
 void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_q, bool tangents,
                     Eigen::Matrix<double, 12, 2>* ends) {
-  const int mk[2] = {bu.m1, bu.m2};
   const Marker* mm[2] = {&model.markers[bu.m1], &model.markers[bu.m2]};
   const MarkerData* md[2] = {&data.markers[bu.m1], &data.markers[bu.m2]};
   const int body[2] = {mm[0]->body, mm[1]->body};
   const int nb[2] = {ncoord(model, body[0]), ncoord(model, body[1])};
   const int col0[2] = {0, nb[0]};
   const int ntot = nb[0] + nb[1];
-  (void)mk;
 
-  // Gradients of the six measures over [z1, z2] and their values and rates.
-  auto g = data.fg.leftCols(ntot);
-  g.setZero();
+  // Every measure is a sum of dot products of the ends' points and axes, so its gradient is
+  // g_i = X_i [J_1; J_2], J_s end s's stacked Jacobian [J_p; J_e0; J_e1; J_e2] ([12, nb_s]) and
+  // X_i the other factors of its dot terms. With the tangent's weights below summed the same
+  // way, a pair of ends costs one product per matrix, in place of a small product for each dot
+  // term and an outer product for each measure: those were most of what the bushings cost where
+  // their ends span a flexible body's coordinates.
+  const auto row = [](int side, int k) { return 12 * side + 3 * (k + 1); };
+  Eigen::Matrix<double, 6, 24> X = Eigen::Matrix<double, 6, 24>::Zero();
   Vector6d s = Vector6d::Zero(), sd = Vector6d::Zero();
   for (int i = 0; i < 6; ++i)
     for (const DotTerm& t : kTerms[i]) {
@@ -108,9 +110,17 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
       const Vector3d& xb = value(*md[t.mb], t.kb);
       s(i) += t.coef * xa.dot(xb);
       sd(i) += t.coef * (rate(*md[t.ma], t.ka).dot(xb) + xa.dot(rate(*md[t.mb], t.kb)));
-      if (nb[t.ma]) g.row(i).segment(col0[t.ma], nb[t.ma]).noalias() += t.coef * xb.transpose() * jac(*md[t.ma], t.ka);
-      if (nb[t.mb]) g.row(i).segment(col0[t.mb], nb[t.mb]).noalias() += t.coef * xa.transpose() * jac(*md[t.mb], t.kb);
+      X.block<1, 3>(i, row(t.ma, t.ka)) += t.coef * xb.transpose();
+      X.block<1, 3>(i, row(t.mb, t.kb)) += t.coef * xa.transpose();
     }
+  auto g = data.fg.leftCols(ntot);
+  for (int side = 0; side < 2; ++side) {
+    if (!nb[side]) continue;
+    auto J = data.bJ[side].leftCols(nb[side]);
+    J.topRows<3>() = md[side]->Jp;
+    for (int k = 0; k < 3; ++k) J.middleRows<3>(3 + 3 * k) = md[side]->Je[k];
+    g.middleCols(col0[side], nb[side]).noalias() = X.middleCols<12>(12 * side).lazyProduct(J);
+  }
   Vector6d F, slope;
   elastic(bu, s - bu.s0, F, slope);
   F += bu.c.cwiseProduct(sd);
@@ -125,64 +135,76 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
   }
   if (!tangents) return;
 
-  auto Kc = data.fK.topLeftCorner(ntot, ntot);
-  auto Cc = data.fC.topLeftCorner(ntot, ntot);
-  auto z = data.fz.head(ntot);
-  // Row i: H_i z (fH's first six rows as workspace: no tangent below reads fH).
-  auto HZ = data.fH.topLeftCorner(6, ntot);
+  // K = sum_i k_i g_i^T g_i + c_i g_i^T (H_i z)^T + F_i H_i,  C = sum_i c_i g_i^T g_i, as
+  //   K = g^T P + J^T W J + (the ends' node terms of F_i H_i),  C = g^T diag(c) g,
+  // with P = diag(k) g + diag(c) (H z)^T ([6, ntot]; H_i z = Y_i J + the node terms, Y_i weighing
+  // J's rows by the other factor's J z) and W = sum_i F_i W_i = Omega (x) I3 (Omega 8 x 8: the
+  // weight of each pair of quantities a dot term joins). The rank-six parts cost 6 ntot^2 each;
+  // only F_i H_i needs J.
+  Eigen::Matrix<double, 24, 1> Jz = Eigen::Matrix<double, 24, 1>::Zero();
   for (int side = 0; side < 2; ++side)
-    if (nb[side]) z.segment(col0[side], nb[side]) = data.state.qd.segment(offset(model, body[side]), nb[side]);
-  // H_i is linear in its dot-product terms, so sum_i F_i H_i is accumulated term by term with the
-  // weights F_i coef straight into Kc, and H_i z from the terms' Jacobian-vector products: no
-  // [ntot, ntot] H_i is formed (six of them, each cleared, multiplied by z and added, were a
-  // sixth of the bushings' cost on the washing machine, whose gasket and feet span a flexible
-  // body's coordinates). Same sums, in another order.
-  Kc.setZero();
-  HZ.setZero();
-  Vector3d Jz[2][4];  // J_x z of each marker quantity (point, axes 0-2) that a term uses
-  for (int side = 0; side < 2; ++side)
-    for (int k = -1; k < 3; ++k)
-      Jz[side][k + 1] = nb[side] ? Vector3d(jac(*md[side], k) * z.segment(col0[side], nb[side])) : Vector3d::Zero();
+    if (nb[side])
+      Jz.segment<12>(12 * side).noalias() =
+          data.bJ[side].leftCols(nb[side]) * data.state.qd.segment(offset(model, body[side]), nb[side]);
+  Eigen::Matrix<double, 8, 8> Omega = Eigen::Matrix<double, 8, 8>::Zero();
+  Eigen::Matrix<double, 6, 24> Y = Eigen::Matrix<double, 6, 24>::Zero();
+  auto P = data.bP.leftCols(ntot);
+  P.setZero();
   for (int i = 0; i < 6; ++i) {
     if (slope(i) == 0 && bu.c(i) == 0 && F(i) == 0) continue;
     for (const DotTerm& t : kTerms[i]) {
-      const int sa = t.ma, sb = t.mb;
+      const int sa = t.ma, sb = t.mb, ra = row(sa, t.ka), rb = row(sb, t.kb);
       const Vector3d& xa = value(*md[sa], t.ka);
       const Vector3d& xb = value(*md[sb], t.kb);
       const double w = F(i) * t.coef;
-      if (nb[sa] && nb[sb] && w != 0) {
-        Kc.block(col0[sa], col0[sb], nb[sa], nb[sb]).noalias() += w * jac(*md[sa], t.ka).transpose() * jac(*md[sb], t.kb);
-        Kc.block(col0[sb], col0[sa], nb[sb], nb[sa]).noalias() += w * jac(*md[sb], t.kb).transpose() * jac(*md[sa], t.ka);
+      Omega(ra / 3, rb / 3) += w;
+      Omega(rb / 3, ra / 3) += w;
+      if (w != 0 && on_node(model, *mm[sa])) {
+        const int o = offset(model, body[sa]);
+        add_jt_f_derivative(slice(*mm[sa], t.ka), xb, w, data.K.block(o, o, nb[sa], nb[sa]));
       }
-      if (on_node(model, *mm[sa]) && w != 0) add_jt_f_derivative(slice(*mm[sa], t.ka), xb, w, Kc.block(col0[sa], col0[sa], nb[sa], nb[sa]));
-      if (on_node(model, *mm[sb]) && w != 0) add_jt_f_derivative(slice(*mm[sb], t.kb), xa, w, Kc.block(col0[sb], col0[sb], nb[sb], nb[sb]));
+      if (w != 0 && on_node(model, *mm[sb])) {
+        const int o = offset(model, body[sb]);
+        add_jt_f_derivative(slice(*mm[sb], t.kb), xa, w, data.K.block(o, o, nb[sb], nb[sb]));
+      }
       if (bu.c(i) == 0) continue;
-      if (nb[sa] && nb[sb]) {
-        HZ.row(i).segment(col0[sa], nb[sa]).noalias() += (t.coef * Jz[sb][t.kb + 1]).transpose() * jac(*md[sa], t.ka);
-        HZ.row(i).segment(col0[sb], nb[sb]).noalias() += (t.coef * Jz[sa][t.ka + 1]).transpose() * jac(*md[sb], t.kb);
+      Y.block<1, 3>(i, ra) += (bu.c(i) * t.coef) * Jz.segment<3>(rb).transpose();
+      Y.block<1, 3>(i, rb) += (bu.c(i) * t.coef) * Jz.segment<3>(ra).transpose();
+      for (int e = 0; e < 2; ++e) {
+        const int side = e == 0 ? sa : sb, k = e == 0 ? t.ka : t.kb;
+        if (on_node(model, *mm[side]))
+          add_jt_f_derivative_times(slice(*mm[side], k), e == 0 ? xb : xa, bu.c(i) * t.coef,
+                                    data.state.qd.segment(offset(model, body[side]), nb[side]),
+                                    P.row(i).segment(col0[side], nb[side]));
       }
-      if (on_node(model, *mm[sa]))
-        add_jt_f_derivative_times(slice(*mm[sa], t.ka), xb, t.coef, z.segment(col0[sa], nb[sa]), HZ.row(i).segment(col0[sa], nb[sa]));
-      if (on_node(model, *mm[sb]))
-        add_jt_f_derivative_times(slice(*mm[sb], t.kb), xa, t.coef, z.segment(col0[sb], nb[sb]), HZ.row(i).segment(col0[sb], nb[sb]));
     }
   }
-  // K = sum_i k_i g_i^T g_i + c_i g_i^T (H_i z)^T + F_i H_i,  C = sum_i c_i g_i^T g_i (outer
-  // products with scalar factors: no temporaries, the step stays allocation-free).
-  Cc.setZero();
-  for (int i = 0; i < 6; ++i) {
-    if (slope(i) != 0) Kc.noalias() += slope(i) * g.row(i).transpose() * g.row(i);
-    if (bu.c(i) == 0) continue;
-    Kc.noalias() += bu.c(i) * g.row(i).transpose() * HZ.row(i);
-    Cc.noalias() += bu.c(i) * g.row(i).transpose() * g.row(i);
-  }
+  auto Cg = data.bCg.leftCols(ntot);
+  Cg.noalias() = bu.c.asDiagonal() * g;
+  P.noalias() += slope.asDiagonal() * g;
+  for (int side = 0; side < 2; ++side)
+    if (nb[side]) P.middleCols(col0[side], nb[side]).noalias() += Y.middleCols<12>(12 * side).lazyProduct(data.bJ[side].leftCols(nb[side]));
+  const bool damped = !bu.c.isZero(0);
+  // Coefficient-based products throughout: at these sizes (6 or 12 deep, up to a flexible body's
+  // coordinates wide) Eigen's blocked GEMM spent more on packing than on arithmetic.
   for (int a = 0; a < 2; ++a)
-    for (int b = 0; b < 2; ++b)
-      if (nb[a] && nb[b]) {
-        const int oa = offset(model, body[a]), ob = offset(model, body[b]);
-        data.K.block(oa, ob, nb[a], nb[b]) += Kc.block(col0[a], col0[b], nb[a], nb[b]);
-        data.C.block(oa, ob, nb[a], nb[b]) += Cc.block(col0[a], col0[b], nb[a], nb[b]);
-      }
+    for (int b = 0; b < 2; ++b) {
+      if (!nb[a] || !nb[b]) continue;
+      const auto ga = g.middleCols(col0[a], nb[a]);
+      auto Kab = data.K.block(offset(model, body[a]), offset(model, body[b]), nb[a], nb[b]);
+      Kab.noalias() += ga.transpose().lazyProduct(P.middleCols(col0[b], nb[b]));
+      // T = (Omega_ab (x) I3) J_b: row block u of T is sum_v Omega(u, v) times row block v of J_b.
+      auto T = data.bT.leftCols(nb[b]);
+      const auto Jb = data.bJ[b].leftCols(nb[b]);
+      T.setZero();
+      for (int u = 0; u < 4; ++u)
+        for (int v = 0; v < 4; ++v)
+          if (const double o = Omega(4 * a + u, 4 * b + v); o != 0) T.middleRows<3>(3 * u) += o * Jb.middleRows<3>(3 * v);
+      Kab.noalias() += data.bJ[a].leftCols(nb[a]).transpose().lazyProduct(T);
+      if (damped)
+        data.C.block(offset(model, body[a]), offset(model, body[b]), nb[a], nb[b]).noalias() +=
+            ga.transpose().lazyProduct(Cg.middleCols(col0[b], nb[b]));
+    }
 }
 
 }  // namespace ffr::runtime::detail

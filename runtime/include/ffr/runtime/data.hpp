@@ -166,6 +166,11 @@ struct Data {
   /// Tyres: the Jacobian of the wheel marker's point and three axes, their rate derivative and a
   /// product, [12, nb max] each (tire.cpp).
   Eigen::Matrix<double, 12, Eigen::Dynamic> tJ, tV, tW;
+  /// Bushings (bushing.cpp): each end's stacked Jacobian [J_p; J_e0; J_e1; J_e2] and a weighted
+  /// product, [12, nb max] each; the rank-six factors of K and C, [6, n12] each.
+  std::array<Eigen::Matrix<double, 12, Eigen::Dynamic>, 2> bJ;
+  Eigen::Matrix<double, 12, Eigen::Dynamic> bT;
+  Eigen::Matrix<double, 6, Eigen::Dynamic> bP, bCg;
 
   // Constraint-Hessian work, sized for the largest pair of bodies a joint joins.
   MatrixXd cH;                  ///< [n12, n12]
