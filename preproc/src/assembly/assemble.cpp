@@ -96,7 +96,7 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
       em = kernel(model, ref);
       if (!opt.stiffness_only && solid) {
         const auto& blk = model.mesh->blocks[model.blocks[static_cast<std::size_t>(ref.block)].block];
-        scaled_jacobian = solid_quality(blk.type, model.mesh->element_coords(blk, ref.index)).min_scaled_jacobian;
+        scaled_jacobian = solid_min_scaled_jacobian(blk.type, model.mesh->element_coords(blk, ref.index));
       }
     } catch (const ElementError& e) {
       throw formats::FormatError(model.part ? model.part->geometry.string() : "mesh", describe(model, ref), e.what());

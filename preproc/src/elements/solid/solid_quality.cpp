@@ -38,14 +38,8 @@ Corners corners_of(ElementType t) {
 }
 }  // namespace
 
-SolidQuality solid_quality(ElementType t, const Eigen::MatrixX3d& xe) {
-  const SolidShape& s = solid_shape(t);
-  SolidQuality q;
-  if (xe.rows() != s.nodes || !xe.allFinite()) return q;  // all zero: invalid
-  const detail::JacobianRange r = detail::jacobian_range(s, xe);
-  q.min_det_j = r.min;
-  q.max_det_j = r.max;
-  q.jacobian_ratio = r.max > 0 ? r.min / r.max : (r.min < 0 ? -1.0 : 0.0);
+double solid_min_scaled_jacobian(ElementType t, const Eigen::MatrixX3d& xe) {
+  if (xe.rows() != solid_shape(t).nodes || !xe.allFinite()) return 0;  // invalid
   const Corners c = corners_of(t);
   double sj = 1;
   for (const Triple& tr : c.triples) {
@@ -57,7 +51,18 @@ SolidQuality solid_quality(ElementType t, const Eigen::MatrixX3d& xe) {
     }
     sj = std::min(sj, c.scale * E.determinant());
   }
-  q.min_scaled_jacobian = std::min(sj, 1.0);
+  return std::min(sj, 1.0);
+}
+
+SolidQuality solid_quality(ElementType t, const Eigen::MatrixX3d& xe) {
+  const SolidShape& s = solid_shape(t);
+  SolidQuality q;
+  if (xe.rows() != s.nodes || !xe.allFinite()) return q;  // all zero: invalid
+  const detail::JacobianRange r = detail::jacobian_range(s, xe);
+  q.min_det_j = r.min;
+  q.max_det_j = r.max;
+  q.jacobian_ratio = r.max > 0 ? r.min / r.max : (r.min < 0 ? -1.0 : 0.0);
+  q.min_scaled_jacobian = solid_min_scaled_jacobian(t, xe);
   return q;
 }
 

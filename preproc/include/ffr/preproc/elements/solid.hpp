@@ -73,5 +73,10 @@ struct SolidQuality {
   double min_scaled_jacobian = 0;
 };
 SolidQuality solid_quality(ElementType t, const Eigen::MatrixX3d& xe);
+/// SolidQuality::min_scaled_jacobian alone (0 for invalid coordinates, as there): what the
+/// assembly reports for every solid. Why apart: solid_quality's detJ range evaluates ~20
+/// Jacobians of a TET10, which the element's own geometry check has just done, and the
+/// assembly does not read it.
+double solid_min_scaled_jacobian(ElementType t, const Eigen::MatrixX3d& xe);
 
 }  // namespace ffr::preproc
