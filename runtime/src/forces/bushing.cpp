@@ -179,12 +179,12 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
       }
     }
   }
-  auto Cg = data.bCg.leftCols(ntot);
-  Cg.noalias() = bu.c.asDiagonal() * g;
   P.noalias() += slope.asDiagonal() * g;
   for (int side = 0; side < 2; ++side)
     if (nb[side]) P.middleCols(col0[side], nb[side]).noalias() += Y.middleCols<12>(12 * side).lazyProduct(data.bJ[side].leftCols(nb[side]));
   const bool damped = !bu.c.isZero(0);
+  auto Cg = data.bCg.leftCols(ntot);
+  if (damped) Cg.noalias() = bu.c.asDiagonal() * g;
   // Coefficient-based products throughout: at these sizes (6 or 12 deep, up to a flexible body's
   // coordinates wide) Eigen's blocked GEMM spent more on packing than on arithmetic.
   for (int a = 0; a < 2; ++a)
