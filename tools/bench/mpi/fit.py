@@ -51,6 +51,11 @@ def model(m, n, p):
     return a + b * n + c * n ** alpha / p
 
 
+def krylov_basis(nev):
+    """Vectors in SLEPc Krylov-Schur's basis when ncv is not set (nev < 500)."""
+    return max(2 * nev, nev + 15)
+
+
 def read(files):
     # Columns by name: results.tsv files written before the MUMPS columns existed still read.
     rows = []
@@ -61,6 +66,7 @@ def read(files):
             r = dict(zip(head, l))
             for k in ("mumps", "factor_entries", "mumps_mb_max", "load_mean_max", "mumps_incore_estimate_mb_max"):
                 r.setdefault(k, "-")
+            r.setdefault("modes", "20")
             rows.append(r)
     return rows
 
@@ -115,8 +121,13 @@ def main():
         n, p = int(r["dof"]), int(r["ranks"])
         peak = max(float(x) for x in r["maxrss_mib_per_rank"].split(","))
         extra = (float(r["mumps_incore_estimate_mb_max"]) - float(r["mumps_mb_max"])) * 1e6 / 2 ** 20
-        est, pr = peak + extra, model(m, n, p)
-        print(f"- {n} DOF, {p} rank(s): peak {peak:.0f} MiB out of core, in core about {est:.0f} MiB;"
+        # A run with fewer modes than the model's 20 held a smaller Krylov basis: SLEPc's default
+        # max(2 nev, nev + 15) vectors of this rank's n / p rows.
+        k = int(r["modes"])
+        basis = (krylov_basis(20) - krylov_basis(k)) * (n / p) * 8 / 2 ** 20
+        est, pr = peak + extra + basis, model(m, n, p)
+        fewer = f" + {basis:.0f} MiB for the basis of 20 modes instead of {k}" if k != 20 else ""
+        print(f"- {n} DOF, {p} rank(s): peak {peak:.0f} MiB out of core, in core about {est:.0f} MiB{fewer};"
               f" model {pr:.0f} MiB ({100 * (pr - est) / est:+.1f} %)")
     print(f"\nPredicted peak memory per rank at 10M DOF (the fit on all {label}):")
     for p in (1, 2, 8, 16, 32, 64, 128):

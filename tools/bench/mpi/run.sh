@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Memory per rank and wall time of the slepc backend's distributed path against the default
 # serial path, on the TET10 plate of tools/bench/reduce (240 x 120 x 30 mm steel with four
-# holes, clamped at x = 0, 20 modes), side by side in one run for every size:
+# holes, clamped at x = 0, 20 modes unless --modes says), side by side in one run for every size:
 #   serial    ffr-reduce with its default backend (block Lanczos, own Cholesky), default threads
 #   slepc 1   mpirun -np 1 ffr-reduce (part with backend "slepc") --threads 1
 #   slepc 2   mpirun -np 2 ffr-reduce (part with backend "slepc") --threads 1
@@ -16,7 +16,11 @@
 # time.
 #
 #   tools/bench/mpi/run.sh [--sizes "100k 250k 500k"] [--workdir DIR] [--no-build] [--paths "serial 1 2"]
-#                          [--ordering pord|amd|amf|qamd|auto] [--out-of-core]
+#                          [--ordering pord|amd|amf|qamd|auto] [--out-of-core] [--modes N]
+#
+# --modes N asks N clamped modes instead of 20: fewer shift-invert solves, for a run out of core
+# where each solve reads the factor from disk. SLEPc's basis then holds max(2N, N + 15) vectors
+# instead of 40; the results' last column says N and fit.py accounts for the difference.
 #
 # Results go to DIR/results.tsv (appended: one line a run) and fit.py turns them into the
 # tables and the memory model of RESULTS.md. A run is skipped when the memory it is expected to
@@ -26,7 +30,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/../../.." && pwd)
-sizes="100k 250k 500k" build=1 workdir="$root/build/bench-mpi" paths="serial 1 2" ordering="" ooc=0
+sizes="100k 250k 500k" build=1 workdir="$root/build/bench-mpi" paths="serial 1 2" ordering="" ooc=0 modes=20
 while [ $# -gt 0 ]; do
   case "$1" in
     --sizes) sizes=$2; shift ;;
@@ -35,7 +39,8 @@ while [ $# -gt 0 ]; do
     --workdir) workdir=$2; shift ;;
     --ordering) ordering=$2; shift ;;
     --out-of-core) ooc=1 ;;
-    -h|--help) sed -n '2,24p' "$0"; exit 0 ;;
+    --modes) modes=$2; shift ;;
+    -h|--help) sed -n '2,28p' "$0"; exit 0 ;;
     *) echo "run.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift
@@ -44,7 +49,7 @@ if [ $build = 1 ]; then cmake --build "$root/build" -j 2 --target ffr-reduce ffr
 bin="$root/build/bin"
 mkdir -p "$workdir"
 tsv="$workdir/results.tsv"
-[ -f "$tsv" ] || printf 'size\tdof\tpath\tranks\twall_s\tmaxrss_mib_per_rank\tdiff\tmumps\tfactor_entries\tmumps_mb_max\tload_mean_max\tmumps_incore_estimate_mb_max\n' > "$tsv"
+[ -f "$tsv" ] || printf 'size\tdof\tpath\tranks\twall_s\tmaxrss_mib_per_rank\tdiff\tmumps\tfactor_entries\tmumps_mb_max\tload_mean_max\tmumps_incore_estimate_mb_max\tmodes\n' > "$tsv"
 # The MUMPS settings of the slepc runs, as the results name them.
 mumps="${ordering:-default}/$([ $ooc = 1 ] && echo out-of-core || echo in-core)"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -71,6 +76,7 @@ mesh() {
   local tag=$1 target dir h nodes ratio
   target=$(dof_of "$tag") dir="$workdir/$tag"
   mkdir -p "$dir"
+  write_part "$dir"
   [ -f "$dir/plate.msh" ] && return
   printf '%s\n' "$geo" > "$dir/plate.geo"
   h=$(python3 -c "print(0.0058 * (99e3 / $target) ** (1 / 2.77))")
@@ -81,11 +87,14 @@ mesh() {
     python3 -c "import sys; sys.exit(0 if abs($ratio - 1) < 0.05 else 1)" && break
     h=$(python3 -c "print($h * $ratio ** (1 / 2.77))")
   done
-  cat > "$dir/part.json" <<JSON
+}
+
+write_part() {
+  cat > "$1/part.json" <<JSON
 {"geometry": "plate.msh",
  "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],
  "interfaces": [{"name": "clamp", "group": "clamp"}], "visual": false,
- "reduction": {"method": "clamped", "interface": "clamp", "modes": 20}}
+ "reduction": {"method": "clamped", "interface": "clamp", "modes": $modes}}
 JSON
 }
 
@@ -97,7 +106,7 @@ slepc_part() {
     mkdir -p "$dir/ooc"
     extra="$extra, \"out_of_core\": true, \"out_of_core_dir\": \"ooc\""
   fi
-  sed "s|\"modes\": 20}|\"modes\": 20, \"backend\": \"slepc\"$extra}|" "$dir/part.json" > "$dir/part.slepc.json"
+  sed "s|\"modes\": $modes}|\"modes\": $modes, \"backend\": \"slepc\"$extra}|" "$dir/part.json" > "$dir/part.slepc.json"
 }
 
 # Memory a run is expected to need (MiB): the largest finished run of this path (and, for the
@@ -120,7 +129,7 @@ run_one() {
   need=$(expected_mib "$path" "$dof")
   if [ $((need + 3072)) -gt "$(avail_mib)" ]; then
     echo "run.sh: $tag $path skipped: expected $need MiB (+3072 kept free), $(avail_mib) MiB available" >&2
-    printf '%s\t%s\t%s\t-\t-\tskipped (expected %s MiB)\t-\t%s\t-\t-\t-\t-\n' "$tag" "$dof" "$path" "$need" "$config" >> "$tsv"
+    printf '%s\t%s\t%s\t-\t-\tskipped (expected %s MiB)\t-\t%s\t-\t-\t-\t-\t%s\n' "$tag" "$dof" "$path" "$need" "$config" "$modes" >> "$tsv"
     return
   fi
   rm -f "$dir/time.$path."* "$dir/$path.sid.h5" "$dir/load.$path"
@@ -151,8 +160,8 @@ run_one() {
   elif [ "$path" != serial ] && [ -f "$dir/serial.sid.h5" ]; then
     if "$bin/ffr-diff" "$dir/serial.sid.h5" "$out" --rtol 1e-6 > "$dir/diff.$path.txt" 2>&1; then diff=equivalent; else diff=DIFFERENT; fi
   fi
-  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$tag" "$dof" "$path" "$ranks" "$wall" "$rss" "$diff" "$config" \
-    "${entries:--}" "${mb:--}" "$load" "${est:--}" >> "$tsv"
+  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$tag" "$dof" "$path" "$ranks" "$wall" "$rss" "$diff" "$config" \
+    "${entries:--}" "${mb:--}" "$load" "${est:--}" "$modes" >> "$tsv"
   echo "run.sh: $tag ($dof DOF) $path [$config]: ${wall} s, max RSS per rank ${rss} MiB, factor ${entries:--} entries, $diff, load $load" >&2
 }
 
