@@ -247,7 +247,7 @@ RelativeWork::RelativeWork(const Model& model) {
   const int ns = t.ns, n = model.ncoord, m = model.nconstraints;
   s = sd = sdd = s0 = sd0 = sdd0 = sdd_prev = sd_hat = sdd_hat = VectorXd::Zero(ns);
   a = start_s = start_sd = start_sdd = VectorXd::Zero(ns);
-  f = ds = scale = VectorXd::Zero(ns);
+  f = ds = y = scale = VectorXd::Zero(ns);
   rel_A.assign(model.bodies.size(), Matrix3d::Identity());
   rel_p.assign(model.bodies.size(), Vector3d::Zero());
   R = Rd = Ra = Z = MatrixXd::Zero(n, ns);
