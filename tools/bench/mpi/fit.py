@@ -11,6 +11,7 @@ without the largest size predicts the largest size's runs.
 Usage: fit.py results.tsv [more.tsv ...] [--mumps=pord/in-core]   (the runs of every file, sorted
 by DOF; the model on the slepc runs of the given MUMPS settings only, else on all of them)
 """
+import math
 import sys
 
 
@@ -126,12 +127,32 @@ def main():
         k = int(r["modes"])
         basis = (krylov_basis(20) - krylov_basis(k)) * (n / p) * 8 / 2 ** 20
         est, pr = peak + extra + basis, model(m, n, p)
-        fewer = f" + {basis:.0f} MiB for the basis of 20 modes instead of {k}" if k != 20 else ""
+        fewer = f" (with {basis:.0f} MiB added for the basis of 20 modes instead of {k})" if k != 20 else ""
         print(f"- {n} DOF, {p} rank(s): peak {peak:.0f} MiB out of core, in core about {est:.0f} MiB{fewer};"
               f" model {pr:.0f} MiB ({100 * (pr - est) / est:+.1f} %)")
-    print(f"\nPredicted peak memory per rank at 10M DOF (the fit on all {label}):")
+    # The factor's growth between the two largest sizes of one-rank runs (MUMPS's entries), and
+    # with it a second extrapolation: the divided part of the largest run's (estimated) in-core
+    # peak, grown at that rate, plus the model's a + b n.
+    one = {int(r["dof"]): float(r["factor_entries"]) for r in rows
+           if r["path"] != "serial" and r["ranks"] == "1" and r["factor_entries"] != "-"}
+    grown = None
+    if len(one) >= 2 and ooc:
+        (n1, e1), (n2, e2) = sorted(one.items())[-2:]
+        growth = math.log(e2 / e1) / math.log(n2 / n1)
+        r = max(ooc, key=lambda r: int(r["dof"]))
+        n, p = int(r["dof"]), int(r["ranks"])
+        peak = max(float(x) for x in r["maxrss_mib_per_rank"].split(","))
+        est = peak + (float(r["mumps_incore_estimate_mb_max"]) - float(r["mumps_mb_max"])) * 1e6 / 2 ** 20 \
+            + (krylov_basis(20) - krylov_basis(int(r["modes"]))) * (n / p) * 8 / 2 ** 20
+        _, _, a, b, _ = m
+        divided = (est - a - b * n) * p
+        grown = lambda q: a + b * 10e6 + divided * (10e6 / n) ** growth / q
+        print(f"\nFactor entries (one rank) grew as n^{growth:.2f} from {n1} to {n2} DOF; the divided part of the"
+              f" {n}-DOF run's in-core estimate ({divided:.0f} MiB on one rank) grown so to 10M DOF gives the second column.")
+    print(f"\nPredicted peak memory per rank at 10M DOF (the fit on all {label}" + ("; by the factor's growth" if grown else "") + "):")
     for p in (1, 2, 8, 16, 32, 64, 128):
-        print(f"- {p} ranks: {model(m, 10e6, p) / 1024:.1f} GiB per rank ({p * model(m, 10e6, p) / 1024:.0f} GiB in all)")
+        extra = f"; {grown(p) / 1024:.1f} GiB per rank by the factor's growth" if grown else ""
+        print(f"- {p} ranks: {model(m, 10e6, p) / 1024:.1f} GiB per rank ({p * model(m, 10e6, p) / 1024:.0f} GiB in all){extra}")
 
 
 if __name__ == "__main__":
