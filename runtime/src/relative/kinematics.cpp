@@ -53,7 +53,7 @@ Vector3d slice_times(const Matrix3Xd& S, const double* y) {
 // coordinates, so the Jacobian columns of the parent's coordinates are P's (the parent's columns
 // of R mapped), and the rates and accelerations follow by the product rule.
 void place_at_point(const Model& model, const RelativeTree& t, RelativeWork& w, const RelativeBody& rb, const Body& b,
-                    VectorXd& q, VectorXd& qd, VectorXd& qdd, bool jacobian) {
+                    VectorXd& q, VectorXd& qd, VectorXd& qdd, bool jacobian, bool rates) {
   const int o = b.offset, sf = rb.s_first, nq = b.nq;
   const Marker& mp = model.markers[static_cast<std::size_t>(rb.parent_marker)];
   const Marker& mc = model.markers[static_cast<std::size_t>(rb.child_marker)];
@@ -109,6 +109,7 @@ void place_at_point(const Model& model, const RelativeTree& t, RelativeWork& w, 
       Vector3d dP = w.R.col(col).segment<3>(op) + dA * xp;
       if (pnode) dP += Ap * slice_times(mp.phi, c + op + 12);
       w.R.col(col).segment<3>(o) = dP;
+      if (!rates) continue;
       // Its rate (R_dot): the product rule on the same map.
       const double* cd = w.Rd.col(col).data();
       const Eigen::Map<const Matrix3d> dAd(cd + op + 3);
@@ -123,14 +124,18 @@ void place_at_point(const Model& model, const RelativeTree& t, RelativeWork& w, 
     }
   }
   for (int a = 0; a < 3; ++a) w.R.block<3, 3>(o, sf + 3 * a).diagonal().setConstant(-xc(a));
-  for (int a = 0; a < 3; ++a) w.Rd.block<3, 3>(o, sf + 3 * a).diagonal().setConstant(-cyd(a));
-  for (int a = 0; a < 3; ++a) w.Ra.block<3, 3>(o, sf + 3 * a).diagonal().setConstant(-cydd(a));
+  if (rates)
+    for (int a = 0; a < 3; ++a) {
+      w.Rd.block<3, 3>(o, sf + 3 * a).diagonal().setConstant(-cyd(a));
+      w.Ra.block<3, 3>(o, sf + 3 * a).diagonal().setConstant(-cydd(a));
+    }
   w.R.block<9, 9>(o + 3, sf).setIdentity();
   if (nq > 0) {
     w.R.block(o + 12, sf + 9, nq, nq).setIdentity();
     if (cnode)
       for (int k = 0; k < nq; ++k) {
         w.R.col(sf + 9 + k).segment<3>(o) = -(Ac * mc.phi.col(k));
+        if (!rates) continue;
         w.Rd.col(sf + 9 + k).segment<3>(o) = -(Acd * mc.phi.col(k));
         w.Ra.col(sf + 9 + k).segment<3>(o) = -(Acdd * mc.phi.col(k));
       }
@@ -139,7 +144,7 @@ void place_at_point(const Model& model, const RelativeTree& t, RelativeWork& w, 
 
 }  // namespace
 
-void relative_kinematics(const Model& model, Data& data, bool jacobian) {
+void relative_kinematics(const Model& model, Data& data, bool jacobian, bool rates) {
   const RelativeTree& t = *model.relative;
   RelativeWork& w = *data.relative;
   VectorXd &q = data.state.q, &qd = data.state.qd, &qdd = data.state.qdd;
@@ -149,7 +154,9 @@ void relative_kinematics(const Model& model, Data& data, bool jacobian) {
     for (int bi : t.order) {
       const RelativeBody& rb = t.bodies[static_cast<std::size_t>(bi)];
       const Body& b = model.bodies[static_cast<std::size_t>(bi)];
-      for (MatrixXd* m : {&w.R, &w.Rd, &w.Ra}) m->block(b.offset, rb.col0, b.ncoord(), rb.ncols).setZero();
+      w.R.block(b.offset, rb.col0, b.ncoord(), rb.ncols).setZero();
+      if (rates)
+        for (MatrixXd* m : {&w.Rd, &w.Ra}) m->block(b.offset, rb.col0, b.ncoord(), rb.ncols).setZero();
     }
   for (int bi : t.order) {
     const RelativeBody& rb = t.bodies[static_cast<std::size_t>(bi)];
@@ -163,7 +170,7 @@ void relative_kinematics(const Model& model, Data& data, bool jacobian) {
       continue;
     }
     if (rb.point) {
-      place_at_point(model, t, w, rb, b, q, qd, qdd, jacobian);
+      place_at_point(model, t, w, rb, b, q, qd, qdd, jacobian, rates);
       continue;
     }
     const Marker& mk = model.markers[static_cast<std::size_t>(rb.parent_marker)];
@@ -207,8 +214,15 @@ void relative_kinematics(const Model& model, Data& data, bool jacobian) {
       for (int col = pb.col0; col < pb.col0 + pb.ncols; ++col) {
         const Eigen::Map<const Matrix3d> dA(w.R.col(col).data() + op + 3), dAd(w.Rd.col(col).data() + op + 3);
         const Eigen::Map<const Matrix3d> dAa(w.Ra.col(col).data() + op + 3);
-        if (dA.isZero(0.0) && w.R.col(col).segment<3>(op).isZero(0.0) && dAd.isZero(0.0) && w.Rd.col(col).segment<3>(op).isZero(0.0) &&
-            dAa.isZero(0.0) && w.Ra.col(col).segment<3>(op).isZero(0.0))
+        const bool r_zero = dA.isZero(0.0) && w.R.col(col).segment<3>(op).isZero(0.0);
+        if (!rates) {
+          if (r_zero) continue;
+          w.R.col(col).segment<3>(o) = w.R.col(col).segment<3>(op) + dA * k;
+          Eigen::Map<Matrix3d>(w.R.col(col).data() + o + 3) = dA * N;
+          continue;
+        }
+        if (r_zero && dAd.isZero(0.0) && w.Rd.col(col).segment<3>(op).isZero(0.0) && dAa.isZero(0.0) &&
+            w.Ra.col(col).segment<3>(op).isZero(0.0))
           continue;
         w.R.col(col).segment<3>(o) = w.R.col(col).segment<3>(op) + dA * k;
         Eigen::Map<Matrix3d>(w.R.col(col).data() + o + 3) = dA * N;
@@ -225,6 +239,8 @@ void relative_kinematics(const Model& model, Data& data, bool jacobian) {
       // (d/dth: k -> k1 -> k2 -> -k1, N likewise: rot_x''' = -rot_x'.)
       w.R.col(rb.s_angle).segment<3>(o) = Ap * k1;
       Eigen::Map<Matrix3d>(w.R.col(rb.s_angle).data() + o + 3) = Ap * N1;
+    }
+    if (rb.s_angle >= 0 && rates) {
       w.Rd.col(rb.s_angle).segment<3>(o) = Apd * k1 + thd * (Ap * k2);
       Eigen::Map<Matrix3d>(w.Rd.col(rb.s_angle).data() + o + 3) = Apd * N1 + thd * (Ap * N2);
       w.Ra.col(rb.s_angle).segment<3>(o) = Apdd * k1 + (2 * thd) * (Apd * k2) + Ap * (k2 * thdd - k1 * (thd * thd));
@@ -232,8 +248,10 @@ void relative_kinematics(const Model& model, Data& data, bool jacobian) {
     }
     if (rb.s_slide >= 0) {
       w.R.col(rb.s_slide).segment<3>(o) = Ap * ks;
-      w.Rd.col(rb.s_slide).segment<3>(o) = Apd * ks;
-      w.Ra.col(rb.s_slide).segment<3>(o) = Apdd * ks;
+      if (rates) {
+        w.Rd.col(rb.s_slide).segment<3>(o) = Apd * ks;
+        w.Ra.col(rb.s_slide).segment<3>(o) = Apdd * ks;
+      }
     }
     if (b.nq > 0) w.R.block(o + 12, rb.s_first, b.nq, b.nq).setIdentity();
   }

@@ -307,13 +307,14 @@ void start_alpha(const Model& model, Data& data, double h) {
 }
 
 // The iterate's rates and accelerations (affine in s through the scheme), its absolute state and
-// the model's evaluation there.
-void evaluate_at_s(const Model& model, Data& data, double t1) {
+// the model's evaluation there; with `tangent`, also what only a tangent rebuilt at this iterate
+// reads (R's rate and curvature, with the exact tangent).
+void evaluate_at_s(const Model& model, Data& data, double t1, bool tangent) {
   RelativeWork& w = *data.relative;
   const StepCoefficients& k = data.state.k;
   w.sd = k.c1 * w.s + w.sd_hat;
   w.sdd = k.c2 * w.s + w.sdd_hat;
-  relative_kinematics(model, data, true);
+  relative_kinematics(model, data, true, tangent && w.exact_tangent);
   evaluate(model, data, t1);
 }
 
@@ -394,7 +395,7 @@ void exact_direction(const Model& model, Data& data) {
 }  // namespace
 
 void relative_residual(const Model& model, Data& data, double t) {
-  evaluate_at_s(model, data, t);
+  evaluate_at_s(model, data, t, true);
   assemble_residual(model, data);
 }
 
@@ -458,7 +459,7 @@ void relative_step(const Model& model, Data& data, double h) {
   bool exact_since_now = false;  // switched at this iteration: no rate from the last increment
   int refreshes = 0, it = 0;
   for (it = 1; it <= s.max_iterations; ++it) {
-    evaluate_at_s(model, data, t1);
+    evaluate_at_s(model, data, t1, refresh_now);
     viol = violation(model, data);
     if (!std::isfinite(viol) || !st.q.allFinite())
       throw SolverError(t1, viol, "Newton did not converge at t = " + fmt(t1) + " s (relative formulation): the state is not finite. Try a smaller step (solver.step = " + fmt(0.5 * h) + ")");
@@ -520,10 +521,11 @@ void relative_step(const Model& model, Data& data, double h) {
                           " of the model length. Try a smaller step (solver.step = " + fmt(0.5 * h) +
                           ") or more iterations (solver.max_iterations)");
 
-  // Final state, multipliers and projections.
+  // Final state, multipliers and projections (R for them; the next step's first iteration
+  // rebuilds the tangent with R's rate and curvature at its own iterate).
   w.sd = k.c1 * w.s + w.sd_hat;
   w.sdd = k.c2 * w.s + w.sdd_hat;
-  relative_kinematics(model, data, true);
+  relative_kinematics(model, data, true, false);
   update_bodies(model, data);
   update_markers(model, data);
   evaluate_constraints(model, data, t1);

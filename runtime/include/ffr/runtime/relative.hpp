@@ -166,7 +166,9 @@ void relative_curvature(const Model& model, Data& data, double factor, MatrixXd&
 /// (consistent with the joints), with every tree joint coordinate zero there.
 void relative_sync(const Model& model, Data& data);
 
-/// q, q_dot and q_ddot (data.state) from s, s_dot, s_ddot, and R when `jacobian`.
-void relative_kinematics(const Model& model, Data& data, bool jacobian);
+/// q, q_dot and q_ddot (data.state) from s, s_dot, s_ddot, and R when `jacobian`; with `rates`
+/// (and `jacobian`) also R_dot and Ra, which only the tangent reads (step.cpp's refresh): a
+/// Newton iteration that keeps its tangent skips them.
+void relative_kinematics(const Model& model, Data& data, bool jacobian, bool rates = true);
 
 }  // namespace ffr::runtime
