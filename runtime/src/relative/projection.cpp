@@ -39,15 +39,8 @@ double project_exact(const Model& model, Data& data, VectorXd& x, const VectorXd
   RelativeWork& w = *data.relative;
   const int k = static_cast<int>(w.kept.size());
   constexpr int refinements = 3;
-  for (int i = 0; i < k; ++i) {
-    w.f = w.Phis.row(w.kept[static_cast<std::size_t>(i)]).transpose();
-    solve_metric(w, data, w.f, w.ds);
-    w.projY.col(i) = w.ds;
-  }
-  auto S = w.projS.topLeftCorner(k, k);
-  for (int i = 0; i < k; ++i)
-    for (int j = 0; j < k; ++j) S(j, i) = w.Phis.row(w.kept[static_cast<std::size_t>(j)]).dot(w.projY.col(i));
-  const int rank = pivoted_cholesky(S, w.proj_order, w.proj_own);
+  const int rank = factor_kept_multipliers(w, data, true, false);
+  const auto S = w.projS.topLeftCorner(k, k);
   double res = residual(model, w, x, b, scale);
   for (int round = 0; round <= refinements && res >= model.settings.tolerance; ++round) {
     for (int i = 0; i < k; ++i) w.proj_c(i) = w.c(w.kept[static_cast<std::size_t>(i)]);

@@ -1,6 +1,8 @@
 // The relative step's solves and products with Phis (solves.hpp).
 #include "solves.hpp"
 
+#include "ffr/runtime/integrator.hpp"
+
 namespace ffr::runtime::relative_detail {
 
 namespace {
@@ -30,6 +32,23 @@ void solve_metric(RelativeWork& w, Data& data, const VectorXd& rhs, VectorXd& ou
     w.metric_stale = false;
   }
   scaled_solve(w.lu_m, w.scale_m, data, rhs, out);
+}
+
+int factor_kept_multipliers(RelativeWork& w, Data& data, bool metric, bool symmetrise) {
+  const int k = static_cast<int>(w.kept.size());
+  for (int i = 0; i < k; ++i) {
+    w.y = w.Phis.row(w.kept[static_cast<std::size_t>(i)]).transpose();
+    if (metric) solve_metric(w, data, w.y, w.y);
+    else solve(w, data, w.y, w.y);
+    w.projY.col(i) = w.y;
+  }
+  auto S = w.projS.topLeftCorner(k, k);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) S(j, i) = w.Phis.row(w.kept[static_cast<std::size_t>(j)]).dot(w.projY.col(i));
+  if (symmetrise)
+    for (int i = 0; i < k; ++i)
+      for (int j = i + 1; j < k; ++j) S(j, i) = S(i, j) = 0.5 * (S(j, i) + S(i, j));
+  return pivoted_cholesky(S, w.proj_order, w.proj_own);
 }
 
 // out(kept rows) = Phis v, each block over its nonzero columns.

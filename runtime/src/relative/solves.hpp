@@ -11,6 +11,12 @@ void solve(RelativeWork& w, Data& data, const VectorXd& rhs, VectorXd& out);
 /// The same with the projections' metric Tm (the tangent without R's rate and curvature terms),
 /// factorised when first needed after a refresh; the tangent itself without the exact terms.
 void solve_metric(RelativeWork& w, Data& data, const VectorXd& rhs, VectorXd& out);
+/// Y = A^-1 Phis^T over the kept rows (w.projY; A the tangent, or with `metric` the projections'
+/// metric) and S = Phis Y (w.projS), symmetrised when `symmetrise`, factorised by the pivoted
+/// Cholesky of exact_multipliers.cpp; returns its rank (the rows pivoted past it are nearly
+/// redundant: they keep a zero multiplier). The direct solves of Newton's direction (step.cpp)
+/// and of the projections (projection.cpp).
+int factor_kept_multipliers(RelativeWork& w, Data& data, bool metric, bool symmetrise);
 /// out(kept rows) = Phis v, zero elsewhere.
 void phis_times(const Model& model, RelativeWork& w, const VectorXd& v, VectorXd& out);
 /// out += factor Phis^T lam over the kept rows.

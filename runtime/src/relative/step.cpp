@@ -362,17 +362,8 @@ void exact_direction(const Model& model, Data& data) {
   RelativeWork& w = *data.relative;
   const int k = static_cast<int>(w.kept.size());
   constexpr int refinements = 3;
-  for (int i = 0; i < k; ++i) {
-    w.y = w.Phis.row(w.kept[static_cast<std::size_t>(i)]).transpose();
-    solve(w, data, w.y, w.y);
-    w.projY.col(i) = w.y;
-  }
-  auto S = w.projS.topLeftCorner(k, k);
-  for (int i = 0; i < k; ++i)
-    for (int j = 0; j < k; ++j) S(j, i) = w.Phis.row(w.kept[static_cast<std::size_t>(j)]).dot(w.projY.col(i));
-  for (int i = 0; i < k; ++i)
-    for (int j = i + 1; j < k; ++j) S(j, i) = S(i, j) = 0.5 * (S(j, i) + S(i, j));
-  const int rank = pivoted_cholesky(S, w.proj_order, w.proj_own);
+  const int rank = factor_kept_multipliers(w, data, false, true);
+  const auto S = w.projS.topLeftCorner(k, k);
   const double kq = data.state.k.kq;
   for (int round = 0; round <= refinements; ++round) {
     phis_times(model, w, w.ds, w.c);

@@ -129,7 +129,7 @@ struct RelativeWork {
   VectorXd scale_m;
   bool metric_stale = true;
   VectorXd f, ds, r, sigma, c, g, bias, qsave;
-  VectorXd y;  ///< work [ns]: a column of projY being solved for (step.cpp's exact direction)
+  VectorXd y;  ///< work [ns]: a column of projY being solved for (factor_kept_multipliers)
   /// The absolute state this formulation last produced: a different one (initialize,
   /// restore_state, the C API) makes the next step take its coordinates from it afresh.
   VectorXd q_last, qd_last;
