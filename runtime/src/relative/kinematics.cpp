@@ -214,18 +214,13 @@ void relative_kinematics(const Model& model, Data& data, bool jacobian, bool rat
       for (int col = pb.col0; col < pb.col0 + pb.ncols; ++col) {
         const Eigen::Map<const Matrix3d> dA(w.R.col(col).data() + op + 3), dAd(w.Rd.col(col).data() + op + 3);
         const Eigen::Map<const Matrix3d> dAa(w.Ra.col(col).data() + op + 3);
-        const bool r_zero = dA.isZero(0.0) && w.R.col(col).segment<3>(op).isZero(0.0);
-        if (!rates) {
-          if (r_zero) continue;
-          w.R.col(col).segment<3>(o) = w.R.col(col).segment<3>(op) + dA * k;
-          Eigen::Map<Matrix3d>(w.R.col(col).data() + o + 3) = dA * N;
-          continue;
-        }
-        if (r_zero && dAd.isZero(0.0) && w.Rd.col(col).segment<3>(op).isZero(0.0) && dAa.isZero(0.0) &&
-            w.Ra.col(col).segment<3>(op).isZero(0.0))
+        if (dA.isZero(0.0) && w.R.col(col).segment<3>(op).isZero(0.0) &&
+            (!rates || (dAd.isZero(0.0) && w.Rd.col(col).segment<3>(op).isZero(0.0) && dAa.isZero(0.0) &&
+                        w.Ra.col(col).segment<3>(op).isZero(0.0))))
           continue;
         w.R.col(col).segment<3>(o) = w.R.col(col).segment<3>(op) + dA * k;
         Eigen::Map<Matrix3d>(w.R.col(col).data() + o + 3) = dA * N;
+        if (!rates) continue;
         // R_dot = dR/dt, the product rule on the same map (k and N turn with the angle).
         w.Rd.col(col).segment<3>(o) = w.Rd.col(col).segment<3>(op) + dAd * k + dA * kd;
         Eigen::Map<Matrix3d>(w.Rd.col(col).data() + o + 3) = dAd * N + thd * (dA * N1);

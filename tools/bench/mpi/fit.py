@@ -57,6 +57,18 @@ def krylov_basis(nev):
     return max(2 * nev, nev + 15)
 
 
+def incore_estimate(r):
+    """An out-of-core run's in-core peak of its largest rank (MiB): its peak plus what MUMPS
+    estimated in core (INFOG(16)) less what it allocated (INFOG(18)), plus, for a run with fewer
+    modes than the model's 20, the Krylov basis it did not hold (SLEPc's default size, this
+    rank's n / p rows). Returns (estimate, the basis part)."""
+    n, p = int(r["dof"]), int(r["ranks"])
+    peak = max(float(x) for x in r["maxrss_mib_per_rank"].split(","))
+    extra = (float(r["mumps_incore_estimate_mb_max"]) - float(r["mumps_mb_max"])) * 1e6 / 2 ** 20
+    basis = (krylov_basis(20) - krylov_basis(int(r["modes"]))) * (n / p) * 8 / 2 ** 20
+    return peak + extra + basis, basis
+
+
 def read(files):
     # Columns by name: results.tsv files written before the MUMPS columns existed still read.
     rows = []
@@ -119,14 +131,10 @@ def main():
         print(f"\nOut-of-core runs against the model (all {label}): the in-core peak estimated as the"
               " run's peak + (MUMPS in-core estimate - MUMPS allocated):")
     for r in ooc:
-        n, p = int(r["dof"]), int(r["ranks"])
+        n, p, k = int(r["dof"]), int(r["ranks"]), int(r["modes"])
         peak = max(float(x) for x in r["maxrss_mib_per_rank"].split(","))
-        extra = (float(r["mumps_incore_estimate_mb_max"]) - float(r["mumps_mb_max"])) * 1e6 / 2 ** 20
-        # A run with fewer modes than the model's 20 held a smaller Krylov basis: SLEPc's default
-        # max(2 nev, nev + 15) vectors of this rank's n / p rows.
-        k = int(r["modes"])
-        basis = (krylov_basis(20) - krylov_basis(k)) * (n / p) * 8 / 2 ** 20
-        est, pr = peak + extra + basis, model(m, n, p)
+        est, basis = incore_estimate(r)
+        pr = model(m, n, p)
         fewer = f" (with {basis:.0f} MiB added for the basis of 20 modes instead of {k})" if k != 20 else ""
         print(f"- {n} DOF, {p} rank(s): peak {peak:.0f} MiB out of core, in core about {est:.0f} MiB{fewer};"
               f" model {pr:.0f} MiB ({100 * (pr - est) / est:+.1f} %)")
@@ -141,9 +149,7 @@ def main():
         growth = math.log(e2 / e1) / math.log(n2 / n1)
         r = max(ooc, key=lambda r: int(r["dof"]))
         n, p = int(r["dof"]), int(r["ranks"])
-        peak = max(float(x) for x in r["maxrss_mib_per_rank"].split(","))
-        est = peak + (float(r["mumps_incore_estimate_mb_max"]) - float(r["mumps_mb_max"])) * 1e6 / 2 ** 20 \
-            + (krylov_basis(20) - krylov_basis(int(r["modes"]))) * (n / p) * 8 / 2 ** 20
+        est, _ = incore_estimate(r)
         _, _, a, b, _ = m
         divided = (est - a - b * n) * p
         grown = lambda q: a + b * 10e6 + divided * (10e6 / n) ** growth / q
