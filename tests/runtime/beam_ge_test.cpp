@@ -341,6 +341,39 @@ TEST(BeamGeometricallyExact, TipMomentRollsTheCantileverIntoACircle) {
   EXPECT_NEAR(mid[2] > 0 ? 1 : -1, 1, 0);  // bent toward +z by a moment about -y
 }
 
+// An element's relative rotation (the angle between its nodes' director frames) against frames
+// set by hand: node k turned about y by phi_k from the reference (nodes 0, 1 by 0, phi1, the
+// rest by phi2), so element 1 turns by phi2 - phi1 and the others by phi1 or not at all. A failing step names an element turned by more than 120 degrees (its
+// curvature theta / sin(theta) singular at 180) and asks for more elements; below, nothing.
+TEST(BeamGeometricallyExact, LargestElementTurnIsTheAngleBetweenItsNodesFrames) {
+  const Model m = test::model_from(cantilever(1, 0.01, 8, tip_load("point_force", Eigen::Vector3d(0, 0, -1)), R"({"end": 0.01, "step": 0.001})"));
+  ASSERT_EQ(m.ge_beams.size(), 1u);
+  const GeBeam& beam = m.ge_beams[0];
+  const auto turned = [&](double phi1, double phi2) {
+    Eigen::VectorXd q = Data(m).state.q;
+    for (int k = 0; k <= beam.elements; ++k) {
+      const Body& b = m.bodies[static_cast<std::size_t>(beam.node_bodies[static_cast<std::size_t>(k)])];
+      const double phi = k == 0 ? 0.0 : k == 1 ? phi1 : phi2;
+      const Eigen::Matrix3d A = Eigen::AngleAxisd(phi, Eigen::Vector3d::UnitY()).toRotationMatrix() * b.A0;
+      for (int c = 0; c < 3; ++c) q.segment<3>(b.offset + 3 + 3 * c) = A.col(c);
+    }
+    return q;
+  };
+  const Eigen::VectorXd q = turned(0.4, 0.4 + 2.3), calm = turned(0.4, 0.4 + 1.9);
+  const ElementTurn t = ge_beam_largest_turn(m, beam, q);
+  EXPECT_EQ(t.element, 1);
+  EXPECT_NEAR(t.angle, 2.3, 1e-12);
+  EXPECT_NEAR(ge_beam_largest_turn(m, beam, turned(3.0, 3.1)).angle, 3.0, 1e-12);
+  Eigen::VectorXd broken = q;
+  broken(m.bodies[static_cast<std::size_t>(beam.node_bodies[2])].offset + 4) = std::nan("");
+  EXPECT_EQ(ge_beam_largest_turn(m, beam, broken).element, 0);  // element 1 is not finite: skipped
+  const std::string hint = ge_beam_failure_hint(m, calm, q);
+  EXPECT_NE(hint.find("Element 1 of beam 'beam' (nodes n1, n2) turns by 132 degrees in the last iterate"), std::string::npos) << hint;
+  EXPECT_NE(hint.find("(\"elements\": 16"), std::string::npos) << hint;
+  EXPECT_NE(ge_beam_failure_hint(m, q, calm).find("at the step's start"), std::string::npos);
+  EXPECT_EQ(ge_beam_failure_hint(m, calm, calm), "");  // 109 degrees: not suspect
+}
+
 TEST(BeamGeometricallyExact, BadInputIsRefusedNamingTheField) {
   const std::string good = cantilever(1, 0.01, 4, tip_load("point_force", Eigen::Vector3d(0, 0, -1)), R"({"analysis": "static"})");
   const auto with = [&](const std::string& from, const std::string& to) {

@@ -246,6 +246,53 @@ double ge_beam_energy(const Model& model, const GeBeam& beam, const Data& data) 
   return W;
 }
 
+ElementTurn ge_beam_largest_turn(const Model& model, const GeBeam& beam, const Eigen::VectorXd& q) {
+  ElementTurn worst;
+  Vec24 qe;
+  Vec10 p;
+  Mat10x24 G;
+  for (int e = 0; e < beam.elements; ++e) {
+    const int oa = model.bodies[static_cast<std::size_t>(beam.node_bodies[static_cast<std::size_t>(e)])].offset;
+    const int ob = model.bodies[static_cast<std::size_t>(beam.node_bodies[static_cast<std::size_t>(e + 1)])].offset;
+    if (ob + 12 > q.size() || oa + 12 > q.size()) continue;
+    qe << q.segment<12>(oa), q.segment<12>(ob);
+    if (!qe.allFinite()) continue;
+    primitives(qe, p, G);
+    const double angle = std::atan2(p.head<3>().norm(), p(3));
+    if (angle > worst.angle) worst = {e, angle};
+  }
+  return worst;
+}
+
+std::string ge_beam_failure_hint(const Model& model, const Eigen::VectorXd& q0, const Eigen::VectorXd& q) {
+  // Below about 120 degrees theta / sin(theta) is under 2.5 and the element is not what fails.
+  constexpr double kSuspect = 2.0 * M_PI / 3.0;
+  // The step's start (an accepted state) first; the iterate's turn where that one is not yet
+  // suspect (Newton may have been carried there by the singularity itself).
+  for (const Eigen::VectorXd* v : {&q0, &q}) {
+    const GeBeam* beam = nullptr;
+    ElementTurn worst;
+    for (const GeBeam& b : model.ge_beams) {
+      const ElementTurn t = ge_beam_largest_turn(model, b, *v);
+      if (t.angle > worst.angle) {
+        worst = t;
+        beam = &b;
+      }
+    }
+    if (!beam || worst.angle <= kSuspect) continue;
+    const std::string e = std::to_string(worst.element);
+    std::string hint = "Element ";
+    hint += e + " of beam '" + beam->name + "' (nodes n" + e + ", n" + std::to_string(worst.element + 1) + ") turns by ";
+    hint += std::to_string(std::lround(worst.angle * 180.0 / M_PI));
+    hint += v == &q0 ? " degrees at the step's start" : " degrees in the last iterate";
+    hint += ": a geometrically exact element's curvature is singular at 180, so the beam bends more sharply than its "
+            "elements can follow; give it more elements (\"elements\": ";
+    hint += std::to_string(2 * beam->elements) + ", twice as many). ";
+    return hint;
+  }
+  return {};
+}
+
 GeBeam make_ge_beam(std::vector<Body>& nodes, const std::string& name, const Eigen::Vector3d& start,
                     const Eigen::Vector3d& end, const Eigen::Vector3d& y_axis, int elements, double E, double G, double rho,
                     double area, double Iy, double Iz, double J, double shear_factor, double tau, const std::string& file,

@@ -6,6 +6,7 @@
 //   lambda <- lambda + alpha Phi(q) at each new iterate (the update must use the new Phi: with the
 //   previous one the coupled iteration oscillates instead of contracting by M / (M + penalty))
 //   tangent  M + h/2 C + h^2/4 (K + alpha Phi_q^T Phi_q)
+#include "ffr/runtime/beam.hpp"
 #include "ffr/runtime/constraints.hpp"
 #include "ffr/runtime/dynamics.hpp"
 #include "ffr/runtime/errors.hpp"
@@ -91,7 +92,8 @@ std::string newton_failure(const Model& model, const Data& data, double t, int i
          ": the largest remaining correction is in " + coord + " (" + fmt(dq) +
          " of the model length; scaled increment " + fmt(inc) + ", tolerance " + fmt(model.settings.newton_tolerance) +
          "), the largest constraint violation in " + row + " (" + fmt(phi) + " of the model length, tolerance " +
-         fmt(model.settings.policy.newton.violation_factor * model.settings.tolerance) + "). Try a smaller step (" + (model.settings.adaptive ? "solver.max_step = " : "solver.step = ") +
+         fmt(model.settings.policy.newton.violation_factor * model.settings.tolerance) + "). " +
+         ge_beam_failure_hint(model, data.q0, data.state.q) + "Try a smaller step (" + (model.settings.adaptive ? "solver.max_step = " : "solver.step = ") +
          fmt(0.5 * data.state.k.h) + "), more iterations (solver.max_iterations), or check that body's mass and " +
          "that joint's axes and points";
 }

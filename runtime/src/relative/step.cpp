@@ -11,6 +11,7 @@
 // the force elements' terms).
 #include "ffr/runtime/relative.hpp"
 
+#include "ffr/runtime/beam.hpp"
 #include "ffr/runtime/constraints.hpp"
 #include "ffr/runtime/dynamics.hpp"
 #include "ffr/runtime/errors.hpp"
@@ -453,7 +454,7 @@ void relative_step(const Model& model, Data& data, double h) {
     evaluate_at_s(model, data, t1, refresh_now);
     viol = violation(model, data);
     if (!std::isfinite(viol) || !st.q.allFinite())
-      throw SolverError(t1, viol, "Newton did not converge at t = " + fmt(t1) + " s (relative formulation): the state is not finite. Try a smaller step (solver.step = " + fmt(0.5 * h) + ")");
+      throw SolverError(t1, viol, "Newton did not converge at t = " + fmt(t1) + " s (relative formulation): the state is not finite. " + ge_beam_failure_hint(model, w.q_last, data.state.q) + "Try a smaller step (solver.step = " + fmt(0.5 * h) + ")");
     if (it > 1) st.lambda += data.alpha.cwiseProduct(data.Phi);
     assemble_residual(model, data);
     const bool refreshed = refresh_now;
@@ -483,7 +484,7 @@ void relative_step(const Model& model, Data& data, double h) {
     prev_inc = inc;
     inc = scaled(w, w.ds);
     if (!std::isfinite(inc))
-      throw SolverError(t1, inc, "Newton did not converge at t = " + fmt(t1) + " s (relative formulation): the tangent is singular. Check the joints' axes and the bodies' masses");
+      throw SolverError(t1, inc, "Newton did not converge at t = " + fmt(t1) + " s (relative formulation): the tangent is singular. " + ge_beam_failure_hint(model, w.q_last, data.state.q) + "Check the joints' axes and the bodies' masses");
     const double theta = it >= 2 && prev_inc > 0 && !refreshed && !exact_since_now ? inc / prev_inc : 1.0;
     exact_since_now = false;
     const double error_left = it == 1 ? inc : (theta < 1 ? inc * theta / (1 - theta) : std::numeric_limits<double>::infinity());
@@ -509,8 +510,8 @@ void relative_step(const Model& model, Data& data, double h) {
                       "Newton did not converge at t = " + fmt(t1) + " s after " + std::to_string(s.max_iterations) +
                           " iterations (relative formulation): scaled increment " + fmt(inc) + " (tolerance " +
                           fmt(s.newton_tolerance) + "), kept constraint violation " + fmt(viol) +
-                          " of the model length. Try a smaller step (solver.step = " + fmt(0.5 * h) +
-                          ") or more iterations (solver.max_iterations)");
+                          " of the model length. " + ge_beam_failure_hint(model, w.q_last, data.state.q) +
+                          "Try a smaller step (solver.step = " + fmt(0.5 * h) + ") or more iterations (solver.max_iterations)");
 
   // Final state, multipliers and projections (R for them; the next step's first iteration
   // rebuilds the tangent with R's rate and curvature at its own iterate).

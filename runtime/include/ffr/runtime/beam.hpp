@@ -100,6 +100,23 @@ double ge_beam_energy(const Model& model, const GeBeam& beam, const Data& data);
 /// The element's six strains (Gamma_1..3, K_1..3) at coordinates q.
 Eigen::Matrix<double, 6, 1> ge_beam_strains(const GeBeam& beam, const Eigen::Matrix<double, 24, 1>& q);
 
+/// An element's relative rotation: the angle [rad] by which the section turns from node a to
+/// node b, and the element.
+struct ElementTurn {
+  int element = -1;
+  double angle = 0;
+};
+/// The element of the beam whose nodes' directors differ by the largest rotation at the model's
+/// coordinates q (elements with non-finite coordinates are skipped). Its curvature is
+/// theta / sin(theta) times the directors' skew part, singular at theta = pi: an element cannot
+/// turn by half a revolution, and Newton fails as one nears it.
+ElementTurn ge_beam_largest_turn(const Model& model, const GeBeam& beam, const Eigen::VectorXd& q);
+
+/// What a failing step should say of the model's geometrically exact beams: the element turned
+/// furthest at the step's start q0 or at the iterate q, when it turns by more than 120 degrees,
+/// and what to do (more elements); empty otherwise.
+std::string ge_beam_failure_hint(const Model& model, const Eigen::VectorXd& q0, const Eigen::VectorXd& q);
+
 /// A geometrically exact beam's node bodies (the rigid bodies of nodes n0 .. nN, named
 /// "<name>:n<k>") and its element data, from the straight beam from `start` to `end` with the
 /// section's d1 axis along `y_axis` (projected normal to the beam). Throws ModelError (file,
