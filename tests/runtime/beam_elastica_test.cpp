@@ -200,6 +200,23 @@ TEST(BeamElastica, ElementForcesAndTangentMatchFiniteDifferences) {
   EXPECT_LT(ef, 1e-6 * Q.cwiseAbs().maxCoeff());
   EXPECT_LT(ek, 1e-6 * K.cwiseAbs().maxCoeff());
   EXPECT_LT((K - K.transpose()).cwiseAbs().maxCoeff(), 1e-9 * K.cwiseAbs().maxCoeff());
+
+  // Strain-rate damping: its force -D(q) q_dot is linear in the rates, so the force's change
+  // from zero rates is -C q_dot exactly, C = D symmetric (EA p p^T + EI Jk^T Jk, times tau).
+  const Body bd = make_beam_body("b", Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.2, -0.1), 3, 1e7, 1000, 1e-3, 2e-7,
+                                 1e-3, "f", "bodies[0]");
+  Eigen::VectorXd rates(n);
+  for (int i = 0; i < n; ++i) rates(i) = 0.3 * std::cos(0.9 * i + 0.2);
+  Eigen::VectorXd Q0 = Eigen::VectorXd::Zero(n), Q1 = Eigen::VectorXd::Zero(n);
+  Eigen::MatrixXd Kd = Eigen::MatrixXd::Zero(n, n), Cd = Eigen::MatrixXd::Zero(n, n);
+  ancf_beam_forces(*bd.beam, y, yd, Q0, nullptr, nullptr);
+  ancf_beam_forces(*bd.beam, y, rates, Q1, &Kd, &Cd);
+  const double ed = ((Q1 - Q0) + Cd * rates).cwiseAbs().maxCoeff(), scale = (Q1 - Q0).cwiseAbs().maxCoeff();
+  std::printf("damping force vs -C q_dot %.3e of %.3e\n", ed, scale);
+  EXPECT_GT(scale, 0.0);
+  EXPECT_LT(ed, 1e-12 * scale);
+  EXPECT_LT((Cd - Cd.transpose()).cwiseAbs().maxCoeff(), 1e-12 * Cd.cwiseAbs().maxCoeff());
+  EXPECT_GT(Cd.selfadjointView<Eigen::Lower>().ldlt().vectorD().minCoeff(), -1e-9 * Cd.cwiseAbs().maxCoeff());  // dissipates
 }
 
 // Small vibrations of the clamped beam (16 elements): the mass matrix and the tangent at the

@@ -56,50 +56,88 @@ std::string num(double v) {
   return b;
 }
 
+// Adds w (sxx sxx^T (x) A + sxx sx^T (x) B + sx sxx^T (x) B^T + sx sx^T (x) C) to the 12 x 12 K:
+// a tangent term of the element in its 4 x 4 blocks of 3 x 3 (see element()).
+void add_kronecker(const Eigen::Vector4d& sx, const Eigen::Vector4d& sxx, const Eigen::Matrix3d& A,
+                   const Eigen::Matrix3d& B, const Eigen::Matrix3d& C, double w, Mat12& K) {
+  const Eigen::Matrix3d Bt = B.transpose();
+  for (int u = 0; u < 4; ++u) {
+    const Eigen::Matrix3d Au = (w * sxx(u)) * A, Bu = (w * sx(u)) * B, Btu = (w * sxx(u)) * Bt, Cu = (w * sx(u)) * C;
+    for (int v = 0; v < 4; ++v)
+      K.block<3, 3>(3 * v, 3 * u) += sxx(v) * (Au + Bu) + sx(v) * (Btu + Cu);
+  }
+}
+
 // One element at its coordinates qe and rates qde: adds its elastic and damping force to fe,
 // their tangents to Ke, Ce (when non-null); returns its strain energy.
+//
+// The shape matrices are Kronecker products, S_x = sx^T (x) I3 over the four nodal vectors q_v
+// (v = 0..3), so that with r' = S_x q, r'' = S_xx q, f = r' x r'':
+//   p = d eps / dq:  p_v = sx_v r',    F = df/dq:  F_v = sxx_v [r']x - sx_v [r'']x,
+//   (F^T f)_v = sx_v a - sxx_v b,  a = r'' x f,  b = r' x f,
+// and every 12 x 12 term of the tangent is sxx sxx^T (x) A + sxx sx^T (x) B + sx sxx^T (x) B^T +
+// sx sx^T (x) C for 3 x 3 matrices A, B, C of the Gauss point (add_kronecker). With
+// P = [r']x^T [r']x, Q = [r'']x^T [r'']x, X = [r']x^T [r'']x = (r'.r'') I - r'' r'^T:
+//   S_x^T S_x -> C = I;   p p^T -> C = r' r'^T;   F^T F -> A = P, B = -X, C = Q;
+//   H_f = S_xx^T [f]x S_x - S_x^T [f]x S_xx (the second derivative of f . f_frozen) -> B = [f]x;
+//   F^T f p^T + p f^T F -> B = -b r'^T, C = a r'^T + r' a^T.
+// Why: the products of the expanded 3 x 12 matrices were three quarters multiplications by zero.
 double element(const AncfBeam& beam, const Vec12& qe, const Vec12& qde, Vec12& fe, Mat12* Ke, Mat12* Ce, bool damp) {
   const double l = beam.element_length();
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   double U = 0;
   for (int gp = 0; gp < kGauss; ++gp) {
     const double w = kW[gp] * l;
-    const Mat312 Sx = expand(shape_x(kXi[gp], l));
-    const Mat312 Sxx = expand(shape_xx(kXi[gp], l));
-    const Eigen::Vector3d rp = Sx * qe, rpp = Sxx * qe;
+    const Eigen::Vector4d sx = shape_x(kXi[gp], l), sxx = shape_xx(kXi[gp], l);
+    Eigen::Vector3d rp = Eigen::Vector3d::Zero(), rpp = Eigen::Vector3d::Zero();
+    for (int v = 0; v < 4; ++v) {
+      rp += sx(v) * qe.segment<3>(3 * v);
+      rpp += sxx(v) * qe.segment<3>(3 * v);
+    }
     const double g = rp.squaredNorm();
     const double eps = 0.5 * (g - 1);
-    const Vec12 p = Sx.transpose() * rp;  // d eps / dq
     const Eigen::Vector3d f = rp.cross(rpp);
-    const Mat312 F = skew(rp) * Sxx - skew(rpp) * Sx;  // df / dq
     const double ff = f.squaredNorm(), g3 = g * g * g, g4 = g3 * g;
-    const Vec12 Ff = F.transpose() * f;
+    const Eigen::Vector3d a = rpp.cross(f), b = rp.cross(f);
+    const Eigen::Matrix3d rr = rp * rp.transpose();
     U += w * 0.5 * (beam.EA * eps * eps + beam.EI * ff / g3);
     // dU/dq = EA eps p + EI (F^T f / g^3 - 3 |f|^2 / g^4 p)
-    fe.noalias() += w * (beam.EA * eps * p + beam.EI * (Ff / g3 - 3 * ff / g4 * p));
+    const double c_F = beam.EI / g3, c_I = beam.EA * eps - 3 * beam.EI * ff / g4;
+    const Eigen::Vector3d fx_part = w * (c_I * rp + c_F * a), fxx_part = (-w * c_F) * b;
+    for (int v = 0; v < 4; ++v) fe.segment<3>(3 * v) += sx(v) * fx_part + sxx(v) * fxx_part;
     if (Ke) {
-      // The 12 x 12 products are coefficient-based (lazyProduct): Eigen's default for these
-      // fixed sizes is its blocked matrix product, whose packing and dispatch cost more than the
-      // few hundred multiply-adds (with the copies, half of the 16-element pendulum's step).
-      const Mat12 StS = Sx.transpose().lazyProduct(Sx);
-      // The second derivative of f . f_frozen: -Sx^T [f]x Sxx + Sxx^T [f]x Sx (symmetric).
-      const Eigen::Matrix3d fx = skew(f);
-      const Mat312 fxSx = fx * Sx, fxSxx = fx * Sxx;
-      const Mat12 Hf = Sxx.transpose().lazyProduct(fxSx) - Sx.transpose().lazyProduct(fxSxx);
-      const Mat12 pp = p.lazyProduct(p.transpose());
-      const Mat12 Ffp = Ff.lazyProduct(p.transpose());
-      Mat12 H = beam.EA * (pp + eps * StS);
-      H += beam.EI * ((F.transpose().lazyProduct(F) + Hf) / g3 - 6 / g4 * (Ffp + Ffp.transpose()) + 24 * ff / (g4 * g) * pp -
-                      3 * ff / g4 * StS);
-      *Ke += w * H;
+      // H = EA (p p^T + eps StS) + EI ((F^T F + H_f) / g^3 - 6 / g^4 (F^T f p^T + p f^T F)
+      //     + 24 |f|^2 / g^5 p p^T - 3 |f|^2 / g^4 StS)
+      const double c_rr = beam.EA + 24 * beam.EI * ff / (g4 * g), c_Fp = -6 * beam.EI / g4;
+      const Eigen::Matrix3d P = g * I - rr;
+      const Eigen::Matrix3d X = rp.dot(rpp) * I - rpp * rp.transpose();
+      const Eigen::Matrix3d Q = rpp.squaredNorm() * I - rpp * rpp.transpose();
+      const Eigen::Matrix3d ar = a * rp.transpose();
+      const Eigen::Matrix3d A = c_F * P;
+      const Eigen::Matrix3d B = c_F * (skew(f) - X) - c_Fp * (b * rp.transpose());
+      const Eigen::Matrix3d C = c_F * Q + c_rr * rr + c_Fp * (ar + ar.transpose()) + c_I * I;
+      add_kronecker(sx, sxx, A, B, C, w, *Ke);
     }
     if (damp && beam.tau > 0) {
       // Kelvin-Voigt: the stresses tau EA eps_dot, tau EI kappa_dot on the strain and curvature
-      // vector k = f / g^(3/2) rates: Q = -tau (EA p p^T + EI Jk^T Jk) q_dot, Jk = dk/dq.
+      // vector k = f / g^(3/2) rates: Q = -tau (EA p p^T + EI Jk^T Jk) q_dot, Jk = dk/dq, its
+      // blocks Jk_v = sxx_v J1 + sx_v J2 with J1 = [r']x / g^(3/2), J2 = -[r'']x / g^(3/2) - 3 f r'^T / g^(5/2).
       const double gs = std::sqrt(g);
-      const Mat312 Jk = F / (g * gs) - 3 / (g * g * gs) * f * p.transpose();
-      const Mat12 D = beam.tau * (beam.EA * p.lazyProduct(p.transpose()) + beam.EI * Jk.transpose().lazyProduct(Jk));
-      fe.noalias() += w * (D * qde);
-      if (Ce) *Ce += w * D;
+      const Eigen::Matrix3d J1 = skew(rp) / (g * gs);
+      const Eigen::Matrix3d J2 = -skew(rpp) / (g * gs) - (3 / (g * g * gs)) * f * rp.transpose();
+      Eigen::Vector3d kd = Eigen::Vector3d::Zero();  // the curvature vector's rate Jk q_dot
+      double ed = 0;                                 // the axial strain's rate p . q_dot
+      for (int v = 0; v < 4; ++v) {
+        kd += (sxx(v) * J1 + sx(v) * J2) * qde.segment<3>(3 * v);
+        ed += sx(v) * rp.dot(qde.segment<3>(3 * v));
+      }
+      const double wt = w * beam.tau;
+      const Eigen::Vector3d dx_part = wt * (beam.EA * ed * rp + beam.EI * J2.transpose() * kd),
+                            dxx_part = (wt * beam.EI) * (J1.transpose() * kd);
+      for (int v = 0; v < 4; ++v) fe.segment<3>(3 * v) += sx(v) * dx_part + sxx(v) * dxx_part;
+      if (Ce)
+        add_kronecker(sx, sxx, beam.EI * J1.transpose() * J1, beam.EI * J1.transpose() * J2,
+                      beam.EA * rr + beam.EI * J2.transpose() * J2, wt, *Ce);
     }
   }
   return U;
@@ -125,6 +163,23 @@ double ancf_beam_forces(const AncfBeam& beam, const Eigen::Ref<const Eigen::Vect
     if (C) C->block<12, 12>(6 * e, 6 * e) += Ce;
   }
   return U;
+}
+
+void ancf_beam_tangents(const AncfBeam& beam, const Eigen::Ref<const Eigen::VectorXd>& y,
+                        const Eigen::Ref<const Eigen::VectorXd>& yd, Eigen::Ref<Eigen::MatrixXd> K,
+                        Eigen::Ref<Eigen::MatrixXd> C) {
+  Mat12 Ke, Ce;
+  const bool damped = beam.tau > 0;
+  for (int e = 0; e < beam.elements; ++e) {
+    const Vec12 qe = beam.q0.segment<12>(6 * e) + y.segment<12>(6 * e);
+    const Vec12 qde = yd.segment<12>(6 * e);
+    Vec12 fe = Vec12::Zero();
+    Ke.setZero();
+    if (damped) Ce.setZero();
+    element(beam, qe, qde, fe, &Ke, damped ? &Ce : nullptr, damped);
+    K.block<12, 12>(6 * e, 6 * e) += Ke;
+    if (damped) C.block<12, 12>(6 * e, 6 * e) += Ce;
+  }
 }
 
 double ancf_beam_energy(const AncfBeam& beam, const Eigen::Ref<const Eigen::VectorXd>& y) {

@@ -93,8 +93,12 @@ void body_applied_forces(const Body& b, BodyData& bd, const Vector3d& g, const E
   auto Qy = Qb.tail(b.nq);
   const Vector3d gl = bd.A.transpose() * g;
   Qy.noalias() += b.Pdm.transpose() * gl;
-  Qy.noalias() -= b.Ke * y;
-  Qy.noalias() -= b.De * yd;
+  // A beam's or plate's Ke and De are zero (its elements' forces are below): 102 x 102 products
+  // at every evaluation of a 16-element beam.
+  if (!b.beam && !b.plate) {
+    Qy.noalias() -= b.Ke * y;
+    Qy.noalias() -= b.De * yd;
+  }
   if (b.stiffening) {
     geometric_stiffness(*b.stiffening, bd, mean_spin(*b.stiffening, bd, yd, nullptr), bd.KG);
     Qy.noalias() -= bd.KG * y;
@@ -109,12 +113,8 @@ void body_applied_forces(const Body& b, BodyData& bd, const Vector3d& g, const E
     Qy -= b.prestress->f0;
     Qy.noalias() -= b.prestress->K1 * y;
   }
-  // A beam's elastic and damping forces, with their tangents for body_applied_tangents at this y.
-  if (b.beam) {
-    bd.beam_K.setZero();
-    bd.beam_C.setZero();
-    ancf_beam_forces(*b.beam, y, yd, Qy, &bd.beam_K, &bd.beam_C);
-  }
+  // A beam's elastic and damping forces (their tangents: body_applied_tangents, at a refresh only).
+  if (b.beam) ancf_beam_forces(*b.beam, y, yd, Qy, nullptr, nullptr);
   if (b.plate) {
     bd.plate_K.setZero();
     bd.plate_C.setZero();
@@ -122,8 +122,8 @@ void body_applied_forces(const Body& b, BodyData& bd, const Vector3d& g, const E
   }
 }
 
-void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& g, Eigen::Ref<MatrixXd> Kb,
-                           Eigen::Ref<MatrixXd> Cb) {
+void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& g, const Eigen::Ref<const VectorXd>& z,
+                           const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<MatrixXd> Kb, Eigen::Ref<MatrixXd> Cb) {
   if (b.nq == 0) return;
   const int nq = b.nq;
   for (int a = 0; a < 3; ++a) {
@@ -131,21 +131,23 @@ void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& g,
     Kb.block(12, 3 + 3 * a, nq, 3).noalias() -= b.Pdm.row(a).transpose() * g.transpose();
   }
   auto Kyy = Kb.block(12, 12, nq, nq);
-  Kyy += b.Ke;
-  Cb.block(12, 12, nq, nq) += b.De;
+  auto Cyy = Cb.block(12, 12, nq, nq);
+  if (b.beam) {
+    // Its Ke and De are zero; its elements' tangents go onto their own blocks.
+    ancf_beam_tangents(*b.beam, z.tail(nq), zd.tail(nq), Kyy, Cyy);
+  } else if (!b.plate) {
+    Kyy += b.Ke;
+    Cyy += b.De;
+  }
   // Stiffening: the y-dependence at the current (frozen) accelerations, spin and joint loads.
   if (b.stiffening) Kyy += bd.KG;
   // The rest of d^2 U / dy^2, as modal_stress_terms left it at the y of the last
   // body_applied_forces (the tangent's state).
   if (b.modal_stress) Kyy += bd.G1;
   if (b.prestress) Kyy += b.prestress->K1;
-  if (b.beam) {
-    Kyy += bd.beam_K;
-    Cb.block(12, 12, nq, nq) += bd.beam_C;
-  }
   if (b.plate) {
     Kyy += bd.plate_K;
-    Cb.block(12, 12, nq, nq) += bd.plate_C;
+    Cyy += bd.plate_C;
   }
 }
 

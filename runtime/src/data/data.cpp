@@ -65,13 +65,12 @@ Data::Data(const Model& model) : state(model), start(model) {
     const int nm = b.modal_stress ? nq : 0;
     bd.G1 = MatrixXd::Zero(nm, nm);
     bd.X1 = MatrixXd::Zero(nm, nm);
-    const int nbq = b.beam ? nq : 0;
-    bd.beam_K = bd.beam_C = MatrixXd::Zero(nbq, nbq);
     const int npq = b.plate ? nq : 0;
     bd.plate_K = bd.plate_C = MatrixXd::Zero(npq, npq);
     bd.iface_load = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, b.stiffening ? static_cast<Eigen::Index>(b.stiffening->interfaces.size()) : 0);
     bd.wq = VectorXd::Zero(nq);
     if (nq == 0) body_mass_matrix(b, bd);  // constant for a rigid body
+    else if (!b.full_mass) bd.M.block(12, 12, nq, nq) = b.Myy;  // constant for every body (body_mass_matrix)
     if (b.full_mass) {
       const auto N3 = b.full_mass->X.size();
       bd.feB = bd.feG = bd.feD = MatrixXd::Zero(N3, nb);

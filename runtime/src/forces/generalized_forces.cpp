@@ -79,7 +79,7 @@ void force_tangents(const Model& model, Data& data, double t) {
       fe_inertia_tangents(b, data.bodies[i], data.state.qd.segment(o, nb), Kb, Cb);
     else
       body_inertia_tangents(b, data.bodies[i], data.state.qd.segment(o, nb), Kb, Cb);
-    body_applied_tangents(b, data.bodies[i], model.gravity, Kb, Cb);
+    body_applied_tangents(b, data.bodies[i], model.gravity, data.state.q.segment(o, nb), data.state.qd.segment(o, nb), Kb, Cb);
   }
   for (const SpringDamper& s : model.springs) detail::spring_tangents(model, s, data);
   for (const Bushing& b : model.bushings) detail::bushing_forces(model, b, data, false, true);

@@ -58,6 +58,12 @@ inline int beam_node_index(const AncfBeam& beam, int slice) {
   return slice <= beam.elements ? slice : slice == beam.elements + 1 ? 0 : beam.elements;
 }
 
+/// The tangents alone: -dQ/dy and -dQ/dy_dot of the elements' forces at y, y_dot added to the
+/// nq x nq blocks K and C on the elements' 12 x 12 blocks (nothing else is touched). Allocation-free.
+void ancf_beam_tangents(const AncfBeam& beam, const Eigen::Ref<const Eigen::VectorXd>& y,
+                        const Eigen::Ref<const Eigen::VectorXd>& yd, Eigen::Ref<Eigen::MatrixXd> K,
+                        Eigen::Ref<Eigen::MatrixXd> C);
+
 /// The strain energy alone.
 double ancf_beam_energy(const AncfBeam& beam, const Eigen::Ref<const Eigen::VectorXd>& y);
 

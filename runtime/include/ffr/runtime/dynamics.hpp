@@ -9,7 +9,8 @@
 
 namespace ffr::runtime {
 
-/// One body's mass matrix (bd.M) from bd.A, bd.md, bd.Jc, bd.S.
+/// One body's mass matrix (bd.M) from bd.A, bd.md, bd.Jc, bd.S; its constant modal block
+/// M_yy = b.Myy is not written (Data's constructor placed it).
 void body_mass_matrix(const Body& b, BodyData& bd);
 
 /// Every body's mass matrix into data.bodies[i].M. Needs update_bodies.
@@ -80,7 +81,9 @@ void body_applied_forces(const Body& b, BodyData& bd, const Vector3d& gravity, c
 /// tangent M + kv C + kq K (FORMULATION.md 7). Needs body_applied_forces at the same state.
 void body_stiffening_rate_tangents(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& y,
                                    const Eigen::Ref<const VectorXd>& yd, double kv, Eigen::Ref<MatrixXd> Wb);
-void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& gravity, Eigen::Ref<MatrixXd> Kb,
-                           Eigen::Ref<MatrixXd> Cb);
+/// The tangents -dQ/dz, -dQ/dz_dot of body_applied_forces at the body's coordinates z, rates zd
+/// (the same as those forces were evaluated at), added to the body's blocks Kb, Cb.
+void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& gravity, const Eigen::Ref<const VectorXd>& z,
+                           const Eigen::Ref<const VectorXd>& zd, Eigen::Ref<MatrixXd> Kb, Eigen::Ref<MatrixXd> Cb);
 
 }  // namespace ffr::runtime
