@@ -113,13 +113,10 @@ void body_applied_forces(const Body& b, BodyData& bd, const Vector3d& g, const E
     Qy -= b.prestress->f0;
     Qy.noalias() -= b.prestress->K1 * y;
   }
-  // A beam's elastic and damping forces (their tangents: body_applied_tangents, at a refresh only).
+  // A beam's or plate's elastic and damping forces (their tangents: body_applied_tangents, at a
+  // refresh only).
   if (b.beam) ancf_beam_forces(*b.beam, y, yd, Qy, nullptr, nullptr);
-  if (b.plate) {
-    bd.plate_K.setZero();
-    bd.plate_C.setZero();
-    ancf_plate_forces(*b.plate, y, yd, Qy, &bd.plate_K, &bd.plate_C);
-  }
+  if (b.plate) ancf_plate_forces(*b.plate, y, yd, Qy, nullptr, nullptr);
 }
 
 void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& g, const Eigen::Ref<const VectorXd>& z,
@@ -132,10 +129,12 @@ void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& g,
   }
   auto Kyy = Kb.block(12, 12, nq, nq);
   auto Cyy = Cb.block(12, 12, nq, nq);
+  // A beam's or plate's Ke and De are zero; its elements' tangents go onto their own blocks.
   if (b.beam) {
-    // Its Ke and De are zero; its elements' tangents go onto their own blocks.
     ancf_beam_tangents(*b.beam, z.tail(nq), zd.tail(nq), Kyy, Cyy);
-  } else if (!b.plate) {
+  } else if (b.plate) {
+    ancf_plate_tangents(*b.plate, z.tail(nq), zd.tail(nq), Kyy, Cyy);
+  } else {
     Kyy += b.Ke;
     Cyy += b.De;
   }
@@ -145,10 +144,6 @@ void body_applied_tangents(const Body& b, const BodyData& bd, const Vector3d& g,
   // body_applied_forces (the tangent's state).
   if (b.modal_stress) Kyy += bd.G1;
   if (b.prestress) Kyy += b.prestress->K1;
-  if (b.plate) {
-    Kyy += bd.plate_K;
-    Cyy += bd.plate_C;
-  }
 }
 
 // The load-case stiffening -KG y depends on the frame's accelerations and spin (FORMULATION.md

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <optional>
 
 namespace ffr::runtime {
 namespace {
@@ -123,8 +124,8 @@ void element_starts(const AncfPlate& p, int ei, int ej, int (&start)[4]) {
 
 // One element: adds its forces to Qy and tangents to K, C; returns its strain energy.
 double element(const AncfPlate& p, int ei, int ej, const Eigen::Ref<const Eigen::VectorXd>& y,
-               const Eigen::Ref<const Eigen::VectorXd>& yd, Eigen::Ref<Eigen::VectorXd>* Qy, Eigen::MatrixXd* K,
-               Eigen::MatrixXd* C, bool damp) {
+               const Eigen::Ref<const Eigen::VectorXd>& yd, Eigen::Ref<Eigen::VectorXd>* Qy, Eigen::Ref<Eigen::MatrixXd>* K,
+               Eigen::Ref<Eigen::MatrixXd>* C, bool damp) {
   int start[4];
   element_starts(p, ei, ej, start);
   Vec48 qe, qde;
@@ -180,10 +181,21 @@ double element(const AncfPlate& p, int ei, int ej, const Eigen::Ref<const Eigen:
 double ancf_plate_forces(const AncfPlate& plate, const Eigen::Ref<const Eigen::VectorXd>& y,
                          const Eigen::Ref<const Eigen::VectorXd>& yd, Eigen::Ref<Eigen::VectorXd> Qy, Eigen::MatrixXd* K,
                          Eigen::MatrixXd* C) {
+  std::optional<Eigen::Ref<Eigen::MatrixXd>> Kr, Cr;
+  if (K) Kr.emplace(*K);
+  if (C) Cr.emplace(*C);
   double U = 0;
   for (int ej = 0; ej < plate.ny; ++ej)
-    for (int ei = 0; ei < plate.nx; ++ei) U += element(plate, ei, ej, y, yd, &Qy, K, C, true);
+    for (int ei = 0; ei < plate.nx; ++ei)
+      U += element(plate, ei, ej, y, yd, &Qy, K ? &*Kr : nullptr, C ? &*Cr : nullptr, true);
   return U;
+}
+
+void ancf_plate_tangents(const AncfPlate& plate, const Eigen::Ref<const Eigen::VectorXd>& y,
+                         const Eigen::Ref<const Eigen::VectorXd>& yd, Eigen::Ref<Eigen::MatrixXd> K,
+                         Eigen::Ref<Eigen::MatrixXd> C) {
+  for (int ej = 0; ej < plate.ny; ++ej)
+    for (int ei = 0; ei < plate.nx; ++ei) element(plate, ei, ej, y, yd, nullptr, &K, &C, true);
 }
 
 double ancf_plate_energy(const AncfPlate& plate, const Eigen::Ref<const Eigen::VectorXd>& y) {

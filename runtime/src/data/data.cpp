@@ -65,8 +65,6 @@ Data::Data(const Model& model) : state(model), start(model) {
     const int nm = b.modal_stress ? nq : 0;
     bd.G1 = MatrixXd::Zero(nm, nm);
     bd.X1 = MatrixXd::Zero(nm, nm);
-    const int npq = b.plate ? nq : 0;
-    bd.plate_K = bd.plate_C = MatrixXd::Zero(npq, npq);
     bd.iface_load = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, b.stiffening ? static_cast<Eigen::Index>(b.stiffening->interfaces.size()) : 0);
     bd.wq = VectorXd::Zero(nq);
     if (nq == 0) body_mass_matrix(b, bd);  // constant for a rigid body

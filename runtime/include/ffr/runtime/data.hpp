@@ -34,7 +34,6 @@ struct BodyData {
   Vector3d acc;                 ///< body-frame acceleration of O minus gravity
   MatrixXd KG;                  ///< geometric stiffness [nq, nq] (stiffening)
   MatrixXd G1, X1;              ///< Ke/M1 (modal_stress_terms): its second derivative, and column k = M1[k] y
-  MatrixXd plate_K, plate_C;    ///< a plate's elastic and damping tangents at the last body_applied_forces [nq, nq]
   Eigen::Matrix<double, 6, Eigen::Dynamic> iface_load;  ///< per stiffening interface: F, M in K
   MatrixXd feB, feG, feD;       ///< co-rotational path only: B, M_FE B, dw/dz_dot [3N, nb]
   VectorXd few, feg;            ///< co-rotational path only: w = 2 A_dot Phi y_dot and M_FE w [3N]

@@ -69,6 +69,12 @@ double ancf_plate_forces(const AncfPlate& plate, const Eigen::Ref<const Eigen::V
                          const Eigen::Ref<const Eigen::VectorXd>& yd, Eigen::Ref<Eigen::VectorXd> Qy, Eigen::MatrixXd* K,
                          Eigen::MatrixXd* C);
 
+/// The tangents alone: -dQ/dy and -dQ/dy_dot of the elements' forces at y, y_dot added to the
+/// nq x nq blocks K and C on the elements' blocks (nothing else is touched). Allocation-free.
+void ancf_plate_tangents(const AncfPlate& plate, const Eigen::Ref<const Eigen::VectorXd>& y,
+                         const Eigen::Ref<const Eigen::VectorXd>& yd, Eigen::Ref<Eigen::MatrixXd> K,
+                         Eigen::Ref<Eigen::MatrixXd> C);
+
 /// The strain energy alone.
 double ancf_plate_energy(const AncfPlate& plate, const Eigen::Ref<const Eigen::VectorXd>& y);
 
