@@ -1,4 +1,4 @@
-// The geometrically exact beam in directors (FORMULATION.md section 16): its node bodies and
+// The geometrically exact beam in directors (FORMULATION.md section 17): its node bodies and
 // its two-node element with one-point (midpoint) strains.
 //
 // Every strain is a function of ten primitives, each a bilinear form of the element's eight

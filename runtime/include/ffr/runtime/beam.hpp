@@ -67,7 +67,7 @@ void ancf_beam_tangents(const AncfBeam& beam, const Eigen::Ref<const Eigen::Vect
 /// The strain energy alone.
 double ancf_beam_energy(const AncfBeam& beam, const Eigen::Ref<const Eigen::VectorXd>& y);
 
-// The geometrically exact (Simo-Reissner) beam in directors (FORMULATION.md section 16). Each
+// The geometrically exact (Simo-Reissner) beam in directors (FORMULATION.md section 17). Each
 // node carries its position r and three orthonormal directors d1, d2, d3 (d3 the section's
 // normal, d1 and d2 its principal axes), exactly the natural coordinates [r0, u, v, w] of a rigid
 // body: a node is a rigid body (its lumped mass and section rotary inertia) whose frame-vector
