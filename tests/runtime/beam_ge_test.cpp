@@ -24,6 +24,7 @@
 
 #include "ffr/runtime/beam.hpp"
 #include "ffr/runtime/dynamics.hpp"
+#include "ffr/runtime/errors.hpp"
 
 #include <gtest/gtest.h>
 
@@ -372,6 +373,44 @@ TEST(BeamGeometricallyExact, LargestElementTurnIsTheAngleBetweenItsNodesFrames) 
   EXPECT_NE(hint.find("(\"elements\": 16"), std::string::npos) << hint;
   EXPECT_NE(ge_beam_failure_hint(m, q, calm).find("at the step's start"), std::string::npos);
   EXPECT_EQ(ge_beam_failure_hint(m, calm, calm), "");  // 109 degrees: not suspect
+}
+
+// Twice the rolling moment, M = 4 pi EI / L, rolls the cantilever twice round (the elastica under
+// an end moment: constant curvature M / EI, the tip back at the clamp). Four elements would each
+// have to turn by half a revolution, where the element's curvature is singular: the static
+// solve fails and must name the element and ask for eight, with which the tip closes on the
+// clamp (constant curvature is exact in the element).
+TEST(BeamGeometricallyExact, RollingTwiceRoundNeedsMoreThanHalfATurnPerElement) {
+  const double L = 1, a = 0.01, EI = kE * a * a * a * a / 12;
+  const double M = 4 * M_PI * EI / L;
+  const auto rolled = [&](int elements) {
+    std::string json = cantilever(L, a, elements, tip_load("point_torque", Eigen::Vector3d(0, -M, 0)), R"({"analysis": "static"})",
+                                  50.0 / 12);
+    const std::string iz = "\"Iz\": " + num(a * a * a * a / 12);
+    json.replace(json.find(iz), iz.size(), "\"Iz\": " + num(100 * a * a * a * a / 12));
+    const std::string mid = "\"node\": \"n8\"";
+    json.replace(json.find(mid), mid.size(), "\"node\": \"n" + std::to_string(elements / 2) + "\"");
+    return test::model_from(json);
+  };
+  {
+    const Model m = rolled(4);
+    Data d(m);
+    std::string message;
+    try {
+      initialize(m, d);
+    } catch (const SolverError& e) {
+      message = e.what();
+    }
+    std::printf("4 elements: %s\n", message.c_str());
+    EXPECT_NE(message.find("of beam 'beam' (nodes n"), std::string::npos) << message;
+    EXPECT_NE(message.find("(\"elements\": 8"), std::string::npos) << message;
+  }
+  const Model m = rolled(8);
+  Data d(m);
+  initialize(m, d);
+  const auto tip = test::output(m, d, "tip");
+  std::printf("8 elements: tip (%.3e, %.3e, %.3e) m\n", tip[0], tip[1], tip[2]);
+  EXPECT_LT(Eigen::Vector3d(tip[0], tip[1], tip[2]).norm(), 1e-6 * L);
 }
 
 TEST(BeamGeometricallyExact, BadInputIsRefusedNamingTheField) {

@@ -15,6 +15,7 @@
 // (FORMULATION.md 14, neutral motions).
 #include "ffr/runtime/statics.hpp"
 
+#include "ffr/runtime/beam.hpp"
 #include "ffr/runtime/constraints.hpp"
 #include "ffr/runtime/dynamics.hpp"
 #include "ffr/runtime/errors.hpp"
@@ -285,7 +286,8 @@ std::vector<std::string> settle_at(const Model& model, Data& data, bool& unconve
                       "static equilibrium at t = " + fmt(t) + " s: Newton did not converge in " + std::to_string(max_iterations) +
                           " iterations (last correction " + fmt(inc) + " of the model length, largest in " +
                           coordinate_name(model, x.head(n)) + "; constraint violation " + fmt(viol) +
-                          "): the model may have no equilibrium near its initial configuration (a body free to move under "
+                          "). " + ge_beam_failure_hint(model, q_start, data.state.q) +
+                          "The model may have no equilibrium near its initial configuration (a body free to move under "
                           "the loads, or loads beyond what its springs can carry); hold the free motion with a joint or a "
                           "spring, start it closer to equilibrium, or run it dynamically with damping");
   }
