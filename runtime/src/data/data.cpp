@@ -121,7 +121,8 @@ Data::Data(const Model& model) : state(model), start(model) {
   tJ = tV = tW = Eigen::Matrix<double, 12, Eigen::Dynamic>::Zero(12, model.tires.empty() ? 0 : nb_max);
   for (auto& j : bJ) j = Eigen::Matrix<double, 12, Eigen::Dynamic>::Zero(12, model.bushings.empty() ? 0 : nb_max);
   bT = Eigen::Matrix<double, 12, Eigen::Dynamic>::Zero(12, model.bushings.empty() ? 0 : nb_max);
-  bP = bCg = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, model.bushings.empty() ? 0 : pair_max);
+  bP = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, model.bushings.empty() ? 0 : pair_max);
+  bt = VectorXd::Zero(model.bushings.empty() ? 0 : 24 * nb_max);
 
   motion_external.assign(model.motions.size(), 0);
   motion_value.assign(model.motions.size(), Eigen::Vector3d::Zero());

@@ -8,6 +8,7 @@
 // K = sum_i k_i g_i^T g_i + c_i g_i^T (H_i z_dot)^T + F_i H_i,  C = sum_i c_i g_i^T g_i.
 #include "force_helpers.hpp"
 #include "forces.hpp"
+#include "../joints/weighted_gram.hpp"
 
 namespace ffr::runtime::detail {
 namespace {
@@ -183,16 +184,26 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
   for (int side = 0; side < 2; ++side)
     if (nb[side]) P.middleCols(col0[side], nb[side]).noalias() += Y.middleCols<12>(12 * side).lazyProduct(data.bJ[side].leftCols(nb[side]));
   const bool damped = !bu.c.isZero(0);
-  auto Cg = data.bCg.leftCols(ntot);
-  if (damped) Cg.noalias() = bu.c.asDiagonal() * g;
-  // Coefficient-based products throughout: at these sizes (6 or 12 deep, up to a flexible body's
-  // coordinates wide) Eigen's blocked GEMM spent more on packing than on arithmetic.
-  for (int a = 0; a < 2; ++a)
+  // The products as sums of column updates over the transposed left factors (weight_rows,
+  // add_weighted_product): Eigen's lazy products of a transposed column-major block formed each
+  // coefficient as a dot product with a horizontal sum, and the products were most of the
+  // tangent's time in models whose bushings join a flexible body (the vehicle, the washing
+  // machine).
+  static constexpr double kOnes[12] = {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+  for (int a = 0; a < 2; ++a) {
+    if (!nb[a]) continue;
+    const double* ga = g.data() + 6 * col0[a];
+    double* gt = data.bt.data();      // g_a^T             [nb_a, 6]
+    double* gct = gt + 6 * nb[a];     // (diag(c) g_a)^T   [nb_a, 6]
+    double* Jt = gct + 6 * nb[a];     // J_a^T             [nb_a, 12]
+    weight_rows(ga, 6, 6, nb[a], kOnes, gt);
+    if (damped) weight_rows(ga, 6, 6, nb[a], bu.c.data(), gct);
+    weight_rows(data.bJ[a].data(), 12, 12, nb[a], kOnes, Jt);
     for (int b = 0; b < 2; ++b) {
-      if (!nb[a] || !nb[b]) continue;
-      const auto ga = g.middleCols(col0[a], nb[a]);
-      auto Kab = data.K.block(offset(model, body[a]), offset(model, body[b]), nb[a], nb[b]);
-      Kab.noalias() += ga.transpose().lazyProduct(P.middleCols(col0[b], nb[b]));
+      if (!nb[b]) continue;
+      double* Kab = &data.K(offset(model, body[a]), offset(model, body[b]));
+      const Eigen::Index ldk = data.K.rows();
+      add_weighted_product(gt, 6, nb[a], P.data() + 6 * col0[b], 6, nb[b], Kab, ldk);
       // T = (Omega_ab (x) I3) J_b: row block u of T is sum_v Omega(u, v) times row block v of J_b.
       auto T = data.bT.leftCols(nb[b]);
       const auto Jb = data.bJ[b].leftCols(nb[b]);
@@ -200,11 +211,13 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
       for (int u = 0; u < 4; ++u)
         for (int v = 0; v < 4; ++v)
           if (const double o = Omega(4 * a + u, 4 * b + v); o != 0) T.middleRows<3>(3 * u) += o * Jb.middleRows<3>(3 * v);
-      Kab.noalias() += data.bJ[a].leftCols(nb[a]).transpose().lazyProduct(T);
+      add_weighted_product(Jt, 6, nb[a], T.data(), 12, nb[b], Kab, ldk);
+      add_weighted_product(Jt + 6 * nb[a], 6, nb[a], T.data() + 6, 12, nb[b], Kab, ldk);
       if (damped)
-        data.C.block(offset(model, body[a]), offset(model, body[b]), nb[a], nb[b]).noalias() +=
-            ga.transpose().lazyProduct(Cg.middleCols(col0[b], nb[b]));
+        add_weighted_product(gct, 6, nb[a], g.data() + 6 * col0[b], 6, nb[b],
+                             &data.C(offset(model, body[a]), offset(model, body[b])), data.C.rows());
     }
+  }
 }
 
 }  // namespace ffr::runtime::detail

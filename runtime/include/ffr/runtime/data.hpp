@@ -165,10 +165,12 @@ struct Data {
   /// product, [12, nb max] each (tire.cpp).
   Eigen::Matrix<double, 12, Eigen::Dynamic> tJ, tV, tW;
   /// Bushings (bushing.cpp): each end's stacked Jacobian [J_p; J_e0; J_e1; J_e2] and a weighted
-  /// product, [12, nb max] each; the rank-six factors of K and C, [6, n12] each.
+  /// product, [12, nb max] each; the rank-six factor of K, [6, n12]; one end's transposed
+  /// factors g^T, (diag(c) g)^T and J^T, [nb max, 24] in all.
   std::array<Eigen::Matrix<double, 12, Eigen::Dynamic>, 2> bJ;
   Eigen::Matrix<double, 12, Eigen::Dynamic> bT;
-  Eigen::Matrix<double, 6, Eigen::Dynamic> bP, bCg;
+  Eigen::Matrix<double, 6, Eigen::Dynamic> bP;
+  VectorXd bt;
 
   // Constraint-Hessian work, sized for the largest pair of bodies a joint joins.
   MatrixXd cH;                  ///< [n12, n12]
