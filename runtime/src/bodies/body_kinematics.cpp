@@ -2,6 +2,7 @@
 #include "ffr/runtime/kinematics.hpp"
 
 #include "../integrator/dense_products.hpp"
+#include "../model/known_frame.hpp"
 
 #include <algorithm>
 
@@ -102,16 +103,25 @@ void update_bodies(const Model& model, Data& data, Scope scope) {
     const auto y = data.state.q.segment(o + 12, b.nq);
     bd.md = b.rdm;
     bd.md.noalias() += b.Pdm * y;
-    // S_a = rPdm[a] + P_a(y), row c of P_a(y) being (PPdm[a][c]^T y)^T = (PPdm[c][a] y)^T =
-    // column 3c+a of Py, all nine from one product (as in body_rates).
-    stacked_times(b, y.data(), bd.Py.data());
-    for (int a = 0; a < 3; ++a)
-      for (int c = 0; c < 3; ++c) bd.S[a].row(c) = b.rPdm[a].row(c) + bd.Py.col(3 * c + a).transpose();
-    // Jc(a,c) = J0 + R(a,c) + R(c,a) + y^T PPdm[a][c] y with R(a,c) = rPdm[a].row(c) y.
-    for (int a = 0; a < 3; ++a)
-      for (int c = 0; c < 3; ++c)
-        bd.Jc(a, c) = b.J0(a, c) + b.rPdm[a].row(c).dot(y) + b.rPdm[c].row(a).dot(y) + bd.Py.col(3 * c + a).dot(y);
+    // An ancf beam's known frame (known_frame.hpp) stays at rest at the global frame: its S_a and
+    // Jc weigh only the frame's accelerations and rates, which are zero, and its frame's rows,
+    // which are not unknowns. So they are left to the outputs that read them (energy.cpp); they
+    // were a sixth of a 16-element beam's step.
+    if (detail::frame_known(model, b)) continue;
+    deformed_inertia(b, bd, y);
   }
+}
+
+void deformed_inertia(const Body& b, BodyData& bd, const Eigen::Ref<const VectorXd>& y) {
+  // S_a = rPdm[a] + P_a(y), row c of P_a(y) being (PPdm[a][c]^T y)^T = (PPdm[c][a] y)^T =
+  // column 3c+a of Py, all nine from one product (as in body_rates).
+  stacked_times(b, y.data(), bd.Py.data());
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c) bd.S[a].row(c) = b.rPdm[a].row(c) + bd.Py.col(3 * c + a).transpose();
+  // Jc(a,c) = J0 + R(a,c) + R(c,a) + y^T PPdm[a][c] y with R(a,c) = rPdm[a].row(c) y.
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c)
+      bd.Jc(a, c) = b.J0(a, c) + b.rPdm[a].row(c).dot(y) + b.rPdm[c].row(a).dot(y) + bd.Py.col(3 * c + a).dot(y);
 }
 
 }  // namespace ffr::runtime

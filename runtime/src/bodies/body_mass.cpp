@@ -4,6 +4,7 @@
 #include "ffr/runtime/kinematics.hpp"
 
 #include "../integrator/dense_products.hpp"
+#include "../model/known_frame.hpp"
 
 namespace ffr::runtime {
 void body_mass_matrix(const Body& b, BodyData& bd) {
@@ -30,6 +31,10 @@ void mass_matrices(const Model& model, Data& data) {
     // A rigid body's mass matrix is constant: it was filled when Data was built.
     const Body& b = model.bodies[i];
     if (b.nq == 0) continue;
+    // An ancf beam's known frame is at rest (update_bodies): its rows and columns of M, which
+    // read S_a and Jc, multiply zero rates and accelerations and are not among the unknowns'.
+    // They stay as Data left them (zero); M_yy, the rest, is constant (placed by Data).
+    if (detail::frame_known(model, b)) continue;
     if (b.full_mass)
       fe_mass_matrix(b, data.bodies[i], data.state.q.segment(b.offset, b.ncoord()));
     else

@@ -3,6 +3,7 @@
 #include "ffr/runtime/dynamics.hpp"
 #include "ffr/runtime/kinematics.hpp"
 #include "../forces/forces.hpp"
+#include "../model/known_frame.hpp"
 
 namespace ffr::runtime {
 
@@ -82,6 +83,9 @@ Vector3d angular_momentum(const Model& model, Data& data) {
       for (int c = 0; c < 3; ++c) H += bd.Jc(a, c) * Vector3d(bd.A.col(a)).cross(Vector3d(bd.Ad.col(c)));
     if (b.nq) {
       const auto yd = data.state.qd.segment(b.offset + 12, b.nq);
+      // (update_bodies leaves S_a of an ancf beam's known frame to this.)
+      if (detail::frame_known(model, b))
+        deformed_inertia(b, data.bodies[i], data.state.q.segment(b.offset + 12, b.nq));
       for (int a = 0; a < 3; ++a) H += Vector3d(bd.A.col(a)).cross(bd.A * (bd.S[a] * yd));
       if (b.has_rotary_coupling) H += bd.A * (b.PsiI.transpose() * yd);
     }

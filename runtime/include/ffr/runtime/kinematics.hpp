@@ -15,8 +15,12 @@ Vector3d body_omega(const Matrix3d& A, const Matrix3d& Ad);
 /// Gbar(A) as a 3 x 9 matrix acting on [u; v; w].
 Eigen::Matrix<double, 3, 9> gbar(const Matrix3d& A);
 
-/// Frames, deformed inertia integrals and frame rates of every body (FORMULATION.md 2-3).
+/// Frames, deformed inertia integrals and frame rates of every body (FORMULATION.md 2-3); of an
+/// ancf beam whose frame is known (held at rest) md only: its S_a and Jc come from
+/// deformed_inertia, which the outputs that read them call.
 void update_bodies(const Model& model, Data& data, Scope scope = Scope::All);
+/// A flexible body's S_a(y) and Jc(y) (FORMULATION.md 3) into bd (bd.Py is work).
+void deformed_inertia(const Body& b, BodyData& bd, const Eigen::Ref<const Eigen::VectorXd>& y);
 
 /// Positions, axes, Jacobians and acceleration biases of every marker. Needs update_bodies.
 void update_markers(const Model& model, Data& data, Scope scope = Scope::All);
