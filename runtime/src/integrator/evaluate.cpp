@@ -36,7 +36,14 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
     const Body& b = model.bodies[i];
     if (!data.integrated[i]) continue;
     auto Wb = W.block(b.offset, b.offset, b.ncoord(), b.ncoord());
-    Wb += data.bodies[i].M;
+    if (data.tangent_blocks_pay) {  // M is zero outside the body's blocks too
+      const MatrixXd& M = data.bodies[i].M;
+      detail::for_each_body_block(model, static_cast<int>(i), [&](int r0, int nr, int c0, int nc) {
+        W.block(r0, c0, nr, nc) += M.block(r0 - b.offset, c0 - b.offset, nr, nc);
+      });
+    } else {
+      Wb += data.bodies[i].M;
+    }
     body_stiffening_rate_tangents(b, data.bodies[i], data.state.q.segment(b.offset + 12, b.nq), data.state.qd.segment(b.offset + 12, b.nq),
                                   k.kv, Wb);
   }

@@ -11,6 +11,7 @@
 
 #include "ffr/runtime/data.hpp"
 #include "ffr/runtime/model.hpp"
+#include "../model/known_frame.hpp"
 
 #include <algorithm>
 
@@ -38,15 +39,56 @@ void for_each_coupled_pair(const Model& model, const Data& data, bool integrated
   }
 }
 
-/// g(row0, rows, col0, cols) for each tangent block: every body's diagonal block, then both
-/// blocks of each coupled pair. A block may be visited more than once: for idempotent work
-/// (clearing, assigning) only.
+/// True when an ancf beam's diagonal block is its band (for_each_body_block): its frame is known
+/// (known_frame.hpp), so nothing couples two of its nodes but its elements, unless a force
+/// element or a joint joins two of its own points.
+inline bool banded_beam(const Model& model, int body) {
+  const Body& b = model.bodies[static_cast<std::size_t>(body)];
+  if (!frame_known(model, b)) return false;
+  const auto on = [&](int marker) { return model.markers[static_cast<std::size_t>(marker)].body == body; };
+  for (const SpringDamper& s : model.springs)
+    if (on(s.m1) && on(s.m2)) return false;
+  for (const Bushing& s : model.bushings)
+    if (on(s.m1) && on(s.m2)) return false;
+  for (const FrictionDamper& s : model.friction_dampers)
+    if (on(s.m1) && on(s.m2)) return false;
+  for (const ConstraintBlock& c : model.blocks) {
+    int n = 0;
+    for (int x : {c.body1, c.body2, c.body3, c.body4}) n += x == body;
+    if (n > 1) return false;
+  }
+  return true;
+}
+
+/// g(row0, rows, col0, cols) for the blocks of a body's diagonal block that can be nonzero, none
+/// visited twice: the whole of it, or of a banded ancf beam (above) its frame's rows and columns
+/// (the terms of markers on its nodes and of its held frame's rows) and each node's six rows over
+/// its own and its neighbours' columns. Why: its elements and mass couple only neighbouring
+/// nodes, and the dense passes over the whole block were a sixth of a 16-element beam's step.
+template <class G>
+void for_each_body_block(const Model& model, int body, G&& g) {
+  const Body& b = model.bodies[static_cast<std::size_t>(body)];
+  if (!banded_beam(model, body)) {
+    g(b.offset, b.ncoord(), b.offset, b.ncoord());
+    return;
+  }
+  const int o = b.offset, n = b.ncoord(), last = b.beam->elements;
+  g(o, 12, o, n);
+  g(o + 12, n - 12, o, 12);
+  for (int k = 0; k <= last; ++k) {
+    const int first = std::max(k - 1, 0), end = std::min(k + 1, last) + 1;  // nodes [first, end)
+    g(o + 12 + 6 * k, 6, o + 12 + 6 * first, 6 * (end - first));
+  }
+}
+
+/// g(row0, rows, col0, cols) for each tangent block: every body's diagonal block (or its blocks,
+/// for_each_body_block), then both blocks of each coupled pair. A block may be visited more than
+/// once: for idempotent work (clearing, assigning) only.
 template <class G>
 void for_each_tangent_block(const Model& model, const Data& data, bool integrated_only, G&& g) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     if (integrated_only && !data.integrated[i]) continue;
-    const Body& b = model.bodies[i];
-    g(b.offset, b.ncoord(), b.offset, b.ncoord());
+    for_each_body_block(model, static_cast<int>(i), g);
   }
   for_each_coupled_pair(model, data, integrated_only, [&](int i, int j) {
     const Body& bi = model.bodies[static_cast<std::size_t>(i)];
