@@ -2,6 +2,7 @@
 #include "line_force.hpp"
 
 #include "force_helpers.hpp"
+#include "../joints/weighted_gram.hpp"
 
 namespace ffr::runtime::detail {
 
@@ -59,8 +60,13 @@ void add_line_tangents(const Model& model, int m1, int m2, const LineState& st, 
       if (mi.body == kGround) continue;
       const int nbi = ncoord(model, mi.body), oi = offset(model, mi.body);
       const MarkerData& di = data.markers[mk[i]];
-      data.K.block(oi, oj, nbi, nbj).noalias() -= sign[i] * di.Jp.transpose() * DD;
-      data.C.block(oi, oj, nbi, nbj).noalias() -= sign[i] * di.Jp.transpose() * DC;
+      // K_ij -= sign_i Jp_i^T DD and C_ij -= sign_i Jp_i^T DC as column updates over the weighted
+      // transpose (weighted_gram.hpp): Eigen's product of a transposed 3-row matrix packed both
+      // operands first, and that was a tenth of the washing machine's step.
+      const double w[3] = {-sign[i], -sign[i], -sign[i]};
+      weight_rows(di.Jp.data(), 3, 3, nbi, w, data.lt.data());
+      add_weighted_product(data.lt.data(), 3, nbi, DD.data(), 3, nbj, &data.K(oi, oj), data.K.rows());
+      add_weighted_product(data.lt.data(), 3, nbi, DC.data(), 3, nbj, &data.C(oi, oj), data.C.rows());
     }
     add_jt_f_derivative(mj.phi, sign[j] * f2, -1.0, data.K.block(oj, oj, nbj, nbj));
   }
