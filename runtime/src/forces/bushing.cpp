@@ -148,6 +148,7 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
       Jz.segment<12>(12 * side).noalias() =
           data.bJ[side].leftCols(nb[side]) * data.state.qd.segment(offset(model, body[side]), nb[side]);
   Eigen::Matrix<double, 8, 8> Omega = Eigen::Matrix<double, 8, 8>::Zero();
+  Eigen::Matrix<double, 3, 8> node_f = Eigen::Matrix<double, 3, 8>::Zero();  // column: end 4 s + quantity (point, e0..e2)
   Eigen::Matrix<double, 6, 24> Y = Eigen::Matrix<double, 6, 24>::Zero();
   auto P = data.bP.leftCols(ntot);
   P.setZero();
@@ -160,14 +161,10 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
       const double w = F(i) * t.coef;
       Omega(ra / 3, rb / 3) += w;
       Omega(rb / 3, ra / 3) += w;
-      if (w != 0 && on_node(model, *mm[sa])) {
-        const int o = offset(model, body[sa]);
-        add_jt_f_derivative(slice(*mm[sa], t.ka), xb, w, data.K.block(o, o, nb[sa], nb[sa]));
-      }
-      if (w != 0 && on_node(model, *mm[sb])) {
-        const int o = offset(model, body[sb]);
-        add_jt_f_derivative(slice(*mm[sb], t.kb), xa, w, data.K.block(o, o, nb[sb], nb[sb]));
-      }
+      // The node terms of F_i H_i are linear in the other factor: summed per end and quantity
+      // first (node_f), then one add_jt_f_derivative each below.
+      node_f.col(ra / 3) += w * xb;
+      node_f.col(rb / 3) += w * xa;
       if (bu.c(i) == 0) continue;
       Y.block<1, 3>(i, ra) += (bu.c(i) * t.coef) * Jz.segment<3>(rb).transpose();
       Y.block<1, 3>(i, rb) += (bu.c(i) * t.coef) * Jz.segment<3>(ra).transpose();
@@ -179,6 +176,13 @@ void bushing_forces(const Model& model, const Bushing& bu, Data& data, bool add_
                                     P.row(i).segment(col0[side], nb[side]));
       }
     }
+  }
+  for (int side = 0; side < 2; ++side) {
+    if (!on_node(model, *mm[side])) continue;
+    const int o = offset(model, body[side]);
+    for (int k = -1; k < 3; ++k)
+      if (const Vector3d f = node_f.col(4 * side + k + 1); !f.isZero(0))
+        add_jt_f_derivative(slice(*mm[side], k), f, 1.0, data.K.block(o, o, nb[side], nb[side]));
   }
   P.noalias() += slope.asDiagonal() * g;
   for (int side = 0; side < 2; ++side)
