@@ -4,6 +4,7 @@
 
 #include "ffr/runtime/dynamics.hpp"
 #include "ffr/runtime/relative.hpp"
+#include "../integrator/tangent_blocks.hpp"
 
 #include <algorithm>
 
@@ -34,6 +35,7 @@ Data::Data(const Model& model) : state(model), start(model) {
   Phiq = MatrixXd::Zero(m, n);
   lu.resize(n);
   unknowns.reserve(static_cast<std::size_t>(n));  // set_unknowns fills it without allocating
+  body_pairs = detail::coupled_body_pairs(model);
   lu_work = VectorXd::Zero(n);
   scale = VectorXd::Ones(n);
   Phi = Phit = gamma = VectorXd::Zero(m);

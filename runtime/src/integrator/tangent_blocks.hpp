@@ -14,16 +14,32 @@
 #include "../model/known_frame.hpp"
 
 #include <algorithm>
+#include <array>
+#include <vector>
 
 namespace ffr::runtime::detail {
 
-/// f(a, b) for each pair of distinct bodies whose off-diagonal blocks can be nonzero (a pair may
-/// come more than once, in either order). Both bodies integrated with integrated_only.
+/// The pairs of distinct bodies whose off-diagonal blocks can be nonzero, each once, lower index
+/// first (Data::body_pairs). Why once: several elements join the same two bodies (a cab's four
+/// mounts), and every pass over the blocks visited their blocks once per element.
+std::vector<std::array<int, 2>> coupled_body_pairs(const Model& model);
+
+/// f(a, b) for each pair of Data::body_pairs, both bodies integrated with integrated_only.
 template <class F>
 void for_each_coupled_pair(const Model& model, const Data& data, bool integrated_only, F&& f) {
+  (void)model;
+  for (const auto& [a, b] : data.body_pairs) {
+    if (integrated_only && !(integrated(data, a) && integrated(data, b))) continue;
+    f(a, b);
+  }
+}
+
+/// f(a, b) for each element or constraint block that joins two distinct bodies (a pair may come
+/// more than once, in either order): what coupled_body_pairs collects.
+template <class F>
+void for_each_coupling(const Model& model, F&& f) {
   const auto pair = [&](int a, int b) {
     if (a == kGround || b == kGround || a == b) return;
-    if (integrated_only && !(integrated(data, a) && integrated(data, b))) return;
     f(a, b);
   };
   const auto body = [&](int marker) { return model.markers[static_cast<std::size_t>(marker)].body; };
@@ -82,8 +98,8 @@ void for_each_body_block(const Model& model, int body, G&& g) {
 }
 
 /// g(row0, rows, col0, cols) for each tangent block: every body's diagonal block (or its blocks,
-/// for_each_body_block), then both blocks of each coupled pair. A block may be visited more than
-/// once: for idempotent work (clearing, assigning) only.
+/// for_each_body_block), then both blocks of each coupled pair. No block is visited twice, but
+/// the blocks are for idempotent work (clearing, assigning) and products only.
 template <class G>
 void for_each_tangent_block(const Model& model, const Data& data, bool integrated_only, G&& g) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {

@@ -108,6 +108,9 @@ struct Data {
   /// are cheaper than the dense ones for the unknowns now (tangent_blocks.hpp): decided by
   /// set_unknowns, the only place the unknowns change; false (the dense passes) until then.
   bool tangent_blocks_pay = false, block_columns_pay = false;
+  /// The pairs of distinct bodies whose off-diagonal tangent blocks can be nonzero, each once
+  /// (lower index first; tangent_blocks.hpp, coupled_body_pairs).
+  std::vector<std::array<int, 2>> body_pairs;
   std::vector<DriveReference> drive_ref;  ///< per body (driven bodies only)
 
   // Per-element work.
