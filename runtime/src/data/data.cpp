@@ -36,6 +36,8 @@ Data::Data(const Model& model) : state(model), start(model) {
   lu.resize(n);
   unknowns.reserve(static_cast<std::size_t>(n));  // set_unknowns fills it without allocating
   body_pairs = detail::coupled_body_pairs(model);
+  banded.assign(model.bodies.size(), 0);
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) banded[i] = detail::banded_beam(model, static_cast<int>(i));
   lu_work = VectorXd::Zero(n);
   scale = VectorXd::Ones(n);
   Phi = Phit = gamma = VectorXd::Zero(m);

@@ -38,7 +38,7 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
     auto Wb = W.block(b.offset, b.offset, b.ncoord(), b.ncoord());
     if (data.tangent_blocks_pay) {  // M is zero outside the body's blocks too
       const MatrixXd& M = data.bodies[i].M;
-      detail::for_each_body_block(model, static_cast<int>(i), [&](int r0, int nr, int c0, int nc) {
+      detail::for_each_body_block(model, data, static_cast<int>(i), [&](int r0, int nr, int c0, int nc) {
         W.block(r0, c0, nr, nc) += M.block(r0 - b.offset, c0 - b.offset, nr, nc);
       });
     } else {

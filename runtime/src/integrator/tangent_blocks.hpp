@@ -55,7 +55,8 @@ void for_each_coupling(const Model& model, F&& f) {
   }
 }
 
-/// True when an ancf beam's diagonal block is its band (for_each_body_block): its frame is known
+/// True when an ancf beam's diagonal block is its band (for_each_body_block; Data::banded holds it
+/// per body): its frame is known
 /// (known_frame.hpp), so nothing couples two of its nodes but its elements, unless a force
 /// element or a joint joins two of its own points.
 inline bool banded_beam(const Model& model, int body) {
@@ -82,9 +83,9 @@ inline bool banded_beam(const Model& model, int body) {
 /// its own and its neighbours' columns. Why: its elements and mass couple only neighbouring
 /// nodes, and the dense passes over the whole block were a sixth of a 16-element beam's step.
 template <class G>
-void for_each_body_block(const Model& model, int body, G&& g) {
+void for_each_body_block(const Model& model, const Data& data, int body, G&& g) {
   const Body& b = model.bodies[static_cast<std::size_t>(body)];
-  if (!banded_beam(model, body)) {
+  if (!data.banded[static_cast<std::size_t>(body)]) {
     g(b.offset, b.ncoord(), b.offset, b.ncoord());
     return;
   }
@@ -104,7 +105,7 @@ template <class G>
 void for_each_tangent_block(const Model& model, const Data& data, bool integrated_only, G&& g) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     if (integrated_only && !data.integrated[i]) continue;
-    for_each_body_block(model, static_cast<int>(i), g);
+    for_each_body_block(model, data, static_cast<int>(i), g);
   }
   for_each_coupled_pair(model, data, integrated_only, [&](int i, int j) {
     const Body& bi = model.bodies[static_cast<std::size_t>(i)];

@@ -111,6 +111,8 @@ struct Data {
   /// The pairs of distinct bodies whose off-diagonal tangent blocks can be nonzero, each once
   /// (lower index first; tangent_blocks.hpp, coupled_body_pairs).
   std::vector<std::array<int, 2>> body_pairs;
+  /// Per body: its diagonal tangent block is an ancf beam's band (tangent_blocks.hpp, banded_beam).
+  std::vector<char> banded;
   std::vector<DriveReference> drive_ref;  ///< per body (driven bodies only)
 
   // Per-element work.
