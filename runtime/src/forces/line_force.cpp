@@ -42,6 +42,16 @@ void add_line_tangents(const Model& model, int m1, int m2, const LineState& st, 
   const Vector3d f2 = -T * st.n;
   const int mk[2] = {m1, m2};
   const double sign[2] = {-1.0, 1.0};  // d = p2 - p1 and f_i = sign_i f2
+  // -sign_i Jp_i^T of each end, once (lt: [nb_i, 3] per end): the products below are column
+  // updates over it (weighted_gram.hpp); Eigen's product of a transposed 3-row matrix packed both
+  // operands first, and that was a tenth of the washing machine's step.
+  const int nb_max = static_cast<int>(data.lt.size() / 6);
+  for (int i = 0; i < 2; ++i) {
+    const Marker& mi = model.markers[mk[i]];
+    if (mi.body == kGround) continue;
+    const double w[3] = {-sign[i], -sign[i], -sign[i]};
+    weight_rows(data.markers[mk[i]].Jp.data(), 3, 3, ncoord(model, mi.body), w, data.lt.data() + 3 * nb_max * i);
+  }
   for (int j = 0; j < 2; ++j) {
     const Marker& mj = model.markers[mk[j]];
     if (mj.body == kGround) continue;
@@ -59,14 +69,9 @@ void add_line_tangents(const Model& model, int m1, int m2, const LineState& st, 
       const Marker& mi = model.markers[mk[i]];
       if (mi.body == kGround) continue;
       const int nbi = ncoord(model, mi.body), oi = offset(model, mi.body);
-      const MarkerData& di = data.markers[mk[i]];
-      // K_ij -= sign_i Jp_i^T DD and C_ij -= sign_i Jp_i^T DC as column updates over the weighted
-      // transpose (weighted_gram.hpp): Eigen's product of a transposed 3-row matrix packed both
-      // operands first, and that was a tenth of the washing machine's step.
-      const double w[3] = {-sign[i], -sign[i], -sign[i]};
-      weight_rows(di.Jp.data(), 3, 3, nbi, w, data.lt.data());
-      add_weighted_product(data.lt.data(), 3, nbi, DD.data(), 3, nbj, &data.K(oi, oj), data.K.rows());
-      add_weighted_product(data.lt.data(), 3, nbi, DC.data(), 3, nbj, &data.C(oi, oj), data.C.rows());
+      const double* lt = data.lt.data() + 3 * nb_max * i;  // K_ij -= sign_i Jp_i^T DD, C_ij likewise with DC
+      add_weighted_product(lt, 3, nbi, DD.data(), 3, nbj, &data.K(oi, oj), data.K.rows());
+      add_weighted_product(lt, 3, nbi, DC.data(), 3, nbj, &data.C(oi, oj), data.C.rows());
     }
     add_jt_f_derivative(mj.phi, sign[j] * f2, -1.0, data.K.block(oj, oj, nbj, nbj));
   }

@@ -26,8 +26,7 @@ std::vector<std::array<int, 2>> coupled_body_pairs(const Model& model);
 
 /// f(a, b) for each pair of Data::body_pairs, both bodies integrated with integrated_only.
 template <class F>
-void for_each_coupled_pair(const Model& model, const Data& data, bool integrated_only, F&& f) {
-  (void)model;
+void for_each_coupled_pair(const Data& data, bool integrated_only, F&& f) {
   for (const auto& [a, b] : data.body_pairs) {
     if (integrated_only && !(integrated(data, a) && integrated(data, b))) continue;
     f(a, b);
@@ -107,7 +106,7 @@ void for_each_tangent_block(const Model& model, const Data& data, bool integrate
     if (integrated_only && !data.integrated[i]) continue;
     for_each_body_block(model, data, static_cast<int>(i), g);
   }
-  for_each_coupled_pair(model, data, integrated_only, [&](int i, int j) {
+  for_each_coupled_pair(data, integrated_only, [&](int i, int j) {
     const Body& bi = model.bodies[static_cast<std::size_t>(i)];
     const Body& bj = model.bodies[static_cast<std::size_t>(j)];
     g(bi.offset, bi.ncoord(), bj.offset, bj.ncoord());
@@ -136,7 +135,7 @@ inline void coupled_columns(const Model& model, const Data& data, int body, int&
   const Body& b = model.bodies[static_cast<std::size_t>(body)];
   lo = b.offset;
   hi = b.offset + b.ncoord();
-  for_each_coupled_pair(model, data, true, [&](int i, int j) {
+  for_each_coupled_pair(data, true, [&](int i, int j) {
     const int other = i == body ? j : j == body ? i : -1;
     if (other < 0) return;
     const Body& o = model.bodies[static_cast<std::size_t>(other)];

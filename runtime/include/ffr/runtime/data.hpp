@@ -166,7 +166,7 @@ struct Data {
   Eigen::Matrix<double, 6, Eigen::Dynamic> fg;  ///< gradients of up to 6 scalar measures
   VectorXd fz, fhz;             ///< [n12]
   std::array<Matrix3N, 4> w3;   ///< [3, nb max]
-  VectorXd lt;                  ///< [3 nb max]: a line force's weighted transposed point Jacobian
+  VectorXd lt;                  ///< [6 nb max]: a line force's weighted transposed point Jacobians, one per end
   /// Tyres: the Jacobian of the wheel marker's point and three axes, their rate derivative and a
   /// product, [12, nb max] each (tire.cpp).
   Eigen::Matrix<double, 12, Eigen::Dynamic> tJ, tV, tW;
