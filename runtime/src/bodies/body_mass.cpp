@@ -4,6 +4,7 @@
 #include "ffr/runtime/kinematics.hpp"
 
 #include "../integrator/dense_products.hpp"
+#include "../integrator/tangent_blocks.hpp"
 #include "../model/known_frame.hpp"
 
 namespace ffr::runtime {
@@ -47,7 +48,17 @@ void mass_times(const Model& model, const Data& data, const VectorXd& x, VectorX
     if (!data.integrated[i]) continue;  // a driven body's rows are not unknowns
     const Body& b = model.bodies[i];
     const MatrixXd& M = data.bodies[i].M;  // through the step's vectorised kernel
-    detail::times(M.data(), M.rows(), b.ncoord(), b.ncoord(), x.data() + b.offset, y.data() + b.offset, false);
+    const Eigen::Index ld = M.rows();
+    if (!data.banded[i]) {
+      detail::times(M.data(), ld, b.ncoord(), b.ncoord(), x.data() + b.offset, y.data() + b.offset, false);
+      continue;
+    }
+    // A banded beam's M is zero outside its blocks (tangent_blocks.hpp): the product costs in
+    // proportion to its nodes, not to their square.
+    y.segment(b.offset, b.ncoord()).setZero();
+    detail::for_each_body_block(model, data, static_cast<int>(i), [&](int r0, int nr, int c0, int nc) {
+      detail::times(M.data() + (c0 - b.offset) * ld + (r0 - b.offset), ld, nr, nc, x.data() + c0, y.data() + r0, true);
+    });
   }
 }
 

@@ -35,6 +35,8 @@ Data::Data(const Model& model) : state(model), start(model) {
   Phiq = MatrixXd::Zero(m, n);
   lu.resize(n);
   unknowns.reserve(static_cast<std::size_t>(n));  // set_unknowns fills it without allocating
+  lu_first.assign(static_cast<std::size_t>(n), 0);
+  lu_last.assign(static_cast<std::size_t>(n), 0);
   body_pairs = detail::coupled_body_pairs(model);
   banded.assign(model.bodies.size(), 0);
   for (std::size_t i = 0; i < model.bodies.size(); ++i) banded[i] = detail::banded_beam(model, static_cast<int>(i));

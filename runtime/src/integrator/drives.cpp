@@ -26,6 +26,7 @@ namespace {
 void decide_block_passes(const Model& model, Data& data) {
   data.tangent_blocks_pay = detail::decide_tangent_blocks_pay(model, data);
   data.block_columns_pay = detail::decide_block_columns_pay(model, data);
+  detail::tangent_row_spans(model, data);
 }
 
 Matrix3d skew(const Vector3d& w) {

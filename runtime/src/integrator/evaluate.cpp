@@ -5,6 +5,7 @@
 #include "ffr/runtime/kinematics.hpp"
 #include "tangent_blocks.hpp"
 
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -91,12 +92,56 @@ void factorize_metric(const Model& model, Data& data) {
   ++data.stats.factorizations;
 }
 
+namespace {
+
+// The scaled tangent over the unknowns, each column between its rows Data::lu_first .. lu_last
+// (tangent_blocks.hpp: T is zero outside them, which a debug build checks), factorised.
+void factorize_within_spans(Data& data) {
+  const std::vector<int>& u = data.unknowns;
+  const int* first = data.lu_first.data();
+  const int* last = data.lu_last.data();
+  const double* s = data.scale.data();
+  if (u.empty()) {
+    const Eigen::Index nf = data.nf;
+    data.lu.compute_within(nf, first, last, [&](SmallLU::MatrixMap& a) {
+      for (Eigen::Index j = 0; j < nf; ++j)
+        for (Eigen::Index i = first[j]; i <= last[j]; ++i) a(i, j) = s[i] * data.T(i, j) * s[j];
+    });
+  } else {
+    const auto k = static_cast<Eigen::Index>(u.size());
+    data.lu.compute_within(k, first, last, [&](SmallLU::MatrixMap& a) {
+      for (Eigen::Index j = 0; j < k; ++j) {
+        const double* t = data.T.col(u[j]).data();
+        const double sj = s[u[j]];
+        double* out = a.col(j).data();
+        for (const Data::Run& run : data.unknown_runs) {  // the runs' rows within the span
+          const int lo = std::max(run.at, first[j]), hi = std::min(run.at + run.len - 1, last[j]);
+          for (int i = lo; i <= hi; ++i) out[i] = s[run.first + i - run.at] * t[run.first + i - run.at] * sj;
+        }
+      }
+    });
+  }
+#ifndef NDEBUG
+  const Eigen::Index k = u.empty() ? data.nf : static_cast<Eigen::Index>(u.size());
+  const auto coord = [&](Eigen::Index g) { return u.empty() ? g : static_cast<Eigen::Index>(u[static_cast<std::size_t>(g)]); };
+  for (Eigen::Index j = 0; j < k; ++j)
+    for (Eigen::Index i = 0; i < k; ++i)
+      if (i < first[j] || i > last[j]) assert(data.T(coord(i), coord(j)) == 0.0 && "a tangent term outside its blocks");
+#endif
+}
+
+}  // namespace
+
 void factorize_tangent(Data& data) {
   const int nf = data.nf;
   // Whole-vector square roots and divisions (vectorised): the same values as 1 / sqrt(d) entry
   // by entry, a third of the cost of that scalar loop.
   const auto d = data.T.diagonal().head(nf).array().abs();
   data.scale.head(nf) = (d > 0).select(d.sqrt().inverse(), 1.0);
+  if (data.tangent_blocks_pay) {
+    factorize_within_spans(data);
+    return;
+  }
   if (!data.unknowns.empty()) {  // the unknowns' rows and columns only (Data::unknowns)
     const auto& u = data.unknowns;
     const auto k = static_cast<Eigen::Index>(u.size());

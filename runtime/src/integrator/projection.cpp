@@ -66,17 +66,13 @@ Projected project_once(const Model& model, Data& data, VectorXd& x, const Vector
       data.r.head(data.nf).setZero();
     } else {
       data.tmp = x - data.vstar;
-      // Row block by row block over each body's coupled columns where that pays
-      // (tangent_blocks.hpp): W is zero outside them.
+      // Over the tangent blocks where that pays (tangent_blocks.hpp): W is zero outside them.
       const Eigen::Index ld = data.W.rows();
       if (data.tangent_blocks_pay) {
-        for (std::size_t i = 0; i < model.bodies.size(); ++i) {
-          if (!data.integrated[i]) continue;
-          const Body& b = model.bodies[i];
-          int lo = 0, hi = 0;
-          detail::coupled_columns(model, data, static_cast<int>(i), lo, hi);
-          detail::times(data.W.data() + lo * ld + b.offset, ld, b.ncoord(), hi - lo, data.tmp.data() + lo, data.r.data() + b.offset, false);
-        }
+        data.r.head(data.nf).setZero();
+        detail::for_each_tangent_block(model, data, true, [&](int r0, int nr, int c0, int nc) {
+          detail::times(data.W.data() + c0 * ld + r0, ld, nr, nc, data.tmp.data() + c0, data.r.data() + r0, true);
+        });
       } else {
         detail::times(data.W, data.nf, data.nf, data.tmp, data.r, false);
       }

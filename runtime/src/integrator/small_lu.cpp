@@ -19,10 +19,27 @@ void SmallLU::resize(Index n) {
   n_ = n;
   ld_ = n + 2 * kPad;
   row_of_.setZero(n);
+  row_last_.setZero(n);
   lower_.setZero(n);
   upper_.setZero(n);
   inv_diag_.setZero(n);
   ok_ = false;
+  spans_bound_buffer_ = false;
+}
+
+void SmallLU::clear_outside(Index k, const int* first, const int* last) {
+  if (!spans_bound_buffer_ || k != n_) {
+    buffer_.setZero();
+    return;
+  }
+  // Column j of the last factors is zero outside rows upper_(j) .. lower_(j) (factorize).
+  double* a = buffer_.data() + kPad;
+  for (Index j = 0; j < k; ++j) {
+    double* c = a + j * ld_;
+    const Index lo = upper_(j), hi = lower_(j);
+    if (lo < first[j]) std::fill(c + lo, c + std::min<Index>(first[j], hi + 1), 0.0);
+    if (hi > last[j]) std::fill(c + std::max<Index>(last[j] + 1, lo), c + hi + 1, 0.0);
+  }
 }
 
 namespace {
@@ -161,14 +178,17 @@ inline Index last_nonzero(const double* c, Index lo, Index hi) {
 // chain of links) most of the matrix lies outside the envelope, and those loops were most of
 // a factorisation. The arithmetic is the same as without the bounds (they skip only columns
 // and rows of zeros, which the loops left as they were).
+//
+// With the columns' spans given (compute_within) they are the initial bounds, and nothing
+// outside them is read: no pass over the whole matrix.
 FFR_RT_CLONES
-bool SmallLU::factorize() {
+bool SmallLU::factorize(const int* span_first, const int* span_last) {
   const Index n = n_, ld = ld_;
   double* a = buffer_.data() + kPad;
   ok_ = false;
-  // lower_ and upper_ (the solves' spans, set at the end) hold the bounds meanwhile.
-  int* col_last = lower_.data();  // column j: zero below this row
-  int* row_last = upper_.data();  // row i: zero right of this column
+  // lower_ (the solves' spans, set at the end) holds the column bounds meanwhile.
+  int* col_last = lower_.data();     // column j: zero below this row
+  int* row_last = row_last_.data();  // row i: zero right of this column
   for (Index k = 0; k < n; ++k) {
     row_of_(k) = static_cast<int>(k);
     row_last[k] = static_cast<int>(k);
@@ -179,7 +199,8 @@ bool SmallLU::factorize() {
     // The rows between the column's first and last nonzero may reach column j (the columns go
     // in ascending order, so the last such column stays).
     const double* c = a + j * ld;
-    const Index first = first_nonzero(c, 0, n - 1), last = last_nonzero(c, first, n - 1);
+    const Index first = span_first ? span_first[j] : first_nonzero(c, 0, n - 1);
+    const Index last = span_last ? span_last[j] : last_nonzero(c, first, n - 1);
     for (Index i = first; i <= last; ++i) row_last[i] = std::max(row_last[i], static_cast<int>(j));
     col_last[j] = static_cast<int>(std::max(j, last));
   }
@@ -229,16 +250,21 @@ bool SmallLU::factorize() {
       for (Index j = p1; j <= end; ++j) col_last[j] = std::max(col_last[j], static_cast<int>(last_panel));
     }
   }
-  // Nonzero spans of each column of L and U for the solves.
+  // Nonzero spans of each column of L and U for the solves. Rows above `top` end left of
+  // column k (their row_last, a bound, is below k): the search for U's first nonzero starts
+  // there, not at row 0.
+  Index top = 0;
   for (Index k = 0; k < n; ++k) {
     const double* ck = a + k * ld;
+    while (top < k && row_last[top] < k) ++top;
     const Index lo = std::max(k, last_nonzero(ck, k + 1, col_last[k]));
-    const Index up = first_nonzero(ck, 0, k - 1);  // k when none
+    const Index up = first_nonzero(ck, top, k - 1);  // k when none
     lower_(k) = static_cast<int>(lo);
     upper_(k) = static_cast<int>(up);
     inv_diag_(k) = 1.0 / ck[k];
   }
   ok_ = true;
+  spans_bound_buffer_ = true;
   return true;
 }
 

@@ -125,23 +125,13 @@ inline bool decide_tangent_blocks_pay(const Model& model, const Data& data) {
   return 2 * area < static_cast<long>(data.nf) * data.nf;
 }
 
+/// Data::lu_first and lu_last from the tangent blocks of the integrated bodies, where the
+/// blocks pay (else nothing): the penalty terms, the constraint Hessian and the modal
+/// acceleration terms that refresh_constraint_tangent adds lie in the same blocks.
+void tangent_row_spans(const Model& model, Data& data);
+
 /// True when the constraint blocks' rows times their integrated bodies' columns cover less than
 /// half of the unknowns' na x nf Jacobian (constraints.cpp).
 bool decide_block_columns_pay(const Model& model, const Data& data);
-
-/// The columns [lo, hi) that cover an integrated body's own block and the blocks of the
-/// integrated bodies coupled with it: its rows of W and T are zero outside them.
-inline void coupled_columns(const Model& model, const Data& data, int body, int& lo, int& hi) {
-  const Body& b = model.bodies[static_cast<std::size_t>(body)];
-  lo = b.offset;
-  hi = b.offset + b.ncoord();
-  for_each_coupled_pair(data, true, [&](int i, int j) {
-    const int other = i == body ? j : j == body ? i : -1;
-    if (other < 0) return;
-    const Body& o = model.bodies[static_cast<std::size_t>(other)];
-    lo = std::min(lo, o.offset);
-    hi = std::max(hi, o.offset + o.ncoord());
-  });
-}
 
 }  // namespace ffr::runtime::detail

@@ -274,7 +274,8 @@ void evaluate_rows(const Model& model, Data& data, double t, bool jacobian, bool
   // (nothing reads the others' rates) and the later iterates of a step (the others' values do
   // not change within it).
   const bool by_block = data.block_columns_pay;
-  if (jacobian && !by_block) data.Phiq.setZero();
+  // (Its rows past na and columns past nf stay zero: set_unknowns cleared them.)
+  if (jacobian && !by_block) data.Phiq.topLeftCorner(data.na, data.nf).setZero();
   const std::size_t nb = all_blocks ? model.blocks.size() : static_cast<std::size_t>(data.nblocks);
   if (all_blocks)
     data.Phit.setZero();

@@ -108,6 +108,10 @@ struct Data {
   /// are cheaper than the dense ones for the unknowns now (tangent_blocks.hpp): decided by
   /// set_unknowns, the only place the unknowns change; false (the dense passes) until then.
   bool tangent_blocks_pay = false, block_columns_pay = false;
+  /// With tangent_blocks_pay: per column of the factorised tangent (the unknowns', in their
+  /// order), the first and last row its tangent blocks reach, between which the factorisation
+  /// clears, gathers and scans (SmallLU::compute_within); set by set_unknowns.
+  std::vector<int> lu_first, lu_last;
   /// The pairs of distinct bodies whose off-diagonal tangent blocks can be nonzero, each once
   /// (lower index first; tangent_blocks.hpp, coupled_body_pairs).
   std::vector<std::array<int, 2>> body_pairs;

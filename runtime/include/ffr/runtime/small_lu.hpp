@@ -46,6 +46,20 @@ class SmallLU {
     fill(a);
     return factorize();
   }
+  /// Factorises the k x k matrix whose column j is zero outside rows first[j] .. last[j]
+  /// (first[j] <= j <= last[j]): fill(MatrixMap&) writes those rows of each column and nothing
+  /// else. Why: on a banded tangent (an ancf beam's) clearing, gathering and scanning the whole
+  /// k x k matrix grew with k^2 and was a sixth of the step; this clears only what the last
+  /// factorisation left outside the new spans and takes the spans as the envelope's bounds.
+  /// The same factors as compute_filled.
+  template <class Fill>
+  bool compute_within(Eigen::Index k, const int* first, const int* last, Fill&& fill) {
+    eigen_assert(k <= capacity_);
+    clear_outside(k, first, last);
+    MatrixMap a = begin(k);
+    fill(a);
+    return factorize(first, last);
+  }
   /// x <- A^-1 x with the last factorisation (its first k entries; x may be longer). Uses a
   /// work vector of the object: one solve at a time.
   void solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const;
@@ -62,11 +76,16 @@ class SmallLU {
   static constexpr Eigen::Index kPad = 4;
 
   MatrixMap begin(Eigen::Index k) {
+    spans_bound_buffer_ = false;  // the caller writes the buffer
     n_ = k;
     ld_ = k + 2 * kPad;
     return MatrixMap(buffer_.data() + kPad, k, k, Eigen::OuterStride<>(ld_));
   }
-  bool factorize();  // in place on the buffer
+  /// In place on the buffer; first/last (or null: found by scanning) bound each column's rows.
+  bool factorize(const int* first = nullptr, const int* last = nullptr);
+  /// Zeroes the k x k buffer outside the columns' spans first .. last: whole when the last
+  /// factorisation was of another size or failed, else what its factors left outside them.
+  void clear_outside(Eigen::Index k, const int* first, const int* last);
 
   /// Packed factors of the last matrix (k x k, column-major from buffer_ + kPad, leading
   /// dimension ld_): unit lower L below the diagonal, U on and above.
@@ -75,9 +94,13 @@ class SmallLU {
   Eigen::VectorXi row_of_;  ///< the row swaps so far: row k of the factors is row row_of_(k) of A
   Eigen::VectorXi lower_;   ///< last nonzero row of L's column k (k when none)
   Eigen::VectorXi upper_;   ///< first nonzero row of U's column k above the diagonal (k when none)
+  Eigen::VectorXi row_last_;  ///< factorize's bound on each row's last nonzero column
   Eigen::VectorXd inv_diag_;  ///< 1 / U(k, k)
   mutable Eigen::VectorXd work_;  ///< the solves' right-hand side, kPad zeros either side
   bool ok_ = false;
+  /// lower_ and upper_ bound the buffer's nonzeros (a successful factorisation of size n_ set
+  /// them and nothing has written the buffer since): clear_outside need not clear it whole.
+  bool spans_bound_buffer_ = false;
 };
 
 }  // namespace ffr::runtime
