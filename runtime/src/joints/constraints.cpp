@@ -274,8 +274,7 @@ void evaluate_rows(const Model& model, Data& data, double t, bool jacobian, bool
   // (nothing reads the others' rates) and the later iterates of a step (the others' values do
   // not change within it).
   const bool by_block = data.block_columns_pay;
-  // (Its rows past na and columns past nf stay zero: set_unknowns cleared them.)
-  if (jacobian && !by_block) data.Phiq.topLeftCorner(data.na, data.nf).setZero();
+  if (jacobian && !by_block) data.Phiq.setZero();
   const std::size_t nb = all_blocks ? model.blocks.size() : static_cast<std::size_t>(data.nblocks);
   if (all_blocks)
     data.Phit.setZero();
@@ -378,6 +377,24 @@ void constraint_times(const Model& model, const Data& data, const VectorXd& v, V
   }
 }
 
+namespace {
+
+// The first and last of the n columns of the rows x n block J (leading dimension ld) that have a
+// nonzero entry (lo > hi when none).
+void nonzero_columns(const double* J, Eigen::Index ld, int rows, int n, int& lo, int& hi) {
+  const auto zero = [&](int c) {
+    for (int r = 0; r < rows; ++r)
+      if (J[r + c * ld] != 0.0) return false;
+    return true;
+  };
+  lo = 0;
+  hi = n - 1;
+  while (lo <= hi && zero(lo)) ++lo;
+  while (hi >= lo && zero(hi)) --hi;
+}
+
+}  // namespace
+
 void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, double f, MatrixXd& T) {
   const Eigen::Index ld = data.Phiq.rows();
   double* buf = data.Jw.data();  // rows_max x (a body's coordinates) doubles of work space
@@ -418,20 +435,30 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
       continue;
     }
     // The block's distinct integrated bodies (a joint's two, a coupler's up to four): the
-    // rows of a joint within one body are in Phiq once, so each body counts once.
-    int bodies[4], nbod = 0;
+    // rows of a joint within one body are in Phiq once, so each body counts once. Each body's
+    // columns from its first to its last nonzero one: a joint on a node of a beam or of a
+    // flexible body reaches a few of the body's columns (on a 16-element ancf beam 18 of 114,
+    // whose whole square product was a twentieth of its step).
+    int bodies[4], lo[4], hi[4], nbod = 0;
     for (int body : {b.body1, b.body2, b.body3, b.body4}) {
       if (!integrated(data, body)) continue;
       bool seen = false;
       for (int k = 0; k < nbod; ++k) seen = seen || bodies[k] == body;
-      if (!seen) bodies[nbod++] = body;
+      if (seen) continue;
+      const detail::JacobianBlock J = block_columns(model, data, b, body);
+      nonzero_columns(J.data(), ld, b.rows, unknown_columns(model, data, body), lo[nbod], hi[nbod]);
+      bodies[nbod++] = body;
     }
     for (int ia = 0; ia < nbod; ++ia) {
-      const int oa = model.bodies[bodies[ia]].offset, na = unknown_columns(model, data, bodies[ia]);
-      weigh(block_columns(model, data, b, bodies[ia]), 0, na);
-      for (int ib = 0; ib < nbod; ++ib)
-        add(block_columns(model, data, b, bodies[ib]), oa, model.bodies[bodies[ib]].offset, 0, na,
-            unknown_columns(model, data, bodies[ib]));
+      if (hi[ia] < lo[ia]) continue;
+      const int oa = model.bodies[bodies[ia]].offset, na = hi[ia] - lo[ia] + 1;
+      weigh(block_columns(model, data, b, bodies[ia]), lo[ia], na);
+      for (int ib = 0; ib < nbod; ++ib) {
+        if (hi[ib] < lo[ib]) continue;
+        const detail::JacobianBlock Jb = block_columns(model, data, b, bodies[ib]);
+        detail::add_weighted_product(buf, b.rows, na, Jb.data() + lo[ib] * ld, ld, hi[ib] - lo[ib] + 1,
+                                     &T(oa + lo[ia], model.bodies[bodies[ib]].offset + lo[ib]), T.rows());
+      }
     }
   }
 }
