@@ -7,6 +7,7 @@
 
 #include <limits>
 #include <random>
+#include <vector>
 
 namespace {
 
@@ -135,4 +136,58 @@ TEST(SmallLU, SmallerMatricesInTheSameBuffers) {
     EXPECT_LT((A * x.head(n) - b).norm(), 1e-12 * b.norm()) << n;
     EXPECT_TRUE((x.tail(46 - n).array() == 3.0).all()) << n;
   }
+}
+
+// compute_within (a banded tangent's spans given, the buffer cleared only where the last factors
+// reached outside them) against compute on the same matrices: the same factors bit for bit, so
+// the same solutions. A sequence in one object: banded matrices with weak diagonals (row swaps
+// widen the factors beyond the band, which the next factorisation must clear), spans that
+// change between calls, a failed factorisation and one of another size in between (after
+// which the buffer is cleared whole).
+TEST(SmallLU, WithinSpansGivesTheSameFactorsAsWhole) {
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = 60;
+  ffr::runtime::SmallLU within(n), whole(n);
+  const auto banded = [&](int half, std::vector<int>& first, std::vector<int>& last) {
+    MatrixXd A = MatrixXd::Zero(n, n);
+    first.assign(n, 0);
+    last.assign(n, 0);
+    for (int j = 0; j < n; ++j) {
+      first[j] = std::max(0, j - half);
+      last[j] = std::min(n - 1, j + half);
+      for (int i = first[j]; i <= last[j]; ++i) A(i, j) = u(rng);
+      if (j % 4 == 0) A(j, j) = 0.0;  // pivots from below
+    }
+    return A;
+  };
+  const auto check = [&](const MatrixXd& A, const std::vector<int>& first, const std::vector<int>& last) {
+    ASSERT_TRUE(whole.compute(A));
+    ASSERT_TRUE(within.compute_within(n, first.data(), last.data(), [&](ffr::runtime::SmallLU::MatrixMap& a) {
+      for (int j = 0; j < n; ++j)
+        for (int i = first[j]; i <= last[j]; ++i) a(i, j) = A(i, j);
+    }));
+    VectorXd b(n);
+    for (int i = 0; i < n; ++i) b(i) = u(rng);
+    VectorXd x = b, y = b;
+    within.solve_in_place(x);
+    whole.solve_in_place(y);
+    EXPECT_TRUE((x.array() == y.array()).all());
+    EXPECT_LT((A * x - b).norm(), 1e-8 * b.norm());
+  };
+  std::vector<int> first, last;
+  for (const int half : {7, 7, 2, 11, 5}) {
+    const MatrixXd A = banded(half, first, last);
+    check(A, first, last);
+  }
+  // A failed factorisation, then one of another size, then the band again.
+  MatrixXd S = banded(3, first, last);
+  S.col(10).setZero();
+  EXPECT_FALSE(within.compute_within(n, first.data(), last.data(), [&](ffr::runtime::SmallLU::MatrixMap& a) {
+    for (int j = 0; j < n; ++j)
+      for (int i = first[j]; i <= last[j]; ++i) a(i, j) = S(i, j);
+  }));
+  check(banded(6, first, last), first, last);
+  ASSERT_TRUE(within.compute(random_matrix(20, rng) + 20 * MatrixXd::Identity(20, 20)));
+  check(banded(4, first, last), first, last);
 }
