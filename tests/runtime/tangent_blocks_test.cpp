@@ -143,7 +143,8 @@ void check_model(const char* name, const Model& model) {
   fill_outside(data.K, all);
   fill_outside(data.C, all);
   fill_outside(data.W, unknowns);
-  fill_outside(data.T, unknowns);
+  // T keeps its zeros outside the blocks: the factorisation reads it there (a debug build
+  // asserts they are zero where the blocks pay), so a write shows as a nonzero entry.
   // The Jacobian: outside the blocks' rows x their bodies' columns.
   std::vector<std::vector<char>> jin(static_cast<std::size_t>(model.nconstraints), std::vector<char>(static_cast<std::size_t>(model.ncoord), 0));
   for (int bi = 0; bi < data.nblocks; ++bi) {
