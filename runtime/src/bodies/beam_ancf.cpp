@@ -96,6 +96,19 @@ void add_kronecker(const Eigen::Vector4d& sx, const Eigen::Vector4d& sxx, const 
   add_kronecker(sx.data(), sxx.data(), A.data(), B.data(), C.data(), w, K.data());
 }
 
+// The shape functions' derivatives at the Gauss points of an element of length l: the same for
+// every element of a beam, so evaluated once a pass over its elements (their divisions by l were
+// a tenth of the element's time).
+struct GaussShapes {
+  Eigen::Vector4d sx[kGauss], sxx[kGauss];
+  explicit GaussShapes(double l) {
+    for (int gp = 0; gp < kGauss; ++gp) {
+      sx[gp] = shape_x(kXi[gp], l);
+      sxx[gp] = shape_xx(kXi[gp], l);
+    }
+  }
+};
+
 // One element at its coordinates qe and rates qde: adds its elastic and damping force to fe,
 // their tangents to Ke, Ce (when non-null); returns its strain energy.
 //
@@ -110,13 +123,15 @@ void add_kronecker(const Eigen::Vector4d& sx, const Eigen::Vector4d& sxx, const 
 //   H_f = S_xx^T [f]x S_x - S_x^T [f]x S_xx (the second derivative of f . f_frozen) -> B = [f]x;
 //   F^T f p^T + p f^T F -> B = -b r'^T, C = a r'^T + r' a^T.
 // Why: the products of the expanded 3 x 12 matrices were three quarters multiplications by zero.
-double element(const AncfBeam& beam, const Vec12& qe, const Vec12& qde, Vec12& fe, Mat12* Ke, Mat12* Ce, bool damp) {
+double element(const AncfBeam& beam, const GaussShapes& gs, const Vec12& qe, const Vec12& qde, Vec12& fe, Mat12* Ke,
+               Mat12* Ce, bool damp) {
   const double l = beam.element_length();
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   double U = 0;
   for (int gp = 0; gp < kGauss; ++gp) {
     const double w = kW[gp] * l;
-    const Eigen::Vector4d sx = shape_x(kXi[gp], l), sxx = shape_xx(kXi[gp], l);
+    const Eigen::Vector4d& sx = gs.sx[gp];
+    const Eigen::Vector4d& sxx = gs.sxx[gp];
     Eigen::Vector3d rp = Eigen::Vector3d::Zero(), rpp = Eigen::Vector3d::Zero();
     for (int v = 0; v < 4; ++v) {
       rp += sx(v) * qe.segment<3>(3 * v);
@@ -178,14 +193,15 @@ double ancf_beam_forces(const AncfBeam& beam, const Eigen::Ref<const Eigen::Vect
                         Eigen::MatrixXd* C) {
   double U = 0;
   Mat12 Ke, Ce;
+  const GaussShapes gs(beam.element_length());
   for (int e = 0; e < beam.elements; ++e) {
     // An element's coordinates are contiguous: node e's [r, r_x], then node e + 1's.
     const Vec12 qe = beam.q0.segment<12>(6 * e) + y.segment<12>(6 * e);
     const Vec12 qde = yd.segment<12>(6 * e);
     Vec12 fe = Vec12::Zero();
-    Ke.setZero();
-    Ce.setZero();
-    U += element(beam, qe, qde, fe, K ? &Ke : nullptr, C ? &Ce : nullptr, true);
+    if (K) Ke.setZero();
+    if (C) Ce.setZero();
+    U += element(beam, gs, qe, qde, fe, K ? &Ke : nullptr, C ? &Ce : nullptr, true);
     Qy.segment<12>(6 * e) -= fe;
     if (K) K->block<12, 12>(6 * e, 6 * e) += Ke;
     if (C) C->block<12, 12>(6 * e, 6 * e) += Ce;
@@ -198,13 +214,14 @@ void ancf_beam_tangents(const AncfBeam& beam, const Eigen::Ref<const Eigen::Vect
                         Eigen::Ref<Eigen::MatrixXd> C) {
   Mat12 Ke, Ce;
   const bool damped = beam.tau > 0;
+  const GaussShapes gs(beam.element_length());
   for (int e = 0; e < beam.elements; ++e) {
     const Vec12 qe = beam.q0.segment<12>(6 * e) + y.segment<12>(6 * e);
     const Vec12 qde = yd.segment<12>(6 * e);
     Vec12 fe = Vec12::Zero();
     Ke.setZero();
     if (damped) Ce.setZero();
-    element(beam, qe, qde, fe, &Ke, damped ? &Ce : nullptr, damped);
+    element(beam, gs, qe, qde, fe, &Ke, damped ? &Ce : nullptr, damped);
     K.block<12, 12>(6 * e, 6 * e) += Ke;
     if (damped) C.block<12, 12>(6 * e, 6 * e) += Ce;
   }
@@ -212,10 +229,11 @@ void ancf_beam_tangents(const AncfBeam& beam, const Eigen::Ref<const Eigen::Vect
 
 double ancf_beam_energy(const AncfBeam& beam, const Eigen::Ref<const Eigen::VectorXd>& y) {
   double U = 0;
+  const GaussShapes gs(beam.element_length());
   for (int e = 0; e < beam.elements; ++e) {
     const Vec12 qe = beam.q0.segment<12>(6 * e) + y.segment<12>(6 * e);
     Vec12 fe = Vec12::Zero();
-    U += element(beam, qe, Vec12::Zero(), fe, nullptr, nullptr, false);
+    U += element(beam, gs, qe, Vec12::Zero(), fe, nullptr, nullptr, false);
   }
   return U;
 }
