@@ -97,8 +97,8 @@ void add_kronecker(const Eigen::Vector4d& sx, const Eigen::Vector4d& sxx, const 
 }
 
 // The shape functions' derivatives at the Gauss points of an element of length l: the same for
-// every element of a beam, so evaluated once a pass over its elements (their divisions by l were
-// a tenth of the element's time).
+// every element of a beam, so evaluated once a pass over its elements (at every Gauss point, with
+// their divisions by l, they were a tenth of the element's instructions).
 struct GaussShapes {
   Eigen::Vector4d sx[kGauss], sxx[kGauss];
   explicit GaussShapes(double l) {
