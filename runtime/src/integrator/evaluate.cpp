@@ -25,25 +25,32 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
   const int nf = data.nf;
   force_tangents(model, data, t);
   auto W = data.W.topLeftCorner(nf, nf);
-  // Over the tangent blocks where that pays (tangent_blocks.hpp): W, C and K are zero outside them.
-  if (data.tangent_blocks_pay) {
-    detail::for_each_tangent_block(model, data, true, [&](int r0, int nr, int c0, int nc) {
-      data.W.block(r0, c0, nr, nc) = k.kv * data.C.block(r0, c0, nr, nc) + k.kq * data.K.block(r0, c0, nr, nc);
+  const auto combine = [&](int r0, int nr, int c0, int nc) {
+    data.W.block(r0, c0, nr, nc) = k.kv * data.C.block(r0, c0, nr, nc) + k.kq * data.K.block(r0, c0, nr, nc);
+  };
+  // Over the tangent blocks where that pays (tangent_blocks.hpp): W, C, K and M are zero outside
+  // them. A body's own blocks take M in the same pass.
+  if (data.tangent_blocks_pay)
+    detail::for_each_coupled_pair(data, true, [&](int i, int j) {
+      const Body& bi = model.bodies[static_cast<std::size_t>(i)];
+      const Body& bj = model.bodies[static_cast<std::size_t>(j)];
+      combine(bi.offset, bi.ncoord(), bj.offset, bj.ncoord());
+      combine(bj.offset, bj.ncoord(), bi.offset, bi.ncoord());
     });
-  } else {
+  else
     W = k.kv * data.C.topLeftCorner(nf, nf) + k.kq * data.K.topLeftCorner(nf, nf);  // one pass
-  }
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& b = model.bodies[i];
     if (!data.integrated[i]) continue;
     auto Wb = W.block(b.offset, b.offset, b.ncoord(), b.ncoord());
-    if (data.tangent_blocks_pay) {  // M is zero outside the body's blocks too
-      const MatrixXd& M = data.bodies[i].M;
+    const MatrixXd& M = data.bodies[i].M;
+    if (data.tangent_blocks_pay) {
       detail::for_each_body_block(model, data, static_cast<int>(i), [&](int r0, int nr, int c0, int nc) {
-        W.block(r0, c0, nr, nc) += M.block(r0 - b.offset, c0 - b.offset, nr, nc);
+        W.block(r0, c0, nr, nc) = k.kv * data.C.block(r0, c0, nr, nc) + k.kq * data.K.block(r0, c0, nr, nc) +
+                                  M.block(r0 - b.offset, c0 - b.offset, nr, nc);
       });
     } else {
-      Wb += data.bodies[i].M;
+      Wb += M;
     }
     body_stiffening_rate_tangents(b, data.bodies[i], data.state.q.segment(b.offset + 12, b.nq), data.state.qd.segment(b.offset + 12, b.nq),
                                   k.kv, Wb);
