@@ -101,35 +101,36 @@ void factorize_metric(const Model& model, Data& data) {
 
 namespace {
 
+// Rows lo .. hi (positions among the factorised unknowns) of the scaled tangent's column of
+// unknown j, S T S, into out: along the runs of consecutive unknowns, so the inner loops are
+// contiguous (an element-wise indexed gather cost as much as a third of the factorisation).
+void gather_column(const Data& data, Eigen::Index j, int lo, int hi, double* out) {
+  const std::vector<int>& u = data.unknowns;
+  const double* s = data.scale.data();
+  if (u.empty()) {  // every coordinate of [0, nf) an unknown
+    const double* t = data.T.col(j).data();
+    for (int i = lo; i <= hi; ++i) out[i] = s[i] * t[i] * s[j];
+    return;
+  }
+  const double* t = data.T.col(u[static_cast<std::size_t>(j)]).data();
+  const double sj = s[u[static_cast<std::size_t>(j)]];
+  for (const Data::Run& run : data.unknown_runs) {
+    const int from = std::max(run.at, lo), to = std::min(run.at + run.len - 1, hi);
+    for (int i = from; i <= to; ++i) out[i] = s[run.first + i - run.at] * t[run.first + i - run.at] * sj;
+  }
+}
+
 // The scaled tangent over the unknowns, each column between its rows Data::lu_first .. lu_last
 // (tangent_blocks.hpp: T is zero outside them, which a debug build checks), factorised.
 void factorize_within_spans(Data& data) {
   const std::vector<int>& u = data.unknowns;
   const int* first = data.lu_first.data();
   const int* last = data.lu_last.data();
-  const double* s = data.scale.data();
-  if (u.empty()) {
-    const Eigen::Index nf = data.nf;
-    data.lu.compute_within(nf, first, last, [&](SmallLU::MatrixMap& a) {
-      for (Eigen::Index j = 0; j < nf; ++j)
-        for (Eigen::Index i = first[j]; i <= last[j]; ++i) a(i, j) = s[i] * data.T(i, j) * s[j];
-    });
-  } else {
-    const auto k = static_cast<Eigen::Index>(u.size());
-    data.lu.compute_within(k, first, last, [&](SmallLU::MatrixMap& a) {
-      for (Eigen::Index j = 0; j < k; ++j) {
-        const double* t = data.T.col(u[j]).data();
-        const double sj = s[u[j]];
-        double* out = a.col(j).data();
-        for (const Data::Run& run : data.unknown_runs) {  // the runs' rows within the span
-          const int lo = std::max(run.at, first[j]), hi = std::min(run.at + run.len - 1, last[j]);
-          for (int i = lo; i <= hi; ++i) out[i] = s[run.first + i - run.at] * t[run.first + i - run.at] * sj;
-        }
-      }
-    });
-  }
-#ifndef NDEBUG
   const Eigen::Index k = u.empty() ? data.nf : static_cast<Eigen::Index>(u.size());
+  data.lu.compute_within(k, first, last, [&](SmallLU::MatrixMap& a) {
+    for (Eigen::Index j = 0; j < k; ++j) gather_column(data, j, first[j], last[j], a.col(j).data());
+  });
+#ifndef NDEBUG
   const auto coord = [&](Eigen::Index g) { return u.empty() ? g : static_cast<Eigen::Index>(u[static_cast<std::size_t>(g)]); };
   for (Eigen::Index j = 0; j < k; ++j)
     for (Eigen::Index i = 0; i < k; ++i)
@@ -150,19 +151,9 @@ void factorize_tangent(Data& data) {
     return;
   }
   if (!data.unknowns.empty()) {  // the unknowns' rows and columns only (Data::unknowns)
-    const auto& u = data.unknowns;
-    const auto k = static_cast<Eigen::Index>(u.size());
-    // Column by column, along the runs of consecutive unknowns, so the inner loops are
-    // contiguous: an element-wise indexed gather cost as much as a third of the factorisation.
-    const double* s = data.scale.data();
+    const auto k = static_cast<Eigen::Index>(data.unknowns.size());
     data.lu.compute_filled(k, [&](SmallLU::MatrixMap& a) {
-      for (Eigen::Index j = 0; j < k; ++j) {
-        const double* t = data.T.col(u[j]).data();
-        const double sj = s[u[j]];
-        double* out = a.col(j).data();
-        for (const Data::Run& run : data.unknown_runs)
-          for (int r = 0; r < run.len; ++r) out[run.at + r] = s[run.first + r] * t[run.first + r] * sj;
-      }
+      for (Eigen::Index j = 0; j < k; ++j) gather_column(data, j, 0, static_cast<int>(k) - 1, a.col(j).data());
     });
     return;
   }

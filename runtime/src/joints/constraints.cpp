@@ -403,19 +403,19 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
     const auto J1 = block_columns(model, data, b, b.body1);
     double* w = data.penalty_rows.data();
     for (int r = 0; r < b.rows; ++r) w[r] = f * alpha(b.row0 + r);
-    // Side a's rows weighted once (buf), then its products with each side's columns from
-    // column `first`: T(oa + first.., ob + first..) += Ja^T diag(w) Jb.
-    const auto weigh = [&](const detail::JacobianBlock& Ja, int first, int na) {
-      detail::weight_rows(Ja.data() + first * ld, ld, b.rows, na, w, buf);
+    // Side a's rows weighted once (buf, from its column fa), then its products with each side's
+    // columns from column fb: T(oa + fa.., ob + fb..) += Ja^T diag(w) Jb.
+    const auto weigh = [&](const detail::JacobianBlock& Ja, int fa, int na) {
+      detail::weight_rows(Ja.data() + fa * ld, ld, b.rows, na, w, buf);
     };
-    const auto add = [&](const detail::JacobianBlock& Jb, int oa, int ob, int first, int na, int nb) {
-      detail::add_weighted_product(buf, b.rows, na, Jb.data() + first * ld, ld, nb, &T(oa + first, ob + first), T.rows());
+    const auto add = [&](const detail::JacobianBlock& Jb, int oa, int fa, int na, int ob, int fb, int nb) {
+      detail::add_weighted_product(buf, b.rows, na, Jb.data() + fb * ld, ld, nb, &T(oa + fa, ob + fb), T.rows());
     };
     if (b.kind == BlockKind::RigidBody && model.bodies[b.body1].held_frame()) {
       // A beam's or plate's held frame: its twelve frame columns.
       const int o = model.bodies[b.body1].offset;
       weigh(J1, 0, 12);
-      add(J1, o, o, 0, 12, 12);
+      add(J1, o, 0, 12, o, 0, 12);
       // A plate's support rows, each a multiple of three of its coordinates (the products above
       // take the block's first twelve columns, where these rows are zero).
       if (const auto& plate = model.bodies[b.body1].plate)
@@ -431,7 +431,7 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
       // Only the frame-vector columns are nonzero.
       const int o = model.bodies[b.body1].offset;
       weigh(J1, 3, 9);
-      add(J1, o, o, 3, 9, 9);
+      add(J1, o, 3, 9, o, 3, 9);
       continue;
     }
     // The block's distinct integrated bodies (a joint's two, a coupler's up to four): the
@@ -453,12 +453,10 @@ void add_penalty_tangent(const Model& model, Data& data, const VectorXd& alpha, 
       if (hi[ia] < lo[ia]) continue;
       const int oa = model.bodies[bodies[ia]].offset, na = hi[ia] - lo[ia] + 1;
       weigh(block_columns(model, data, b, bodies[ia]), lo[ia], na);
-      for (int ib = 0; ib < nbod; ++ib) {
-        if (hi[ib] < lo[ib]) continue;
-        const detail::JacobianBlock Jb = block_columns(model, data, b, bodies[ib]);
-        detail::add_weighted_product(buf, b.rows, na, Jb.data() + lo[ib] * ld, ld, hi[ib] - lo[ib] + 1,
-                                     &T(oa + lo[ia], model.bodies[bodies[ib]].offset + lo[ib]), T.rows());
-      }
+      for (int ib = 0; ib < nbod; ++ib)
+        if (hi[ib] >= lo[ib])
+          add(block_columns(model, data, b, bodies[ib]), oa, lo[ia], na, model.bodies[bodies[ib]].offset, lo[ib],
+              hi[ib] - lo[ib] + 1);
     }
   }
 }
