@@ -475,6 +475,45 @@ TEST(BeamGeometricallyExact, PendulumMatchesThePlanarReissnerOracle) {
   }
 }
 
+// Newton stops at the default newton_tolerance (1e-10, scaled) on the node frames' constraints as
+// on the slider-crank (SliderCrank.NewtonToleranceBoundsTheAcceptedState): on the oracle test's
+// pendulum, pinned by a spherical joint, the accepted states must be those of Newton run to
+// round-off (newton_tolerance 1e-15) to within what the tolerance allows, with the constraints at
+// round-off. What this guards: the second update's error estimate, from the contraction of the
+// first two increments, is below 1e-12 there while the third increment (the tangent built with the
+// last step's multipliers, contracting by only ~0.02) is 1e-10 to 2e-10; accepting the second
+// iterate on its estimate and its measured violation alone put the states 4.4e-8 apart over these
+// 0.2 s (ali3p.cpp, the acceptance).
+TEST(BeamGeometricallyExact, NewtonToleranceBoundsTheAcceptedState) {
+  const double a = 0.01;
+  std::string json = cantilever(1.0, a, 16, "", R"({"end": 0.2, "step": 1e-3})");
+  json.replace(json.find("\"E\": 2.1e11"), 11, "\"E\": 2.1e9");
+  json.replace(json.find("\"type\": \"fixed\""), 15, "\"type\": \"spherical\"");
+  json.replace(json.find("{\"bodies\""), 9, "{\"gravity\": [0, 0, -9.81], \"bodies\"");
+  const Model loose = test::model_from(json);
+  Model tight = loose;
+  tight.settings.newton_tolerance = 1e-15;
+  Data da(loose), db(tight);
+  initialize(loose, da);
+  initialize(tight, db);
+  double worst = 0, worst_violation = 0;
+  int steps = 0;
+  while (da.state.t < 0.2 - 1e-9) {
+    step(loose, da);
+    step(tight, db);
+    ++steps;
+    worst = std::max(worst, scaled_norm(loose, da.state.q - db.state.q));
+    worst_violation = std::max(worst_violation, da.stats.last_violation);
+  }
+  const double its = static_cast<double>(da.stats.newton_iterations) / steps;
+  const double its_tight = static_cast<double>(db.stats.newton_iterations) / steps;
+  std::printf("states apart by %.2e at most (scaled); %.2f against %.2f Newton iterations a step; violation %.2e\n", worst,
+              its, its_tight, worst_violation);
+  EXPECT_LT(its, its_tight - 0.5);  // the default does stop earlier
+  EXPECT_LT(worst, 1e-8);
+  EXPECT_LT(worst_violation, 1e-12);
+}
+
 // A rigid body welded to the tip by a fixed joint (a node that turns carries it), its centre of
 // mass at the node: statically it loads the tip with its weight alone, as the weight applied as
 // a point force does (statics of a rigid attachment with no lever arm).
