@@ -121,12 +121,16 @@ SideBySide step_side_by_side(const Model& a, const Model& b) {
   initialize(b, db);
   SideBySide r;
   const VectorXd q_start = da.state.q;
-  for (std::int64_t i = 0; i < step_count(a); ++i) {
+  const std::int64_t n = step_count(a);
+  for (std::int64_t i = 0; i < n; ++i) {
     step(a, da);
     step(b, db);
     r.apart = std::max(r.apart, scaled_norm(a, da.state.q - db.state.q));
     r.motion = std::max(r.motion, scaled_norm(a, da.state.q - q_start));
+    r.violation = std::max(r.violation, da.stats.last_violation);
   }
+  r.iterations_a = static_cast<double>(da.stats.newton_iterations) / static_cast<double>(std::max<std::int64_t>(n, 1));
+  r.iterations_b = static_cast<double>(db.stats.newton_iterations) / static_cast<double>(std::max<std::int64_t>(n, 1));
   return r;
 }
 

@@ -58,11 +58,14 @@ std::vector<double> output(const Model& model, Data& data, const std::string& na
 std::string initialize_refusal(const Model& model);
 
 /// Two models of the same coordinates stepped side by side from their initial states, over the
-/// first's step count: the largest scaled distance between their coordinates after a step, and
-/// the largest scaled motion of the first from its start (how far there was to go astray).
+/// first's step count: the largest scaled distance between their coordinates after a step, the
+/// largest scaled motion of the first from its start (how far there was to go astray), the
+/// first's largest constraint violation after a step, and each one's Newton iterations a step.
 struct SideBySide {
   double apart = 0;
   double motion = 0;
+  double violation = 0;
+  double iterations_a = 0, iterations_b = 0;
 };
 SideBySide step_side_by_side(const Model& a, const Model& b);
 
