@@ -480,8 +480,8 @@ TEST(BeamGeometricallyExact, PendulumMatchesThePlanarReissnerOracle) {
 // pendulum, pinned by a spherical joint, the accepted states must be those of Newton run to
 // round-off (newton_tolerance 1e-15) to within what the tolerance allows, with the constraints at
 // round-off. What this guards: the second update's error estimate, from the contraction of the
-// first two increments, is below 1e-12 there while the third increment (the tangent built with the
-// last step's multipliers, contracting by only ~0.02) is 1e-10 to 2e-10; accepting the second
+// first two increments, is below 1e-12 there while the third increment (the tangent's constraint
+// terms built at the predictor: contracting by only ~0.02) is 1e-10 to 2e-10; accepting the second
 // iterate on its estimate and its measured violation alone put the states 4.4e-8 apart over these
 // 0.2 s (ali3p.cpp, the acceptance).
 TEST(BeamGeometricallyExact, NewtonToleranceBoundsTheAcceptedState) {
