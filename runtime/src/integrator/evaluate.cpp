@@ -31,12 +31,7 @@ void refresh_tangent(const Model& model, Data& data, double t, const VectorXd& l
   // Over the tangent blocks where that pays (tangent_blocks.hpp): W, C, K and M are zero outside
   // them. A body's own blocks take M in the same pass.
   if (data.tangent_blocks_pay)
-    detail::for_each_coupled_pair(data, true, [&](int i, int j) {
-      const Body& bi = model.bodies[static_cast<std::size_t>(i)];
-      const Body& bj = model.bodies[static_cast<std::size_t>(j)];
-      combine(bi.offset, bi.ncoord(), bj.offset, bj.ncoord());
-      combine(bj.offset, bj.ncoord(), bi.offset, bi.ncoord());
-    });
+    detail::for_each_pair_block(model, data, true, combine);
   else
     W = k.kv * data.C.topLeftCorner(nf, nf) + k.kq * data.K.topLeftCorner(nf, nf);  // one pass
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {

@@ -97,21 +97,28 @@ void for_each_body_block(const Model& model, const Data& data, int body, G&& g) 
   }
 }
 
-/// g(row0, rows, col0, cols) for each tangent block: every body's diagonal block (or its blocks,
-/// for_each_body_block), then both blocks of each coupled pair. No block is visited twice, but
-/// the blocks are for idempotent work (clearing, assigning) and products only.
+/// g(row0, rows, col0, cols) for both off-diagonal blocks (i, j) and (j, i) of each coupled pair
+/// (for_each_coupled_pair).
 template <class G>
-void for_each_tangent_block(const Model& model, const Data& data, bool integrated_only, G&& g) {
-  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
-    if (integrated_only && !data.integrated[i]) continue;
-    for_each_body_block(model, data, static_cast<int>(i), g);
-  }
+void for_each_pair_block(const Model& model, const Data& data, bool integrated_only, G&& g) {
   for_each_coupled_pair(data, integrated_only, [&](int i, int j) {
     const Body& bi = model.bodies[static_cast<std::size_t>(i)];
     const Body& bj = model.bodies[static_cast<std::size_t>(j)];
     g(bi.offset, bi.ncoord(), bj.offset, bj.ncoord());
     g(bj.offset, bj.ncoord(), bi.offset, bi.ncoord());
   });
+}
+
+/// g(row0, rows, col0, cols) for each tangent block: every body's diagonal block (or its blocks,
+/// for_each_body_block), then both blocks of each coupled pair (for_each_pair_block). No block is
+/// visited twice, but the blocks are for idempotent work (clearing, assigning) and products only.
+template <class G>
+void for_each_tangent_block(const Model& model, const Data& data, bool integrated_only, G&& g) {
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    if (integrated_only && !data.integrated[i]) continue;
+    for_each_body_block(model, data, static_cast<int>(i), g);
+  }
+  for_each_pair_block(model, data, integrated_only, g);
 }
 
 /// True when the integrated bodies' tangent blocks cover less than half of the unknowns' nf x nf
