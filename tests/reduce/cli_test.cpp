@@ -20,6 +20,14 @@ Physical Volume("body") = {1};
 Physical Surface("clamp") = Surface In BoundingBox{-1e-6, -1, -1, 1e-6, 1, 1};
 )";
 
+// The clamped bar of kGeoBar reduced to 5 modes, with `extra` keys appended to its reduction.
+std::string clamped_bar_part(const std::string& extra) {
+  return R"({"geometry": "bar.geo", "mesh": {"size": 0.006},
+    "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],
+    "interfaces": [{"name": "root", "group": "clamp"}], "visual": false,
+    "reduction": {"method": "clamped", "interface": "root", "modes": 5)" + extra + "}}";
+}
+
 test::RunResult reduce(const test::TempDir& dir, const std::string& part_json, const std::string& extra = "") {
   test::write_text(dir / "bar.geo", kGeoBar);
   test::write_text(dir / "part.json", part_json);
@@ -230,14 +238,54 @@ TEST(ReduceCli, LogNamesTheBlasKernelsAndAUsersChoiceStands) {
   const std::string args = ' ' + (dir / "part.json").string() + " -o " + (dir / "out.sid.h5").string();
   const auto own = test::run("env -u OPENBLAS_CORETYPE " + test::bin("ffr-reduce").string() + args);
   ASSERT_EQ(own.status, 0) << own.output;
-  if (own.output.find("OpenBLAS ") == std::string::npos) GTEST_SKIP() << "the BLAS is not OpenBLAS";
+  if (own.output.find("OpenBLAS") == std::string::npos) GTEST_SKIP() << "the BLAS is not OpenBLAS";
 
+  // With OpenBLAS held to its oldest kernels, "auto" hands the factorization's dense work to
+  // Eigen's on a CPU with AVX2 and FMA (the line names both), and keeps the BLAS elsewhere.
   const auto forced = test::run("OPENBLAS_CORETYPE=Prescott " + test::bin("ffr-reduce").string() + args);
   ASSERT_EQ(forced.status, 0) << forced.output;
-  EXPECT_NE(forced.output.find("OpenBLAS Prescott kernels"), std::string::npos) << forced.output;
-  // A CPU with AVX2 or AVX-512 gets the advice, naming the variable.
-  if (forced.output.find("this CPU runs") != std::string::npos)
-    EXPECT_NE(forced.output.find("set OPENBLAS_CORETYPE="), std::string::npos) << forced.output;
+  const bool eigen = forced.output.find("dense kernels Eigen (x86-64-v") != std::string::npos;
+  if (eigen) {
+    EXPECT_NE(forced.output.find("(OpenBLAS's: Prescott)"), std::string::npos) << forced.output;
+  } else {
+    EXPECT_NE(forced.output.find("OpenBLAS Prescott kernels"), std::string::npos) << forced.output;
+  }
+  EXPECT_EQ(forced.output.find("this CPU runs"), std::string::npos) << forced.output;  // no advice: not the BLAS's work
+
+  // Held to the BLAS (part file), the advice names the variable on a CPU with AVX2 or AVX-512.
+  std::string blas_json = json;
+  blas_json.replace(blas_json.find("\"modes\": 2"), 10, "\"modes\": 2, \"dense_kernels\": \"blas\"");
+  test::write_text(dir / "part.json", blas_json);
+  const auto held = test::run("OPENBLAS_CORETYPE=Prescott " + test::bin("ffr-reduce").string() + args);
+  ASSERT_EQ(held.status, 0) << held.output;
+  EXPECT_NE(held.output.find("OpenBLAS Prescott kernels"), std::string::npos) << held.output;
+  if (eigen) {
+    EXPECT_NE(held.output.find("set OPENBLAS_CORETYPE="), std::string::npos) << held.output;
+  }
+}
+
+// reduction.dense_kernels: an unknown value, or one other than "auto" with CHOLMOD's own
+// factorization, is bad input naming the field (exit 2, no output); "blas" and "eigen" give SIDs
+// that ffr-diff finds equivalent at rtol 1e-9 to CHOLMOD's (the "cholmod" backend, the reference).
+TEST(ReduceCli, DenseKernelsAreChosenByThePartFile) {
+  test::TempDir dir("dense_kernels");
+  const auto part = clamped_bar_part;
+  for (const std::string bad : {R"(, "dense_kernels": "mkl")", R"(, "factorization": "cholmod", "dense_kernels": "eigen")"}) {
+    const auto r = reduce(dir, part(bad));
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("dense_kernels"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("part.json"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
+  }
+  ASSERT_EQ(reduce(dir, part(R"(, "factorization": "cholmod")")).status, 0);
+  std::filesystem::rename(dir / "out.sid.h5", dir / "cholmod.sid.h5");
+  for (const std::string kernels : {"blas", "eigen"}) {
+    const auto r = reduce(dir, part(R"(, "dense_kernels": ")" + kernels + "\""));
+    ASSERT_EQ(r.status, 0) << r.output;
+    const auto d = test::run(test::bin("ffr-diff").string() + " " + (dir / "cholmod.sid.h5").string() + " " +
+                             (dir / "out.sid.h5").string() + " --rtol 1e-9");
+    EXPECT_EQ(d.status, 0) << kernels << ": " << d.output;
+  }
 }
 
 TEST(ReduceCli, FrequencyLimitReturnsEveryModeBelowIt) {
@@ -263,10 +311,7 @@ TEST(ReduceCli, FrequencyLimitReturnsEveryModeBelowIt) {
 TEST(ReduceCli, FactorizationBackendIsChosenByThePartFile) {
   test::TempDir dir("factorization");
   const auto part = [](const std::string& factorization) {
-    return R"({"geometry": "bar.geo", "mesh": {"size": 0.006},
-    "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}],
-    "interfaces": [{"name": "root", "group": "clamp"}], "visual": false,
-    "reduction": {"method": "clamped", "interface": "root", "modes": 5, "factorization": ")" + factorization + R"("}})";
+    return clamped_bar_part(R"(, "factorization": ")" + factorization + "\"");
   };
   const auto bad = reduce(dir, part("lu"));
   EXPECT_EQ(bad.status, 2) << bad.output;

@@ -202,6 +202,56 @@ TEST(CholmodFactor, OwnFactorizationMatchesCholmodsOnOneAndTwoThreads) {
 // first in the elimination order. Two large negative entries keep every leading minor positive
 // until their DOFs are eliminated; far apart, they fall in different subtrees, and each thread
 // stops at its own.
+// The supernodal factorization with each of its dense kernels (dense_kernels.hpp: the BLAS's and
+// Eigen's for this CPU), on one thread and on two (subtrees, the top's split supernodes):
+// solutions within rounding of CHOLMOD's own factorization (the reference), and an indefinite
+// matrix's failing column the one CHOLMOD names.
+TEST(CholmodFactor, EachDenseKernelsFactorizeAsCholmod) {
+  SparseMatrix A = vector_laplacian();
+  const Eigen::MatrixXd B = random_block(A.rows(), 4, 17);
+  const RestoreThreads restore;
+  FactorOptions reference_options;
+  reference_options.backend = FactorizationBackend::Cholmod;
+  set_max_threads(1);
+  CholmodFactor reference(reference_options);
+  reference.factorize(A);
+  EXPECT_EQ(reference.info().stats.dense_kernels, "BLAS");
+  const Eigen::MatrixXd X = reference.solve(B);
+  SparseMatrix indefinite = A;
+  indefinite.coeffRef(A.rows() - 40, A.rows() - 40) = -1e6;
+  std::int64_t reference_column = -1;
+  try {
+    CholmodFactor(reference_options).factorize(indefinite);
+  } catch (const NotPositiveDefiniteError& e) {
+    reference_column = e.column;
+  }
+  ASSERT_GE(reference_column, 0);
+  for (const DenseKernelChoice choice : {DenseKernelChoice::Blas, DenseKernelChoice::Eigen}) {
+    for (const unsigned threads : {1u, 2u}) {
+      set_max_threads(threads);
+      FactorOptions options;
+      options.dense_kernels = choice;
+      CholmodFactor f(options);
+      f.factorize(A);
+      const std::string name = f.info().stats.dense_kernels;
+      EXPECT_EQ(name.rfind(choice == DenseKernelChoice::Blas ? "BLAS" : "Eigen (", 0), 0u) << name;
+      if (threads == 2) {
+        EXPECT_GT(f.info().stats.factor_parallel_fraction, 0.0);
+      }
+      const Eigen::MatrixXd Xo = f.solve(B);
+      EXPECT_LT((Xo - X).norm() / X.norm(), 1e-13) << name << ", " << threads << " threads";
+      EXPECT_LT((A * Xo - B).norm() / B.norm(), 1e-12) << name << ", " << threads << " threads";
+      std::int64_t column = -1;
+      try {
+        CholmodFactor(options).factorize(indefinite);
+      } catch (const NotPositiveDefiniteError& e) {
+        column = e.column;
+      }
+      EXPECT_EQ(column, reference_column) << name << ", " << threads << " threads";
+    }
+  }
+}
+
 TEST(CholmodFactor, IndefiniteMatrixNamesTheColumnOnTwoThreads) {
   SparseMatrix A = vector_laplacian();
   const Eigen::Index far = A.rows() - 40;

@@ -1,6 +1,7 @@
 #include "ffr/formats/json_input.hpp"
 #include "ffr/preproc/part/part.hpp"
 #include "ffr/preproc/solver/parallel_session.hpp"
+#include "ffr/preproc/solver/dense_kernel_choice.hpp"
 
 #include "../mesh/bdf_reader.hpp"
 #include "../mesh/inp_reader.hpp"
@@ -198,7 +199,7 @@ InterfaceSpec read_interface(const JsonNode& n) {
 
 ReductionSpec read_reduction(const JsonNode& n) {
   n.allow_only({"method", "interface", "interfaces", "frame", "modes", "max_frequency_hz", "orthonormalize", "backend", "factorization",
-                "mumps_ordering", "out_of_core", "out_of_core_dir"});
+                "dense_kernels", "mumps_ordering", "out_of_core", "out_of_core_dir"});
   ReductionSpec r;
   const std::string m = n.at("method").string();
   if (m == "free") r.method = ReductionSpec::Method::Free;
@@ -255,6 +256,11 @@ ReductionSpec read_reduction(const JsonNode& n) {
   r.factorization = n.string_or("factorization", "supernodal");
   if (r.factorization != "supernodal" && r.factorization != "cholmod")
     n.at("factorization").fail("factorization must be \"supernodal\" or \"cholmod\"");
+  r.dense_kernels = n.string_or("dense_kernels", "auto");
+  if (!dense_kernel_choice_from_string(r.dense_kernels))
+    n.at("dense_kernels").fail("dense_kernels must be \"auto\", \"blas\" or \"eigen\"");
+  if (r.factorization == "cholmod" && r.dense_kernels != "auto")
+    n.at("dense_kernels").fail("only for factorization \"supernodal\" (CHOLMOD's factorization calls the BLAS itself)");
   if (r.method == ReductionSpec::Method::Clamped) r.interface = n.at("interface").string();
   if (r.method == ReductionSpec::Method::CraigBampton) {
     for (const auto& i : n.at("interfaces").items()) r.interfaces.push_back(i.string());

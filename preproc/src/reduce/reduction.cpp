@@ -126,8 +126,11 @@ std::string factor_line(const FactorStatistics& f) {
     << static_cast<double>(f.peak_bytes) / (1u << 20) << " MiB peak (" << f.ordering;
   if (f.ordering_vertices != f.n) o << " on " << f.ordering_vertices << " nodes";
   o << ")";
-  if (!f.blas_kernels.empty()) o << ", OpenBLAS " << f.blas_kernels << " kernels";
-  if (!f.blas_kernels_suited.empty())
+  const bool blas = f.dense_kernels.empty() || f.dense_kernels == "BLAS";
+  if (!blas) o << ", dense kernels " << f.dense_kernels;
+  if (!f.blas_kernels.empty()) o << (blas ? ", OpenBLAS " : " (OpenBLAS's: ") << f.blas_kernels << (blas ? " kernels" : ")");
+  // Advice only where the BLAS does the factorization's work.
+  if (blas && !f.blas_kernels_suited.empty())
     o << " (this CPU runs the faster " << f.blas_kernels_suited << " ones: set OPENBLAS_CORETYPE=" << f.blas_kernels_suited
       << ")";
   return o.str();

@@ -26,6 +26,7 @@ FactorOptions eigen_factor_options(const ReductionSpec& spec) {
   FactorOptions f;
   f.memory_limit_bytes = spec.memory_limit_bytes;
   f.backend = spec.factorization == "cholmod" ? FactorizationBackend::Cholmod : FactorizationBackend::Supernodal;
+  f.dense_kernels = dense_kernel_choice_from_string(spec.dense_kernels).value_or(DenseKernelChoice::Auto);
   // Free: definite by construction (negative shift); tiny pivots only in the deflated space.
   if (spec.method == ReductionSpec::Method::Free) f.min_pivot_ratio = 0;
   return f;

@@ -32,17 +32,23 @@ inline const char* openblas_core_for_this_cpu() {
   return nullptr;
 }
 
-/// True when `in_use` (openblas_get_corename()) is one of OpenBLAS's Intel kernels older than
-/// AVX2, while this CPU would run `suited` (from openblas_core_for_this_cpu, which names kernels
-/// for Intel CPUs only).
-inline bool openblas_core_falls_short(const char* in_use, const char* suited) {
-  if (!in_use || !suited) return false;
-  static const char* const pre_avx2[] = {"Katmai", "Coppermine", "Northwood", "Prescott",   "Banias",
-                                         "Atom",   "Core2",      "Penryn",    "Dunnington", "Nehalem",
-                                         "Sandybridge"};
+/// True when `in_use` (openblas_get_corename()) names one of OpenBLAS's x86-64 kernels from
+/// before AVX2 (Intel's up to Sandy Bridge, AMD's up to Steamroller).
+inline bool openblas_core_predates_avx2(const char* in_use) {
+  if (!in_use) return false;
+  static const char* const pre_avx2[] = {"Katmai", "Coppermine", "Northwood", "Prescott",  "Banias",    "Atom",
+                                         "Core2",  "Penryn",     "Dunnington", "Nehalem",  "Sandybridge", "Opteron",
+                                         "Barcelona", "Bobcat",  "Bulldozer", "Piledriver", "Steamroller"};
   for (const char* old : pre_avx2)
     if (strcasecmp(in_use, old) == 0) return true;
   return false;
+}
+
+/// True when `in_use` (openblas_get_corename()) is one of OpenBLAS's kernels older than AVX2,
+/// while this CPU would run `suited` (from openblas_core_for_this_cpu, which names kernels for
+/// Intel CPUs only).
+inline bool openblas_core_falls_short(const char* in_use, const char* suited) {
+  return suited && openblas_core_predates_avx2(in_use);
 }
 
 }  // namespace ffr::preproc::detail

@@ -90,9 +90,14 @@ struct CholmodFactor::Impl {
   // The numeric factor and its solves, by the backend of opt.backend; set by each successful
   // factorization, cleared by a new analysis.
   std::variant<detail::SupernodalNumeric, detail::CholmodNumeric> numeric;
+  // The numeric factorization's dense kernels (CHOLMOD's own factorization calls the BLAS).
+  const detail::DenseKernels* dense = opt.backend == FactorizationBackend::Cholmod
+                                          ? &detail::blas_dense_kernels()
+                                          : &detail::select_dense_kernels(opt.dense_kernels);
 
   explicit Impl(FactorOptions o) : opt(o) {
     if (opt.backend == FactorizationBackend::Cholmod) numeric.emplace<detail::CholmodNumeric>();
+    else std::get<detail::SupernodalNumeric>(numeric).use(*dense);
   }
   ~Impl() {
     clear_numeric();
@@ -204,6 +209,7 @@ void CholmodFactor::Impl::record_analysis(std::int64_t n_cols, std::int64_t uppe
   s.supernodes = static_cast<std::int64_t>(L->nsuper);
   s.ordering = ordering;
   s.ordering_vertices = vertices;
+  s.dense_kernels = dense->name;
   if (const char* kernels = detail::blas_kernel_name()) {
     s.blas_kernels = kernels;
     const char* suited = detail::openblas_core_for_this_cpu();

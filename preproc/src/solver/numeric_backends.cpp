@@ -58,7 +58,7 @@ NumericResult SupernodalNumeric::factorize(const cholmod_sparse& A, const Sparse
     return r;
   }
   r.ok = true;
-  r.minor = tree_cholesky(A, L, values_.data(), threads);
+  r.minor = tree_cholesky(A, L, values_.data(), threads, *kernels_);
   if (r.minor < static_cast<std::int64_t>(L.n)) return r;
   r.rcond = reciprocal_condition(L, values_.data());
   r.pivots = min_pivot_ratio(L, values_.data(), Aeigen);

@@ -10,6 +10,7 @@
 //                      Perm); L stays symbolic.
 
 #include "cholmod_bridge.hpp"
+#include "dense_kernels.hpp"
 #include "factor_packing.hpp"
 #include "supernodal_solve.hpp"
 
@@ -59,6 +60,10 @@ class CholmodNumeric {
 
 class SupernodalNumeric {
  public:
+  /// The dense kernels of the factorization (dense_kernels.hpp).
+  void use(const DenseKernels& kernels) { kernels_ = &kernels; }
+  const DenseKernels& kernels() const { return *kernels_; }
+
   NumericResult factorize(const cholmod_sparse& A, const SparseMatrix& Aeigen, cholmod_factor& L, cholmod_common* c,
                           unsigned threads);
   void solve(const double* B, std::int64_t ldb, std::int64_t ncols, double* X, std::int64_t ldx) const;
@@ -69,6 +74,7 @@ class SupernodalNumeric {
   double solve_parallel_fraction() const { return solver_ ? solver_->parallel_fraction() : 0.0; }
 
  private:
+  const DenseKernels* kernels_ = &select_dense_kernels(DenseKernelChoice::Auto);
   FactorValues values_;
   // The substitutions keep their interleaved workspace across calls (no allocation in the
   // Lanczos loop); solve() is const for the caller, the workspace is not.

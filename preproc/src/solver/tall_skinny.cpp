@@ -1,6 +1,7 @@
 // Tall-skinny products for the block Gram-Schmidt (see tall_skinny.hpp).
 #include "tall_skinny.hpp"
 
+#include "dense_kernels.hpp"
 #include "../run_parts.hpp"
 
 #include <Eigen/Core>
@@ -8,28 +9,27 @@
 #include <algorithm>
 #include <vector>
 
-// The Fortran BLAS, linked as CHOLMOD's (the factorization calls it too).
-extern "C" void dgemm_(const char*, const char*, const int*, const int*, const int*, const double*, const double*,
-                       const int*, const double*, const int*, const double*, double*, const int*);
-
 namespace ffr::preproc::detail {
 
 using Index = std::int64_t;
+
+namespace {
+// The rule of DenseKernelChoice::Auto (the part file's choice is the factorization's).
+const DenseKernels& gram_kernels() { return select_dense_kernels(DenseKernelChoice::Auto); }
+}  // namespace
 
 void add_transposed_product(const double* Q, Index ldq, Index k, const double* V, Index ldv, Index p, Index r0,
                             Index r1, double* C) {
   const int K = static_cast<int>(k), P = static_cast<int>(p), rows = static_cast<int>(r1 - r0);
   const int lq = static_cast<int>(ldq), lv = static_cast<int>(ldv);
-  const double one = 1.0;
-  if (K > 0 && P > 0 && rows > 0) dgemm_("T", "N", &K, &P, &rows, &one, Q + r0, &lq, V + r0, &lv, &one, C, &K);
+  if (K > 0 && P > 0 && rows > 0) gram_kernels().gemm('T', 'N', K, P, rows, 1.0, Q + r0, lq, V + r0, lv, 1.0, C, K);
 }
 
 void subtract_product(const double* Q, Index ldq, Index k, const double* C, Index p, Index r0, Index r1, double* V,
                       Index ldv) {
   const int K = static_cast<int>(k), P = static_cast<int>(p), rows = static_cast<int>(r1 - r0);
   const int lq = static_cast<int>(ldq), lv = static_cast<int>(ldv);
-  const double one = 1.0, minus_one = -1.0;
-  if (K > 0 && P > 0 && rows > 0) dgemm_("N", "N", &rows, &P, &K, &minus_one, Q + r0, &lq, C, &K, &one, V + r0, &lv);
+  if (K > 0 && P > 0 && rows > 0) gram_kernels().gemm('N', 'N', rows, P, K, -1.0, Q + r0, lq, C, K, 1.0, V + r0, lv);
 }
 
 namespace {

@@ -3,8 +3,9 @@
 // 4): the block Gram-Schmidt of the block Lanczos backend, over parts of the rows on the
 // caller's threads.
 //
-// The two products over a range of rows are the BLAS's dgemm (a one-thread BLAS under the
-// reducer's threads, ffr/cli/process_threads.hpp). Own kernels that stream Q once, without the
+// The two products over a range of rows are a dgemm (a one-thread BLAS under the reducer's
+// threads, ffr/cli/process_threads.hpp), or Eigen's where the BLAS's kernels fall short of the
+// CPU (DenseKernelChoice::Auto, dense_kernels.hpp). Own kernels that stream Q once, without the
 // BLAS's packing of Q, took about a third less time for them, but that was under 3 % of the
 // 100k-DOF plate's run of tools/bench/reduce (RESULTS.md there), below the 5 % that an own
 // kernel has to save to be kept.

@@ -27,31 +27,22 @@
 // The top's large supernodes are split over the same threads (top_node): the descendants'
 // updates by the columns of s they land in (disjoint writes), then L_s by a blocked right-looking
 // Cholesky whose triangular solves split the rows and whose trailing updates split the columns.
-// Every BLAS call is made by one of these threads and is meant to run on it alone: the host
-// program holds the BLAS to one thread under this factorization (ffr-reduce does, see
+// Every dense-kernel call (dense_kernels.hpp: the BLAS's, or Eigen's where the BLAS's kernels
+// fall short of the CPU) is made by one of these threads and is meant to run on it alone: the
+// host program holds the BLAS to one thread under this factorization (ffr-reduce does, see
 // ffr/cli/process_threads.hpp). Why not leave the top to a threaded BLAS: OpenBLAS's threaded
 // calls from the subtrees' threads queue for its one pool, its idle workers spin beside them, and
 // the two-thread factorization took about twice the time of the same with OpenBLAS on one thread
 // (tools/bench/reduce/RESULTS.md).
 #include "tree_cholesky.hpp"
 
+#include "dense_kernels.hpp"
 #include "solve_schedule.hpp"
 #include "../run_parts.hpp"
 
 #include <algorithm>
 #include <memory>
 #include <vector>
-
-// The Fortran BLAS and LAPACK routines CHOLMOD itself calls, linked from the same libraries.
-extern "C" {
-void dsyrk_(const char*, const char*, const int*, const int*, const double*, const double*, const int*, const double*,
-            double*, const int*);
-void dgemm_(const char*, const char*, const int*, const int*, const int*, const double*, const double*, const int*,
-            const double*, const int*, const double*, double*, const int*);
-void dtrsm_(const char*, const char*, const char*, const char*, const int*, const int*, const double*, const double*,
-            const int*, double*, const int*);
-void dpotrf_(const char*, const int*, double*, const int*, int*);
-}
 
 namespace ffr::preproc::detail {
 namespace {
@@ -118,8 +109,9 @@ inline void subtract_run(double* __restrict d, const double* __restrict s, Index
 
 class TreeCholesky {
  public:
-  TreeCholesky(const cholmod_factor& L, double* values, unsigned lists)
-      : super_(static_cast<const Long*>(L.super)),
+  TreeCholesky(const cholmod_factor& L, double* values, unsigned lists, const DenseKernels& kernels)
+      : k_(kernels),
+        super_(static_cast<const Long*>(L.super)),
         pi_(static_cast<const Long*>(L.pi)),
         px_(static_cast<const Long*>(L.px)),
         rows_(static_cast<const Long*>(L.s)),
@@ -205,20 +197,18 @@ class TreeCholesky {
     // (serial), the rows below it by dtrsm split over the threads by rows, then the trailing
     // columns of s updated by syrk/gemm split over the threads by columns.
     const int ld = static_cast<int>(nsrow);
-    const double one = 1.0, minus_one = -1.0;
     for (Index k0 = 0; k0 < nscol; k0 += kDenseBlock) {
       const Index b = std::min(kDenseBlock, nscol - k0), r0 = k0 + b;
       double* Lk = Ls + k0 + k0 * nsrow;  // the diagonal block
       const int nb = static_cast<int>(b);
-      int info = 0;
-      dpotrf_("L", &nb, Lk, &ld, &info);
+      const int info = k_.cholesky_lower(nb, Lk, ld);
       if (info != 0) return k1 + k0 + (info > 0 ? info - 1 : 0);
       if (r0 == nsrow) break;
       const Index below = nsrow - r0;
       run_parts(parts, [&](unsigned p) { return below * static_cast<Index>(p) / static_cast<Index>(parts); },
                 [&](unsigned, Index i0, Index i1) {
                   const int m = static_cast<int>(i1 - i0);
-                  if (m > 0) dtrsm_("R", "L", "T", "N", &m, &nb, &one, Lk, &ld, Lk + b + i0, &ld);
+                  if (m > 0) k_.solve_lower_transposed_on_right(m, nb, Lk, ld, Lk + b + i0, ld);
                 });
       if (r0 == nscol) continue;
       // Trailing columns r0 .. nscol-1 of s: column j loses L(j:, k0:r0) L(j, k0:r0)^T.
@@ -229,8 +219,8 @@ class TreeCholesky {
         const int nc = static_cast<int>(c1 - c0), nbelow = static_cast<int>(nsrow - c1);
         const double* Lc = Ls + c0 + k0 * nsrow;  // L(c0:, k0:r0)
         double* Ac = Ls + c0 + c0 * nsrow;        // s's block (c0:, c0:c1)
-        dsyrk_("L", "N", &nc, &nb, &minus_one, Lc, &ld, &one, Ac, &ld);
-        if (nbelow > 0) dgemm_("N", "T", &nbelow, &nc, &nb, &minus_one, Lc + nc, &ld, Lc, &ld, &one, Ac + nc, &ld);
+        k_.syrk_lower(nc, nb, -1.0, Lc, ld, 1.0, Ac, ld);
+        if (nbelow > 0) k_.gemm('N', 'T', nbelow, nc, nb, -1.0, Lc + nc, ld, Lc, ld, 1.0, Ac + nc, ld);
       });
     }
     if (nsrow > nscol) {
@@ -260,13 +250,10 @@ class TreeCholesky {
       }
     }
     const int nc = static_cast<int>(nscol), nr = static_cast<int>(nsrow);
-    int info = 0;
-    dpotrf_("L", &nc, Ls, &nr, &info);
+    const int info = k_.cholesky_lower(nc, Ls, nr);
     if (info != 0) return k1 + (info > 0 ? info - 1 : 0);
     if (nsrow > nscol) {
-      const int below = nr - nc;
-      const double one = 1.0;
-      dtrsm_("R", "L", "T", "N", &below, &nc, &one, Ls, &nr, Ls + nscol, &nr);
+      k_.solve_lower_transposed_on_right(nr - nc, nc, Ls, nr, Ls + nscol, nr);
       lpos_[static_cast<std::size_t>(s)] = nscol;
       link(s, rows_[psi + nscol], list);
     }
@@ -303,7 +290,6 @@ class TreeCholesky {
     while (ndrow1 < ndrow2 && r[ndrow1] < k2) ++ndrow1;
     const double* Ld = x_ + px_[d] + pos;
     const int kc = static_cast<int>(ndcol), ld = static_cast<int>(ndrow);
-    const double one = 1.0, zero = 0.0;
     Index* rel = w.relative.data();
     Index* run = w.run.data();
     for (Index i = 0; i < ndrow2; ++i) rel[i] = w.map[static_cast<std::size_t>(r[i])];
@@ -328,8 +314,8 @@ class TreeCholesky {
     for (Index j0 = ja; j0 < jb; j0 += width) {
       const Index b = std::min(width, jb - j0), m = ndrow2 - j0;
       const int nb = static_cast<int>(b), nm = static_cast<int>(m), nbelow = static_cast<int>(m - b);
-      dsyrk_("L", "N", &nb, &kc, &one, Ld + j0, &ld, &zero, C, &nm);
-      if (nbelow > 0) dgemm_("N", "T", &nbelow, &nb, &kc, &one, Ld + j0 + b, &ld, Ld + j0, &ld, &zero, C + b, &nm);
+      k_.syrk_lower(nb, kc, 1.0, Ld + j0, ld, 0.0, C, nm);
+      if (nbelow > 0) k_.gemm('N', 'T', nbelow, nb, kc, 1.0, Ld + j0 + b, ld, Ld + j0, ld, 0.0, C + b, nm);
       // Rows of d in s's columns sit at positions 0..nscol-1 of R_s, so rel[j] is a column.
       for (Index jj = 0; jj < b; ++jj) {
         const Index j = j0 + jj;
@@ -343,6 +329,7 @@ class TreeCholesky {
     }
   }
 
+  const DenseKernels& k_;
   const Long *super_, *pi_, *px_, *rows_;
   double* x_;
   Index xsize_, n_, nsuper_;
@@ -377,12 +364,13 @@ double tree_cholesky_share(const cholmod_factor& L, unsigned threads) {
   return make_solve_schedule(L, threads, kMinEntries, TreeWork::Flops).parallel_fraction;
 }
 
-Index tree_cholesky(const cholmod_sparse& A, const cholmod_factor& L, double* values, unsigned threads) {
+Index tree_cholesky(const cholmod_sparse& A, const cholmod_factor& L, double* values, unsigned threads,
+                    const DenseKernels& kernels) {
   SolveSchedule plan = make_solve_schedule(L, threads, 0, TreeWork::Flops);
   // No cut (a caller on one thread): every supernode is the top's.
   if (plan.parts.empty()) plan.top = {{0, static_cast<Index>(L.nsuper) - 1}};
   const unsigned parts = static_cast<unsigned>(std::max<std::size_t>(1, plan.parts.size()));
-  TreeCholesky chol(L, values, parts);
+  TreeCholesky chol(L, values, parts, kernels);
   {
     // L <- P A P' in its layout, zero elsewhere (the first touch of the factor's memory too).
     const Index n = static_cast<Index>(L.n), stored = chol.stored();
@@ -400,8 +388,8 @@ Index tree_cholesky(const cholmod_sparse& A, const cholmod_factor& L, double* va
     // at its first failing supernode; the lowest failing column over the threads is the one
     // CHOLMOD, which goes in order, would report.
     std::vector<Index> failed(parts, minor);
-    // Each thread calls the BLAS for its own supernodes (a one-thread BLAS, see the top of
-    // this file; no thread count is changed here: it is the host program's).
+    // Each thread calls the dense kernels for its own supernodes (a one-thread BLAS, see the
+    // top of this file; no thread count is changed here: it is the host program's).
     run_parts(parts, [](unsigned p) { return p; }, [&](unsigned t, unsigned, unsigned) {
       Workspace w = chol.workspace();
       for (const SupernodeRange& range : plan.parts[t])

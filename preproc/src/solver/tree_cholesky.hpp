@@ -8,6 +8,8 @@
 
 namespace ffr::preproc::detail {
 
+struct DenseKernels;
+
 /// How many values the numeric factor of the supernodal symbolic factor L has, in CHOLMOD's
 /// layout (px[nsuper]): the size of the array tree_cholesky fills.
 std::int64_t tree_cholesky_values(const cholmod_factor& L);
@@ -27,7 +29,9 @@ double tree_cholesky_share(const cholmod_factor& L, unsigned threads);
 /// upper-stored (stype > 0), L a supernodal analysis of A by CHOLMOD, only read (its structure:
 /// super, pi, px, s, Perm). Returns the first permuted column whose pivot is not positive, or
 /// L.n when A is positive definite (the columns from there on are then not valid).
-/// The subtrees of the elimination tree run on up to `threads` threads.
-std::int64_t tree_cholesky(const cholmod_sparse& A, const cholmod_factor& L, double* values, unsigned threads);
+/// The subtrees of the elimination tree run on up to `threads` threads; the dense work of each
+/// supernode goes to `kernels`, on the thread that factorizes it.
+std::int64_t tree_cholesky(const cholmod_sparse& A, const cholmod_factor& L, double* values, unsigned threads,
+                           const DenseKernels& kernels);
 
 }  // namespace ffr::preproc::detail

@@ -84,6 +84,7 @@ struct ReductionSpec {
   bool orthonormalize = false;          ///< craig-bampton: orthonormalize the whole basis
   std::string backend = "block";        ///< "block", "spectra", "arpack" or "slepc"
   std::string factorization = "supernodal";  ///< "supernodal" or "cholmod" (FactorizationBackend)
+  std::string dense_kernels = "auto";        ///< "auto", "blas" or "eigen" (DenseKernelChoice)
   std::uint64_t memory_limit_bytes = 0; ///< refuse factors above this (0: the machine's available memory)
   MumpsOptions mumps;                   ///< backend "slepc": MUMPS's ordering and out-of-core factors
 };

@@ -13,6 +13,7 @@
 // The library never prints; statistics come back in FactorStatistics / info().
 // Not thread-safe: solve() reuses internal workspace (one factor per thread if needed).
 
+#include "ffr/preproc/solver/dense_kernel_choice.hpp"
 #include "ffr/preproc/solver/solver_errors.hpp"
 #include "ffr/preproc/solver/sparse_types.hpp"
 
@@ -76,6 +77,8 @@ struct FactorOptions {
   /// Which numeric factorization and substitutions run on CHOLMOD's analysis (both give the
   /// same factor up to rounding): see FactorizationBackend.
   FactorizationBackend backend = FactorizationBackend::Supernodal;
+  /// The dense kernels of the supernodal backend's factorization (CHOLMOD's own calls the BLAS).
+  DenseKernelChoice dense_kernels = DenseKernelChoice::Auto;
 };
 
 struct FactorStatistics {
@@ -104,6 +107,7 @@ struct FactorStatistics {
   FactorizationBackend backend = FactorizationBackend::Supernodal;  ///< which one factorized
   std::string blas_kernels;        ///< OpenBLAS's kernels in use (openblas_get_corename), empty for another BLAS
   std::string blas_kernels_suited; ///< kernels this CPU would run, when those in use are older; else empty
+  std::string dense_kernels;       ///< the factorization's dense kernels after factorize: "BLAS", "Eigen (x86-64-v4)", ...
 };
 
 enum class FactorStatus { Empty, Analyzed, Factorized, Failed };
