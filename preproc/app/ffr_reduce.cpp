@@ -143,6 +143,10 @@ int main(int argc, char** argv) {
     if (factorization) {
       if (*factorization != "supernodal" && *factorization != "cholmod")
         throw ffr::cli::UsageError("--factorization must be supernodal or cholmod");
+      // As the part file's own check: the dense kernels are the supernodal factorization's.
+      if (*factorization == "cholmod" && part.reduction.dense_kernels != "auto")
+        throw ffr::cli::UsageError("--factorization cholmod: " + pos[0] + " sets reduction.dense_kernels, which only "
+                                   "the supernodal factorization reads (CHOLMOD's calls the BLAS itself)");
       part.reduction.factorization = *factorization;
     }
     // The BLAS's threads by the factorization that will call it (process_threads.hpp says why);

@@ -265,7 +265,8 @@ TEST(ReduceCli, LogNamesTheBlasKernelsAndAUsersChoiceStands) {
 }
 
 // reduction.dense_kernels: an unknown value, or one other than "auto" with CHOLMOD's own
-// factorization, is bad input naming the field (exit 2, no output); "blas" and "eigen" give SIDs
+// factorization (from the part file or --factorization), is bad input naming the field (exit 2,
+// no output); "blas" and "eigen" give SIDs
 // that ffr-diff finds equivalent at rtol 1e-9 to CHOLMOD's (the "cholmod" backend, the reference).
 TEST(ReduceCli, DenseKernelsAreChosenByThePartFile) {
   test::TempDir dir("dense_kernels");
@@ -277,6 +278,10 @@ TEST(ReduceCli, DenseKernelsAreChosenByThePartFile) {
     EXPECT_NE(r.output.find("part.json"), std::string::npos) << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
   }
+  const auto overridden = reduce(dir, part(R"(, "dense_kernels": "eigen")"), "--factorization cholmod");
+  EXPECT_EQ(overridden.status, 2) << overridden.output;
+  EXPECT_NE(overridden.output.find("dense_kernels"), std::string::npos) << overridden.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
   ASSERT_EQ(reduce(dir, part(R"(, "factorization": "cholmod")")).status, 0);
   std::filesystem::rename(dir / "out.sid.h5", dir / "cholmod.sid.h5");
   for (const std::string kernels : {"blas", "eigen"}) {

@@ -62,7 +62,6 @@ class SupernodalNumeric {
  public:
   /// The dense kernels of the factorization (dense_kernels.hpp).
   void use(const DenseKernels& kernels) { kernels_ = &kernels; }
-  const DenseKernels& kernels() const { return *kernels_; }
 
   NumericResult factorize(const cholmod_sparse& A, const SparseMatrix& Aeigen, cholmod_factor& L, cholmod_common* c,
                           unsigned threads);
