@@ -26,7 +26,7 @@
 
 namespace {
 
-using Ffr = ffr::preproc::detail::DenseKernels;
+using Table = ffr::preproc::detail::DenseKernels;
 using Stride = Eigen::OuterStride<>;
 using Mat = Eigen::Map<Eigen::MatrixXd, 0, Stride>;
 using ConstMat = Eigen::Map<const Eigen::MatrixXd, 0, Stride>;
@@ -76,11 +76,11 @@ int cholesky_lower(int n, double* A, int lda) {
   return failed < 0 ? 0 : static_cast<int>(failed) + 1;
 }
 
-constexpr Ffr kKernels{FFR_DENSE_NAME, gemm, syrk_lower, solve_lower_transposed_on_right,
+constexpr Table kKernels{FFR_DENSE_NAME, gemm, syrk_lower, solve_lower_transposed_on_right,
                        cholesky_lower};
 
 }  // namespace
 
-extern "C" __attribute__((visibility("default"))) const Ffr* FFR_DENSE_CAT(ffr_dense_kernels_eigen_, FFR_DENSE_VARIANT)() {
+extern "C" __attribute__((visibility("default"))) const Table* FFR_DENSE_CAT(ffr_dense_kernels_eigen_, FFR_DENSE_VARIANT)() {
   return &kKernels;
 }
