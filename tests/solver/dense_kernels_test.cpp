@@ -42,9 +42,7 @@ struct Block {
 
 std::vector<const DenseKernels*> all_kernels() {
   std::vector<const DenseKernels*> k{&ffr::preproc::detail::blas_dense_kernels()};
-  const DenseKernels* variants[8] = {};
-  const int n = ffr::preproc::detail::eigen_dense_kernel_variants(variants, 8);
-  for (int i = 0; i < n && i < 8; ++i) k.push_back(variants[i]);
+  for (const DenseKernels* v : ffr::preproc::detail::eigen_dense_kernel_variants()) k.push_back(v);
   return k;
 }
 
@@ -176,11 +174,10 @@ TEST(DenseKernels, ChoiceNamesTheKernelsInUse) {
                                                                 ? &select_dense_kernels(DenseKernelChoice::Eigen)
                                                                 : &select_dense_kernels(DenseKernelChoice::Blas));
   // The widest variant the CPU runs is the one chosen.
-  const DenseKernels* variants[8] = {};
-  const int n = ffr::preproc::detail::eigen_dense_kernel_variants(variants, 8);
-  ASSERT_GE(n, 1);
-  EXPECT_STREQ(variants[0]->name, "Eigen (baseline)");
-  EXPECT_EQ(&select_dense_kernels(DenseKernelChoice::Eigen), variants[n - 1]);
+  const auto variants = ffr::preproc::detail::eigen_dense_kernel_variants();
+  ASSERT_GE(variants.size(), 1u);
+  EXPECT_STREQ(variants.front()->name, "Eigen (baseline)");
+  EXPECT_EQ(&select_dense_kernels(DenseKernelChoice::Eigen), variants.back());
   for (const char* name : {"auto", "blas", "eigen"})
     EXPECT_STREQ(ffr::preproc::to_string(*ffr::preproc::dense_kernel_choice_from_string(name)), name);
   EXPECT_FALSE(ffr::preproc::dense_kernel_choice_from_string("mkl"));

@@ -14,27 +14,18 @@ extern "C" const ffr::preproc::detail::DenseKernels* ffr_dense_kernels_eigen_x86
 
 namespace ffr::preproc::detail {
 
-int eigen_dense_kernel_variants(const DenseKernels** out, int capacity) {
-  int n = 0;
-  const auto add = [&](const DenseKernels* k) {
-    if (n < capacity) out[n] = k;
-    ++n;
-  };
-  add(ffr_dense_kernels_eigen_baseline());
+std::vector<const DenseKernels*> eigen_dense_kernel_variants() {
+  std::vector<const DenseKernels*> variants{ffr_dense_kernels_eigen_baseline()};
 #if defined(FFR_DENSE_EIGEN_X86_LEVELS)
   // __builtin_cpu_supports also checks that the OS saves the wider registers (XCR0).
   __builtin_cpu_init();
-  if (__builtin_cpu_supports("x86-64-v3")) add(ffr_dense_kernels_eigen_x86_64_v3());
-  if (__builtin_cpu_supports("x86-64-v4")) add(ffr_dense_kernels_eigen_x86_64_v4());
+  if (__builtin_cpu_supports("x86-64-v3")) variants.push_back(ffr_dense_kernels_eigen_x86_64_v3());
+  if (__builtin_cpu_supports("x86-64-v4")) variants.push_back(ffr_dense_kernels_eigen_x86_64_v4());
 #endif
-  return n;
+  return variants;
 }
 
-const DenseKernels& eigen_dense_kernels() {
-  const DenseKernels* variants[3] = {};
-  const int n = eigen_dense_kernel_variants(variants, 3);
-  return *variants[n - 1];
-}
+const DenseKernels& eigen_dense_kernels() { return *eigen_dense_kernel_variants().back(); }
 
 bool blas_kernels_fall_short() {
 #if defined(__x86_64__) && defined(__GNUC__)

@@ -14,6 +14,8 @@
 
 #include "ffr/preproc/solver/dense_kernel_choice.hpp"
 
+#include <vector>
+
 namespace ffr::preproc::detail {
 
 /// Column-major dense kernels; leading dimensions as in the BLAS. Every function runs on the
@@ -40,7 +42,7 @@ const DenseKernels& blas_dense_kernels();
 /// Eigen's kernels for the widest vector units this CPU has among the compiled variants.
 const DenseKernels& eigen_dense_kernels();
 /// Every compiled Eigen variant this CPU can run, baseline first (for the tests).
-int eigen_dense_kernel_variants(const DenseKernels** out, int capacity);
+std::vector<const DenseKernels*> eigen_dense_kernel_variants();
 /// The kernels for `choice` on this process's BLAS and this CPU.
 const DenseKernels& select_dense_kernels(DenseKernelChoice choice);
 
