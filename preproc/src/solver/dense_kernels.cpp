@@ -25,7 +25,11 @@ std::vector<const DenseKernels*> eigen_dense_kernel_variants() {
   return variants;
 }
 
-const DenseKernels& eigen_dense_kernels() { return *eigen_dense_kernel_variants().back(); }
+const DenseKernels& eigen_dense_kernels() {
+  // Chosen once: the Gram-Schmidt products ask for their kernels at every call.
+  static const DenseKernels* const widest = eigen_dense_kernel_variants().back();
+  return *widest;
+}
 
 bool blas_kernels_fall_short() {
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -44,8 +48,8 @@ const DenseKernels& select_dense_kernels(DenseKernelChoice choice) {
     case DenseKernelChoice::Eigen: return eigen_dense_kernels();
     case DenseKernelChoice::Auto: break;
   }
-  static const bool short_of_cpu = blas_kernels_fall_short();
-  return short_of_cpu ? eigen_dense_kernels() : blas_dense_kernels();
+  static const DenseKernels* const chosen = blas_kernels_fall_short() ? &eigen_dense_kernels() : &blas_dense_kernels();
+  return *chosen;
 }
 
 }  // namespace ffr::preproc::detail
