@@ -200,7 +200,7 @@ TEST(RelativeAssembly, RigidBodyHungOnAPlateNodeByAnAssembledSphericalJoint) {
 // A body hung by a spherical joint on a reduced flexible body's node (Simeon's rod of the IVP
 // Test Set slider-crank, 4 modes, hinged to the ground at its frame origin and released
 // horizontal): placed at the node's point r + A (c + Phi y), against the absolute run (no outside
-// reference: two discretisations of the same equations, apart by O(h^2)).
+// reference: two discretisations of the same equations, apart by O(h^2)), at three steps.
 struct RodBob {
   Eigen::Vector3d bob;
   Eigen::VectorXd y;
@@ -228,9 +228,9 @@ RodBob run_rod_bob(double h, const char* formulation, const std::filesystem::pat
 TEST(RelativeAssembly, BodyHungOnAReducedFlexibleBodysNode) {
   test::TempDir dir("relative_rod_bob");
   test::write_sid_file(test::simeon_rod_sid(), dir / "rod.sid.h5");
-  double dx[2], dy[2];
+  double dx[3], dy[3];
   int i = 0;
-  for (const double h : {1e-3, 5e-4}) {
+  for (const double h : {1e-3, 5e-4, 2.5e-4}) {
     const RodBob a = run_rod_bob(h, "absolute", dir.path), r = run_rod_bob(h, "relative", dir.path);
     dx[i] = (a.bob - r.bob).norm();
     dy[i] = (a.y - r.y).cwiseAbs().maxCoeff() / a.y.cwiseAbs().maxCoeff();
@@ -238,8 +238,10 @@ TEST(RelativeAssembly, BodyHungOnAReducedFlexibleBodysNode) {
                 h, r.bob(0), r.bob(1), r.bob(2), dx[i], dy[i], a.y.cwiseAbs().maxCoeff());
     ++i;
   }
-  EXPECT_LT(dx[1], 1e-5);
-  EXPECT_GT(dx[0] / dx[1], 2.5);
+  // Measured: 1.26e-6, 6.7e-7 and 1.1e-7 m (the halvings' ratios vary with the phase of the
+  // fast modes; over the two, 11.5 where O(h^2) gives 16).
+  EXPECT_LT(dx[2], 1e-6);
+  EXPECT_GT(dx[0] / dx[2], 8);
   // (The modal coordinates at the end, a few 1e-7 of the rod's length, are dominated by the fast
   // axial modes' phase, which the step changes in either formulation: printed, not compared.)
   (void)dy;

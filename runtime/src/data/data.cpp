@@ -126,6 +126,7 @@ Data::Data(const Model& model) : state(model), start(model) {
   for (auto& w : w3) w = Matrix3N::Zero(3, nb_max);
   lt = VectorXd::Zero(6 * nb_max);
   tJ = tV = tW = Eigen::Matrix<double, 12, Eigen::Dynamic>::Zero(12, model.tires.empty() ? 0 : nb_max);
+  tire_sliding.assign(model.tires.size(), 0);
   for (auto& j : bJ) j = Eigen::Matrix<double, 12, Eigen::Dynamic>::Zero(12, model.bushings.empty() ? 0 : nb_max);
   bT = Eigen::Matrix<double, 12, Eigen::Dynamic>::Zero(12, model.bushings.empty() ? 0 : nb_max);
   bP = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, model.bushings.empty() ? 0 : pair_max);

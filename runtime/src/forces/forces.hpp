@@ -26,7 +26,8 @@ Vector6d bushing_measures(const Model& model, const Bushing& b, const Data& data
 
 /// Friction dampers (friction_damper.cpp). The tension (its element force) and the forces use
 /// the slip committed at the last accepted step; commit_friction, after a step of length h (0:
-/// at the start), commits the slip and adds the energy dissipated over the step.
+/// at the start), commits the slip and adds the energy dissipated over the step, and the tyres'
+/// sliding (commit_tire_sliding).
 double friction_force(const Model& model, const FrictionDamper& f, const FrictionState& fs, const Data& data);
 void friction_forces(const Model& model, const FrictionDamper& f, const FrictionState& fs, Data& data,
                      Eigen::Matrix<double, 12, 2>* ends = nullptr);  // ends as spring_forces'
@@ -42,6 +43,9 @@ void tire_forces(const Model& model, const Tire& ty, Data& data);
 void tire_tangents(const Model& model, const Tire& ty, Data& data);
 void tire_output(const Model& model, const Tire& ty, const Data& data, double* out);
 double tire_energy(const Model& model, const Tire& ty, const Data& data);
+/// Records which tyres slide well beyond their friction circle at the current (accepted) state,
+/// for the next step's first tangent (Data::tire_sliding; called by commit_friction).
+void commit_tire_sliding(const Model& model, Data& data);
 
 /// A global force or torque at a marker (computed kinematics md).
 void marker_load(const Model& model, const Marker& mk, const MarkerData& md, const Vector3d& f, bool torque,

@@ -86,6 +86,9 @@ double friction_energy(const Model& model, const FrictionDamper& f, const Fricti
 }
 
 void commit_friction(const Model& model, Data& data, double h) {
+  // The tyres' sliding only chooses the next step's first tangent (tire.cpp), never a force: the
+  // markers as the step left them (its rates before the projections) do.
+  commit_tire_sliding(model, data);
   if (model.friction_dampers.empty()) return;
   // The projections changed the rates after the markers were last updated.
   update_bodies(model, data);

@@ -273,7 +273,10 @@ void step(const Model& model, Data& data, double h) {
         // themselves), so the modal acceleration block is left to the rebuild. Measured there:
         // 2.18 Newton iterations a step without it, 2.19 with (and 2.46 when the constraint
         // Hessian is left out as well, which is therefore kept).
+        // The step's first tangent only may take a sliding tyre's exact slope (tire.cpp).
+        data.exact_sliding_tangent = refreshes == 0;
         refresh_tangent(model, data, t1, data.state.lambda, !(it == 1 && data.state.predictor_far));
+        data.exact_sliding_tangent = false;
       }
       data.tangent_fresh_step = true;
       refactor = constraints_only = false;
@@ -348,7 +351,7 @@ void step(const Model& model, Data& data, double h) {
     // The predictor's tangent, far from this iterate: rebuild its constraint terms here (W, the
     // masses and force tangents, moved by O(increment) only).
     if (it == 1 && refreshed_now) {
-      data.state.predictor_far = s.penalty * inc > p.stale_tangent;
+      data.state.predictor_far = s.penalty * inc > p.predictor_tangent;
       if (data.state.predictor_far) refactor = constraints_only = true;
     }
     // Slow with the refreshes spent: the multipliers are solved for exactly from now on.

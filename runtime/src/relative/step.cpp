@@ -459,7 +459,10 @@ void relative_step(const Model& model, Data& data, double h) {
     assemble_residual(model, data);
     const bool refreshed = refresh_now;
     if (refresh_now) {
+      // The step's first tangent only may take a sliding tyre's exact slope (tire.cpp).
+      data.exact_sliding_tangent = refreshes == 0;
       refresh(model, data, t1);
+      data.exact_sliding_tangent = false;
       refresh_now = false;
       ++refreshes;
     }
@@ -496,7 +499,7 @@ void relative_step(const Model& model, Data& data, double h) {
     // The predictor's tangent far from this iterate (its penalty term built with the predictor's
     // Phi_q, the absolute step's predictor_far, FORMULATION.md 9): rebuilt here. On the
     // benchmark's crank (150 rad/s, h = 1 ms) iterations 2 and 3 otherwise did not contract.
-    if (it == 1 && s.penalty * inc > p.stale_tangent) refresh_now = true;
+    if (it == 1 && s.penalty * inc > p.predictor_tangent) refresh_now = true;
     if (it >= 2 && inc > p.slow_contraction * prev_inc && refreshes < p.max_refreshes) refresh_now = true;
     // Slow with the refreshes spent: the multipliers are solved for exactly from now on.
     else if (it >= 2 && inc > p.slow_contraction * prev_inc && !exact) exact = exact_since_now = true;

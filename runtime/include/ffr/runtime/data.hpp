@@ -174,6 +174,11 @@ struct Data {
   /// Tyres: the Jacobian of the wheel marker's point and three axes, their rate derivative and a
   /// product, [12, nb max] each (tire.cpp).
   Eigen::Matrix<double, 12, Eigen::Dynamic> tJ, tV, tW;
+  /// Tyres: sliding well beyond the friction circle at the last accepted state (commit_friction),
+  /// one each; and whether the tangent being built may take such a tyre's exact slope
+  /// (set by the step for its first tangent only: tire.cpp, FORMULATION.md 8).
+  std::vector<char> tire_sliding;
+  bool exact_sliding_tangent = false;
   /// Bushings (bushing.cpp): each end's stacked Jacobian [J_p; J_e0; J_e1; J_e2] and a weighted
   /// product, [12, nb max] each; the rank-six factor of K, [6, n12]; one end's transposed
   /// factors g^T, (diag(c) g)^T and J^T, [nb max, 24] in all.

@@ -31,12 +31,26 @@ struct NewtonPolicy {
   /// applied, it can throw the iterate so far that no later tangent recovers.
   double rejected_growth = 2.0;
 
-  /// A tangent built at the predictor is rebuilt at the second iterate when penalty * (first
-  /// scaled increment) exceeds this, and a tangent kept from an earlier step (reuse_jacobian) is
-  /// not used for a first increment above it. Why: the penalty term alpha Phi_q^T Phi_q dominates
-  /// the tangent; built with the predictor's Phi_q it misses alpha (Phi_q' - Phi_q)^T Phi_q, an
-  /// error of ~ penalty * increment relative to the tangent, which is then no longer a
-  /// contraction's worth of accurate.
+  /// A tangent built at the predictor has its constraint terms rebuilt at the second iterate
+  /// when penalty * (first scaled increment) exceeds this. Why: the penalty term
+  /// alpha Phi_q^T Phi_q dominates the tangent; built with the predictor's Phi_q it misses
+  /// alpha (Phi_q' - Phi_q)^T Phi_q, an error of about penalty * increment against the penalty
+  /// and more against the inertia of the free directions, most for the lightest bodies (alpha
+  /// is one for all rows, scaled by the mean body mass). Measured where it bites: the vehicle
+  /// example at h = 4 ms (35 kg wheels among bodies of 170 kg on average) had penalty * increment
+  /// ~ 0.13, and the second and third updates then undid each other along the axles' and wheels'
+  /// pitch (a contraction of 0.99, the two increments anti-parallel) until a refresh at the fourth:
+  /// over its 15 s, 4.10 iterations a step at 1 and 0.2, 2.69 at 0.1, 2.65 at 0.03. The washing
+  /// machine (0.2 kg bearing housings, h = 0.25 ms, 10 s): 2.75 iterations a step at 1, 2.04 at
+  /// 0.1, 1.90 at 0.03 and 1.88 at 0.01, the tangents built a step 1.49 to 1.50; below 0.03 the
+  /// vehicle at 2 ms (penalty * increment ~ 0.014) would rebuild at every step for nothing. The
+  /// slider-crank benchmark (already above 1) and the beam pendulums (below 0.03) do not change.
+  double predictor_tangent = 0.03;
+
+  /// A tangent kept from an earlier step (reuse_jacobian) is not used for a first increment
+  /// with penalty * (first scaled increment) above this: its penalty term is stale in the same
+  /// way as the predictor's (predictor_tangent), and applied it can throw the iterate off
+  /// altogether (the benchmark's crank at 150 rad/s, FORMULATION.md 9).
   double stale_tangent = 1.0;
 
   /// Steps over which Newton's quadratic constant kappa = inc_next / inc^2, measured after an
