@@ -117,7 +117,7 @@ model = {
     "joints": joints,
     "forces": forces,
     "motions": motions,
-    "solver": {"end": end, "step": 2e-3, "output_every": 1, "initial_equilibrium": True,
+    "solver": {"end": end, "step": 4e-3, "output_every": 1, "initial_equilibrium": True,
                "integrator": "generalized_alpha", "spectral_radius": 0.8, "newton_tolerance": 1e-8},
     "outputs": outputs,
 }
