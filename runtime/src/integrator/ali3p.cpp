@@ -101,7 +101,7 @@ std::string newton_failure(const Model& model, const Data& data, double t, int i
 // The acceptance and tangent-refresh rules are the settings' StepPolicy (step_policy.hpp). The
 // measurements behind their defaults, on the benchmark's slider-crank (a crank at 150 rad/s,
 // h = 1 ms): the second multiplier pass takes the linearised violation from ~1e-12 to ~1e-15
-// of the model length; rebuilding the predictor's tangent at the second iterate (stale_tangent)
+// of the model length; rebuilding the predictor's tangent at the second iterate (predictor_tangent)
 // took iterations 2 to 4 from contracting by only 0.1 to 0.5 (4.45 iterations and 1.50 tangents
 // a step, projections of 5 to 11 passes) to convergence at the third; there kappa ~ 2.4e3 to
 // 6.2e3 and inc ~ 2e-8 to 6e-8, so the error left after the second iterate is ~1e-12 to 1e-11
@@ -236,7 +236,7 @@ void step(const Model& model, Data& data, double h) {
   bool refactor = !data.tangent_valid || !s.reuse_jacobian || data.state.last_iterations > p.reuse_max_iterations;
   ++data.state.kappa_age;
   bool fresh_before = false;  // the last update was made with a tangent built at its iterate
-  bool constraints_only = false;  // the next refresh keeps W (see stale_tangent)
+  bool constraints_only = false;  // the next refresh keeps W (see predictor_tangent)
   int refreshes = 0;
   data.tangent_fresh_step = false;
   double inc = 0, prev_inc = 0, viol = 0;
