@@ -118,8 +118,9 @@ int run(ffr::cli::Args& args) {
     write_results(*out, csv ? std::optional<std::filesystem::path>(*csv) : std::nullopt, model, rec, info);
     if (series) series->commit();
     if (!quiet)
-      std::fprintf(stderr, "ffr-sim: %lld steps, %lld Newton iterations, %.3f s integration (%.2f us per step)\n",
+      std::fprintf(stderr, "ffr-sim: %lld steps, %lld Newton iterations, %lld tangents, %lld solves, %.3f s integration (%.2f us per step)\n",
                    static_cast<long long>(info.steps), static_cast<long long>(info.newton_iterations),
+                   static_cast<long long>(info.factorizations), static_cast<long long>(info.solves),
                    info.integration_seconds,
                    info.steps ? 1e6 * info.integration_seconds / static_cast<double>(info.steps) : 0.0);
     return 0;

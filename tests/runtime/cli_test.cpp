@@ -55,6 +55,10 @@ TEST(Cli, RunWritesResultsAndCsv) {
   EXPECT_EQ(h5.shape("/outputs/energy"), (ffr::formats::h5::Shape{101, 3}));
   EXPECT_EQ(h5.attr_int("/", "steps"), 100);
   EXPECT_GE(h5.attr_int("/", "newton_iterations"), 100);
+  // Every step builds at least one tangent and solves with it at least once an iteration.
+  EXPECT_GE(h5.attr_int("/", "factorizations"), 100);
+  EXPECT_LE(h5.attr_int("/", "factorizations"), h5.attr_int("/", "newton_iterations") + 1);
+  EXPECT_GE(h5.attr_int("/", "solves"), h5.attr_int("/", "newton_iterations"));
   EXPECT_GT(h5.attr_double("/", "integration_seconds"), 0.0);
   std::ifstream csv(dir / "out.csv");
   std::string header;

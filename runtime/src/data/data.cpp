@@ -37,6 +37,7 @@ Data::Data(const Model& model) : state(model), start(model) {
   unknowns.reserve(static_cast<std::size_t>(n));  // set_unknowns fills it without allocating
   lu_first.assign(static_cast<std::size_t>(n), 0);
   lu_last.assign(static_cast<std::size_t>(n), 0);
+  lu_pos.assign(static_cast<std::size_t>(n), -1);
   body_pairs = detail::coupled_body_pairs(model);
   banded.assign(model.bodies.size(), 0);
   for (std::size_t i = 0; i < model.bodies.size(); ++i) banded[i] = detail::banded_beam(model, static_cast<int>(i));
@@ -131,6 +132,19 @@ Data::Data(const Model& model) : state(model), start(model) {
   bT = Eigen::Matrix<double, 12, Eigen::Dynamic>::Zero(12, model.bushings.empty() ? 0 : nb_max);
   bP = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, model.bushings.empty() ? 0 : pair_max);
   bt = VectorXd::Zero(model.bushings.empty() ? 0 : 24 * nb_max);
+  if (!model.bushings.empty()) bushing_K = bushing_C = MatrixXd::Zero(n, n);
+  for (const Bushing& bu : model.bushings) {
+    const int body[2] = {model.markers[bu.m1].body, model.markers[bu.m2].body};
+    for (int a : body)
+      for (int b : body)
+        if (a != kGround && b != kGround) {
+          const Body& ba = model.bodies[static_cast<std::size_t>(a)];
+          const Body& bb = model.bodies[static_cast<std::size_t>(b)];
+          bushing_blocks.push_back({ba.offset, ba.ncoord(), bb.offset, bb.ncoord()});
+        }
+  }
+  std::sort(bushing_blocks.begin(), bushing_blocks.end());
+  bushing_blocks.erase(std::unique(bushing_blocks.begin(), bushing_blocks.end()), bushing_blocks.end());
 
   motion_external.assign(model.motions.size(), 0);
   motion_value.assign(model.motions.size(), Eigen::Vector3d::Zero());

@@ -57,6 +57,46 @@ void generalized_forces(const Model& model, Data& data, double t) {
   }
 }
 
+namespace {
+
+// f(row0, rows, col0, cols) for the blocks of K the bushings write, each once.
+template <class F>
+void for_each_bushing_block(const Data& data, F&& f) {
+  for (const auto& [r0, nr, c0, nc] : data.bushing_blocks) f(r0, nr, c0, nc);
+}
+
+// The bushings' terms of K and C (cleared over their blocks): built and kept, or the kept ones
+// added while they may serve another step (Data::bushing_K, NewtonPolicy::bushing_tangent_steps).
+void bushing_tangents(const Model& model, Data& data) {
+  if (model.bushings.empty()) return;
+  const int steps = model.settings.policy.newton.bushing_tangent_steps;
+  if (data.reuse_bushing_tangent && data.bushing_tangent_age >= 0 && data.bushing_tangent_age + 1 < steps) {
+    ++data.bushing_tangent_age;
+    for_each_bushing_block(data, [&](int r0, int nr, int c0, int nc) {
+      data.K.block(r0, c0, nr, nc) += data.bushing_K.block(r0, c0, nr, nc);
+      data.C.block(r0, c0, nr, nc) += data.bushing_C.block(r0, c0, nr, nc);
+    });
+    return;
+  }
+  // Built alone in the kept matrices, then added: K and C hold other terms already.
+  for_each_bushing_block(data, [&](int r0, int nr, int c0, int nc) {
+    data.bushing_K.block(r0, c0, nr, nc).setZero();
+    data.bushing_C.block(r0, c0, nr, nc).setZero();
+  });
+  data.K.swap(data.bushing_K);
+  data.C.swap(data.bushing_C);
+  for (const Bushing& b : model.bushings) detail::bushing_forces(model, b, data, false, true);
+  data.K.swap(data.bushing_K);
+  data.C.swap(data.bushing_C);
+  data.bushing_tangent_age = 0;
+  for_each_bushing_block(data, [&](int r0, int nr, int c0, int nc) {
+    data.K.block(r0, c0, nr, nc) += data.bushing_K.block(r0, c0, nr, nc);
+    data.C.block(r0, c0, nr, nc) += data.bushing_C.block(r0, c0, nr, nc);
+  });
+}
+
+}  // namespace
+
 void force_tangents(const Model& model, Data& data, double t) {
   // Zero outside the tangent blocks already (tangent_blocks.hpp): only these are cleared where
   // that pays.
@@ -82,7 +122,7 @@ void force_tangents(const Model& model, Data& data, double t) {
     body_applied_tangents(b, data.bodies[i], model.gravity, data.state.q.segment(o, nb), data.state.qd.segment(o, nb), Kb, Cb);
   }
   for (const SpringDamper& s : model.springs) detail::spring_tangents(model, s, data);
-  for (const Bushing& b : model.bushings) detail::bushing_forces(model, b, data, false, true);
+  bushing_tangents(model, data);
   for (std::size_t i = 0; i < model.friction_dampers.size(); ++i)
     detail::friction_tangents(model, model.friction_dampers[i], data.state.friction[i], data);
   for (const Tire& ty : model.tires) detail::tire_tangents(model, ty, data);

@@ -274,9 +274,10 @@ void step(const Model& model, Data& data, double h) {
         // 2.18 Newton iterations a step without it, 2.19 with (and 2.46 when the constraint
         // Hessian is left out as well, which is therefore kept).
         // The step's first tangent only may take a sliding tyre's exact slope (tire.cpp).
-        data.exact_sliding_tangent = refreshes == 0;
+        // It may also keep the bushings' part of the last (NewtonPolicy::bushing_tangent_steps).
+        data.exact_sliding_tangent = data.reuse_bushing_tangent = refreshes == 0;
         refresh_tangent(model, data, t1, data.state.lambda, !(it == 1 && data.state.predictor_far));
-        data.exact_sliding_tangent = false;
+        data.exact_sliding_tangent = data.reuse_bushing_tangent = false;
       }
       data.tangent_fresh_step = true;
       refactor = constraints_only = false;

@@ -97,39 +97,40 @@ void factorize_metric(const Model& model, Data& data) {
 namespace {
 
 // Rows lo .. hi (positions among the factorised unknowns) of the scaled tangent's column of
-// unknown j, S T S, into out: along the runs of consecutive unknowns, so the inner loops are
-// contiguous (an element-wise indexed gather cost as much as a third of the factorisation).
-void gather_column(const Data& data, Eigen::Index j, int lo, int hi, double* out) {
-  const std::vector<int>& u = data.unknowns;
+// coordinate j, S T S, into out, along runs of positions over consecutive coordinates (each
+// position at + i holds coordinate first + i), so the inner loops are contiguous (an
+// element-wise indexed gather cost as much as a third of the factorisation).
+void gather_column(const Data& data, const std::vector<Data::Run>& runs, int j, int lo, int hi, double* out) {
   const double* s = data.scale.data();
-  if (u.empty()) {  // every coordinate of [0, nf) an unknown
-    const double* t = data.T.col(j).data();
-    for (int i = lo; i <= hi; ++i) out[i] = s[i] * t[i] * s[j];
-    return;
-  }
-  const double* t = data.T.col(u[static_cast<std::size_t>(j)]).data();
-  const double sj = s[u[static_cast<std::size_t>(j)]];
-  for (const Data::Run& run : data.unknown_runs) {
+  const double* t = data.T.col(j).data();
+  const double sj = s[j];
+  for (const Data::Run& run : runs) {
     const int from = std::max(run.at, lo), to = std::min(run.at + run.len - 1, hi);
     for (int i = from; i <= to; ++i) out[i] = s[run.first + i - run.at] * t[run.first + i - run.at] * sj;
   }
 }
 
-// The scaled tangent over the unknowns, each column between its rows Data::lu_first .. lu_last
-// (tangent_blocks.hpp: T is zero outside them, which a debug build checks), factorised.
+// The scaled tangent over the unknowns in the factorisation's order (Data::lu_runs), each
+// column between its rows Data::lu_first .. lu_last (tangent_blocks.hpp: T is zero outside
+// them, which a debug build checks), factorised.
 void factorize_within_spans(Data& data) {
-  const std::vector<int>& u = data.unknowns;
   const int* first = data.lu_first.data();
   const int* last = data.lu_last.data();
-  const Eigen::Index k = u.empty() ? data.nf : static_cast<Eigen::Index>(u.size());
+  const Eigen::Index k = data.unknowns.empty() ? data.nf : static_cast<Eigen::Index>(data.unknowns.size());
   data.lu.compute_within(k, first, last, [&](SmallLU::MatrixMap& a) {
-    for (Eigen::Index j = 0; j < k; ++j) gather_column(data, j, first[j], last[j], a.col(j).data());
+    for (const Data::Run& run : data.lu_runs)
+      for (int c = 0; c < run.len; ++c) {
+        const int j = run.at + c;
+        gather_column(data, data.lu_runs, run.first + c, first[j], last[j], a.col(j).data());
+      }
   });
 #ifndef NDEBUG
-  const auto coord = [&](Eigen::Index g) { return u.empty() ? g : static_cast<Eigen::Index>(u[static_cast<std::size_t>(g)]); };
+  std::vector<int> coord(static_cast<std::size_t>(k));
+  for (const Data::Run& run : data.lu_runs)
+    for (int c = 0; c < run.len; ++c) coord[static_cast<std::size_t>(run.at + c)] = run.first + c;
   for (Eigen::Index j = 0; j < k; ++j)
     for (Eigen::Index i = 0; i < k; ++i)
-      if (i < first[j] || i > last[j]) assert(data.T(coord(i), coord(j)) == 0.0 && "a tangent term outside its blocks");
+      if (i < first[j] || i > last[j]) assert(data.T(coord[static_cast<std::size_t>(i)], coord[static_cast<std::size_t>(j)]) == 0.0 && "a tangent term outside its blocks");
 #endif
 }
 
@@ -148,7 +149,8 @@ void factorize_tangent(Data& data) {
   if (!data.unknowns.empty()) {  // the unknowns' rows and columns only (Data::unknowns)
     const auto k = static_cast<Eigen::Index>(data.unknowns.size());
     data.lu.compute_filled(k, [&](SmallLU::MatrixMap& a) {
-      for (Eigen::Index j = 0; j < k; ++j) gather_column(data, j, 0, static_cast<int>(k) - 1, a.col(j).data());
+      for (Eigen::Index j = 0; j < k; ++j)
+        gather_column(data, data.unknown_runs, data.unknowns[static_cast<std::size_t>(j)], 0, static_cast<int>(k) - 1, a.col(j).data());
     });
     return;
   }
@@ -166,14 +168,16 @@ void solve_tangent(Data& data, const VectorXd& rhs, VectorXd& out) {
     out.head(nf).setConstant(std::numeric_limits<double>::quiet_NaN());
     return;
   }
-  if (!data.unknowns.empty()) {  // gathered to the unknowns, solved, scattered back
+  // Gathered to the unknowns in the factorisation's order, solved, scattered back.
+  const std::vector<Data::Run>* runs = data.tangent_blocks_pay ? &data.lu_runs : data.unknowns.empty() ? nullptr : &data.unknown_runs;
+  if (runs) {
     const double* s = data.scale.data();
     double* w = data.lu_work.data();
-    for (const Data::Run& run : data.unknown_runs)
+    for (const Data::Run& run : *runs)
       for (int r = 0; r < run.len; ++r) w[run.at + r] = s[run.first + r] * rhs(run.first + r);
     data.lu.solve_in_place(data.lu_work);
     out.head(nf).setZero();  // the known frame vectors do not move
-    for (const Data::Run& run : data.unknown_runs)
+    for (const Data::Run& run : *runs)
       for (int r = 0; r < run.len; ++r) out(run.first + r) = s[run.first + r] * w[run.at + r];
     return;
   }

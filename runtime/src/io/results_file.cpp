@@ -40,6 +40,8 @@ void write_h5(const std::filesystem::path& temp, const std::filesystem::path& pa
     w.attr("/", "model", model.source);
     w.attr("/", "steps", static_cast<std::int64_t>(info.steps));
     w.attr("/", "newton_iterations", static_cast<std::int64_t>(info.newton_iterations));
+    w.attr("/", "factorizations", static_cast<std::int64_t>(info.factorizations));
+    w.attr("/", "solves", static_cast<std::int64_t>(info.solves));
     w.attr("/", "integration_seconds", info.integration_seconds);
     w.write("/time", rec.times().data(), {nt});
     w.ensure_group("/outputs");

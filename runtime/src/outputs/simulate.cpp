@@ -39,7 +39,7 @@ class ProgressReport {
 // "step": "auto": adaptive steps that land on each output time (step_control.cpp).
 RunInfo simulate_adaptive(const Model& model, Data& data, Recorder& rec, const RunOptions& opt) {
   const std::int64_t n = output_count(model);
-  const std::int64_t iterations0 = data.stats.newton_iterations;
+  const Stats stats0 = data.stats;
   StepControl control(model, data);
   const auto start = clock::now();
   ProgressReport progress(opt, start);
@@ -51,7 +51,9 @@ RunInfo simulate_adaptive(const Model& model, Data& data, Recorder& rec, const R
   }
   RunInfo info;
   info.steps = control.accepted;
-  info.newton_iterations = data.stats.newton_iterations - iterations0;
+  info.newton_iterations = data.stats.newton_iterations - stats0.newton_iterations;
+  info.factorizations = data.stats.factorizations - stats0.factorizations;
+  info.solves = data.stats.solves - stats0.solves;
   info.integration_seconds = std::chrono::duration<double>(clock::now() - start).count();
   return info;
 }
@@ -62,7 +64,7 @@ RunInfo simulate(const Model& model, Data& data, Recorder& rec, const RunOptions
   if (model.settings.adaptive) return simulate_adaptive(model, data, rec, opt);
   const std::int64_t n = step_count(model);
   const int every = std::max(1, model.settings.output_every);
-  const std::int64_t iterations0 = data.stats.newton_iterations;
+  const Stats stats0 = data.stats;
   const auto start = clock::now();
   ProgressReport progress(opt, start);
   rec.record(model, data);
@@ -73,7 +75,9 @@ RunInfo simulate(const Model& model, Data& data, Recorder& rec, const RunOptions
   }
   RunInfo info;
   info.steps = n;
-  info.newton_iterations = data.stats.newton_iterations - iterations0;
+  info.newton_iterations = data.stats.newton_iterations - stats0.newton_iterations;
+  info.factorizations = data.stats.factorizations - stats0.factorizations;
+  info.solves = data.stats.solves - stats0.solves;
   info.integration_seconds = std::chrono::duration<double>(clock::now() - start).count();
   return info;
 }

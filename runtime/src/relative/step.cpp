@@ -460,9 +460,10 @@ void relative_step(const Model& model, Data& data, double h) {
     const bool refreshed = refresh_now;
     if (refresh_now) {
       // The step's first tangent only may take a sliding tyre's exact slope (tire.cpp).
-      data.exact_sliding_tangent = refreshes == 0;
+      // It may also keep the bushings' part of the last (NewtonPolicy::bushing_tangent_steps).
+      data.exact_sliding_tangent = data.reuse_bushing_tangent = refreshes == 0;
       refresh(model, data, t1);
-      data.exact_sliding_tangent = false;
+      data.exact_sliding_tangent = data.reuse_bushing_tangent = false;
       refresh_now = false;
       ++refreshes;
     }

@@ -23,7 +23,7 @@ def run(binary, model, out_dir):
     _, status, usage = os.wait4(proc.pid, 0)
     if status != 0:
         sys.exit(f"{binary} {model} failed:\n{text}")
-    m = re.search(r"(\d+) steps, (\d+) Newton iterations, ([0-9.eE+-]+) s integration", text)
+    m = re.search(r"(\d+) steps, (\d+) Newton iterations, (?:\d+ tangents, \d+ solves, )?([0-9.eE+-]+) s integration", text)
     if not m:
         sys.exit(f"no summary line from {binary}:\n{text}")
     steps, newton, secs = int(m.group(1)), int(m.group(2)), float(m.group(3))

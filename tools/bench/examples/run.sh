@@ -18,7 +18,7 @@ trap 'rm -rf "$work"' EXIT
 bench() {  # NAME DIR END: times DIR/model.json, prints one line of the table
   local name=$1 dir=$2 end=$3 times=()
   for _ in $(seq "$runs"); do
-    # ffr-sim's summary line: "N steps, M Newton iterations, S s integration (U us per step)".
+    # ffr-sim's summary line: "N steps, M Newton iterations, F tangents, V solves, S s integration (U us per step)".
     times+=("$("$bin/ffr-sim" "$dir/model.json" -o "$dir/bench.h5" 2>&1 | grep ' s integration' | tail -1)")
   done
   local modes=()

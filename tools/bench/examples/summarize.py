@@ -11,7 +11,7 @@ name, end, model_path = sys.argv[1], float(sys.argv[2]), sys.argv[3]
 nq = {a.split("=")[0]: int(a.split("=")[1]) for a in sys.argv[4:]}
 runs = []
 for line in sys.stdin:
-    m = re.search(r"(\d+) steps, (\d+) Newton iterations, ([0-9.eE+-]+) s integration", line)
+    m = re.search(r"(\d+) steps, (\d+) Newton iterations, (?:\d+ tangents, \d+ solves, )?([0-9.eE+-]+) s integration", line)
     if m:
         runs.append((float(m.group(3)), int(m.group(1)), int(m.group(2))))
 if not runs:

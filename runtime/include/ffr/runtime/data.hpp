@@ -112,6 +112,11 @@ struct Data {
   /// order), the first and last row its tangent blocks reach, between which the factorisation
   /// clears, gathers and scans (SmallLU::compute_within); set by set_unknowns.
   std::vector<int> lu_first, lu_last;
+  /// With tangent_blocks_pay: the order of the factorised tangent's rows and columns, body by
+  /// body (tangent_blocks.cpp, factorisation_order): lu_runs maps its positions to coordinates
+  /// in runs (as unknown_runs), lu_pos a coordinate to its position (-1: not an unknown).
+  std::vector<Run> lu_runs;
+  std::vector<int> lu_pos;
   /// The pairs of distinct bodies whose off-diagonal tangent blocks can be nonzero, each once
   /// (lower index first; tangent_blocks.hpp, coupled_body_pairs).
   std::vector<std::array<int, 2>> body_pairs;
@@ -186,6 +191,15 @@ struct Data {
   Eigen::Matrix<double, 12, Eigen::Dynamic> bT;
   Eigen::Matrix<double, 6, Eigen::Dynamic> bP;
   VectorXd bt;
+  /// The bushings' part of K and C as last built ([n, n], zero outside their bodies' blocks;
+  /// empty without bushings), the steps it has been used for since (-1: none built), and
+  /// whether the tangent being built may take it instead of building it again (set by the step
+  /// for its first tangent only; NewtonPolicy::bushing_tangent_steps, force_tangents).
+  MatrixXd bushing_K, bushing_C;
+  /// The blocks of K the bushings write, each once: [row0, rows, col0, cols].
+  std::vector<std::array<int, 4>> bushing_blocks;
+  int bushing_tangent_age = -1;
+  bool reuse_bushing_tangent = false;
 
   // Constraint-Hessian work, sized for the largest pair of bodies a joint joins.
   MatrixXd cH;                  ///< [n12, n12]

@@ -50,6 +50,8 @@ class Recorder {
 struct RunInfo {
   std::int64_t steps = 0;
   std::int64_t newton_iterations = 0;
+  std::int64_t factorizations = 0;  ///< tangents built and factorised
+  std::int64_t solves = 0;          ///< solves with a factorised tangent (Newton, projections)
   double integration_seconds = 0;
 };
 
