@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -103,6 +104,60 @@ const char* kGeBeam = R"({
   ],
   "forces": [{"type": "point_torque", "body": "beam", "node": "n3", "table": {"t": [0, 1], "value": [[0.01, 0, 0], [0.01, 0, 0]]}},
              {"type": "spring_damper", "body1": "beam", "node1": "n2", "body2": "arm", "node2": "end", "k": 10, "c": 0.1}],
+  "solver": {"end": 0.2, "step": 1e-3}
+})";
+
+// A hub with branches, the hub first in the model (a vehicle's frame): two axles on bushings,
+// each carrying two wheels on revolute joints, a cab and an engine on bushings.
+const char* kHub = R"({
+  "gravity": [0, 0, -9.81],
+  "bodies": [
+    {"name": "frame", "type": "rigid", "mass": 300, "com": [0, 0, 0.8], "inertia": [[60, 0, 0], [0, 400, 0], [0, 0, 420]]},
+    {"name": "front", "type": "rigid", "mass": 80, "com": [1.3, 0, 0.4], "inertia": [[20, 0, 0], [0, 2, 0], [0, 0, 20]]},
+    {"name": "rear", "type": "rigid", "mass": 90, "com": [-1.3, 0, 0.4], "inertia": [[22, 0, 0], [0, 2, 0], [0, 0, 22]]},
+    {"name": "fl", "type": "rigid", "mass": 30, "com": [1.3, 0.7, 0.4], "inertia": [[1.2, 0, 0], [0, 2, 0], [0, 0, 1.2]]},
+    {"name": "fr", "type": "rigid", "mass": 30, "com": [1.3, -0.7, 0.4], "inertia": [[1.2, 0, 0], [0, 2, 0], [0, 0, 1.2]]},
+    {"name": "rl", "type": "rigid", "mass": 30, "com": [-1.3, 0.7, 0.4], "inertia": [[1.2, 0, 0], [0, 2, 0], [0, 0, 1.2]]},
+    {"name": "rr", "type": "rigid", "mass": 30, "com": [-1.3, -0.7, 0.4], "inertia": [[1.2, 0, 0], [0, 2, 0], [0, 0, 1.2]]},
+    {"name": "cab", "type": "rigid", "mass": 400, "com": [0.3, 0, 1.5], "inertia": [[240, 0, 0], [0, 810, 0], [0, 0, 860]]},
+    {"name": "engine", "type": "rigid", "mass": 200, "com": [1.0, 0, 1.0], "inertia": [[15, 0, 0], [0, 25, 0], [0, 0, 25]]}
+  ],
+  "joints": [
+    {"name": "wfl", "type": "revolute", "body1": "front", "body2": "fl", "at": [1.3, 0.7, 0.4], "axis": [0, 1, 0]},
+    {"name": "wfr", "type": "revolute", "body1": "front", "body2": "fr", "at": [1.3, -0.7, 0.4], "axis": [0, 1, 0]},
+    {"name": "wrl", "type": "revolute", "body1": "rear", "body2": "rl", "at": [-1.3, 0.7, 0.4], "axis": [0, 1, 0]},
+    {"name": "wrr", "type": "revolute", "body1": "rear", "body2": "rr", "at": [-1.3, -0.7, 0.4], "axis": [0, 1, 0]}
+  ],
+  "forces": [
+    {"type": "bushing", "body1": "frame", "body2": "front", "at": [1.3, 0, 0.6], "stiffness": [2e5, 2e5, 1e5, 1e4, 1e4, 1e4], "damping": [2e3, 2e3, 1e3, 10, 10, 10]},
+    {"type": "bushing", "body1": "frame", "body2": "rear", "at": [-1.3, 0, 0.6], "stiffness": [2e5, 2e5, 1e5, 1e4, 1e4, 1e4], "damping": [2e3, 2e3, 1e3, 10, 10, 10]},
+    {"type": "bushing", "body1": "frame", "body2": "cab", "at": [0.3, 0, 1.1], "stiffness": [1.5e5, 1.5e5, 3e5, 2e4, 2e4, 2e4], "damping": [1.5e3, 1.5e3, 3e3, 20, 20, 20]},
+    {"type": "bushing", "body1": "frame", "body2": "engine", "at": [1.0, 0, 0.9], "stiffness": [2e5, 2e5, 3e5, 2e4, 2e4, 2e4], "damping": [1e3, 1e3, 1.5e3, 10, 10, 10]},
+    {"type": "bushing", "body1": "ground", "body2": "frame", "at": [0, 0, 0.8], "stiffness": [1e5, 1e5, 1e5, 1e5, 1e5, 1e5], "damping": [1e3, 1e3, 1e3, 1e2, 1e2, 1e2]},
+    {"type": "point_torque", "body": "fl", "table": {"t": [0, 1], "value": [[0, 5, 0], [0, 5, 0]]}}
+  ],
+  "solver": {"end": 0.2, "step": 1e-3}
+})";
+
+// A row of links on revolute joints: banded in the model's order already.
+const char* kRow = R"({
+  "gravity": [0, -9.81, 0],
+  "bodies": [
+    {"name": "l1", "type": "rigid", "mass": 1, "com": [0.5, 0, 0], "inertia": [[0.01, 0, 0], [0, 0.1, 0], [0, 0, 0.1]]},
+    {"name": "l2", "type": "rigid", "mass": 1, "com": [1.5, 0, 0], "inertia": [[0.01, 0, 0], [0, 0.1, 0], [0, 0, 0.1]]},
+    {"name": "l3", "type": "rigid", "mass": 1, "com": [2.5, 0, 0], "inertia": [[0.01, 0, 0], [0, 0.1, 0], [0, 0, 0.1]]},
+    {"name": "l4", "type": "rigid", "mass": 1, "com": [3.5, 0, 0], "inertia": [[0.01, 0, 0], [0, 0.1, 0], [0, 0, 0.1]]},
+    {"name": "l5", "type": "rigid", "mass": 1, "com": [4.5, 0, 0], "inertia": [[0.01, 0, 0], [0, 0.1, 0], [0, 0, 0.1]]},
+    {"name": "l6", "type": "rigid", "mass": 1, "com": [5.5, 0, 0], "inertia": [[0.01, 0, 0], [0, 0.1, 0], [0, 0, 0.1]]}
+  ],
+  "joints": [
+    {"name": "j1", "type": "revolute", "body1": "ground", "body2": "l1", "at": [0, 0, 0], "axis": [0, 0, 1]},
+    {"name": "j2", "type": "revolute", "body1": "l1", "body2": "l2", "at": [1, 0, 0], "axis": [0, 0, 1]},
+    {"name": "j3", "type": "revolute", "body1": "l2", "body2": "l3", "at": [2, 0, 0], "axis": [0, 0, 1]},
+    {"name": "j4", "type": "revolute", "body1": "l3", "body2": "l4", "at": [3, 0, 0], "axis": [0, 0, 1]},
+    {"name": "j5", "type": "revolute", "body1": "l4", "body2": "l5", "at": [4, 0, 0], "axis": [0, 0, 1]},
+    {"name": "j6", "type": "revolute", "body1": "l5", "body2": "l6", "at": [5, 0, 0], "axis": [0, 0, 1]}
+  ],
   "solver": {"end": 0.2, "step": 1e-3}
 })";
 
@@ -206,4 +261,110 @@ TEST(TangentBlocks, EveryTermInsideTheBlocksAndBlockProductsAsDense) {
   check_model("carrier, tyre", test::model_from(kCarrier, dir.path));
   check_model("housed shafts, coupler of four bodies", test::model_from(kHoused, dir.path));
   check_model("beams", test::model_from(kGeBeam, dir.path));
+}
+
+// The envelope an LU without pivoting fills, in an order (pos: coordinate -> position, -1 for a
+// known coordinate), from the tangent blocks' pattern: per column, its position less the first
+// position of a row that the blocks reach (the pattern is symmetric).
+long envelope(const std::vector<std::vector<char>>& pattern, const std::vector<int>& pos) {
+  long sum = 0;
+  for (std::size_t j = 0; j < pos.size(); ++j) {
+    if (pos[j] < 0) continue;
+    int first = pos[j];
+    for (std::size_t i = 0; i < pos.size(); ++i)
+      if (pos[i] >= 0 && pattern[i][j]) first = std::min(first, pos[i]);
+    sum += pos[j] - first;
+  }
+  return sum;
+}
+
+// The factorisation's order (tangent_blocks.hpp, factorisation_order): a hub first in the model
+// is taken among the last two bodies (minimum degree: at the end the hub and its last branch
+// are left, coupled only to each other), the envelope the LU fills shrinks against the model's
+// order (counted here from the blocks' pattern), and the solve in that order agrees with the
+// tangent itself (T x = b to round-off, T unscaled and in the model's order: the oracle); a row
+// of links keeps the model's order.
+TEST(TangentBlocks, HubFactorisedLastAndSolvedAsTheTangent) {
+  test::TempDir dir("tangent_blocks_order");
+  {
+    const Model model = test::model_from(kHub, dir.path);
+    Data data(model);
+    initialize(model, data);
+    for (int s = 0; s < 10; ++s) step(model, data);
+    ASSERT_TRUE(data.tangent_blocks_pay);
+    const Body& frame = model.bodies[0];
+    int frame_first = data.nf;
+    for (int c = frame.offset; c < frame.offset + frame.ncoord(); ++c) frame_first = std::min(frame_first, data.lu_pos[static_cast<std::size_t>(c)]);
+    int after_frame = 0;
+    for (std::size_t b = 1; b < model.bodies.size(); ++b) {
+      const Body& B = model.bodies[b];
+      bool after = false;
+      for (int c = B.offset; c < B.offset + B.ncoord(); ++c) after = after || data.lu_pos[static_cast<std::size_t>(c)] > frame_first;
+      if (after) ++after_frame;
+    }
+    EXPECT_LE(after_frame, 1) << "bodies factorised after the hub";
+    std::vector<int> natural(data.lu_pos.size(), -1);
+    int next = 0;
+    for (std::size_t c = 0; c < natural.size(); ++c)
+      if (data.lu_pos[c] >= 0) natural[c] = next++;
+    const auto pattern = tangent_mask(model, data, true);
+    const long chosen = envelope(pattern, data.lu_pos), model_order = envelope(pattern, natural);
+    EXPECT_LT(chosen, model_order / 2) << "envelope " << chosen << " against " << model_order << " in the model's order";
+    const double t = data.state.t;
+    evaluate(model, data, t, Scope::All);
+    refresh_tangent(model, data, t, data.state.lambda, true);
+    const int nf = data.nf;
+    VectorXd rhs = VectorXd::Zero(model.ncoord), x = VectorXd::Zero(model.ncoord);
+    rhs.head(nf) = VectorXd::LinSpaced(nf, -1.0, 2.0);
+    solve_tangent(data, rhs, x);
+    // Every coordinate is an unknown here (no driven bodies, no known frame vectors).
+    ASSERT_TRUE(data.unknowns.empty() || static_cast<int>(data.unknowns.size()) == nf);
+    const MatrixXd T = data.T.topLeftCorner(nf, nf);
+    const double residual = (T * x.head(nf) - rhs.head(nf)).cwiseAbs().maxCoeff();
+    EXPECT_LE(residual, 1e-12 * T.cwiseAbs().maxCoeff() * x.head(nf).cwiseAbs().maxCoeff());
+    EXPECT_GT(x.head(nf).cwiseAbs().maxCoeff(), 0.0);
+  }
+  {
+    const Model model = test::model_from(kRow, dir.path);
+    Data data(model);
+    initialize(model, data);
+    step(model, data);
+    ASSERT_TRUE(data.tangent_blocks_pay);
+    for (int c = 0; c < data.nf; ++c) {
+      if (data.lu_pos[static_cast<std::size_t>(c)] < 0) continue;
+      EXPECT_EQ(data.lu_pos[static_cast<std::size_t>(c)], data.unknowns.empty() ? c : static_cast<int>(std::lower_bound(data.unknowns.begin(), data.unknowns.end(), c) - data.unknowns.begin()));
+    }
+  }
+}
+
+// NewtonPolicy::bushing_tangent_steps: a step's first tangent taking the bushings' part of one
+// built up to three steps before converges as fast (the same Newton iterations within 2 %) and
+// moves the result far less than the step's truncation error (the same run at h/2 is the
+// yardstick: the difference must stay below 1 % of it); with 1 every tangent builds its own.
+TEST(TangentBlocks, BushingTangentKeptOverStepsKeepsTheIntegratorsAccuracy) {
+  test::TempDir dir("tangent_blocks_bushing");
+  const auto run = [&](int keep, double h, std::int64_t& iterations, int& oldest) {
+    Model model = test::model_from(kHub, dir.path);
+    model.settings.policy.newton.bushing_tangent_steps = keep;
+    Data data(model);
+    initialize(model, data);
+    oldest = 0;
+    for (int s = 0; s < static_cast<int>(0.2 / h + 0.5); ++s) {
+      step(model, data, h);
+      oldest = std::max(oldest, data.bushing_tangent_age);
+    }
+    iterations = data.stats.newton_iterations;
+    return VectorXd(data.state.q);
+  };
+  std::int64_t it1 = 0, it4 = 0, it_half = 0;
+  int age1 = 0, age4 = 0, age_half = 0;
+  const VectorXd q1 = run(1, 1e-3, it1, age1);
+  const VectorXd q4 = run(4, 1e-3, it4, age4);
+  const VectorXd q_half = run(1, 5e-4, it_half, age_half);
+  EXPECT_EQ(age1, 0);
+  EXPECT_EQ(age4, 3);
+  EXPECT_LE(it4, it1 + it1 / 50);
+  const double truncation = (q1 - q_half).cwiseAbs().maxCoeff();
+  ASSERT_GT(truncation, 0.0);
+  EXPECT_LE((q4 - q1).cwiseAbs().maxCoeff(), 0.01 * truncation) << "truncation error " << truncation;
 }
