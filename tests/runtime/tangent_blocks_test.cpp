@@ -13,6 +13,7 @@
 #include "ffr/runtime/constraints.hpp"
 #include "ffr/runtime/dynamics.hpp"
 #include "ffr/runtime/integrator.hpp"
+#include "ffr/runtime/state.hpp"
 #include "integrator/tangent_blocks.hpp"
 
 #include <gtest/gtest.h>
@@ -367,4 +368,23 @@ TEST(TangentBlocks, BushingTangentKeptOverStepsKeepsTheIntegratorsAccuracy) {
   const double truncation = (q1 - q_half).cwiseAbs().maxCoeff();
   ASSERT_GT(truncation, 0.0);
   EXPECT_LE((q4 - q1).cwiseAbs().maxCoeff(), 0.01 * truncation) << "truncation error " << truncation;
+}
+
+// A restored state (step control's retry, the C API's ffr_restore_state) takes no bushing
+// tangent kept at another state: its next step builds one.
+TEST(TangentBlocks, RestoredStateBuildsItsOwnBushingTangent) {
+  test::TempDir dir("tangent_blocks_bushing_restore");
+  const Model model = test::model_from(kHub, dir.path);
+  ASSERT_GE(model.settings.policy.newton.bushing_tangent_steps, 2);
+  Data data(model);
+  initialize(model, data);
+  EXPECT_EQ(data.bushing_tangent_age, -1) << "kept from the initial settling";
+  State saved(model);
+  save_state(data, saved);
+  for (int s = 0; s < 6; ++s) step(model, data);
+  ASSERT_GE(data.bushing_tangent_age, 0);
+  restore_state(saved, data);
+  EXPECT_EQ(data.bushing_tangent_age, -1);
+  step(model, data);
+  EXPECT_EQ(data.bushing_tangent_age, 0);
 }
