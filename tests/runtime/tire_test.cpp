@@ -565,9 +565,11 @@ TEST(Tire, SlidingTyresFirstTangentIsExact) {
 // (the force is constant); with the secant slope alone (measured with the exact slope disabled)
 // it took 2.00 iterations a step and the cart ended 1.06e-3 m/s slow after 0.21 s (a speed gain
 // 0.13 % short of Coulomb's). That is not Newton stopping early: with the secant and at least
-// three iterations a step (tried) the cart's speed is the same to 3e-10 m/s. The likely cause is
-// the projections, whose metric W = M + kv C + kq K carries the secant's damping slope (not
-// isolated further).
+// three iterations a step (tried) the cart's speed is the same to 3e-10 m/s. The projections
+// cause it: their metric W = M + kv C + kq K carries the secant's damping slope along the slip,
+// so the velocity projection corrects the axle's speed motion by moving spin and cart together;
+// without the velocity projection the cart was 1.6e-6 m/s slow, without both 3.5e-10
+// (runtime/FORMULATION.md, the tyre's tangent).
 TEST(Tire, SpunWheelSlidingPushesWithMuTimesLoad) {
   std::string json = dragged_wheel("revolute");
   const auto replace = [&](const std::string& from, const std::string& to) {
