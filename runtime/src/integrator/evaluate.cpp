@@ -125,12 +125,16 @@ void factorize_within_spans(Data& data) {
       }
   });
 #ifndef NDEBUG
-  std::vector<int> coord(static_cast<std::size_t>(k));
-  for (const Data::Run& run : data.lu_runs)
-    for (int c = 0; c < run.len; ++c) coord[static_cast<std::size_t>(run.at + c)] = run.first + c;
-  for (Eigen::Index j = 0; j < k; ++j)
-    for (Eigen::Index i = 0; i < k; ++i)
-      if (i < first[j] || i > last[j]) assert(data.T(coord[static_cast<std::size_t>(i)], coord[static_cast<std::size_t>(j)]) == 0.0 && "a tangent term outside its blocks");
+  // Along the runs (position at + c holds coordinate first + c): no allocation, as in Release.
+  for (const Data::Run& cr : data.lu_runs)
+    for (int c = 0; c < cr.len; ++c) {
+      const int j = cr.at + c;
+      for (const Data::Run& rr : data.lu_runs)
+        for (int r = 0; r < rr.len; ++r) {
+          const int i = rr.at + r;
+          if (i < first[j] || i > last[j]) assert(data.T(rr.first + r, cr.first + c) == 0.0 && "a tangent term outside its blocks");
+        }
+    }
 #endif
 }
 
