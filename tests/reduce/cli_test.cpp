@@ -226,8 +226,6 @@ TEST(ReduceCli, FactorAboveTheMemoryLimitIsRefusedBeforeFactorizing) {
   EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
 }
 
-// The factorization's log line names OpenBLAS's kernels, and when they are older than the CPU
-// suits, which ones it would run and how to ask for them (ffr-reduce never changes them itself).
 // The CPU's vendor string (vendor_id of /proc/cpuinfo), empty where there is none.
 static std::string cpu_vendor() {
   std::ifstream in("/proc/cpuinfo");
@@ -239,6 +237,8 @@ static std::string cpu_vendor() {
   return {};
 }
 
+// The factorization's log line names OpenBLAS's kernels, and when they are older than the CPU
+// suits, which ones it would run and how to ask for them (ffr-reduce never changes them itself).
 TEST(ReduceCli, LogNamesTheBlasKernelsAndAUsersChoiceStands) {
   test::TempDir dir("kernels");
   const std::string json = R"({"geometry": "bar.geo", "mesh": {"size": 0.01},
