@@ -59,10 +59,12 @@ void generalized_forces(const Model& model, Data& data, double t) {
 
 namespace {
 
-// f(row0, rows, col0, cols) for the blocks of K the bushings write, each once.
-template <class F>
-void for_each_bushing_block(const Data& data, F&& f) {
-  for (const auto& [r0, nr, c0, nc] : data.bushing_blocks) f(r0, nr, c0, nc);
+// K += bushing_K, C += bushing_C over the bushings' blocks (Data::bushing_blocks).
+void add_kept_bushing_tangent(Data& data) {
+  for (const auto& [r0, nr, c0, nc] : data.bushing_blocks) {
+    data.K.block(r0, c0, nr, nc) += data.bushing_K.block(r0, c0, nr, nc);
+    data.C.block(r0, c0, nr, nc) += data.bushing_C.block(r0, c0, nr, nc);
+  }
 }
 
 // The bushings' terms of K and C (cleared over their blocks): built and kept, or the kept ones
@@ -72,27 +74,21 @@ void bushing_tangents(const Model& model, Data& data) {
   const int steps = model.settings.policy.newton.bushing_tangent_steps;
   if (data.reuse_bushing_tangent && data.bushing_tangent_age >= 0 && data.bushing_tangent_age + 1 < steps) {
     ++data.bushing_tangent_age;
-    for_each_bushing_block(data, [&](int r0, int nr, int c0, int nc) {
-      data.K.block(r0, c0, nr, nc) += data.bushing_K.block(r0, c0, nr, nc);
-      data.C.block(r0, c0, nr, nc) += data.bushing_C.block(r0, c0, nr, nc);
-    });
+    add_kept_bushing_tangent(data);
     return;
   }
   // Built alone in the kept matrices, then added: K and C hold other terms already.
-  for_each_bushing_block(data, [&](int r0, int nr, int c0, int nc) {
+  for (const auto& [r0, nr, c0, nc] : data.bushing_blocks) {
     data.bushing_K.block(r0, c0, nr, nc).setZero();
     data.bushing_C.block(r0, c0, nr, nc).setZero();
-  });
+  }
   data.K.swap(data.bushing_K);
   data.C.swap(data.bushing_C);
   for (const Bushing& b : model.bushings) detail::bushing_forces(model, b, data, false, true);
   data.K.swap(data.bushing_K);
   data.C.swap(data.bushing_C);
   data.bushing_tangent_age = 0;
-  for_each_bushing_block(data, [&](int r0, int nr, int c0, int nc) {
-    data.K.block(r0, c0, nr, nc) += data.bushing_K.block(r0, c0, nr, nc);
-    data.C.block(r0, c0, nr, nc) += data.bushing_C.block(r0, c0, nr, nc);
-  });
+  add_kept_bushing_tangent(data);
 }
 
 }  // namespace

@@ -31,18 +31,28 @@ std::vector<int> unknown_coordinates(const Model& model, const Data& data, int b
   return {lo, hi};
 }
 
-// Each column's last row within the blocks, positions given by pos (coordinate -> position).
-std::vector<int> column_lasts(const Model& model, const Data& data, const std::vector<int>& pos, int k) {
-  std::vector<int> last(static_cast<std::size_t>(k));
-  std::iota(last.begin(), last.end(), 0);
+}  // namespace
+
+void column_spans(const Model& model, const Data& data, const std::vector<int>& pos, int k, int* first, int* last) {
+  for (int j = 0; j < k; ++j) first[j] = last[j] = j;
+  // A block's rows are one body's coordinates, consecutive among the positions too.
   for_each_tangent_block(model, data, true, [&](int r0, int nr, int c0, int nc) {
-    int g1 = -1;
-    for (int r = r0; r < r0 + nr; ++r) g1 = std::max(g1, pos[static_cast<std::size_t>(r)]);
+    int g0 = k, g1 = -1;
+    for (int r = r0; r < r0 + nr; ++r)
+      if (const int g = pos[static_cast<std::size_t>(r)]; g >= 0) {
+        g0 = std::min(g0, g);
+        g1 = std::max(g1, g);
+      }
+    if (g1 < 0) return;
     for (int c = c0; c < c0 + nc; ++c)
-      if (const int j = pos[static_cast<std::size_t>(c)]; j >= 0) last[static_cast<std::size_t>(j)] = std::max(last[static_cast<std::size_t>(j)], g1);
+      if (const int j = pos[static_cast<std::size_t>(c)]; j >= 0) {
+        first[j] = std::min(first[j], g0);
+        last[j] = std::max(last[j], g1);
+      }
   });
-  return last;
 }
+
+namespace {
 
 // Multiply-adds of SmallLU's elimination on a matrix with the symmetric pattern of these
 // column ends, without pivoting: its row and column bounds widen as the elimination fills them
@@ -163,7 +173,12 @@ void factorisation_order(const Model& model, Data& data) {
   const std::vector<int> pos_r = positions(reordered);
   // The model's order unless the other saves a tenth of the work: a chain (a geometrically
   // exact beam's nodes, links in a row) is banded in its own order already.
-  if (envelope_work(column_lasts(model, data, pos_r, k)) < 0.9 * envelope_work(column_lasts(model, data, pos, k))) {
+  const auto work = [&](const std::vector<int>& p) {
+    std::vector<int> first(static_cast<std::size_t>(k)), last(static_cast<std::size_t>(k));
+    column_spans(model, data, p, k, first.data(), last.data());
+    return envelope_work(std::move(last));
+  };
+  if (work(pos_r) < 0.9 * work(pos)) {
     chosen = reordered;
     pos = pos_r;
   }
@@ -183,25 +198,8 @@ void factorisation_order(const Model& model, Data& data) {
 void tangent_row_spans(const Model& model, Data& data) {
   if (!data.tangent_blocks_pay) return;
   factorisation_order(model, data);
-  const std::vector<int>& pos = data.lu_pos;
   const int k = data.unknowns.empty() ? data.nf : static_cast<int>(data.unknowns.size());
-  for (int j = 0; j < k; ++j) data.lu_first[static_cast<std::size_t>(j)] = data.lu_last[static_cast<std::size_t>(j)] = j;
-  // A block's rows are one body's coordinates, consecutive among the positions too.
-  for_each_tangent_block(model, data, true, [&](int r0, int nr, int c0, int nc) {
-    int g0 = k, g1 = -1;
-    for (int r = r0; r < r0 + nr; ++r)
-      if (const int g = pos[static_cast<std::size_t>(r)]; g >= 0) {
-        g0 = std::min(g0, g);
-        g1 = std::max(g1, g);
-      }
-    if (g1 < 0) return;
-    for (int c = c0; c < c0 + nc; ++c) {
-      const int j = pos[static_cast<std::size_t>(c)];
-      if (j < 0) continue;
-      data.lu_first[static_cast<std::size_t>(j)] = std::min(data.lu_first[static_cast<std::size_t>(j)], g0);
-      data.lu_last[static_cast<std::size_t>(j)] = std::max(data.lu_last[static_cast<std::size_t>(j)], g1);
-    }
-  });
+  column_spans(model, data, data.lu_pos, k, data.lu_first.data(), data.lu_last.data());
 }
 
 }  // namespace ffr::runtime::detail

@@ -132,6 +132,10 @@ inline bool decide_tangent_blocks_pay(const Model& model, const Data& data) {
   return 2 * area < static_cast<long>(data.nf) * data.nf;
 }
 
+/// Per factorised column j < k (positions given by pos: coordinate -> position, -1 for a known
+/// coordinate), the first and last row that the integrated bodies' tangent blocks reach.
+void column_spans(const Model& model, const Data& data, const std::vector<int>& pos, int k, int* first, int* last);
+
 /// Data::lu_runs and lu_pos: the order of the factorised tangent's rows and columns, body by body
 /// (each body's unknowns in their own order): the model's, or a minimum-degree order of the
 /// body-coupling graph postordered along its elimination tree where that saves a tenth of the

@@ -36,6 +36,13 @@ class ProgressReport {
   clock::time_point last_;
 };
 
+// The solver's counts of a run: its stats less those at its start.
+void count_since(const Stats& start, const Stats& now, RunInfo& info) {
+  info.newton_iterations = now.newton_iterations - start.newton_iterations;
+  info.factorizations = now.factorizations - start.factorizations;
+  info.solves = now.solves - start.solves;
+}
+
 // "step": "auto": adaptive steps that land on each output time (step_control.cpp).
 RunInfo simulate_adaptive(const Model& model, Data& data, Recorder& rec, const RunOptions& opt) {
   const std::int64_t n = output_count(model);
@@ -51,9 +58,7 @@ RunInfo simulate_adaptive(const Model& model, Data& data, Recorder& rec, const R
   }
   RunInfo info;
   info.steps = control.accepted;
-  info.newton_iterations = data.stats.newton_iterations - stats0.newton_iterations;
-  info.factorizations = data.stats.factorizations - stats0.factorizations;
-  info.solves = data.stats.solves - stats0.solves;
+  count_since(stats0, data.stats, info);
   info.integration_seconds = std::chrono::duration<double>(clock::now() - start).count();
   return info;
 }
@@ -75,9 +80,7 @@ RunInfo simulate(const Model& model, Data& data, Recorder& rec, const RunOptions
   }
   RunInfo info;
   info.steps = n;
-  info.newton_iterations = data.stats.newton_iterations - stats0.newton_iterations;
-  info.factorizations = data.stats.factorizations - stats0.factorizations;
-  info.solves = data.stats.solves - stats0.solves;
+  count_since(stats0, data.stats, info);
   info.integration_seconds = std::chrono::duration<double>(clock::now() - start).count();
   return info;
 }
