@@ -72,6 +72,10 @@ void add_kept_bushing_tangent(Data& data) {
 void bushing_tangents(const Model& model, Data& data) {
   if (model.bushings.empty()) return;
   const int steps = model.settings.policy.newton.bushing_tangent_steps;
+  if (steps <= 1) {  // nothing to keep: built where it is used
+    for (const Bushing& b : model.bushings) detail::bushing_forces(model, b, data, false, true);
+    return;
+  }
   if (data.reuse_bushing_tangent && data.bushing_tangent_age >= 0 && data.bushing_tangent_age + 1 < steps) {
     ++data.bushing_tangent_age;
     add_kept_bushing_tangent(data);
