@@ -512,7 +512,7 @@ TEST(Tire, TangentsMatchFiniteDifferences) {
 
 // Sliding well beyond the friction circle (friction lowered until the linear slip forces exceed
 // mu Fn by more than tire.cpp's band), the step's first tangent takes the exact slope
-// (Data::exact_sliding_tangent with the tyre's committed tire_sliding): K and C then match
+// (Data::first_tangent_of_step with the tyre's committed tire_sliding): K and C then match
 // central differences of the forces, and the secant slope of later refreshes does not.
 TEST(Tire, SlidingTyresFirstTangentIsExact) {
   test::TempDir dir("tire_slide_jac");
@@ -544,9 +544,9 @@ TEST(Tire, SlidingTyresFirstTangentIsExact) {
   auto tangents = [&](bool exact) {
     forces(q, qd);
     std::fill(data.tire_sliding.begin(), data.tire_sliding.end(), 1);
-    data.exact_sliding_tangent = exact;
+    data.first_tangent_of_step = exact;
     force_tangents(model, data, 0.1);
-    data.exact_sliding_tangent = false;
+    data.first_tangent_of_step = false;
   };
   tangents(true);
   std::printf("exact: K %.2e (max |K| %.2e), C %.2e (max |C| %.2e)\n", rel_err(data.K, Kfd), data.K.cwiseAbs().maxCoeff(),

@@ -26,11 +26,10 @@ void save_state(const Data& d, State& s) { s = d.state; }
 
 void restore_state(const State& s, Data& d) {
   d.state = s;
-  // The factorised tangent belongs to another state and step (reuse_jacobian would keep it);
-  // so does the bushings' kept part (NewtonPolicy::bushing_tangent_steps): a rolled-back or
-  // restored run starts from one built at its own state.
-  d.tangent_valid = false;
-  d.bushing_tangent_age = -1;
+  // The factorised tangent (reuse_jacobian would keep it) and the bushings' kept part
+  // (NewtonPolicy::bushing_tangent_steps) belong to another state: a rolled-back or restored
+  // run starts from tangents built at its own.
+  d.forget_tangents();
 }
 
 namespace {

@@ -76,7 +76,7 @@ void bushing_tangents(const Model& model, Data& data) {
     for (const Bushing& b : model.bushings) detail::bushing_forces(model, b, data, false, true);
     return;
   }
-  if (data.reuse_bushing_tangent && data.bushing_tangent_age >= 0 && data.bushing_tangent_age + 1 < steps) {
+  if (data.first_tangent_of_step && data.bushing_tangent_age >= 0 && data.bushing_tangent_age + 1 < steps) {
     ++data.bushing_tangent_age;
     add_kept_bushing_tangent(data);
     return;

@@ -144,7 +144,7 @@ Contact<T> contact(const Tire& ty, const Road& rd, const V3<T>& c, const std::ar
       // secant overstates the slope (on the vehicle example's speed-up, with its front tyres
       // sliding, 0.5 an iteration and 8 iterations a step at h = 4 ms). So a tyre that slid well
       // beyond the circle at the last accepted state and still does takes the exact slope in the
-      // step's first tangent (exact_sliding: Data::exact_sliding_tangent, tire_sliding); the
+      // step's first tangent (exact_sliding: Data::first_tangent_of_step, tire_sliding); the
       // refreshes a slow iteration asks for take the secant again.
       const double lin = std::sqrt(val(Fh2));
       r.sliding = lin > kSlidingBand * val(Fmax);
@@ -198,7 +198,7 @@ void tire_tangents(const Model& model, const Tire& ty, Data& data) {
     }
   }
   const auto index = static_cast<std::size_t>(&ty - model.tires.data());
-  const bool exact_sliding = data.exact_sliding_tangent && data.tire_sliding[index];
+  const bool exact_sliding = data.first_tangent_of_step && data.tire_sliding[index];
   const Contact<AD> r = contact<AD>(ty, road_of(model, ty), c, e, cd, ed, exact_sliding);
   if (r.Fn == 0) return;
   // g = [F, 1/2 tau x e_k] and its derivatives G = [dg/dx, dg/dx_dot].

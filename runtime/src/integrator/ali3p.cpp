@@ -275,9 +275,9 @@ void step(const Model& model, Data& data, double h) {
         // Hessian is left out as well, which is therefore kept).
         // The step's first tangent only may take a sliding tyre's exact slope (tire.cpp).
         // It may also keep the bushings' part of the last (NewtonPolicy::bushing_tangent_steps).
-        data.exact_sliding_tangent = data.reuse_bushing_tangent = refreshes == 0;
+        data.first_tangent_of_step = refreshes == 0;
         refresh_tangent(model, data, t1, data.state.lambda, !(it == 1 && data.state.predictor_far));
-        data.exact_sliding_tangent = data.reuse_bushing_tangent = false;
+        data.first_tangent_of_step = false;
       }
       data.tangent_fresh_step = true;
       refactor = constraints_only = false;

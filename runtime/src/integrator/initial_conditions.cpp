@@ -201,8 +201,7 @@ std::vector<std::string> consistent_state(const Model& model, Data& data) {
   }
   detail::commit_friction(model, data, 0.0);  // the friction dampers' power at the start
   data.reaction_lambda = data.state.lambda;
-  data.tangent_valid = false;
-  data.bushing_tangent_age = -1;  // none kept from the settling's tangents
+  data.forget_tangents();  // none kept from the settling's
   set_unknowns(model, data, true);
   return notes;
 }

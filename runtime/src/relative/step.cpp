@@ -461,9 +461,9 @@ void relative_step(const Model& model, Data& data, double h) {
     if (refresh_now) {
       // The step's first tangent only may take a sliding tyre's exact slope (tire.cpp).
       // It may also keep the bushings' part of the last (NewtonPolicy::bushing_tangent_steps).
-      data.exact_sliding_tangent = data.reuse_bushing_tangent = refreshes == 0;
+      data.first_tangent_of_step = refreshes == 0;
       refresh(model, data, t1);
-      data.exact_sliding_tangent = data.reuse_bushing_tangent = false;
+      data.first_tangent_of_step = false;
       refresh_now = false;
       ++refreshes;
     }

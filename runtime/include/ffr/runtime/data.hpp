@@ -145,7 +145,14 @@ struct Data {
   SmallLU lu;                   ///< of the scaled tangent S T S (see factorize_tangent)
   VectorXd scale;               ///< S = diag(|T_ii|^-1/2): equilibration of masses vs stiffnesses
   bool tangent_valid = false;
+  /// Drops what the tangents keep for later steps (the factorised tangent, the bushings' part:
+  /// bushing_K): a run that goes on from another state (restored, settled) builds its own.
+  void forget_tangents() { tangent_valid = false; bushing_tangent_age = -1; }
   bool tangent_fresh_step = false; ///< factorised during the current step (or set-up)
+  /// Set by the step while it builds its first tangent, the one tangent that may take a sliding
+  /// tyre's exact slope (tire.cpp, FORMULATION.md 8) and the bushings' part kept from an earlier
+  /// step (NewtonPolicy::bushing_tangent_steps).
+  bool first_tangent_of_step = false;
   bool tangent_metric_only = false; ///< T = W + h^2/4 alpha Phi_q^T Phi_q exactly (the projections' own)
 
   // Integrator work.
@@ -180,10 +187,8 @@ struct Data {
   /// product, [12, nb max] each (tire.cpp).
   Eigen::Matrix<double, 12, Eigen::Dynamic> tJ, tV, tW;
   /// Tyres: sliding well beyond the friction circle at the last accepted state (commit_friction),
-  /// one each; and whether the tangent being built may take such a tyre's exact slope
-  /// (set by the step for its first tangent only: tire.cpp, FORMULATION.md 8).
+  /// one each (the step's first tangent takes such a tyre's exact slope: first_tangent_of_step).
   std::vector<char> tire_sliding;
-  bool exact_sliding_tangent = false;
   /// Bushings (bushing.cpp): each end's stacked Jacobian [J_p; J_e0; J_e1; J_e2] and a weighted
   /// product, [12, nb max] each; the rank-six factor of K, [6, n12]; one end's transposed
   /// factors g^T, (diag(c) g)^T and J^T, [nb max, 24] in all.
@@ -192,14 +197,13 @@ struct Data {
   Eigen::Matrix<double, 6, Eigen::Dynamic> bP;
   VectorXd bt;
   /// The bushings' part of K and C as last built ([n, n], zero outside their bodies' blocks;
-  /// empty without bushings), the steps it has been used for since (-1: none built), and
-  /// whether the tangent being built may take it instead of building it again (set by the step
-  /// for its first tangent only; NewtonPolicy::bushing_tangent_steps, force_tangents).
+  /// empty without bushings) and the steps it has been used for since (-1: none built); the
+  /// step's first tangent may take it instead of building it again (first_tangent_of_step,
+  /// NewtonPolicy::bushing_tangent_steps, force_tangents).
   MatrixXd bushing_K, bushing_C;
   /// The blocks of K the bushings write, each once: [row0, rows, col0, cols].
   std::vector<std::array<int, 4>> bushing_blocks;
   int bushing_tangent_age = -1;
-  bool reuse_bushing_tangent = false;
 
   // Constraint-Hessian work, sized for the largest pair of bodies a joint joins.
   MatrixXd cH;                  ///< [n12, n12]
