@@ -7,10 +7,11 @@ endfunction()
 
 # Precompiled headers: the third-party headers (Eigen, GoogleTest, nlohmann-json) take most of the
 # parsing of a typical source here (a runtime test: 3.3 of its 4.7 CPU-s at -O3), so each library
-# and the test suite parse them once. A source whose own macros must come before those headers
-# opts out with SKIP_PRECOMPILE_HEADERS; -DFFR_PCH=OFF builds without (each source then proves
-# it includes what it uses).
-option(FFR_PCH "Precompile the third-party headers once per library and once for the tests" ON)
+# (with its own most included header, the runtime's data.hpp) and the test suite parse them once
+# (tools/bench/compile/RESULTS.md). A source whose macros or optimisation flags must differ from
+# the header's opts out with SKIP_PRECOMPILE_HEADERS; -DFFR_PCH=OFF builds without (each source
+# then proves it includes what it uses).
+option(FFR_PCH "Precompile the most included headers once per library and once for the tests" ON)
 function(ffr_precompile_headers target)
   if(FFR_PCH)
     target_precompile_headers(${target} PRIVATE ${ARGN})
