@@ -273,8 +273,7 @@ void step(const Model& model, Data& data, double h) {
         // themselves), so the modal acceleration block is left to the rebuild. Measured there:
         // 2.18 Newton iterations a step without it, 2.19 with (and 2.46 when the constraint
         // Hessian is left out as well, which is therefore kept).
-        // The step's first tangent only may take a sliding tyre's exact slope (tire.cpp).
-        // It may also keep the bushings' part of the last (NewtonPolicy::bushing_tangent_steps).
+        // What the first tangent alone may take: Data::first_tangent_of_step.
         data.first_tangent_of_step = refreshes == 0;
         refresh_tangent(model, data, t1, data.state.lambda, !(it == 1 && data.state.predictor_far));
         data.first_tangent_of_step = false;

@@ -459,8 +459,7 @@ void relative_step(const Model& model, Data& data, double h) {
     assemble_residual(model, data);
     const bool refreshed = refresh_now;
     if (refresh_now) {
-      // The step's first tangent only may take a sliding tyre's exact slope (tire.cpp).
-      // It may also keep the bushings' part of the last (NewtonPolicy::bushing_tangent_steps).
+      // What the first tangent alone may take: Data::first_tangent_of_step.
       data.first_tangent_of_step = refreshes == 0;
       refresh(model, data, t1);
       data.first_tangent_of_step = false;
