@@ -19,12 +19,6 @@ std::string bdf_trim(std::string_view s) {
   return std::string(s);
 }
 
-
-namespace {
-std::string upper(std::string_view s) { return bdf_upper(s); }
-std::string trim(std::string_view s) { return bdf_trim(s); }
-}  // namespace
-
 // Small-field (8 characters), large-field (16, the name ending in '*', continuation lines
 // starting with '*') and free-field (commas) lines; '$' starts a comment; a line whose first
 // field is blank or starts with '+' or '*' continues the card before it.
@@ -36,7 +30,7 @@ std::vector<Card> read_cards(const std::string& file, const std::string& text) {
     std::size_t p = 0;
     while (p < text.size()) {
       const std::size_t e = text.find('\n', p);
-      const std::string l = upper(trim(std::string_view(text).substr(p, e == std::string::npos ? std::string::npos : e - p)));
+      const std::string l = bdf_upper(bdf_trim(std::string_view(text).substr(p, e == std::string::npos ? std::string::npos : e - p)));
       if (l.rfind("BEGIN", 0) == 0 && l.find("BULK") != std::string::npos) {
         bulk = false;
         break;
@@ -59,7 +53,7 @@ std::vector<Card> read_cards(const std::string& file, const std::string& text) {
       if (c == '\t') l.append(8 - l.size() % 8, ' ');
       else l += c;
     }
-    const std::string t = upper(trim(l));
+    const std::string t = bdf_upper(bdf_trim(l));
     if (t.empty()) continue;
     if (!bulk) {
       if (t.rfind("BEGIN", 0) == 0 && t.find("BULK") != std::string::npos) bulk = true;
@@ -75,7 +69,7 @@ std::vector<Card> read_cards(const std::string& file, const std::string& text) {
       std::size_t b = 0;
       for (;;) {
         const std::size_t c = l.find(',', b);
-        parts.push_back(upper(trim(std::string_view(l).substr(b, c == std::string::npos ? std::string::npos : c - b))));
+        parts.push_back(bdf_upper(bdf_trim(std::string_view(l).substr(b, c == std::string::npos ? std::string::npos : c - b))));
         if (c == std::string::npos) break;
         b = c + 1;
       }
@@ -96,14 +90,14 @@ std::vector<Card> read_cards(const std::string& file, const std::string& text) {
                  " data fields and a continuation marker; found " + std::to_string(data.size()));
       data.resize(per_line);
     } else {
-      first = upper(trim(l.substr(0, std::min<std::size_t>(8, l.size()))));
+      first = bdf_upper(bdf_trim(l.substr(0, std::min<std::size_t>(8, l.size()))));
       const bool large = (!first.empty() && first.back() == '*') || (!first.empty() && first[0] == '*');
       const std::size_t width = large ? 16 : 8, count = large ? 4 : 8;
       for (std::size_t k = 0; k < count; ++k) {
         const std::size_t b = 8 + k * width;
-        data.push_back(b < l.size() ? upper(trim(l.substr(b, std::min(width, l.size() - b)))) : std::string());
+        data.push_back(b < l.size() ? bdf_upper(bdf_trim(l.substr(b, std::min(width, l.size() - b)))) : std::string());
       }
-      if (l.size() > 80 && !trim(l.substr(80)).empty()) throw at("characters beyond column 80 of a fixed-field line");
+      if (l.size() > 80 && !bdf_trim(l.substr(80)).empty()) throw at("characters beyond column 80 of a fixed-field line");
     }
     const bool continuation = first.empty() || first[0] == '+' || first[0] == '*';
     if (continuation) {

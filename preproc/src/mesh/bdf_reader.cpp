@@ -25,8 +25,6 @@ namespace {
 
 using formats::FormatError;
 
-std::string upper(std::string_view s) { return bdf_upper(s); }
-
 struct ElementCard {
   const char* name;
   ElementType linear, quadratic;  // by node count: 4/10, 8/20, or one type
@@ -351,7 +349,7 @@ std::vector<DeckSection> sections(const Bulk& b) {
 }  // namespace
 
 bool is_bdf(const std::filesystem::path& file) {
-  const std::string e = upper(file.extension().string());
+  const std::string e = bdf_upper(file.extension().string());
   return e == ".BDF" || e == ".DAT" || e == ".NAS";
 }
 

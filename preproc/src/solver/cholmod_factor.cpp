@@ -10,6 +10,7 @@
 #include "tree_cholesky.hpp"
 #include "ffr/preproc/solver/memory.hpp"
 #include "ffr/preproc/threads.hpp"
+#include "stopwatch.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -60,9 +61,6 @@ const char* to_string(FactorStatus s) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 const char* ordering_name(int cholmod_ordering) {
   switch (cholmod_ordering) {

@@ -1,6 +1,7 @@
 #include "ffr/preproc/solver/eigen_solver.hpp"
 
 #include "eigen_backends.hpp"
+#include "stopwatch.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -36,9 +37,6 @@ const char* to_string(EigenStatus s) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 void validate_options(const EigenOptions& o) {
   auto bad = [](const std::string& m) { throw std::invalid_argument("eigen-solver options: " + m); };

@@ -6,6 +6,7 @@
 #include "ffr/runtime/model.hpp"
 
 #include "../integrator/kernel_clones.hpp"
+#include "../number_text.hpp"
 
 #include <Eigen/Geometry>
 
@@ -50,12 +51,6 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
   Eigen::Matrix3d m;
   m << 0, -a(2), a(1), a(2), 0, -a(0), -a(1), a(0), 0;
   return m;
-}
-
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
 }
 
 // Adds w (sxx sxx^T (x) A + sxx sx^T (x) B + sx sxx^T (x) B^T + sx sx^T (x) C) to the 12 x 12 K

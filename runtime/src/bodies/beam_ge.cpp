@@ -15,6 +15,7 @@
 #include "ffr/runtime/data.hpp"
 #include "ffr/runtime/errors.hpp"
 #include "ffr/runtime/model.hpp"
+#include "../number_text.hpp"
 
 #include <Eigen/Geometry>
 
@@ -142,12 +143,6 @@ void strains(double h, const Vec10& p, Eigen::Matrix<double, 6, 1>& e, Eigen::Ma
     }
     Hk(3, 3) = f.Fcc * s(i) / h;
   }
-}
-
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
 }
 
 }  // namespace

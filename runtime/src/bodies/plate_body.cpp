@@ -5,6 +5,7 @@
 #include "ffr/runtime/errors.hpp"
 #include "ffr/runtime/model.hpp"
 #include "ffr/runtime/plate.hpp"
+#include "../number_text.hpp"
 
 #include <Eigen/Geometry>
 
@@ -14,12 +15,6 @@
 
 namespace ffr::runtime {
 namespace {
-
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
 
 // The support rows of one edge: at each of its nodes, what the edge holds (0 nothing, 1 the
 // normal component, 2 all three) of r, r_x, r_y, r_xy. Simply supported (hinged, immovable):

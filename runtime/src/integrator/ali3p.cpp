@@ -14,6 +14,7 @@
 #include "ffr/runtime/kinematics.hpp"
 #include "ffr/runtime/relative.hpp"
 #include "../forces/forces.hpp"
+#include "../number_text.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -21,12 +22,6 @@
 
 namespace ffr::runtime {
 namespace {
-
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
-}
 
 // The coordinate with the largest weighted increment dq (scaled_norm), as "body 'name',
 // coordinate", and that size.

@@ -12,6 +12,7 @@
 #include "ffr/runtime/integrator.hpp"
 #include "ffr/runtime/kinematics.hpp"
 #include "ffr/runtime/statics.hpp"
+#include "../number_text.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -44,12 +45,6 @@ void factor_metric(const Model& model, Data& data, double alpha_factor, double t
   add_penalty_tangent(model, data, data.alpha, t_factor, data.T);
   factorize_tangent(data);
   data.tangent_metric_only = true;
-}
-
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
 }
 
 // Largest change of a body's frame (origin, or frame vectors times the model length).

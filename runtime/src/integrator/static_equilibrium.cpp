@@ -20,6 +20,7 @@
 #include "ffr/runtime/dynamics.hpp"
 #include "ffr/runtime/errors.hpp"
 #include "ffr/runtime/integrator.hpp"
+#include "../number_text.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/SVD>
@@ -41,12 +42,6 @@ constexpr int kStepIterations = 30;
 constexpr double kMaxCorrection = 0.2;
 // The reduced stiffness, Jacobi-scaled (unit diagonal), is singular below this eigenvalue.
 constexpr double kSingular = 1e-9;
-
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
-}
 
 // The coordinate with the largest weighted entry of v, as "body 'name', what".
 std::string coordinate_name(const Model& model, const VectorXd& v) {

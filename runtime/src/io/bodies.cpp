@@ -1,6 +1,7 @@
 // Rigid and flexible bodies from their physical description (FORMULATION.md section 3).
 #include "ffr/runtime/errors.hpp"
 #include "ffr/runtime/load.hpp"
+#include "../number_text.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -9,12 +10,6 @@
 
 namespace ffr::runtime {
 namespace {
-
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
 
 // /sid/Ke/M1, checked: nq slices of nq x nq, finite, each symmetric (Phi_i^T K_G Phi_j).
 struct ModalStress {

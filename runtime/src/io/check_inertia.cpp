@@ -3,6 +3,7 @@
 // joint holds that rotation, the mass matrix is singular there and the first step would end
 // in a non-finite state that names nothing; refused here naming the body instead.
 #include "parse.hpp"
+#include "../number_text.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -11,12 +12,6 @@
 
 namespace ffr::runtime::detail {
 namespace {
-
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
 
 // Whether the joint holds the rotation of its body about `axis` (body components) relative to
 // the other body. A universal joint is taken to hold it: which rotation it frees depends on the

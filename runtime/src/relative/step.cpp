@@ -21,6 +21,7 @@
 #include "ffr/runtime/state.hpp"
 #include "../forces/forces.hpp"
 #include "solves.hpp"
+#include "../number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,12 +33,6 @@ namespace ffr::runtime {
 using namespace relative_detail;
 
 namespace {
-
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
-}
 
 double scaled(const RelativeWork& w, const VectorXd& ds) {
   return ds.size() == 0 ? 0.0 : ds.cwiseAbs().cwiseProduct(w.weight).maxCoeff();

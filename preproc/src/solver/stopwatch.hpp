@@ -1,0 +1,12 @@
+#pragma once
+// Wall time of a solver stage, for the statistics the solvers report (internal).
+
+#include <chrono>
+
+namespace ffr::preproc {
+
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace ffr::preproc
