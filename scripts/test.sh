@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The test command (CI runs it through .ci/run). Three stages:
 #  1. installs what is missing, builds Release in build/ and runs the whole test suite there;
-#  2. a short run of every libFuzzer target, half a minute each (tools/fuzz/README.md);
+#  2. a short run of every libFuzzer target, 20 s each (tools/fuzz/README.md);
 #  3. builds the test suite again with AddressSanitizer and UndefinedBehaviorSanitizer
 #     (cmake -DFFR_SANITIZE=ON, Debug at -O1, benchmarks off) in build-asan/ and runs it there,
 #     stopping at the first report (scripts/sanitize/README.md: options, suppressions, subset).
@@ -18,9 +18,9 @@ bash "$here/scripts/setup.sh"
 # A short run of every libFuzzer target (clang build in build-fuzz/ of the targets and what they
 # link only, ASan + UBSan): a crash, a sanitizer report, a leak or a hang on any input fails the
 # test command, with the input kept in build-fuzz/fuzz/crashes/TARGET/. FFR_FUZZ_SECONDS per
-# target, 30 unless set (a smoke run: each target's corpus and regressions are also replayed by
+# target, 20 unless set (a smoke run: each target's corpus and regressions are also replayed by
 # the suite's fuzz area); 0 skips the stage.
-fuzz_seconds=${FFR_FUZZ_SECONDS:-30}
+fuzz_seconds=${FFR_FUZZ_SECONDS:-20}
 if [ "$fuzz_seconds" != 0 ]; then
   nice bash "$here/tools/fuzz/run.sh" --seconds "$fuzz_seconds"
 fi
@@ -35,6 +35,9 @@ san="$here/scripts/sanitize"
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:check_initialization_order=1:strict_init_order=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 export LSAN_OPTIONS="suppressions=$san/lsan.supp:print_suppressions=0"
+# The damaged-SID corpus (tests/formats/damaged_corpus_test.cpp) at half its runs: each starts
+# three instrumented programs, and the fuzz stage's sid_reader target covers the same reader.
+export FFR_DAMAGED_CORPUS=thin
 
 # The pass covers the formats, the runtime and the reducer: their libraries, the tools the tests
 # start (ffr-reduce, ffr-sim, ffr-info, ffr-diff, ffr-synth) and the test areas chosen by what

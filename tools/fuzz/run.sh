@@ -25,10 +25,8 @@ done
 if [ ! -f "$build/CMakeCache.txt" ]; then
   launcher=()
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
-  # -O1 with assertions (Eigen's bounds checks included): what fuzzing should see. Without
-  # precompiled headers (FFR_PCH): the one build of the test command whose formats and runtime
-  # sources must each include what they use.
-  cmake -S "$here" -B "$build" -G Ninja -DFFR_FUZZ=ON -DFFR_PCH=OFF -DFFR_BUILD_PREPROC=OFF -DFFR_BUILD_TESTS=OFF \
+  # -O1 with assertions (Eigen's bounds checks included): what fuzzing should see.
+  cmake -S "$here" -B "$build" -G Ninja -DFFR_FUZZ=ON -DFFR_BUILD_PREPROC=OFF -DFFR_BUILD_TESTS=OFF \
     -DFFR_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1" \
     "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
     "${launcher[@]}" >/dev/null

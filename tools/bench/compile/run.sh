@@ -30,9 +30,12 @@ for pch in "${values[@]}"; do
   start=$(date +%s.%N)
   cmake --build "$dir" -j "$jobs" >"$dir.log" 2>&1 || { echo "build with FFR_PCH=$pch failed: $dir.log" >&2; exit 1; }
   end=$(date +%s.%N)
-  # .ninja_log: start and end (ms), mtime, output. Steps are grouped by the output's top folder;
-  # everything under tests/ is "tests", links and archives are "link".
+  # .ninja_log: start and end (ms), mtime, output, command hash; a step with several outputs (a
+  # test's link, which also writes its list of tests) has one line per output, counted once.
+  # Steps are grouped by the output's top folder; everything under tests/ is "tests", links and
+  # archives are "link".
   awk -v name="$config FFR_PCH=$pch" -v start="$start" -v end="$end" 'NR > 1 {
+      if (seen[$1 " " $2 " " $5]++) next
       d = ($2 - $1) / 1000; total += d
       split($4, part, "/"); layer = part[1]
       if ($4 !~ /\.(o|gch)$/) layer = "link"; else if ($4 ~ /^tests\//) layer = "tests"
