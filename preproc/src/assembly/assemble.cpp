@@ -5,6 +5,7 @@
 #include "../run_parts.hpp"
 #include "coloring.hpp"
 #include "pattern.hpp"
+#include "../stopwatch.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -163,7 +164,7 @@ Assembled assemble(const FeModel& model, const AssemblyOptions& opt) {
     out.rrdm += X.transpose() * MX;
   }
   if (opt.progress) opt.progress(1.0);
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.seconds = seconds_since(t0);
   return out;
 }
 

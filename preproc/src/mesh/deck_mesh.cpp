@@ -2,6 +2,7 @@
 
 #include "ffr/formats/h5.hpp"
 #include "node_order.hpp"
+#include "../stopwatch.hpp"
 
 #include <algorithm>
 #include <map>
@@ -100,7 +101,7 @@ Mesh build_deck_mesh(const DeckMesh& d, MeshReport* report, std::chrono::steady_
     report->nodes = mesh.num_nodes();
     report->meshed = false;
     report->gmsh_log.clear();
-    report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report->seconds = seconds_since(start);
   }
   return mesh;
 }

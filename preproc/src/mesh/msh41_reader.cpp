@@ -1,6 +1,7 @@
 #include "msh41_reader.hpp"
 
 #include "node_order.hpp"
+#include "../stopwatch.hpp"
 
 #include <algorithm>
 #include <array>
@@ -358,7 +359,7 @@ std::optional<Mesh> read_msh41(const std::string& file, MeshReport* report) {
     report->nodes = mesh.num_nodes();
     report->meshed = false;
     report->gmsh_log.clear();
-    report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    report->seconds = seconds_since(t0);
   }
   return mesh;
 }

@@ -5,6 +5,7 @@
 #include "../solver/slepc_distributed.hpp"
 #include "reduction_parts.hpp"
 #include "setup.hpp"
+#include "../stopwatch.hpp"
 
 #include <nlohmann/json.hpp>
 #include <sys/resource.h>
@@ -100,8 +101,7 @@ ReductionResult DistributedReduction::reduce(Assembled& fe, const ReductionLog& 
   release(M);
   row_entries_ = pencil.local_nonzeros();
   require_mass(static_cast<Index>(pencil.massless_dofs()), t_.num_ind(), part);
-  const double t_constraints =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
+  const double t_constraints = seconds_since(clock);
 
   const bool free = spec_.method == ReductionSpec::Method::Free;
   // The serial path's shifts (reduction.cpp).

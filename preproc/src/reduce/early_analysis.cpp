@@ -6,6 +6,7 @@
 #include "pattern_analysis.hpp"
 #include "setup.hpp"
 #include "sparse_ops.hpp"
+#include "../stopwatch.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -73,7 +74,7 @@ EarlyAnalysis EarlyAnalysis::start(const FeModel& model, const ReductionSpec& sp
       // again, in its usual order and with its usual message.
       s->factor.reset();
     }
-    s->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    s->seconds = seconds_since(t0);
   });
   return e;
 }

@@ -6,6 +6,7 @@
 #include "ffr/preproc/threads.hpp"
 #include "geometric_kernels.hpp"
 #include "static_solver.hpp"
+#include "../stopwatch.hpp"
 
 #include <Eigen/Geometry>
 
@@ -228,7 +229,7 @@ StiffeningResult compute(const FeModel& model, const Assembled& fe, const Eigen:
         throw std::invalid_argument("the geometric stiffness of mode " + std::to_string(k) + "'s stress is not finite");
     if (log)
       log("stiffening: Ke/M1 from the stress of " + std::to_string(Phi.cols()) + " modes [" +
-          std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()) + " s]");
+          std::to_string(seconds_since(t0)) + " s]");
   }
 
   // Prestress from the part's preload.

@@ -10,7 +10,7 @@
 #include "tree_cholesky.hpp"
 #include "ffr/preproc/solver/memory.hpp"
 #include "ffr/preproc/threads.hpp"
-#include "stopwatch.hpp"
+#include "../stopwatch.hpp"
 
 #include <algorithm>
 #include <chrono>

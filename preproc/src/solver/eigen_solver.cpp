@@ -1,7 +1,7 @@
 #include "ffr/preproc/solver/eigen_solver.hpp"
 
 #include "eigen_backends.hpp"
-#include "stopwatch.hpp"
+#include "../stopwatch.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -21,6 +21,7 @@
 #if FFR_HAVE_SLEPC
 #include "petsc_mumps.hpp"
 #include "petsc_support.hpp"
+#include "../stopwatch.hpp"
 #endif
 
 namespace ffr::preproc::detail {
@@ -352,7 +353,7 @@ DistributedModes DistributedPencil::eigenmodes(const Eigen::MatrixXd& R, const E
     nev = static_cast<int>(std::min<std::int64_t>({static_cast<std::int64_t>(grow_nev(nev, top, o.lambda_max, o.sigma)),
                                                    static_cast<std::int64_t>(o.max_modes) + 1, n_eff}));
   }
-  out.solve_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  out.solve_seconds = seconds_since(t0);
   const auto t1 = Clock::now();
   if (progress) progress("slepc: Rayleigh-Ritz and checks");
 
@@ -440,7 +441,7 @@ DistributedModes DistributedPencil::eigenmodes(const Eigen::MatrixXd& R, const E
   out.XtMX = std::move(res.XtMX);
   out.max_relative_residual = res.max_relative_residual;
   out.orthonormality_error = res.orthonormality_error;
-  out.verify_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
+  out.verify_seconds = seconds_since(t1);
   return out;
 }
 

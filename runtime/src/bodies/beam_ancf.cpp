@@ -11,7 +11,6 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
-#include <cstdio>
 
 namespace ffr::runtime {
 namespace {

@@ -21,7 +21,6 @@
 
 #include <array>
 #include <cmath>
-#include <cstdio>
 
 namespace ffr::runtime {
 namespace {

@@ -11,7 +11,6 @@
 
 #include <array>
 #include <cmath>
-#include <cstdio>
 
 namespace ffr::runtime {
 namespace {

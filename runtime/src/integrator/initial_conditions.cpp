@@ -15,7 +15,6 @@
 #include "../number_text.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 namespace ffr::runtime {

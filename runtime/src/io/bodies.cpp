@@ -6,7 +6,6 @@
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
-#include <cstdio>
 
 namespace ffr::runtime {
 namespace {

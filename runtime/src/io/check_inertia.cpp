@@ -8,7 +8,6 @@
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
-#include <cstdio>
 
 namespace ffr::runtime::detail {
 namespace {

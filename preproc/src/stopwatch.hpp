@@ -1,5 +1,5 @@
 #pragma once
-// Wall time of a solver stage, for the statistics the solvers report (internal).
+// Wall time of a stage of the reducer, for the statistics and progress it reports (internal).
 
 #include <chrono>
 
