@@ -40,7 +40,8 @@ struct NewtonPolicy {
   /// example at h = 4 ms (35 kg wheels among bodies of 170 kg on average) had penalty * increment
   /// ~ 0.13, and the second and third updates then undid each other along the axles' and wheels'
   /// pitch (a contraction of 0.99, the two increments anti-parallel) until a refresh at the fourth:
-  /// over its 15 s, 4.10 iterations a step at 1 and 0.2, 2.69 at 0.1, 2.65 at 0.03. The washing
+  /// over its 15 s, 3.53 iterations a step at 1 and 0.2 (the same as with no rebuild), 2.12 at 0.1,
+  /// 2.08 at 0.03 (rebuilt in 3058 of its 3750 steps, most of them over the rough road). The washing
   /// machine (0.2 kg bearing housings, h = 0.25 ms, 10 s): 2.75 iterations a step at 1, 2.04 at
   /// 0.1, 1.90 at 0.03 and 1.88 at 0.01, the tangents built a step 1.49 to 1.50; below 0.03 the
   /// vehicle at 2 ms (penalty * increment ~ 0.014) would rebuild at every step for nothing. The
