@@ -17,7 +17,6 @@
 #include "../number_text.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 namespace ffr::runtime {
@@ -173,10 +172,8 @@ void check_drives(const Model& model, const Data& data, double t) {
                        : b.kind == BlockKind::Motion ? "the motion of joint '" + model.joints[static_cast<std::size_t>(model.motions[static_cast<std::size_t>(b.index)].joint)].name + "'"
                        : b.kind == BlockKind::Coupler ? "coupler '" + model.couplers[static_cast<std::size_t>(b.index)].name + "'"
                                                      : "the frame of '" + name(b.body1) + "'";
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "%.3g", v);
     throw SolverError(t, v,
-                      what + " between '" + name(b.body1) + "' and '" + name(b.body2) + "' is violated by " + buf +
+                      what + " between '" + name(b.body1) + "' and '" + name(b.body2) + "' is violated by " + fmt(v) +
                           " of the model length at t = " + std::to_string(t) +
                           " s: the joints and motions that drive these bodies from the ground disagree");
   }
