@@ -3,7 +3,6 @@
 #include <cerrno>
 #include <charconv>
 #include <fstream>
-#include <iterator>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -39,8 +38,11 @@ bool is_hex(char c) { return is_digit(c) || (c >= 'a' && c <= 'f'); }
 // When process `pid` started, in seconds since the epoch; negative if unknown. From
 // /proc/PID/stat (field 22, clock ticks after boot) and /proc/stat's btime.
 double process_start(long pid) {
+  // getline, not an istreambuf_iterator: if the process ends during the read, the kernel fails
+  // it with ESRCH, which the stream's own functions turn into a failed read, not an exception.
   std::ifstream st("/proc/" + std::to_string(pid) + "/stat");
-  std::string text((std::istreambuf_iterator<char>(st)), std::istreambuf_iterator<char>());
+  std::string text;
+  std::getline(st, text);
   const auto close = text.rfind(')');  // the command name may hold spaces and parentheses
   if (close == std::string::npos) return -1;
   std::istringstream fields(text.substr(close + 1));

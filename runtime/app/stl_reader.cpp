@@ -1,6 +1,7 @@
 #include "stl_reader.hpp"
 
 #include "ffr/formats/h5.hpp"
+#include "ffr/formats/text_file.hpp"
 
 #include <Eigen/Geometry>
 
@@ -9,8 +10,6 @@
 #include <cstdlib>
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -114,9 +113,7 @@ std::vector<Corner> read_ascii(const std::filesystem::path& path, const std::str
 }  // namespace
 
 SurfaceMesh read_stl(const std::filesystem::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw FormatError(path.string(), "", "cannot open the STL file");
-  const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  const std::string bytes = formats::read_text_file(path);  // names the file when it is missing, a folder or unreadable
   if (bytes.size() >= 84) {
     std::uint32_t n = 0;
     std::memcpy(&n, bytes.data() + 80, sizeof n);

@@ -55,15 +55,33 @@ std::string slurp(const std::filesystem::path& p) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
+// A file under /proc/PID, or "" when the process ends while it is read: the kernel then fails
+// the read with ESRCH, which std::ifstream turns into an exception.
+std::string read_proc(const std::filesystem::path& p) {
+  const int fd = ::open(p.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return {};
+  std::string s;
+  char buf[4096];
+  for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) != 0;) {
+    if (n < 0) {
+      s.clear();
+      break;
+    }
+    s.append(buf, static_cast<size_t>(n));
+  }
+  ::close(fd);
+  return s;
+}
+
 // Processes (not zombies) whose command line mentions `needle`: ffr-reduce and its forked child.
 std::vector<pid_t> processes_naming(const std::string& needle) {
   std::vector<pid_t> found;
   for (const auto& e : std::filesystem::directory_iterator("/proc")) {
     const std::string name = e.path().filename().string();
     if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::string cmd = slurp(e.path() / "cmdline");
+    const std::string cmd = read_proc(e.path() / "cmdline");
     if (cmd.find(needle) == std::string::npos) continue;
-    const std::string stat = slurp(e.path() / "stat");
+    const std::string stat = read_proc(e.path() / "stat");
     const auto close = stat.rfind(')');
     if (close != std::string::npos && close + 2 < stat.size() && stat[close + 2] == 'Z') continue;
     found.push_back(static_cast<pid_t>(std::stol(name)));
@@ -106,7 +124,7 @@ std::vector<pid_t> children_of(pid_t pid) {
   for (const auto& e : std::filesystem::directory_iterator("/proc")) {
     const std::string name = e.path().filename().string();
     if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    const std::string stat = slurp(e.path() / "stat");
+    const std::string stat = read_proc(e.path() / "stat");
     const auto close = stat.rfind(')');
     if (close == std::string::npos) continue;
     std::istringstream f(stat.substr(close + 2));

@@ -473,7 +473,8 @@ TEST(VtkSeries, RigidBodiesDrawnByTheirStlSurfaces) {
 
 TEST(VtkSeries, BadStlIsRefusedBeforeTheRun) {
   if (!std::filesystem::exists(test::bin("ffr-sim"))) GTEST_SKIP() << "ffr-sim missing";
-  const std::pair<std::string, std::string> cases[] = {{"missing.stl", "missing.stl: cannot open the STL file"},
+  const std::pair<std::string, std::string> cases[] = {{"missing.stl", "missing.stl: no such file"},
+                                                       {"folder.stl", "folder.stl: is a directory, not a file"},
                                                        {"cut.stl", "cut.stl: facet 2: the file ends inside the facet"},
                                                        {"flat.stl", "flat.stl: facet 1: the facet has zero area"},
                                                        {"tet.obj", "must name an STL file"}};
@@ -481,6 +482,7 @@ TEST(VtkSeries, BadStlIsRefusedBeforeTheRun) {
     RigidScene run(file);
     test::write_text(run.dir / "cut.stl", ascii_tetrahedron(Eigen::Vector3d::Zero(), 1));
     test::write_text(run.dir / "flat.stl", ascii_tetrahedron(Eigen::Vector3d::Zero(), 2));
+    std::filesystem::create_directory(run.dir / "folder.stl");
     const auto r = run.sim();
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
