@@ -226,3 +226,18 @@ TEST(BadInput, LineOfMassOnASphericalJointIsRefusedNamingTheBody) {
                      dir.path),
             "");
 }
+
+// More coordinates than the step's dense matrices are sized for: refused once the bodies are
+// counted, naming the count and the largest body, before any matrix of that size is made. 416
+// rigid bodies have 4992 coordinates (allowed: the model loads), 417 have 5004.
+TEST(BadInput, MoreCoordinatesThanTheStepHoldsAreRefused) {
+  const auto bodies = [](int n) {
+    std::string s;
+    for (int i = 0; i < n; ++i)
+      s += std::string(i ? ", " : "") + R"({"name": "b)" + std::to_string(i) +
+           R"(", "type": "rigid", "mass": 1.0, "inertia": [[1e-3, 0, 0], [0, 1e-3, 0], [0, 0, 1e-3]]})";
+    return s;
+  };
+  EXPECT_EQ(test::model_from(model(bodies(kMaxModelCoordinates / 12))).ncoord, 12 * (kMaxModelCoordinates / 12));
+  expect_error(model(bodies(kMaxModelCoordinates / 12 + 1)), "bodies", "the model has 5004 coordinates in 417 bodies");
+}

@@ -260,6 +260,10 @@ TEST(BeamElastica, BadInputIsRefusedNamingTheField) {
     return s.replace(at, from.size(), to);
   };
   test::expect_error(with("\"elements\": 4", "\"elements\": 0"), "bodies[0].elements", "at least 1");
+  // More elements than the dense shape integrals hold: refused before they are allocated (100 000
+  // elements ended in "std::bad_alloc", exit 1; 3 000 spent minutes zeroing 9 GB).
+  test::expect_error(with("\"elements\": 4", "\"elements\": 241"), "bodies[0].elements", "at most 240");
+  test::expect_error(with("\"elements\": 4", "\"elements\": 100000"), "bodies[0].elements", "600006 nodal coordinates");
   test::expect_error(with("\"end\": [1, 0, 0]", "\"end\": [0, 0, 0]"), "bodies[0].end", "zero length");
   test::expect_error(with("\"node\": \"end\"", "\"node\": \"n5\""), "node", "has no node 'n5'");
   test::expect_error(with("\"node2\": \"start\"", "\"node2\": \"n-1\""), "node2", "has no node 'n-1'");

@@ -292,6 +292,15 @@ GeBeam make_ge_beam(std::vector<Body>& nodes, const std::string& name, const Eig
                     double area, double Iy, double Iz, double J, double shear_factor, double tau, const std::string& file,
                     const std::string& field) {
   if (elements < 1) throw ModelError(file, field + ".elements", "must be at least 1 (found " + std::to_string(elements) + ")");
+  // Each node is a body of twelve coordinates: refused here, before the node bodies are made,
+  // rather than by finalize's count of the model's coordinates.
+  if (12LL * (elements + 1LL) > kMaxModelCoordinates) {
+    std::string what = "is ";
+    what += std::to_string(elements) + ": its " + std::to_string(elements + 1LL) + " node bodies would have ";
+    what += std::to_string(12LL * (elements + 1LL)) + " coordinates; a model has at most " + std::to_string(kMaxModelCoordinates);
+    what += " (the step's matrices are dense in them), so at most " + std::to_string(kMaxModelCoordinates / 12 - 1) + " elements";
+    throw ModelError(file, field + ".elements", what);
+  }
   const double L = (end - start).norm();
   const double size = std::max(start.cwiseAbs().maxCoeff(), end.cwiseAbs().maxCoeff());
   if (!(L > 1e-12 * std::max(1.0, size)))
@@ -336,7 +345,8 @@ GeBeam make_ge_beam(std::vector<Body>& nodes, const std::string& name, const Eig
     b.yd0.resize(0);
     // The node's one slice: at its frame origin; joints, forces and outputs name it n<k>.
     NodeSlice s;
-    s.name = "n" + std::to_string(k);
+    s.name = "n";  // then the index (as one expression GCC 12 warns of a bogus memcpy bound)
+    s.name += std::to_string(k);
     s.phi.resize(3, 0);
     s.psi.resize(3, 0);
     b.nodes.push_back(std::move(s));

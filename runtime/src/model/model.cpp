@@ -241,6 +241,15 @@ void finalize(Model& m) {
       const Body& b = m.bodies[static_cast<std::size_t>(mk.body)];
       size = std::max(size, (mk.c - b.rdm / b.mass).norm());
     }
+  if (off > kMaxModelCoordinates) {
+    const auto most = std::max_element(m.bodies.begin(), m.bodies.end(),
+                                       [](const Body& a, const Body& b) { return a.ncoord() < b.ncoord(); });
+    throw ModelError(m.source, "bodies",
+                     "the model has " + std::to_string(off) + " coordinates in " + std::to_string(m.bodies.size()) +
+                         " bodies (the most, " + std::to_string(most->ncoord()) + ", in body '" + most->name +
+                         "'); at most " + std::to_string(kMaxModelCoordinates) +
+                         " are allowed: the step's matrices are dense in them");
+  }
   m.ncoord = off;
   m.nunknown = m.nfree;
   for (const auto& b : m.bodies) m.nunknown -= 12 - detail::first_known_frame_coord(m, b);

@@ -35,6 +35,11 @@ struct AncfBeam {
   double element_length() const { return length / elements; }
 };
 
+/// At most this many elements in an ancf beam (make_beam_body refuses more): its inertia is held
+/// as a flexible body's dense shape integrals, about twenty nq x nq matrices, 0.4 GB at 240
+/// elements (1446 coordinates, the plate's limit of 121 nodes gives 1452).
+constexpr int kMaxAncfBeamElements = 240;
+
 /// A beam body: the straight beam from `start` to `end` in `elements` elements, its inertia as
 /// the FFR body's shape integrals (formats/SPEC.md section 7 with Phi = the shape functions),
 /// nodes n0 .. nN, start, end. Throws ModelError (file, field) on degenerate input.

@@ -393,6 +393,12 @@ struct SolverSettings {
   Formulation formulation = Formulation::Absolute;
 };
 
+/// At most this many coordinates in a model (finalize refuses more): the step holds dense
+/// coordinate-by-coordinate matrices (K, C, W, T and the tangent's LU; the constraint Jacobian and
+/// the projections' matrices of as many rows), about 1 GB at this size, and a model far beyond it
+/// spent minutes zeroing them before it ran out of memory.
+constexpr int kMaxModelCoordinates = 5000;
+
 struct Model {
   std::string source;            ///< model file (for messages)
   Vector3d gravity = Vector3d::Zero();
