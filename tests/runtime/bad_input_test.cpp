@@ -82,6 +82,17 @@ TEST(BadInput, StepNotDividingTheRun) {
   expect_error(json, "solver.step", "whole number of steps");
 }
 
+// A bound on Newton's iterations that makes a stalled step run for hours is refused (it took up
+// to 1e9; with "newton_tolerance": 1e-30 every step stalls at round-off).
+TEST(BadInput, NewtonIterationsBeyondAThousandAreRefused) {
+  const auto solver = [](const std::string& n) {
+    return R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"end": 1, "step": 0.001, "max_iterations": )" + n + "}}";
+  };
+  EXPECT_EQ(test::model_from(solver("1000")).settings.max_iterations, 1000);
+  expect_error(solver("1001"), "solver.max_iterations", "must be at most 1000");
+  expect_error(solver("1000000000"), "solver.max_iterations", "a smaller step is the remedy");
+}
+
 TEST(BadInput, StepLongerThanTheRun) {
   // (end - start) / step rounded to 0 steps passed as a whole number: the run did nothing, exit 0.
   const std::string json = R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"end": 0.05, "step": 1000}})";

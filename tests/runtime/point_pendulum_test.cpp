@@ -157,5 +157,27 @@ TEST(PointPendulum, NewtonFailureNamesTimeEquationAndRemedy) {
     EXPECT_NE(msg.find("body 'bob', "), std::string::npos) << msg;
     EXPECT_TRUE(msg.find("joint 'hinge' (its row") != std::string::npos || msg.find("the frame of body 'bob'") != std::string::npos) << msg;
     EXPECT_NE(msg.find("Try a smaller step (solver.step = 0.0005)"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("a newton_tolerance of at least 1e-15 (1e-30 is below what the coordinates' rounding resolves)"),
+              std::string::npos) << msg;
+    EXPECT_NE(msg.find("more iterations (solver.max_iterations)"), std::string::npos) << msg;
+  }
+}
+
+// At the largest max_iterations the message does not ask for more (they would be refused), and
+// a stalled step fails at once instead of iterating for hours (with the 1e9 once allowed, this
+// run had not finished its first step after 20 s).
+TEST(PointPendulum, NewtonFailureAtTheIterationBoundAsksForNoMore) {
+  const Model model = test::model_from(pendulum_json(1e-9, 1e-3, Frame::AtHinge, Hinge::Revolute,
+                                                     R"(, "max_iterations": 1000, "newton_tolerance": 1e-30)"));
+  Data data(model);
+  initialize(model, data);
+  try {
+    step(model, data);
+    FAIL() << "the step converged";
+  } catch (const SolverError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("after 1000 iterations"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("a newton_tolerance of at least"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find("more iterations"), std::string::npos) << msg;
   }
 }

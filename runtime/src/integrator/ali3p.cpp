@@ -15,6 +15,7 @@
 #include "ffr/runtime/relative.hpp"
 #include "../forces/forces.hpp"
 #include "../number_text.hpp"
+#include "newton_remedies.hpp"
 
 #include <cmath>
 #include <limits>
@@ -87,8 +88,7 @@ std::string newton_failure(const Model& model, const Data& data, double t, int i
          " of the model length; scaled increment " + fmt(inc) + ", tolerance " + fmt(model.settings.newton_tolerance) +
          "), the largest constraint violation in " + row + " (" + fmt(phi) + " of the model length, tolerance " +
          fmt(model.settings.policy.newton.violation_factor * model.settings.tolerance) + "). " +
-         ge_beam_failure_hint(model, data.q0, data.state.q) + "Try a smaller step (" + (model.settings.adaptive ? "solver.max_step = " : "solver.step = ") +
-         fmt(0.5 * data.state.k.h) + "), more iterations (solver.max_iterations), or check that body's mass and " +
+         ge_beam_failure_hint(model, data.q0, data.state.q) + detail::newton_remedies(model.settings, data.state.k.h) + ", or check that body's mass and " +
          "that joint's axes and points";
 }
 

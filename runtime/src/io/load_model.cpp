@@ -163,6 +163,11 @@ void parse_solver(const Field& root, ParseContext& ctx) {
   if (auto f = s.find("max_iterations")) {
     st.max_iterations = f->small_integer();
     if (st.max_iterations < 1) f->fail("must be at least 1");
+    // Newton converges in a few iterations or stalls (at round-off, or oscillating): a bound of
+    // up to 1e9 let a step that stalls run for hours instead of failing with its message.
+    if (st.max_iterations > kMaxNewtonIterations)
+      f->fail("must be at most " + std::to_string(kMaxNewtonIterations) + " (found " + std::to_string(st.max_iterations) +
+              "): a step that has not converged by then does not; a smaller step is the remedy");
   }
   if (auto f = s.find("penalty")) st.penalty = f->positive();
   // Refused: a tangent kept over steps converges to the same tolerance only with honest

@@ -22,6 +22,7 @@
 #include "../forces/forces.hpp"
 #include "solves.hpp"
 #include "../number_text.hpp"
+#include "../integrator/newton_remedies.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -508,7 +509,7 @@ void relative_step(const Model& model, Data& data, double h) {
                           " iterations (relative formulation): scaled increment " + fmt(inc) + " (tolerance " +
                           fmt(s.newton_tolerance) + "), kept constraint violation " + fmt(viol) +
                           " of the model length. " + ge_beam_failure_hint(model, w.q_last, data.state.q) +
-                          "Try a smaller step (solver.step = " + fmt(0.5 * h) + ") or more iterations (solver.max_iterations)");
+                          detail::newton_remedies(s, h));
 
   // Final state, multipliers and projections (R for them; the next step's first iteration
   // rebuilds the tangent with R's rate and curvature at its own iterate).

@@ -370,7 +370,7 @@ struct SolverSettings {
   /// Newton: estimated error of the accepted coordinates (scaled: lengths / model length, frame
   /// vectors, modal amplitudes / y_scale). Far below a step's truncation error, far above round-off.
   double newton_tolerance = 1e-10;
-  int max_iterations = 30;
+  int max_iterations = 30;  ///< at most kMaxNewtonIterations
   double penalty = 1e4;          ///< alpha * h^2/4 relative to the mean body mass (FORMULATION.md 9)
   /// Keep the factorised tangent over steps while Newton converges fast (it is refreshed as
   /// soon as an iteration contracts slowly). Off (default): a fresh tangent every step. The
@@ -398,6 +398,9 @@ struct SolverSettings {
 /// the projections' matrices of as many rows), about 1 GB at this size, and a model far beyond it
 /// spent minutes zeroing them before it ran out of memory.
 constexpr int kMaxModelCoordinates = 5000;
+
+/// The largest `solver.max_iterations` a model file may set (Newton iterations a step).
+constexpr int kMaxNewtonIterations = 1000;
 
 struct Model {
   std::string source;            ///< model file (for messages)
