@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,20 @@ double period(double inertia, double h, Frame frame, Hinge hinge) {
   return c.size() == 3 ? c[2] - c[0] : 0.0;
 }
 
+// The first step's failure of the pendulum hinged at its frame with these solver settings
+// (empty: the step converged).
+std::optional<SolverError> first_step_failure(const std::string& settings) {
+  const Model model = test::model_from(pendulum_json(1e-9, 1e-3, Frame::AtHinge, Hinge::Revolute, settings));
+  Data data(model);
+  initialize(model, data);
+  try {
+    step(model, data);
+  } catch (const SolverError& e) {
+    return e;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 TEST(PointPendulum, ExactPeriodOfThePointMass) {
@@ -143,41 +158,27 @@ TEST(PointPendulum, FrameAtTheBobAndSphericalHinge) {
 // A step that cannot converge (one iteration allowed, a tolerance below round-off) names the
 // time, the coordinate and the constraint row left worst, and what to try.
 TEST(PointPendulum, NewtonFailureNamesTimeEquationAndRemedy) {
-  const Model model =
-      test::model_from(pendulum_json(1e-9, 1e-3, Frame::AtHinge, Hinge::Revolute, R"(, "max_iterations": 1, "newton_tolerance": 1e-30)"));
-  Data data(model);
-  initialize(model, data);
-  try {
-    step(model, data);
-    FAIL() << "the step converged";
-  } catch (const SolverError& e) {
-    const std::string msg = e.what();
-    EXPECT_NEAR(e.time(), 1e-3, 1e-15);
-    EXPECT_NE(msg.find("at t = 0.001 s"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("body 'bob', "), std::string::npos) << msg;
-    EXPECT_TRUE(msg.find("joint 'hinge' (its row") != std::string::npos || msg.find("the frame of body 'bob'") != std::string::npos) << msg;
-    EXPECT_NE(msg.find("Try a smaller step (solver.step = 0.0005)"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("a newton_tolerance of at least 1e-15 (1e-30 is below what the coordinates' rounding resolves)"),
-              std::string::npos) << msg;
-    EXPECT_NE(msg.find("more iterations (solver.max_iterations)"), std::string::npos) << msg;
-  }
+  const auto e = first_step_failure(R"(, "max_iterations": 1, "newton_tolerance": 1e-30)");
+  ASSERT_TRUE(e) << "the step converged";
+  const std::string msg = e->what();
+  EXPECT_NEAR(e->time(), 1e-3, 1e-15);
+  EXPECT_NE(msg.find("at t = 0.001 s"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("body 'bob', "), std::string::npos) << msg;
+  EXPECT_TRUE(msg.find("joint 'hinge' (its row") != std::string::npos || msg.find("the frame of body 'bob'") != std::string::npos) << msg;
+  EXPECT_NE(msg.find("Try a smaller step (solver.step = 0.0005)"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("a newton_tolerance of at least 1e-15 (1e-30 is below what the coordinates' rounding resolves)"),
+            std::string::npos) << msg;
+  EXPECT_NE(msg.find("more iterations (solver.max_iterations)"), std::string::npos) << msg;
 }
 
 // At the largest max_iterations the message does not ask for more (they would be refused), and
 // a stalled step fails at once instead of iterating for hours (with the 1e9 once allowed, this
 // run had not finished its first step after 20 s).
 TEST(PointPendulum, NewtonFailureAtTheIterationBoundAsksForNoMore) {
-  const Model model = test::model_from(pendulum_json(1e-9, 1e-3, Frame::AtHinge, Hinge::Revolute,
-                                                     R"(, "max_iterations": 1000, "newton_tolerance": 1e-30)"));
-  Data data(model);
-  initialize(model, data);
-  try {
-    step(model, data);
-    FAIL() << "the step converged";
-  } catch (const SolverError& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find("after 1000 iterations"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("a newton_tolerance of at least"), std::string::npos) << msg;
-    EXPECT_EQ(msg.find("more iterations"), std::string::npos) << msg;
-  }
+  const auto e = first_step_failure(R"(, "max_iterations": 1000, "newton_tolerance": 1e-30)");
+  ASSERT_TRUE(e) << "the step converged";
+  const std::string msg = e->what();
+  EXPECT_NE(msg.find("after 1000 iterations"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("a newton_tolerance of at least"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find("more iterations"), std::string::npos) << msg;
 }

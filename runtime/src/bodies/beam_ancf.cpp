@@ -240,13 +240,11 @@ Body make_beam_body(const std::string& name, const Eigen::Vector3d& start, const
                     double E, double rho, double area, double inertia, double tau, const std::string& file,
                     const std::string& field) {
   if (elements < 1) throw ModelError(file, field + ".elements", "must be at least 1 (found " + std::to_string(elements) + ")");
-  if (elements > kMaxAncfBeamElements) {
-    std::string what = "is ";
-    what += std::to_string(elements) + "; an ancf beam has at most " + std::to_string(kMaxAncfBeamElements);
-    what += " (its mass is held as a flexible body's dense shape integrals, which grow with the square of its ";
-    what += std::to_string(6LL * (elements + 1LL)) + " nodal coordinates); 16 elements give the elastica's tip to 0.006 %";
-    throw ModelError(file, field + ".elements", what);
-  }
+  if (elements > kMaxAncfBeamElements)
+    throw ModelError(file, field + ".elements",
+                     "is " + std::to_string(elements) + "; an ancf beam has at most " + std::to_string(kMaxAncfBeamElements) +
+                         " (its mass is held as a flexible body's dense shape integrals, which grow with the square of its " +
+                         std::to_string(6LL * (elements + 1LL)) + " nodal coordinates); 16 elements give the elastica's tip to 0.006 %");
   const double L = (end - start).norm();
   const double size = std::max(start.cwiseAbs().maxCoeff(), end.cwiseAbs().maxCoeff());
   if (!(L > 1e-12 * std::max(1.0, size)))

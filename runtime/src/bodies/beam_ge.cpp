@@ -294,13 +294,12 @@ GeBeam make_ge_beam(std::vector<Body>& nodes, const std::string& name, const Eig
   if (elements < 1) throw ModelError(file, field + ".elements", "must be at least 1 (found " + std::to_string(elements) + ")");
   // Each node is a body of twelve coordinates: refused here, before the node bodies are made,
   // rather than by finalize's count of the model's coordinates.
-  if (12LL * (elements + 1LL) > kMaxModelCoordinates) {
-    std::string what = "is ";
-    what += std::to_string(elements) + ": its " + std::to_string(elements + 1LL) + " node bodies would have ";
-    what += std::to_string(12LL * (elements + 1LL)) + " coordinates; a model has at most " + std::to_string(kMaxModelCoordinates);
-    what += " (the step's matrices are dense in them), so at most " + std::to_string(kMaxModelCoordinates / 12 - 1) + " elements";
-    throw ModelError(file, field + ".elements", what);
-  }
+  if (12LL * (elements + 1LL) > kMaxModelCoordinates)
+    throw ModelError(file, field + ".elements",
+                     "is " + std::to_string(elements) + ": its " + std::to_string(elements + 1LL) + " node bodies would have " +
+                         std::to_string(12LL * (elements + 1LL)) + " coordinates; a model has at most " +
+                         std::to_string(kMaxModelCoordinates) + " (the step's matrices are dense in them), so at most " +
+                         std::to_string(kMaxModelCoordinates / 12 - 1) + " elements");
   const double L = (end - start).norm();
   const double size = std::max(start.cwiseAbs().maxCoeff(), end.cwiseAbs().maxCoeff());
   if (!(L > 1e-12 * std::max(1.0, size)))
