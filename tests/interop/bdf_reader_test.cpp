@@ -413,6 +413,12 @@ TEST(BdfRefusals, EveryBadDeckNamesFileLineCardAndWhatWasExpected) {
        "CHEXA's integration; ffr integrates CTETRA with 4 grids by its own rule"},
       {tet + kProps + "SET1,3,1,2,3,4,5,6,7\n+,8\n", "set3", "bad.bdf: line 8 (SET1 3): node 5 is not defined"},
       {tet + kProps, "set4", "bad.json: interfaces[0].group: no group 'set4' in the mesh"},
+      // A THRU over more grids than the deck defines names grids that are not defined: refused
+      // before the list is written out (up to 1e8 ids each before, without a bound on their sum).
+      {tet + kProps + "SET1,3,1,THRU,100000000\n", "set3",
+       "bad.bdf: line 8 (SET1 3): field 5: 1 THRU 100000000 names 100000000 grids, more than the deck's 4 GRID cards"},
+      {tet + kProps + "SET1,3,2,THRU,6\n", "set3", "bad.bdf: line 8 (SET1 3): field 5: 2 THRU 6 names 5 grids, more than the deck's 4 GRID cards"},
+      {tet + kProps + "SET1,3,1,THRU,4,5\n", "set3", "bad.bdf: line 8 (SET1 3): node 5 is not defined"},
       {"BEGIN BULK\n" + tet + kProps + "ENDDATA\nGARBAGE\n", "nowhere", "no group 'nowhere'"},
       // CBEAM and PBEAM: what ffr's beam does not have, named by card, line and field.
       {beam("CBEAM,1,2,1,2,0.,1.,0.\n,1\n", kPbeam), "set9",
@@ -460,6 +466,21 @@ TEST(BdfRefusals, EveryBadDeckNamesFileLineCardAndWhatWasExpected) {
     const std::string what = refusal(dir, c.deck, c.group);
     EXPECT_NE(what.find(c.expected), std::string::npos) << "deck:\n" << c.deck << "\nmessage: " << what << "\nexpected: " << c.expected;
   }
+}
+
+// Every SET1 and SPC1 list is bounded by the deck's grids, but their sum is bounded only by
+// kMaxDeckSetMembers (5e7): 7 000 sets of all 8 000 grids each (5.6e7 ids, from 340 kB of
+// cards) are refused at the first id past it, on the 6 251st card (6 250 * 8 000 = 5e7).
+TEST(BdfRefusals, SetListsAreBoundedInAll) {
+  test::TempDir dir("bdf_sets");
+  std::string deck = "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,0.,1.,0.\n";
+  for (int g = 4; g <= 8000; ++g) deck += "GRID," + std::to_string(g) + ",,0.,0.," + std::to_string(g) + ".\n";
+  deck += std::string("CTETRA,1,1,1,2,3,4\n") + kProps;
+  for (int s = 1; s <= 7000; ++s) deck += "SET1," + std::to_string(s) + ",1,THRU,8000\n";
+  // The first SET1 is line 8000 + 1 + 2 + 1.
+  const std::string what = refusal(dir, deck, "set1");
+  EXPECT_NE(what.find("bad.bdf: line 14254 (SET1 6251): field 3: the deck's SET1 and SPC1 cards would list more than 50000000 grids in all"),
+            std::string::npos) << what;
 }
 
 // The command line: a tapered PBEAM and a CHEXA whose PSOLID asks for an integration ffr does

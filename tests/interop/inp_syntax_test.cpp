@@ -187,11 +187,31 @@ TEST(InpRefusals, EveryBadDeckNamesFileLineAndWhatWasExpected) {
       {ok, "nowhere", "bad.json: interfaces[0].group: no group 'nowhere' in the mesh"},
       {std::string("*NODE\n1, 0, 0, 0\n*ELSET, ELSET=body\n") + kTetMaterial, "body", "bad.inp: the deck has no elements"},
       {"1, 0, 0, 0\n", "body", "bad.inp: line 1: a data line where a keyword (*...) was expected"},
+      // A range of more ids than the deck has lines (each node or element is a line) names ids
+      // that are not defined: refused at once (it took 48 s and 6 GB for four such lines).
+      {ok + "*NSET, NSET=big, GENERATE\n1, 100000000\n", "body",
+       "bad.inp: line 15: GENERATE 1, 100000000, 1 names 100000000 ids, more than the deck's 15 lines define"},
+      {ok + "*ELSET, ELSET=big, GENERATE\n1, 31, 2\n", "body", "bad.inp: line 15: GENERATE 1, 31, 2 names 16 ids, more than the deck's 15 lines"},
+      {ok + "*ELSET, ELSET=big, GENERATE\n1, 29, 2\n", "body", "bad.inp: line 14 (element set big): element 3 is not defined"},
   };
   for (const Case& c : cases) {
     const std::string what = refusal(dir, c.deck, c.group);
     EXPECT_NE(what.find(c.expected), std::string::npos) << "deck:\n" << c.deck << "\nmessage: " << what << "\nexpected: " << c.expected;
   }
+}
+
+// A set named in a set's data lines adds its members each time: 24 lines that each double the
+// last set ask for 4 * 2^24 ids (hours and all the memory before; the bound refuses it at the
+// line that crosses 5e7 members in all, deck_mesh.hpp).
+TEST(InpRefusals, SetsDoublingEachOtherAreBounded) {
+  test::TempDir dir("inp_doubling");
+  std::string deck = std::string(kTet) + kTetElement + kTetMaterial + "*NSET, NSET=s0\n1, 2, 3, 4\n";
+  for (int k = 1; k <= 24; ++k)
+    deck += "*NSET, NSET=s" + std::to_string(k) + "\ns" + std::to_string(k - 1) + ", s" + std::to_string(k - 1) + "\n";
+  // s_k holds 4 * 2^k ids; the sets reach 4 * (2^(k+1) - 1) > 5e7 in all first at k = 23, line 61.
+  const std::string what = refusal(dir, deck);
+  EXPECT_NE(what.find("bad.inp: line 61: set s23: the deck's sets would hold more than 50000000 members in all"),
+            std::string::npos) << what;
 }
 
 // The command line: exit status 2, the message on stderr, no SID written.

@@ -20,7 +20,7 @@ while [ $# -gt 0 ]; do
     *) targets+=("$1"); shift ;;
   esac
 done
-[ ${#targets[@]} -gt 0 ] || targets=(sid_reader part_file model_file msh_reader)
+[ ${#targets[@]} -gt 0 ] || targets=(sid_reader part_file model_file msh_reader inp_reader bdf_reader)
 
 if [ ! -f "$build/CMakeCache.txt" ]; then
   launcher=()
@@ -59,6 +59,10 @@ seed() {
       cp "$here"/meshes/models/*.json "$dir/" ;;
     msh_reader)
       cp "$here"/tests/solid_elements/data/*.msh "$dir/" ;;
+    inp_reader)
+      cp "$here"/meshes/*/*.inp "$here"/tools/fuzz/decks/*.inp "$dir/" ;;
+    bdf_reader)
+      cp "$here"/meshes/*/*.bdf "$here"/tools/fuzz/decks/*.bdf "$dir/" ;;
   esac
   cp "$here/tools/fuzz/regressions/$t/"* "$dir/" 2>/dev/null || true
   rm -f "$dir/README.md"
@@ -68,6 +72,7 @@ dict_of() {
     part_file|model_file) echo "-dict=$here/tools/fuzz/dicts/json.dict" ;;
     msh_reader) echo "-dict=$here/tools/fuzz/dicts/msh.dict" ;;
     sid_reader) echo "-dict=$here/tools/fuzz/dicts/sid.dict" ;;
+    inp_reader|bdf_reader) echo "-dict=$here/tools/fuzz/dicts/deck.dict" ;;
   esac
 }
 

@@ -77,18 +77,32 @@ struct Bulk {
   std::vector<Card> cards;
 };
 
-// The grid ids of a SET1/SPC1 list from field `first` on: ids and "id1 THRU id2".
-std::vector<std::size_t> grid_list(const Fields& f, std::size_t first) {
+// The grid ids of a SET1/SPC1 list from field `first` on: ids and "id1 THRU id2". Every id must
+// be one of the deck's `grids` GRID cards, so a longer THRU is refused before it fills memory;
+// `members` counts the ids of all lists against kMaxDeckSetMembers.
+std::vector<std::size_t> grid_list(const Fields& f, std::size_t first, std::size_t grids, std::size_t& members) {
   std::vector<std::size_t> ids;
+  const auto add = [&](std::size_t count, std::size_t k) {
+    if (count > kMaxDeckSetMembers - members)
+      f.fail(Fields::at(k) + ": the deck's SET1 and SPC1 cards would list more than " + std::to_string(kMaxDeckSetMembers) +
+             " grids in all");
+    members += count;
+  };
   for (std::size_t k = first; k <= f.size(); ++k) {
     if (f.blank(k)) continue;
     if (f.raw(k) == "THRU") {
       if (ids.empty() || k + 1 > f.size()) f.fail(Fields::at(k) + ": THRU needs an id before and after it");
       const std::size_t a = ids.back(), b = f.id(k + 1, "the last id of THRU");
-      if (b < a || b - a > 100000000) f.fail(Fields::at(k + 1) + ": THRU ends below its start");
+      if (b < a) f.fail(Fields::at(k + 1) + ": THRU ends below its start");
+      if (b - a >= grids)
+        f.fail(Fields::at(k + 1) + ": " + std::to_string(a) + " THRU " + std::to_string(b) + " names " +
+               std::to_string(b - a + 1) + " grids, more than the deck's " + std::to_string(grids) +
+               (grids == 1 ? " GRID card" : " GRID cards"));
+      add(b - a, k + 1);
       for (std::size_t i = a + 1; i <= b; ++i) ids.push_back(i);
       ++k;
     } else {
+      add(1, k);
       ids.push_back(f.id(k, "a grid id"));
     }
   }
@@ -99,6 +113,8 @@ Bulk parse(const std::string& file) {
   Bulk b;
   b.mesh.file = file;
   b.cards = read_cards(file, formats::read_text_file(file));
+  const auto grids = static_cast<std::size_t>(std::count_if(b.cards.begin(), b.cards.end(), [](const Card& c) { return c.name == "GRID"; }));
+  std::size_t set_members = 0;
   std::map<std::string, std::size_t> set_index;  // node set name -> index in mesh.node_sets
   std::map<std::size_t, std::size_t> pid_set;    // pid -> index in mesh.element_sets
   const std::set<std::string> passed_over = {"EIGRL", "EIGR", "SPC", "SPCADD", "FORCE", "MOMENT", "GRAV", "LOAD"};
@@ -237,7 +253,7 @@ Bulk parse(const std::string& file) {
       const std::string name = (c.name == "SET1" ? "set" : "spc") + std::to_string(sid);
       auto [it, fresh] = set_index.try_emplace(name, b.mesh.node_sets.size());
       if (fresh) b.mesh.node_sets.push_back({name, {}, "line " + std::to_string(c.line) + " (" + c.name + " " + std::to_string(sid) + ")"});
-      const auto ids = grid_list(f, c.name == "SET1" ? 3 : 4);
+      const auto ids = grid_list(f, c.name == "SET1" ? 3 : 4, grids, set_members);
       auto& set = b.mesh.node_sets[it->second].ids;
       set.insert(set.end(), ids.begin(), ids.end());
     } else if (passed_over.count(c.name)) {

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <map>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 
 namespace ffr::preproc::detail {
@@ -64,14 +63,20 @@ Mesh build_deck_mesh(const DeckMesh& d, MeshReport* report, std::chrono::steady_
       }
     }
   };
-  for (const DeckMesh::Set& s : d.element_sets) {
+  // Which set last took each element (its number + 1): a repeated id is taken once, without a
+  // hash set per set (a set may list tens of millions of ids).
+  std::vector<std::size_t> taken_by(d.elements.size(), 0);
+  for (std::size_t k = 0; k < d.element_sets.size(); ++k) {
+    const DeckMesh::Set& s = d.element_sets[k];
     std::vector<std::size_t> members;
-    std::unordered_set<std::size_t> seen;
     for (const std::size_t id : s.ids) {
       const auto it = element_index.find(id);
       if (it == element_index.end())
         throw FormatError(file, s.where, "element " + std::to_string(id) + " is not defined");
-      if (seen.insert(id).second) members.push_back(it->second);
+      if (taken_by[it->second] != k + 1) {
+        taken_by[it->second] = k + 1;
+        members.push_back(it->second);
+      }
     }
     add_group(s.name, members);
   }

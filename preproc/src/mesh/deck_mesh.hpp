@@ -24,6 +24,13 @@ struct DeckSection {
   std::string problem;    ///< why the deck's property cannot be taken (then only `where` is set)
 };
 
+/// The most members the sets of one deck may hold in all (ids as listed, repeats and the
+/// members a set takes from another set counted). Each range (GENERATE, THRU) is bounded by the
+/// ids the deck can define, but lists may repeat them, and a set named in another's data lines
+/// adds all its members each time (a line can double a set), so a few kilobytes could otherwise
+/// ask for more memory than the machine has. 5e7 is 400 MB of ids, far beyond a 1M-DOF mesh's sets.
+inline constexpr std::size_t kMaxDeckSetMembers = 50'000'000;
+
 struct DeckMesh {
   std::string file;
   std::vector<std::size_t> node_ids;

@@ -122,7 +122,10 @@ struct Deck {
 
 class Parser {
  public:
-  Parser(std::string file, std::string_view text, bool mesh) : text_(text), mesh_(mesh) { deck_.mesh.file = std::move(file); }
+  Parser(std::string file, std::string_view text, bool mesh)
+      : text_(text), mesh_(mesh), lines_(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + (!text.empty() && text.back() != '\n')) {
+    deck_.mesh.file = std::move(file);
+  }
 
   Deck parse() {
     std::string_view line;
@@ -365,13 +368,21 @@ class Parser {
         const std::size_t a = id(f[0], ln, "the first id"), b = id(f[1], ln, "the last id");
         const std::size_t inc = f.size() == 3 ? id(f[2], ln, "the increment") : 1;
         if (b < a) fail(ln, "GENERATE: the last id is below the first");
-        if ((b - a) / inc > 100000000) fail(ln, "GENERATE: more than 1e8 ids");
+        // Each node and element is defined on a line of its own: a range of more ids than the
+        // deck has lines names ids that are not defined (refused here, before it fills memory).
+        const std::size_t count = (b - a) / inc + 1;
+        if (count > lines_)
+          fail(ln, "GENERATE " + std::to_string(a) + ", " + std::to_string(b) + ", " + std::to_string(inc) + " names " +
+                       std::to_string(count) + " ids, more than the deck's " + std::to_string(lines_) +
+                       " lines define (one node or element a line)");
+        add_members(set, count, ln);
         for (std::size_t i = a; i <= b; i += inc) set.ids.push_back(i);
         return;
       }
       for (const auto& s : f) {
         if (s.empty()) continue;
         if (std::isdigit(static_cast<unsigned char>(s[0]))) {
+          add_members(set, 1, ln);
           set.ids.push_back(id(s, ln, elements ? "an element id" : "a node id"));
         } else {
           // A set named in a set's data lines contributes its members.
@@ -379,10 +390,19 @@ class Parser {
           if (other == sets.end() || &other->second == &set)
             fail(ln, std::string("no ") + (elements ? "element" : "node") + " set '" + std::string(s) +
                          "' defined before this line");
+          add_members(set, other->second.ids.size(), ln);
           set.ids.insert(set.ids.end(), other->second.ids.begin(), other->second.ids.end());
         }
       }
     });
+  }
+
+  // Counts `count` more members of `set` against the deck's bound (kMaxDeckSetMembers).
+  void add_members(const Set& set, std::size_t count, int ln) {
+    if (count > kMaxDeckSetMembers - set_members_)
+      fail(ln, "set " + set.name + ": the deck's sets would hold more than " + std::to_string(kMaxDeckSetMembers) +
+                   " members in all (ids as listed, a set named in a set's lines counted with its members each time)");
+    set_members_ += count;
   }
 
   bool read_material_data(const Keyword& kw, std::string_view& line) {
@@ -443,6 +463,8 @@ class Parser {
 
   std::string_view text_;
   bool mesh_;
+  std::size_t lines_;            // of the deck, the most nodes or elements it can define
+  std::size_t set_members_ = 0;  // in all sets so far
   std::size_t pos_ = 0;
   int line_ = 0;
   Deck deck_;
