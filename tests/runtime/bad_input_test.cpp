@@ -238,6 +238,51 @@ TEST(BadInput, LineOfMassOnASphericalJointIsRefusedNamingTheBody) {
             "");
 }
 
+// A bushing does not hold that rotation: the start's accelerations are solved with the mass and
+// the joints alone, and a lumped chain on a bushing (torsional stiffness about the line too)
+// started from non-finite accelerations, its first step failing with "the state is not finite"
+// and "try a smaller step". Refused at load now; where such a motion still reaches the start (a
+// universal joint is taken to hold it, its free rotation here the line), the start names it.
+TEST(BadInput, LineOfMassOnABushingIsRefusedAndTheStartNamesASingularMass) {
+  test::TempDir dir("bad");
+  ffr::formats::synthetic::ChainParams p;  // points along x
+  test::write_sid_file(ffr::formats::synthetic::spring_chain(p).sid, dir / "line.sid.h5");
+  const std::string body = R"({"name": "rod", "type": "flexible", "sid": "line.sid.h5"})";
+  const std::string msg = error_of(
+      model(body, R"("forces": [{"type": "bushing", "body1": "rod", "node1": "B", "body2": "ground",
+        "stiffness": [1000, 1000, 1000, 10, 10, 10], "damping": [1, 1, 1, 0.1, 0.1, 0.1]}])"),
+      dir.path);
+  EXPECT_NE(msg.find("body 'rod' (line.sid.h5): its principal moments of inertia"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("no joint holds it: the equations of motion are singular (a bushing does not hold it"), std::string::npos) << msg;
+
+  const Model m = test::model_from(
+      model(body, R"("joints": [{"name": "u", "type": "universal", "body1": "ground", "body2": "rod", "node2": "A",
+        "axis1": [0, 0, 1], "axis2": [1, 0, 0]}])"),
+      dir.path);
+  Data d(m);
+  try {
+    (void)initialize(m, d);
+    ADD_FAILURE() << "the start did not fail";
+  } catch (const SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("the initial accelerations at t = 0 s are not finite: the mass matrix with the "
+                                         "joints' constraints is singular"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// A model without a body has no coordinate to integrate: ffr-sim ended in a segmentation fault
+// (the start's projections took the largest entry of an empty vector). Each formulation refuses
+// it; one body loads.
+TEST(BadInput, AModelWithoutBodiesIsRefused) {
+  for (const char* formulation : {"absolute", "relative", "auto"}) {
+    const std::string json = R"({"gravity": [0, -9.81, 0], "bodies": [], "joints": [], "solver": {"formulation": ")" +
+                             std::string(formulation) + R"(", "end": 0.01, "step": 0.001}})";
+    expect_error(json, "bodies", "no body: the model has nothing to integrate");
+  }
+  EXPECT_EQ(error_of(model(kRigid)), "");
+}
+
 // More coordinates than the step's dense matrices are sized for: refused once the bodies are
 // counted, naming the count and the largest body, before any matrix of that size is made. 416
 // rigid bodies have 4992 coordinates (allowed: the model loads), 417 have 5004.

@@ -20,7 +20,7 @@ while [ $# -gt 0 ]; do
     *) targets+=("$1"); shift ;;
   esac
 done
-[ ${#targets[@]} -gt 0 ] || targets=(sid_reader part_file model_file msh_reader inp_reader bdf_reader)
+[ ${#targets[@]} -gt 0 ] || targets=(sid_reader part_file model_file model_run msh_reader inp_reader bdf_reader)
 
 if [ ! -f "$build/CMakeCache.txt" ]; then
   launcher=()
@@ -57,6 +57,8 @@ seed() {
       find "$here/meshes" -name '*.json' ! -path '*/models/*' -exec cp {} "$dir/" \; ;;
     model_file)
       cp "$here"/meshes/models/*.json "$dir/" ;;
+    model_run)
+      cp "$here"/meshes/models/*.json "$here"/tools/fuzz/models/*.json "$dir/" ;;
     msh_reader)
       cp "$here"/tests/solid_elements/data/*.msh "$dir/" ;;
     inp_reader)
@@ -69,7 +71,7 @@ seed() {
 }
 dict_of() {
   case $1 in
-    part_file|model_file) echo "-dict=$here/tools/fuzz/dicts/json.dict" ;;
+    part_file|model_file|model_run) echo "-dict=$here/tools/fuzz/dicts/json.dict" ;;
     msh_reader) echo "-dict=$here/tools/fuzz/dicts/msh.dict" ;;
     sid_reader) echo "-dict=$here/tools/fuzz/dicts/sid.dict" ;;
     inp_reader|bdf_reader) echo "-dict=$here/tools/fuzz/dicts/deck.dict" ;;

@@ -15,6 +15,7 @@
 #include "../number_text.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace ffr::runtime {
@@ -193,6 +194,15 @@ std::vector<std::string> consistent_state(const Model& model, Data& data) {
       if (res < 1e-3 * model.settings.tolerance) break;
     }
   }
+  // A direction of motion without inertia that no joint holds (a massless degree of freedom
+  // held only by force elements) leaves the metric singular: the step would start from a
+  // non-finite state and fail naming nothing.
+  if (!data.state.qdd.allFinite() || !data.state.lambda.allFinite())
+    throw SolverError(t0, std::numeric_limits<double>::quiet_NaN(),
+                      "the initial accelerations at t = " + fmt(t0) +
+                          " s are not finite: the mass matrix with the joints' constraints is singular (a motion without "
+                          "inertia that no joint holds, such as a body whose mass lies on a line, held only by force "
+                          "elements); give the body inertia there or a joint that holds that motion");
   detail::commit_friction(model, data, 0.0);  // the friction dampers' power at the start
   data.reaction_lambda = data.state.lambda;
   data.forget_tangents();  // none kept from the settling's

@@ -1,7 +1,10 @@
 // Load-time check that every body can turn: a flexible body whose mass lies on a line (points
 // on an axis without rotary inertia) has no inertia for a rotation about that line. Unless a
 // joint holds that rotation, the mass matrix is singular there and the first step would end
-// in a non-finite state that names nothing; refused here naming the body instead.
+// in a non-finite state that names nothing; refused here naming the body instead. A bushing
+// does not hold it: its stiffness keeps the step's matrix regular, but the start's consistent
+// accelerations are solved with the mass and the joints alone (initial_conditions.cpp), and
+// they came out non-finite (a lumped chain on a bushing with torsional stiffness, 1 ms step).
 #include "parse.hpp"
 #include "../number_text.hpp"
 
@@ -54,17 +57,18 @@ void check_bodies_can_turn(const Field& root, ParseContext& ctx) {
           held = held || holds_rotation(j, m.markers[static_cast<std::size_t>(mk)], axis);
           joints += (joints.empty() ? "" : ", ") + std::string(to_string(j.type)) + " '" + j.name + "'";
         }
-    for (const Bushing& k : m.bushings)  // elastic support: the step's matrix stays regular
-      for (int mk : {k.m1, k.m2})
-        if (m.markers[static_cast<std::size_t>(mk)].body == static_cast<int>(b)) held = true;
+    bool bushed = false;
+    for (const Bushing& k : m.bushings)
+      for (int mk : {k.m1, k.m2}) bushed = bushed || m.markers[static_cast<std::size_t>(mk)].body == static_cast<int>(b);
     if (held) continue;
     root.at("bodies").at(b).fail(
         "body '" + body.name + "' (" + body.source + "): its principal moments of inertia about the centre of mass are " +
         num(p(0)) + ", " + num(p(1)) + ", " + num(p(2)) + " kg m^2, so a rotation about the axis [" + num(axis(0)) + ", " +
         num(axis(1)) + ", " + num(axis(2)) + "] (body frame) has no inertia, and " +
         (joints.empty() ? std::string("no joint holds it") : "its joints (" + joints + ") leave it free") +
-        ": the equations of motion are singular. Give the part rotary inertia (e.g. a beam's section inertia) or a "
-        "joint that holds that rotation");
+        ": the equations of motion are singular" +
+        (bushed ? std::string(" (a bushing does not hold it: the start's accelerations need inertia or a joint there)") : "") +
+        ". Give the part rotary inertia (e.g. a beam's section inertia) or a joint that holds that rotation");
   }
 }
 

@@ -207,6 +207,10 @@ void mark_read_axes(Model& m) {
 }  // namespace
 
 void finalize(Model& m) {
+  // Without a body there is no coordinate: the step's vectors and matrices would be empty, and
+  // the norms of the start's projections undefined (it ended in a segmentation fault).
+  if (m.bodies.empty())
+    throw ModelError(m.source, "bodies", "no body: the model has nothing to integrate (give at least one rigid, flexible, beam or plate body)");
   // The relative formulation (relative.hpp) reconstructs every body's natural coordinates from
   // its own: no body is driven out of the unknowns.
   m.relative.reset();
