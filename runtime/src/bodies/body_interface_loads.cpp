@@ -23,7 +23,7 @@ Eigen::Matrix<double, 6, 1> node_load(const Body& b, const BodyData& bd, const D
   for (int a = 0; a < 3; ++a) M += Vector3d(bd.A.col(a)).cross(Vector3d(QA.segment<3>(3 * a)));
   const NodeSlice& n = b.nodes[static_cast<std::size_t>(node)];
   Vector3d xbar = n.origin;
-  xbar.noalias() += n.phi * data.state.q.segment(b.offset + 12, b.nq);
+  xbar += n.displacement(data.state.q.segment(b.offset + 12, b.nq));
   M -= (bd.A * xbar).cross(F);
   Eigen::Matrix<double, 6, 1> L;
   L << bd.A.transpose() * F, bd.A.transpose() * M;

@@ -39,7 +39,7 @@ void node_offset(const Field& parent, const char* key, const Model& m, Attachmen
 Vector3d node_position(const Model& m, int body, int node) {
   const Body& b = m.bodies[body];
   const NodeSlice& n = b.nodes[node];
-  return b.r0 + b.A0 * (n.origin + n.phi * b.y0);
+  return b.r0 + b.A0 * (n.origin + n.displacement(b.y0));
 }
 
 int add_marker(Model& m, const Attachment& a, const Matrix3d& E) {

@@ -36,14 +36,14 @@ void write_output(const Model& model, Data& data, const Output& o, double* out) 
   switch (o.type) {
     case OutputType::NodeDeformation: {
       const Body& b = model.bodies[o.body];
-      const Vector3d u = b.nodes[o.node].phi * data.state.q.segment(b.offset + 12, b.nq);
+      const Vector3d u = b.nodes[o.node].displacement(data.state.q.segment(b.offset + 12, b.nq));
       for (int i = 0; i < 3; ++i) out[i] = u(i);
       break;
     }
     case OutputType::NodePosition: {
       const Body& b = model.bodies[o.body];
       Vector3d x = o.point;
-      if (o.node >= 0) x = b.nodes[o.node].origin + b.nodes[o.node].phi * data.state.q.segment(b.offset + 12, b.nq);
+      if (o.node >= 0) x = b.nodes[o.node].origin + b.nodes[o.node].displacement(data.state.q.segment(b.offset + 12, b.nq));
       Matrix3d A;
       for (int a = 0; a < 3; ++a) A.col(a) = data.state.q.segment<3>(b.offset + 3 + 3 * a);
       const Vector3d p = data.state.q.segment<3>(b.offset) + A * x;
@@ -73,8 +73,8 @@ void write_output(const Model& model, Data& data, const Output& o, double* out) 
       Vector3d x = o.point;
       Vector3d v = data.state.qd.segment<3>(b.offset);
       if (o.node >= 0) {
-        x = b.nodes[o.node].origin + b.nodes[o.node].phi * data.state.q.segment(b.offset + 12, b.nq);
-        v.noalias() += bd.A * (b.nodes[o.node].phi * data.state.qd.segment(b.offset + 12, b.nq));
+        x = b.nodes[o.node].origin + b.nodes[o.node].displacement(data.state.q.segment(b.offset + 12, b.nq));
+        v.noalias() += bd.A * b.nodes[o.node].displacement(data.state.qd.segment(b.offset + 12, b.nq));
       }
       v.noalias() += bd.Ad * x;
       for (int i = 0; i < 3; ++i) out[i] = v(i);

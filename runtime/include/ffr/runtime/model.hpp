@@ -43,6 +43,14 @@ struct NodeSlice {
   Vector3d origin = Vector3d::Zero();
   Matrix3Xd phi;  ///< [3, nq] translational
   Matrix3Xd psi;  ///< [3, nq] small rotation
+
+  /// phi y, the node's elastic displacement for modal coordinates y; zero for a body without
+  /// modes (a beam's node body), where Eigen's product of the empty phi would offset its null
+  /// data pointer (undefined behaviour, reported by UBSan).
+  template <class Y>
+  Vector3d displacement(const Y& y) const {
+    return phi.cols() == 0 ? Vector3d::Zero() : Vector3d(phi * y);
+  }
 };
 
 /// The interface-load members of one interface (SID /stiffening/interfaces/<name>): the
