@@ -84,7 +84,9 @@ TEST(ReactionOrder, PendulumArmPullIsSecondOrder) {
     const double e = std::abs(p.reaction - N), en = std::abs(p.newton - N);
     std::printf("h = %g s: pull %.10f N (exact %.10f): reaction error %.3e (ratio %.2f), step multipliers' error %.3e (ratio %.2f)\n",
                 h, p.reaction, N, e, e_prev / e, en, n_prev / en);
-    if (!std::isnan(e_prev)) EXPECT_GT(e_prev / e, 3.5);  // second order: 4 a halving
+    if (!std::isnan(e_prev)) {
+      EXPECT_GT(e_prev / e, 3.5);  // second order: 4 a halving
+    }
     e_prev = e;
     n_prev = en;
   }
