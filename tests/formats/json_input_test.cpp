@@ -1,10 +1,17 @@
 // The reader of user JSON files (part files, model files): every refusal names the file and
 // the field, annotation keys pass everywhere, and numbers a double cannot hold are refused.
 #include "ffr/formats/json_input.hpp"
+#include "ffr/formats/text_file.hpp"
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <thread>
 
 using ffr::formats::FormatError;
 using ffr::formats::JsonDocument;
@@ -103,4 +110,31 @@ TEST(JsonInput, HugeValuesAndIntegersBeyondLongLongAreRefused) {
   EXPECT_NE(msg.find("f.json: u: integer out of range"), std::string::npos) << msg;
   EXPECT_EQ(root.at("exact").integer(), 4000000000000000LL);
   EXPECT_EQ(root.at("neg").integer(), -7);
+}
+
+// Input that is not a regular file: a device never ends (ffr-sim on /dev/zero ran until it was
+// killed, its memory growing), so it is refused naming the file; a pipe is read to its end, up
+// to a bound (1 GiB by default; 10 bytes here).
+TEST(JsonInput, DevicesAreRefusedAndPipesReadUpToABound) {
+  EXPECT_NE(refusal([] { (void)JsonDocument::load("/dev/zero"); }).find("/dev/zero: is a device or socket, not a file"),
+            std::string::npos);
+  const auto dir = std::filesystem::temp_directory_path() / ("ffr_pipe_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto fifo = dir / "model.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string text = R"({"bodies": [], "solver": {"step": 0.001}})";
+  const auto feed = [&] { std::ofstream(fifo) << text; };
+  {
+    std::thread writer(feed);
+    const std::string read = ffr::formats::read_text_file(fifo);
+    writer.join();
+    EXPECT_EQ(read, text);
+  }
+  {
+    std::thread writer(feed);
+    const std::string what = refusal([&] { (void)ffr::formats::read_text_file(fifo, 10); });
+    writer.join();
+    EXPECT_NE(what.find("model.json: a pipe that gives more than 10 bytes; give the input as a file"), std::string::npos) << what;
+  }
+  std::filesystem::remove_all(dir);
 }

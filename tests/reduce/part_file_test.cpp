@@ -14,6 +14,7 @@ std::string error_of(const std::string& json) {
   test::TempDir dir("part");
   test::write_text(dir / "g.geo", "SetFactory(\"OpenCASCADE\");\nBox(1) = {0,0,0,1,1,1};\n");
   test::write_text(dir / "p.json", json);
+  std::filesystem::create_symlink("/dev/zero", dir / "zero.msh");
   try {
     preproc::load_part(dir / "p.json");
   } catch (const formats::FormatError& e) {
@@ -38,6 +39,8 @@ TEST(PartFile, BadInputsNameTheField) {
       {R"({"geometry": "g.geo", "reduction": {"method": "free", "modes": 6}})", "no material"},
       {R"({"geometry": "missing.step", "materials": [], "reduction": {"method": "free", "modes": 6}})", "geometry"},
       {R"({"geometry": "g.iges", "reduction": {"method": "free", "modes": 6}})", "unsupported geometry"},
+      // Not a regular file: a device would be read without end (a link to /dev/zero).
+      {R"({"geometry": "zero.msh", "materials": [], "reduction": {"method": "free", "modes": 6}})", "geometry: not a regular file"},
       {"{" + kOk + R"(, "reduction": {"method": "free"}})", "modes"},
       {"{" + kOk + R"(, "reduction": {"method": "wobbly", "modes": 6}})", "reduction.method"},
       {"{" + kOk + R"(, "reduction": {"method": "clamped", "interface": "root", "modes": 6}})", "no interface named 'root'"},

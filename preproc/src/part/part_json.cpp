@@ -384,6 +384,9 @@ PartSpec load_part(const std::filesystem::path& path) {
       g.fail("unsupported geometry '" + ext + "' (.geo, .step/.stp, .brep, .msh, .inp, or .bdf/.dat/.nas)");
     std::error_code ec;
     if (!std::filesystem::exists(p.geometry, ec)) g.fail("file not found: " + p.geometry.string());
+    // gmsh and the readers take the geometry whole: a directory, device or pipe (a link to
+    // /dev/zero read until memory ran out) is refused here.
+    if (!std::filesystem::is_regular_file(p.geometry, ec)) g.fail("not a regular file: " + p.geometry.string());
   }
   if (auto u = root.find("units")) p.units = read_units(*u);
   if (auto m = root.find("mesh")) p.mesh = read_mesh(*m);
