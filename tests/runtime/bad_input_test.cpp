@@ -23,6 +23,14 @@ std::string model(const std::string& bodies, const std::string& rest = "") {
 using test::error_of;
 using test::expect_error;
 
+// A flexible body "rod" whose mass lies on a line (a synthetic chain along x, line.sid.h5
+// written into `dir`): no rotary inertia about that line. Its model-file entry.
+std::string line_of_mass(const std::filesystem::path& dir) {
+  ffr::formats::synthetic::ChainParams p;
+  test::write_sid_file(ffr::formats::synthetic::spring_chain(p).sid, dir / "line.sid.h5");
+  return R"({"name": "rod", "type": "flexible", "sid": "line.sid.h5"})";
+}
+
 }  // namespace
 
 TEST(BadInput, MalformedJson) { expect_error(R"({"bodies": [)", "", "malformed JSON"); }
@@ -219,9 +227,7 @@ TEST(BadInput, LineOfMassOnASphericalJointIsRefusedNamingTheBody) {
   // nothing holds that rotation and the first step ended in "state is not finite" (issue 40);
   // on a hinge across the line the body runs (chain_test).
   test::TempDir dir("bad");
-  ffr::formats::synthetic::ChainParams p;  // points along x
-  test::write_sid_file(ffr::formats::synthetic::spring_chain(p).sid, dir / "line.sid.h5");
-  const std::string body = R"({"name": "rod", "type": "flexible", "sid": "line.sid.h5"})";
+  const std::string body = line_of_mass(dir.path);
   const std::string msg = error_of(
       model(body, R"("joints": [{"name": "ball", "type": "spherical", "body1": "ground", "body2": "rod", "node2": "A"}])"),
       dir.path);
@@ -245,9 +251,7 @@ TEST(BadInput, LineOfMassOnASphericalJointIsRefusedNamingTheBody) {
 // universal joint is taken to hold it, its free rotation here the line), the start names it.
 TEST(BadInput, LineOfMassOnABushingIsRefusedAndTheStartNamesASingularMass) {
   test::TempDir dir("bad");
-  ffr::formats::synthetic::ChainParams p;  // points along x
-  test::write_sid_file(ffr::formats::synthetic::spring_chain(p).sid, dir / "line.sid.h5");
-  const std::string body = R"({"name": "rod", "type": "flexible", "sid": "line.sid.h5"})";
+  const std::string body = line_of_mass(dir.path);
   const std::string msg = error_of(
       model(body, R"("forces": [{"type": "bushing", "body1": "rod", "node1": "B", "body2": "ground",
         "stiffness": [1000, 1000, 1000, 10, 10, 10], "damping": [1, 1, 1, 0.1, 0.1, 0.1]}])"),

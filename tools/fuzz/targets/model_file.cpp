@@ -3,10 +3,9 @@
 // "chain.sid.h5" or "rod.sid.h5" exists (a synthetic chain, as ffr-synth writes it), so inputs
 // get past the file check. A bad file must come back as a ModelError, as ffr-sim expects (exit
 // status 2); anything else is a finding.
+#include "chain_sids.hpp"
 #include "scratch.hpp"
 
-#include "ffr/formats/synthetic.hpp"
-#include "ffr/formats/sid_io.hpp"
 #include "ffr/runtime/errors.hpp"
 #include "ffr/runtime/load.hpp"
 
@@ -14,16 +13,7 @@
 #include <cstdint>
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  namespace syn = ffr::formats::synthetic;
-  syn::ChainParams p;
-  p.points = 11;
-  p.modes = 4;
-  p.clamped = true;
-  p.stiffening = true;
-  ffr::formats::write_sid(syn::spring_chain(p).sid, ffr::fuzz::scratch() / "chain.sid.h5");
-  p.clamped = false;
-  p.stiffening = false;
-  ffr::formats::write_sid(syn::spring_chain(p).sid, ffr::fuzz::scratch() / "rod.sid.h5");
+  ffr::fuzz::write_chain_sids();
   return 0;
 }
 

@@ -5,10 +5,9 @@
 // a ModelError and a run that cannot go on as a SolverError (ffr-sim's exit status 2 and 1);
 // anything else (a crash, a sanitizer report, another exception, a hang) is a finding. As for
 // model_file, SID files "chain.sid.h5" (clamped, stiffening) and "rod.sid.h5" (free) exist.
+#include "chain_sids.hpp"
 #include "scratch.hpp"
 
-#include "ffr/formats/sid_io.hpp"
-#include "ffr/formats/synthetic.hpp"
 #include "ffr/runtime/runtime.hpp"
 
 #include <algorithm>
@@ -20,16 +19,7 @@ constexpr double kSteps = 20;
 }
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  namespace syn = ffr::formats::synthetic;
-  syn::ChainParams p;
-  p.points = 11;
-  p.modes = 4;
-  p.clamped = true;
-  p.stiffening = true;
-  ffr::formats::write_sid(syn::spring_chain(p).sid, ffr::fuzz::scratch() / "chain.sid.h5");
-  p.clamped = false;
-  p.stiffening = false;
-  ffr::formats::write_sid(syn::spring_chain(p).sid, ffr::fuzz::scratch() / "rod.sid.h5");
+  ffr::fuzz::write_chain_sids();
   return 0;
 }
 
