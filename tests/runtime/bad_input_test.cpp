@@ -101,6 +101,22 @@ TEST(BadInput, NewtonIterationsBeyondAThousandAreRefused) {
   expect_error(solver("1000000000"), "solver.max_iterations", "a smaller step is the remedy");
 }
 
+// Settings no step can meet: a constraint tolerance below the coordinates' rounding (1e-300
+// failed the first step, asking for a smaller one), a largest adaptive step below the error
+// control's smallest (every step was rejected, the message asking to loosen rtol).
+TEST(BadInput, TolerancesAndStepsBelowWhatTheSolverResolvesAreRefused) {
+  const auto solver = [](const std::string& keys) {
+    return R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"end": 1, )" + keys + "}}";
+  };
+  EXPECT_EQ(test::model_from(solver(R"("step": 0.001, "tolerance": 1e-15)")).settings.tolerance, 1e-15);
+  expect_error(solver(R"("step": 0.001, "tolerance": 1e-300)"), "solver.tolerance", "below what double precision can reach");
+  expect_error(R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"analysis": "static", "tolerance": 1e-16}})",
+               "solver.tolerance", "below what double precision can reach");
+  EXPECT_EQ(test::model_from(solver(R"("step": "auto", "max_step": 1e-10)")).settings.max_step, 1e-10);
+  expect_error(solver(R"("step": "auto", "max_step": 1e-300)"), "solver.max_step",
+               "is below the smallest step the error control takes, 1e-10 s (1e-10 of the run)");
+}
+
 TEST(BadInput, StepLongerThanTheRun) {
   // (end - start) / step rounded to 0 steps passed as a whole number: the run did nothing, exit 0.
   const std::string json = R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"end": 0.05, "step": 1000}})";

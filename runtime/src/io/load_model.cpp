@@ -2,6 +2,8 @@
 #include "ffr/runtime/load.hpp"
 
 #include "parse.hpp"
+#include "ffr/runtime/step_control.hpp"
+#include "../number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -102,9 +104,25 @@ void parse_scheme(const Field& s, SolverSettings& st) {
     if (st.output_interval > run) f->fail("is longer than the run (end - start)");
     if (run / st.output_interval > 1e9) f->fail("gives more than 1e9 samples");
   }
-  if (auto f = s.find("max_step")) st.max_step = f->positive();
+  if (auto f = s.find("max_step")) {
+    st.max_step = f->positive();
+    // Below the error control's smallest step every step would be refused as too small.
+    const double floor = StepControlLimits{}.min_step_fraction * run;
+    if (st.max_step < floor)
+      f->fail("is below the smallest step the error control takes, " + fmt(floor) + " s (" +
+              fmt(StepControlLimits{}.min_step_fraction) + " of the run)");
+  }
   // The first step tried: a guess the error estimate corrects within the first steps.
   st.step = 1e-2 * (st.max_step > 0 ? std::min(st.max_step, st.output_interval) : st.output_interval);
+}
+
+// The constraints' tolerance, in model lengths: below the coordinates' rounding (about 1e-16 of
+// their size) no projection or Newton step can meet it (1e-300 failed the first step asking for
+// a smaller one).
+double constraint_tolerance(const Field& f) {
+  const double v = f.positive();
+  if (v < 1e-15) f.fail("is below what double precision can reach (1e-15 of the model length)");
+  return v;
 }
 
 void parse_solver(const Field& root, ParseContext& ctx) {
@@ -134,7 +152,7 @@ void parse_solver(const Field& root, ParseContext& ctx) {
       if (auto f = s.find(k))
         f->fail("is a setting of a dynamic run (\"analysis\": \"static\" solves the equilibrium at \"start\" alone)");
     st.end = st.start;
-    if (auto f = s.find("tolerance")) st.tolerance = f->positive();
+    if (auto f = s.find("tolerance")) st.tolerance = constraint_tolerance(*f);
     if (auto f = s.find("newton_tolerance")) st.newton_tolerance = f->positive();
     if (auto f = s.find("penalty")) st.penalty = f->positive();
     if (auto f = s.find("eliminate_driven_bodies")) st.eliminate_driven = f->boolean();
@@ -158,7 +176,7 @@ void parse_solver(const Field& root, ParseContext& ctx) {
     st.output_every = f->small_integer();
     if (st.output_every < 1) f->fail("must be at least 1");
   }
-  if (auto f = s.find("tolerance")) st.tolerance = f->positive();
+  if (auto f = s.find("tolerance")) st.tolerance = constraint_tolerance(*f);
   if (auto f = s.find("newton_tolerance")) st.newton_tolerance = f->positive();
   if (auto f = s.find("max_iterations")) {
     st.max_iterations = f->small_integer();
