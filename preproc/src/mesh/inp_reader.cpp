@@ -84,6 +84,11 @@ std::vector<std::string_view> fields(std::string_view line) {
   return f;
 }
 
+// The lines of a text, the last one counted whether or not it ends in a newline.
+std::size_t line_count(std::string_view text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + (!text.empty() && text.back() != '\n');
+}
+
 struct Keyword {
   std::string name;                            // upper case, single spaces
   std::map<std::string, std::string> params;   // upper-case name -> value as written
@@ -122,8 +127,7 @@ struct Deck {
 
 class Parser {
  public:
-  Parser(std::string file, std::string_view text, bool mesh)
-      : text_(text), mesh_(mesh), lines_(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + (!text.empty() && text.back() != '\n')) {
+  Parser(std::string file, std::string_view text, bool mesh) : text_(text), mesh_(mesh), lines_(line_count(text)) {
     deck_.mesh.file = std::move(file);
   }
 

@@ -9,10 +9,6 @@
 
 namespace ffr::runtime::detail {
 
-// A Newton tolerance (scaled, in model lengths) below this asks for more than the coordinates'
-// rounding, about 1e-16 of their size, resolves: only an increment that happens to be zero meets it.
-constexpr double kRoundOffTolerance = 1e-15;
-
 // "Try a smaller step (solver.step = h/2)", then a larger newton_tolerance where it lies below
 // round-off and more iterations where max_iterations is below its bound.
 inline std::string newton_remedies(const SolverSettings& s, double h) {

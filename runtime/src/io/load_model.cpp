@@ -107,21 +107,21 @@ void parse_scheme(const Field& s, SolverSettings& st) {
   if (auto f = s.find("max_step")) {
     st.max_step = f->positive();
     // Below the error control's smallest step every step would be refused as too small.
-    const double floor = StepControlLimits{}.min_step_fraction * run;
-    if (st.max_step < floor)
-      f->fail("is below the smallest step the error control takes, " + fmt(floor) + " s (" +
-              fmt(StepControlLimits{}.min_step_fraction) + " of the run)");
+    const double fraction = StepControlLimits{}.min_step_fraction;
+    if (st.max_step < fraction * run)
+      f->fail("is below the smallest step the error control takes, " + fmt(fraction * run) + " s (" + fmt(fraction) +
+              " of the run)");
   }
   // The first step tried: a guess the error estimate corrects within the first steps.
   st.step = 1e-2 * (st.max_step > 0 ? std::min(st.max_step, st.output_interval) : st.output_interval);
 }
 
-// The constraints' tolerance, in model lengths: below the coordinates' rounding (about 1e-16 of
-// their size) no projection or Newton step can meet it (1e-300 failed the first step asking for
-// a smaller one).
+// The constraints' tolerance, in model lengths: below the coordinates' rounding no projection or
+// Newton step can meet it (1e-300 failed the first step asking for a smaller one).
 double constraint_tolerance(const Field& f) {
   const double v = f.positive();
-  if (v < 1e-15) f.fail("is below what double precision can reach (1e-15 of the model length)");
+  if (v < kRoundOffTolerance)
+    f.fail("is below what double precision can reach (" + fmt(kRoundOffTolerance) + " of the model length)");
   return v;
 }
 

@@ -410,6 +410,11 @@ constexpr int kMaxModelCoordinates = 5000;
 /// The largest `solver.max_iterations` a model file may set (Newton iterations a step).
 constexpr int kMaxNewtonIterations = 1000;
 
+/// A tolerance in model lengths (the constraints' `tolerance`, Newton's `newton_tolerance`) below
+/// this asks for more than the coordinates' rounding, about 1e-16 of their size, resolves: only
+/// an increment or violation that happens to be zero meets it.
+constexpr double kRoundOffTolerance = 1e-15;
+
 struct Model {
   std::string source;            ///< model file (for messages)
   Vector3d gravity = Vector3d::Zero();
