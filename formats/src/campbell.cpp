@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace ffr::formats {
@@ -33,6 +34,13 @@ SpinningSystem spinning_system(const Sid& s, int axis, double omega, const Campb
       if (stiff) kw += s.stiffening->K0om[k](i, axis);
       sys.K(i, k) += omega * omega * kw;
     }
+  // omega^2 overflows far below the largest double (1e155 rad/s), and Eigen's eigen-solver does
+  // not converge on the infinite entries; the speed, not the solver, is at fault.
+  if (!sys.K.allFinite() || !sys.C.allFinite()) {
+    char speed[32];
+    std::snprintf(speed, sizeof speed, "%g", omega);
+    throw std::invalid_argument(std::string("spin speed ") + speed + " rad/s is too large: the spinning system's matrices overflow");
+  }
   return sys;
 }
 

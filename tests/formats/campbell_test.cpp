@@ -177,4 +177,13 @@ TEST(Campbell, BadArgumentsAreRefused) {
   EXPECT_EQ(spin_axis_from_string("y"), 1);
   EXPECT_THROW(campbell(s, 3, {1.0}), std::invalid_argument);
   EXPECT_THROW(campbell(s, 0, {NAN}), std::invalid_argument);
+  // omega^2 overflows: the speed is named, not Eigen's eigen-solver failing on infinities.
+  for (int axis = 0; axis < 3; ++axis) {
+    try {
+      campbell(s, axis, {1.0, 1e300});
+      ADD_FAILURE() << "axis " << axis << ": 1e300 rad/s accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_STREQ(e.what(), "spin speed 1e+300 rad/s is too large: the spinning system's matrices overflow");
+    }
+  }
 }

@@ -49,7 +49,8 @@ std::string slurp(const fs::path& f) {
 
 Outcome run(const std::string& tool, const std::string& args) {
   const fs::path out = dir() / "stdout.txt", err = dir() / "stderr.txt";
-  const std::string cmd = std::string(FFR_BINARY_DIR) + "/bin/" + tool + " " + args + " >" + out.string() + " 2>" + err.string();
+  // Under coreutils' timeout: a tool that hangs fails its test (status 124) instead of the suite.
+  const std::string cmd = "timeout 120 " + std::string(FFR_BINARY_DIR) + "/bin/" + tool + " " + args + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }
@@ -150,6 +151,33 @@ TEST(Cli, InfoPlotsTimeHistoriesAndRefusesUnknownChannels) {
   EXPECT_EQ(run("ffr-info", f.string() + " --plot tip[x] --png " + bad.string()).rc, 2);
   EXPECT_EQ(run("ffr-info", f.string() + " --plot tip").rc, 2);  // no --png
   EXPECT_FALSE(fs::exists(bad));
+}
+
+// A channel flat to its last bits far from zero (a coordinate held by a joint, rounding noise
+// of 1 ulp at 1.0): the axis's tick step is below the values' spacing, so adding it to a tick
+// value changes nothing. The plot must still end, with ticks that are distinct numbers.
+TEST(Cli, InfoPlotsAChannelFlatToRoundingFarFromZero) {
+  Results r;
+  r.time.setConstant(5, 1e9);  // and times spanning one ulp of 1e9
+  r.time[4] = std::nextafter(1e9, 2e9);
+  Eigen::MatrixXd z(5, 1);
+  z << 1.0, std::nextafter(1.0, 2.0), 1.0, std::nextafter(1.0, 2.0), 1.0;
+  r.outputs.push_back({"z", "node_position", z});
+  const auto f = dir() / "flat_run.h5";
+  write_results(r, f);
+  const auto png = dir() / "flat.png";
+  const Outcome ok = run("ffr-info", f.string() + " --plot z --png " + png.string());
+  ASSERT_EQ(ok.rc, 0) << ok.err;
+  EXPECT_EQ(slurp(png).substr(1, 3), "PNG");
+  // Values whose span overflows a double: refused naming the file and channel, no picture.
+  r.outputs.push_back({"wide", "node_position", Eigen::MatrixXd::Constant(5, 1, 1e308)});
+  r.outputs.back().values(2, 0) = -1e308;
+  write_results(r, f);
+  const auto none = dir() / "none.png";
+  const Outcome wide = run("ffr-info", f.string() + " --plot z,wide --png " + none.string());
+  EXPECT_EQ(wide.rc, 2);
+  EXPECT_NE(wide.err.find(f.string() + ": output channel 'wide': a plot's range is not a finite number"), std::string::npos) << wide.err;
+  EXPECT_FALSE(fs::exists(none));
 }
 
 TEST(Cli, InfoRefusesBadInputWithExitCode2) {

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <stdexcept>
 
 namespace ffr::info {
 namespace {
@@ -95,7 +96,11 @@ int run_plot(const std::filesystem::path& file, const std::string& channels, con
   }
   const int panel_height = 360;
   Canvas cv(900, panel_height * static_cast<int>(panels.size()));
-  for (std::size_t p = 0; p < panels.size(); ++p) draw_panel(cv, r, panels[p], static_cast<int>(p) * panel_height, panel_height);
+  for (std::size_t p = 0; p < panels.size(); ++p) try {
+      draw_panel(cv, r, panels[p], static_cast<int>(p) * panel_height, panel_height);
+    } catch (const std::invalid_argument& e) {  // values spanning more than a double holds
+      throw std::invalid_argument(file.string() + ": output channel '" + panels[p].output->name + "': " + e.what());
+    }
   write_png(cv, png);
   std::cout << "plot of " << channels << " written to " << png << "\n";
   return 0;
