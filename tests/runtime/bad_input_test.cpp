@@ -3,6 +3,7 @@
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
 #include "ffr/formats/synthetic.hpp"
+#include "ffr/runtime/step_control.hpp"
 
 #include <gtest/gtest.h>
 
@@ -115,6 +116,40 @@ TEST(BadInput, TolerancesAndStepsBelowWhatTheSolverResolvesAreRefused) {
   EXPECT_EQ(test::model_from(solver(R"("step": "auto", "max_step": 1e-10)")).settings.max_step, 1e-10);
   expect_error(solver(R"("step": "auto", "max_step": 1e-300)"), "solver.max_step",
                "is below the smallest step the error control takes, 1e-10 s (1e-10 of the run)");
+}
+
+// Far from t = 0 doubles are far apart (0.125 s at 1e15 s): a step of 0.01 s left t where it
+// was, the fixed-step run wrote 101 samples all at t = 1e15 and the adaptive one never ended.
+// A step must span 1e5 such spacings (time_resolution_step, model.hpp).
+TEST(BadInput, StepsFinerThanTheRunsTimesResolveAreRefused) {
+  const auto run = [](const std::string& keys) { return R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {)" + keys + "}}"; };
+  expect_error(run(R"("start": 1e15, "end": 1000000000000001, "step": 0.01)"), "solver.start",
+               "times near 1e+15 s are resolved only to 0.125 s (the spacing of doubles there), and the step, 0.01 s, "
+               "spans fewer than 1e+05 of them (at least 1.25e+04 s): start the run nearer to t = 0");
+  expect_error(run(R"("start": 1e9, "end": 1000000001, "step": "auto", "output_interval": 0.01)"), "solver.start",
+               "the longest step this run takes (max_step or output_interval), 0.01 s, spans fewer than 1e+05 of them");
+  expect_error(run(R"("start": 1e9, "end": 1000001000, "step": "auto", "max_step": 1e-3)"), "solver.start",
+               "(at least 0.0119 s)");
+  // Where the spacing is fine enough, the same runs load.
+  EXPECT_EQ(test::model_from(run(R"("start": 1000, "end": 1001, "step": 1e-4)")).settings.start, 1000);
+  EXPECT_EQ(test::model_from(run(R"("start": 1e9, "end": 1000001000, "step": 0.5)")).settings.step, 0.5);
+  EXPECT_EQ(test::model_from(run(R"("start": 1e9, "end": 1000001000, "step": "auto")")).settings.output_interval, 10);
+  // An adaptive step that shrinks below that bound gives up naming it and the remedy.
+  const std::string shrinking = R"({"gravity": [0, 0, -9.81], "bodies": [)" + std::string(kRigid) +
+                                R"(], "joints": [{"name": "hinge", "type": "revolute", "body1": "ground", "body2": "bar",
+      "at": [0, 0, 0], "axis": [0, 1, 0]}], "solver": {"start": 1e6, "end": 1000001, "step": "auto", "rtol": 1e-12}})";
+  const Model m = test::model_from(shrinking);
+  Data d(m);
+  try {
+    initialize(m, d);
+    StepControl control(m, d);
+    advance_to(m, d, control, m.settings.end);
+    ADD_FAILURE() << "a run from t = 1e6 s at rtol 1e-12 ended";
+  } catch (const SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("fell below the minimum 1.16e-05 s (what times this far from t = 0 resolve) at t = 1000000 s"),
+              std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("start the run nearer to t = 0"), std::string::npos) << e.what();
+  }
 }
 
 TEST(BadInput, StepLongerThanTheRun) {

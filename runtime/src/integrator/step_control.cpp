@@ -15,8 +15,8 @@
 //   reduction at least to 0.2 after a rejection (1e-2 before the first accepted step, whose
 //     size is a guess), and no growth right after one.
 // A step whose Newton iteration fails (SolverError) is retried at half the step. Both give up
-// below min_step_fraction of the run with an error naming the time, the step and the last
-// Newton failure. The steps land on the output times (cut to the time left, or to half of it
+// below min_step_fraction of the run (or below what the run's times resolve, model.hpp) with an
+// error naming the time, the step and the last Newton failure. The steps land on the output times (cut to the time left, or to half of it
 // when the step covers more than half of it, so that no sliver of a step follows); the outputs
 // are therefore the scheme's own states, not interpolated.
 #include "ffr/runtime/step_control.hpp"
@@ -34,16 +34,25 @@ namespace ffr::runtime {
 namespace {
 
 // (The control's own limits: a caller may have set them.)
-double min_step(const Model& model, const StepControlLimits& lim) {
+double fraction_step(const Model& model, const StepControlLimits& lim) {
   return model.settings.end > model.settings.start ? lim.min_step_fraction * (model.settings.end - model.settings.start) : 0;
 }
 
+// Also no step the run's times cannot resolve (time_resolution_step, model.hpp): far from t = 0
+// a step below it would move t by a rounded amount or not at all.
+double min_step(const Model& model, const StepControlLimits& lim) {
+  return std::max(fraction_step(model, lim), time_resolution_step(model.settings.start, model.settings.end));
+}
+
 [[noreturn]] void give_up(const Model& model, const StepControlLimits& lim, const Data& data, double h, const std::string& why) {
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "adaptive step: the step fell below the minimum %.3g s at t = %.9g s (last tried %.3g s): ",
-                min_step(model, lim), data.state.t, h);
+  char buf[200];
+  const double least = min_step(model, lim);
+  const bool by_time = least > fraction_step(model, lim);
+  std::snprintf(buf, sizeof buf, "adaptive step: the step fell below the minimum %.3g s%s at t = %.9g s (last tried %.3g s): ",
+                least, by_time ? " (what times this far from t = 0 resolve)" : "", data.state.t, h);
   throw SolverError(data.state.t, h,
-                    buf + why + "; loosen rtol/atol, or look for a discontinuity or a locked mechanism at that time");
+                    buf + why + (by_time ? "; start the run nearer to t = 0 (shifting its tables and motions alike), or " : "; ") +
+                        "loosen rtol/atol, or look for a discontinuity or a locked mechanism at that time");
 }
 
 }  // namespace

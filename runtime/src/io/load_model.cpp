@@ -68,6 +68,19 @@ Table parse_table(const Field& f, int ncomp, Interpolation default_kind) {
   return Table(t, v, kind);
 }
 
+// Refuses a run whose times are too far from zero for its steps (kMinStepInTimeSpacings).
+void require_resolved_times(const Field& s, const SolverSettings& st, double step, const std::string& which) {
+  const double least = time_resolution_step(st.start, st.end);
+  if (step >= least) return;
+  // The remedy is a start nearer to 0; a run from 0 this far has more steps than any run takes.
+  const double t = std::max(std::abs(st.start), std::abs(st.end));
+  s.at(st.start != 0 ? "start" : "end")
+      .fail("times near " + fmt(t) + " s are resolved only to " + fmt(least / kMinStepInTimeSpacings) +
+            " s (the spacing of doubles there), and " + which + ", " + fmt(step) + " s, spans fewer than " +
+            fmt(kMinStepInTimeSpacings) + " of them (at least " + fmt(least) +
+            " s): start the run nearer to t = 0, shifting its tables and motions alike");
+}
+
 // The integrator (FORMULATION.md section 9) and "step": a fixed step, or "auto" with its own
 // keys, each refused with the other (a key that would be silently ignored is a wrong answer).
 void parse_scheme(const Field& s, SolverSettings& st) {
@@ -112,8 +125,11 @@ void parse_scheme(const Field& s, SolverSettings& st) {
       f->fail("is below the smallest step the error control takes, " + fmt(fraction * run) + " s (" + fmt(fraction) +
               " of the run)");
   }
+  // Every step lands on the output times, so none is longer than the output interval.
+  const double longest = st.max_step > 0 ? std::min(st.max_step, st.output_interval) : st.output_interval;
+  require_resolved_times(s, st, longest, "the longest step this run takes (max_step or output_interval)");
   // The first step tried: a guess the error estimate corrects within the first steps.
-  st.step = 1e-2 * (st.max_step > 0 ? std::min(st.max_step, st.output_interval) : st.output_interval);
+  st.step = 1e-2 * longest;
 }
 
 // The constraints' tolerance, in model lengths: below the coordinates' rounding no projection or
@@ -171,6 +187,7 @@ void parse_solver(const Field& root, ParseContext& ctx) {
     if (n < 0.5) s.at("step").fail("is longer than the run (end - start)");
     if (std::abs(n - std::round(n)) > 1e-6 * std::max(1.0, n))
       s.at("step").fail("the run (end - start) is not a whole number of steps");
+    require_resolved_times(s, st, st.step, "the step");
   }
   if (auto f = s.find("output_every")) {
     st.output_every = f->small_integer();

@@ -19,7 +19,9 @@
 
 #include <Eigen/SparseCore>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -414,6 +416,19 @@ constexpr int kMaxNewtonIterations = 1000;
 /// this asks for more than the coordinates' rounding, about 1e-16 of their size, resolves: only
 /// an increment or violation that happens to be zero meets it.
 constexpr double kRoundOffTolerance = 1e-15;
+
+/// A step spans at least this many spacings of the doubles near the run's times, so that t + h
+/// is the step's end to 1e-5 of the step. Far from t = 0 (from t = 1e15 s doubles are 0.125 s
+/// apart) a smaller step moves t by a rounded amount or not at all: the tables and motions are
+/// read at wrong times, and an adaptive run whose steps no longer advance t never ends.
+constexpr double kMinStepInTimeSpacings = 1e5;
+
+/// The smallest step the times of a run from `start` to `end` resolve: kMinStepInTimeSpacings
+/// spacings of the doubles at the larger of |start| and |end|.
+inline double time_resolution_step(double start, double end) {
+  const double t = std::max(std::abs(start), std::abs(end));
+  return kMinStepInTimeSpacings * (std::nextafter(t, HUGE_VAL) - t);
+}
 
 struct Model {
   std::string source;            ///< model file (for messages)
