@@ -150,8 +150,10 @@ class Simulation:
         """Advances n >= 1 steps (output intervals with "step": "auto")."""
         if isinstance(n, bool) or not isinstance(n, int):
             raise TypeError(f"ffr.Simulation.step: n must be an int, not {type(n).__name__}")
-        if n < 1 or n > 2**31 - 1:
+        if n < 1:
             raise ValueError(f"ffr.Simulation.step: n must be at least 1, not {n}")
+        if n > 2**31 - 1:  # the C API's int; call step() again for more
+            raise ValueError(f"ffr.Simulation.step: n must be at most 2147483647 (2**31 - 1), not {n}")
         self._sim.step(n)
 
     def reinitialize(self):

@@ -317,6 +317,8 @@ class SimulationTest(Workdir):
             sim.step(1.5)
         with self.assertRaisesRegex(ValueError, "at least 1"):
             sim.step(0)
+        with self.assertRaisesRegex(ValueError, r"at most 2147483647 \(2\*\*31 - 1\), not 2147483648"):
+            sim.step(2**31)
         with self.assertRaisesRegex(TypeError, "name must be a str"):
             sim.output(3)
         with self.assertRaisesRegex(TypeError, "value must be a number"):
