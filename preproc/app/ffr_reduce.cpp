@@ -1,5 +1,6 @@
 // ffr-reduce PART.json -o OUT.sid.h5: geometry or mesh -> FE -> modes -> invariants -> SID file.
 #include "ffr/cli/cli.hpp"
+#include "ffr/cli/output_files.hpp"
 #include "ffr/cli/process_threads.hpp"
 #include "ffr/formats/sid_io.hpp"
 #include "ffr/formats/validate.hpp"
@@ -127,6 +128,11 @@ int main(int argc, char** argv) {
     if (!out) throw ffr::cli::UsageError("missing -o OUT.sid.h5");
 
     ffr::preproc::PartSpec part = ffr::preproc::load_part(pos[0]);
+    // Before the reduction, which may take minutes: outputs that cannot be written or would
+    // replace the part file, its geometry or each other.
+    std::vector<ffr::cli::NamedPath> outputs{{"-o", *out}};
+    if (vtk) outputs.push_back({"--vtk", *vtk});
+    ffr::cli::check_outputs(outputs, {{"the part file", part.file}, {"the part's geometry", part.geometry}});
     if (backend) {
       if (*backend != "spectra" && *backend != "arpack" && *backend != "block" && *backend != "slepc")
         throw ffr::cli::UsageError("--backend must be block, spectra, arpack or slepc");

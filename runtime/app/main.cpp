@@ -1,6 +1,7 @@
 // ffr-sim MODEL.json -o OUT.h5 [--csv OUT.csv]
 // Exit status: 0 ok, 2 bad input (one line naming the file and the field), 1 other failure.
 #include "ffr/cli/cli.hpp"
+#include "ffr/cli/output_files.hpp"
 #include "ffr/runtime/runtime.hpp"
 #include "vtk_series.hpp"
 
@@ -11,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace {
 
@@ -49,28 +51,6 @@ int run(ffr::cli::Args& args) {
   if (pos.size() > 1) throw ffr::cli::UsageError("more than one model file given");
   if (!out) throw ffr::cli::UsageError("no results file given (-o OUT.h5)");
 
-  // Refused before the run, which may take long: an output whose directory does not exist, and
-  // a CSV named like the results file (it would replace them).
-  namespace fs = std::filesystem;
-  auto same_file = [](const fs::path& a, const fs::path& b) {
-    std::error_code ec1, ec2;
-    const fs::path ca = fs::weakly_canonical(fs::absolute(a), ec1), cb = fs::weakly_canonical(fs::absolute(b), ec2);
-    return !ec1 && !ec2 && ca == cb;
-  };
-  for (const auto& [option, file] : {std::pair{"-o", out}, std::pair{"--csv", csv}}) {
-    if (!file) continue;
-    const fs::path dir = fs::path(*file).parent_path().empty() ? fs::path(".") : fs::path(*file).parent_path();
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) {
-      std::fprintf(stderr, "ffr-sim: error: %s %s: no directory %s to write it in\n", option, file->c_str(), dir.c_str());
-      return 2;
-    }
-  }
-  if (csv && same_file(*out, *csv)) {
-    std::fprintf(stderr, "ffr-sim: error: --csv %s names the results file (-o %s)\n", csv->c_str(), out->c_str());
-    return 2;
-  }
-
   Model model;
   try {
     model = load_model(pos[0]);
@@ -78,6 +58,13 @@ int run(ffr::cli::Args& args) {
     std::fprintf(stderr, "ffr-sim: error: %s\n", e.what());
     return 2;
   }
+  // Before the run, which may take long: outputs that cannot be written or would replace an
+  // input or each other.
+  std::vector<ffr::cli::NamedPath> outputs{{"-o", *out}}, inputs{{"the model file", pos[0]}};
+  if (csv) outputs.push_back({"--csv", *csv});
+  if (vtk) outputs.push_back({"--vtk", *vtk});
+  for (const auto& sid : model.sid_files) inputs.push_back({"the SID file", sid});
+  ffr::cli::check_outputs(outputs, inputs);
   // Checked before the run (a SID without a surface is bad input); adds its hidden outputs.
   std::optional<ffr::vtk::Series> series;
   if (vtk) series.emplace(*vtk, pos[0], model);

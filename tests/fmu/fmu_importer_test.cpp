@@ -456,6 +456,16 @@ TEST_F(FmuTest, MissingSidIsRefusedWithoutOutput) {
   EXPECT_EQ(u.status, 2) << u.output;
 }
 
+// -o naming the model file replaced it by the FMU (exit 0): refused, the model untouched.
+TEST_F(FmuTest, OutputNamingTheModelIsRefused) {
+  const std::string text = read(kModels / "four_bar.json");
+  std::ofstream(dir_ / "model.json") << text;
+  const auto p = sh((kBin / "ffr-fmu").string() + " " + q(dir_ / "model.json") + " -o " + q(dir_ / "." / "model.json"));
+  EXPECT_EQ(p.status, 2) << p.output;
+  EXPECT_NE(p.output.find("would overwrite the model file"), std::string::npos) << p.output;
+  EXPECT_EQ(read(dir_ / "model.json"), text);
+}
+
 }  // namespace
 
 namespace {

@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -256,4 +258,10 @@ TEST(Export, BadInputWritesNothing) {
   r = test::run(info + " " + (dir / "bad.sid.h5").string() + " --export-fbi");
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("--export-fbi needs -o OUT"), std::string::npos) << r.output;
+  // -o naming the SID itself replaced it by the text (exit 0).
+  r = test::run(info + " " + (dir / "bad.sid.h5").string() + " --export-fbi -o " + (dir / "." / "bad.sid.h5").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("would overwrite the SID file " + (dir / "bad.sid.h5").string()), std::string::npos) << r.output;
+  std::ifstream kept(dir / "bad.sid.h5");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "not an HDF5 file");
 }

@@ -97,6 +97,38 @@ TEST(ReduceCli, BadInputsExitTwoWithoutOutput) {
   }
 }
 
+// An output that names an input or the other output, or lies in no folder: refused before the
+// reduction, the inputs untouched (ffr-reduce part.json -o part.json replaced the part file
+// by the SID, exit 0; a missing folder failed after the reduction with HDF5's message).
+TEST(ReduceCli, OutputsThatWouldOverwriteAnInputOrEachOtherAreRefused) {
+  test::TempDir dir("cli");
+  test::write_text(dir / "bar.geo", kGeoBar);
+  test::write_text(dir / "part.json", clamped_bar_part(""));
+  const std::string reduce = test::bin("ffr-reduce").string() + " " + (dir / "part.json").string() + " --quiet ";
+  const std::string part = (dir / "part.json").string(), geo = (dir / "bar.geo").string();
+  struct Case { std::string args, expect; };
+  const std::vector<Case> cases = {
+      {"-o " + part, "-o " + part + " would overwrite the part file " + part},
+      {"-o " + (dir / "." / "bar.geo").string(), "would overwrite the part's geometry " + geo},
+      {"-o " + (dir / "out.sid.h5").string() + " --vtk " + (dir / "out.sid.h5").string(), "--vtk " + (dir / "out.sid.h5").string() + " names the same file as -o"},
+      {"-o " + (dir / "nowhere" / "out.sid.h5").string(), "no directory " + (dir / "nowhere").string() + " to write it in"},
+  };
+  for (const auto& c : cases) {
+    const auto r = test::run(reduce + c.args);
+    EXPECT_EQ(r.status, 2) << c.args << ": " << r.output;
+    EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << ": " << r.output;
+  }
+  const auto text = [](const std::filesystem::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  EXPECT_EQ(text(dir / "part.json"), clamped_bar_part(""));
+  EXPECT_EQ(text(dir / "bar.geo"), kGeoBar);
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
+}
+
 TEST(ReduceCli, TwoDisconnectedSolidsInAFreeBodyAreRefused) {
   test::TempDir dir("cli");
   test::write_text(dir / "two.geo", R"(SetFactory("OpenCASCADE");

@@ -3,12 +3,16 @@
 // attributes, the CSV header, and no output file left behind on failure.
 #include "ffr/formats/h5.hpp"
 #include "support.hpp"
+#include "synthetic_bodies.hpp"
 
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <vector>
 #include <sys/wait.h>
 
 namespace {
@@ -114,11 +118,52 @@ TEST(Cli, OutputsThatCannotBeWrittenAreRefusedBeforeTheRun) {
   // The CSV named like the results file replaced them (exit 0, an HDF5 file that was text).
   r = run(model + " -o " + h5 + " --csv " + (dir / "." / "out.h5").string());
   EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_NE(r.output.find("names the results file"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--csv " + (dir / "." / "out.h5").string() + " names the same file as -o " + h5), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
   r = run(model + " -o " + (dir / "no" / "out.h5").string());
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("-o"), std::string::npos) << r.output;
+}
+
+// An output naming an input, or the results and the ParaView collection naming one file: the
+// model file was replaced by the results (exit 0), -o and --vtk under one name left the
+// collection where the results should be. Refused before the run, the inputs untouched.
+TEST(Cli, OutputsThatWouldOverwriteAnInputOrEachOtherAreRefused) {
+  ffr::runtime::test::TempDir dir("cli");
+  ffr::formats::synthetic::ChainParams p;
+  p.clamped = true;
+  ffr::runtime::test::write_sid_file(ffr::formats::synthetic::spring_chain(p).sid, dir / "chain.sid.h5");
+  const std::string model_text = R"({"bodies": [{"name": "c", "type": "flexible", "sid": "chain.sid.h5"}],
+    "joints": [{"name": "clamp", "type": "fixed", "body1": "ground", "body2": "c", "node2": "A"}],
+    "solver": {"end": 0.01, "step": 0.001}})";
+  ffr::runtime::test::write_text(dir / "m.json", model_text);
+  const std::string model = (dir / "m.json").string(), sid = (dir / "chain.sid.h5").string();
+  const std::string sid_before = [&] {
+    std::ifstream in(sid, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  struct Case { std::string args, expect; };
+  const std::vector<Case> cases = {
+      {"-o " + model, "-o " + model + " would overwrite the model file " + model},
+      {"-o " + (dir / "out.h5").string() + " --csv " + (dir / "sub" / ".." / "m.json").string(), "would overwrite the model file"},
+      {"-o " + (dir / "." / "chain.sid.h5").string(), "would overwrite the SID file " + sid},
+      {"-o " + (dir / "run.pvd").string() + " --vtk " + (dir / "run.pvd").string(), "--vtk " + (dir / "run.pvd").string() + " names the same file as -o"},
+  };
+  std::filesystem::create_directory(dir / "sub");
+  for (const auto& c : cases) {
+    const Result r = run(model + " " + c.args);
+    EXPECT_EQ(r.status, 2) << c.args << ": " << r.output;
+    EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << ": " << r.output;
+  }
+  std::ifstream in(model);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), model_text);
+  std::ifstream sin(sid, std::ios::binary);
+  EXPECT_TRUE(std::string(std::istreambuf_iterator<char>(sin), {}) == sid_before);
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "run.pvd"));
+  // The same model writes its results beside its inputs.
+  const Result ok = run(model + " -o " + (dir / "out.h5").string() + " --quiet");
+  EXPECT_EQ(ok.status, 0) << ok.output;
 }
 
 TEST(Cli, RecordingMoreThanMemoryHoldsIsRefusedNotAnAllocationFailure) {

@@ -3,6 +3,7 @@
 #include "zip_writer.hpp"
 
 #include "ffr/cli/cli.hpp"
+#include "ffr/cli/output_files.hpp"
 #include "ffr/formats/h5.hpp"
 #include "ffr/formats/sha256.hpp"
 #include "ffr/runtime/runtime.hpp"
@@ -140,14 +141,6 @@ int run(ffr::cli::Args& args) {
   if (pos.size() != 1) throw ffr::cli::UsageError("expected one model file");
   if (!out) throw ffr::cli::UsageError("no FMU file given (-o MODEL.fmu)");
   const fs::path model_file = pos[0];
-  {
-    const fs::path dir = fs::path(*out).parent_path().empty() ? fs::path(".") : fs::path(*out).parent_path();
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) {
-      std::fprintf(stderr, "ffr-fmu: error: -o %s: no directory %s to write it in\n", out->c_str(), dir.c_str());
-      return 2;
-    }
-  }
 
   // The whole model as ffr-sim reads it: every error of the model or of a SID file now.
   ffr::runtime::Model model;
@@ -157,6 +150,9 @@ int run(ffr::cli::Args& args) {
     std::fprintf(stderr, "ffr-fmu: error: %s\n", e.what());
     return 2;
   }
+  std::vector<ffr::cli::NamedPath> inputs{{"the model file", model_file}};
+  for (const auto& sid : model.sid_files) inputs.push_back({"the SID file", sid});
+  ffr::cli::check_outputs({{"-o", *out}}, inputs);
 
   // Variable names must be unique in modelDescription.xml: an output "a[0]" beside a vector
   // output "a", or an output named like an input, cannot be packaged.

@@ -1,5 +1,6 @@
 #include "export.hpp"
 
+#include "ffr/cli/output_files.hpp"
 #include "ffr/formats/h5.hpp"
 #include "ffr/formats/sid_io.hpp"
 #include "ffr/formats/validate.hpp"
@@ -152,6 +153,7 @@ std::string mtx_text(const Eigen::MatrixXd& m, const std::string& comment) {
 }  // namespace
 
 int run_export_fbi(const std::string& sid_file, const std::string& out) {
+  cli::check_outputs({{"-o", out}}, {{"the SID file", sid_file}});
   const Sid sid = read_valid(sid_file);
   write_atomically(out, fbi_text(sid));
   return 0;
@@ -161,7 +163,8 @@ int run_export_mtx(const std::string& sid_file, const std::string& dir) {
   const Sid sid = read_valid(sid_file);
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (!std::filesystem::is_directory(dir)) throw std::runtime_error("cannot create the folder " + dir);
+  if (!std::filesystem::is_directory(dir))
+    throw cli::UsageError("-o " + dir + ": cannot create the folder" + (ec ? " (" + ec.message() + ")" : std::string()));
   const std::string units = " (units: length " + sid.units_length + ", mass " + sid.units_mass + ", time " + sid.units_time + ")";
   const std::filesystem::path d(dir);
   write_atomically(d / "Me.mtx", mtx_text(sid.Me, "modal mass matrix Me of " + sid_file + units));

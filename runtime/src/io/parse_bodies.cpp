@@ -113,6 +113,7 @@ void parse_bodies(const Field& root, ParseContext& ctx) {
                                      orientation(b.find("orientation")), ratio, stiff, (ctx.base / sidf.string()).string(),
                                      ctx.file + ": " + sidf.path(), &ctx.model.notes);
       body.source = sidf.string();
+      ctx.model.sid_files.push_back((ctx.base / sidf.string()).string());
       initial_motion(b, body);
       if (auto f = b.find("modal_coordinates")) body.y0 = f->vector(body.nq);
       if (auto f = b.find("modal_velocities")) body.yd0 = f->vector(body.nq);

@@ -432,6 +432,9 @@ inline double time_resolution_step(double start, double end) {
 
 struct Model {
   std::string source;            ///< model file (for messages)
+  /// The SID files the flexible bodies were read from, as opened (against the model file's
+  /// folder): the tools refuse an output that names one.
+  std::vector<std::string> sid_files;
   Vector3d gravity = Vector3d::Zero();
   std::vector<Body> bodies;
   std::vector<Marker> markers;
