@@ -151,6 +151,11 @@ TEST(Cli, InfoPlotsTimeHistoriesAndRefusesUnknownChannels) {
   EXPECT_EQ(run("ffr-info", f.string() + " --plot tip[x] --png " + bad.string()).rc, 2);
   EXPECT_EQ(run("ffr-info", f.string() + " --plot tip").rc, 2);  // no --png
   EXPECT_FALSE(fs::exists(bad));
+  // --png naming the results file replaced them by the picture (exit 0).
+  const Outcome over = run("ffr-info", f.string() + " --plot tip --png " + (dir() / "." / "plot_run.h5").string());
+  EXPECT_EQ(over.rc, 2);
+  EXPECT_NE(over.err.find("would overwrite the results file " + f.string()), std::string::npos) << over.err;
+  EXPECT_EQ(run("ffr-info", f.string() + " --json").rc, 0);  // still the results file
 }
 
 // A channel flat to its last bits far from zero (a coordinate held by a joint, rounding noise

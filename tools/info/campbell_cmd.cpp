@@ -2,6 +2,7 @@
 #include "summary.hpp"
 
 #include "ffr/cli/cli.hpp"
+#include "ffr/cli/output_files.hpp"
 #include "ffr/formats/campbell.hpp"
 #include "ffr/formats/sid_io.hpp"
 #include "png.hpp"
@@ -22,6 +23,7 @@ int run_campbell(const std::filesystem::path& file, const std::string& axis_name
     throw cli::UsageError(std::string("--campbell: ") + e.what());
   }
   const auto speeds = cli::Args::parse_list(speeds_text, "--speeds");
+  if (!png.empty()) cli::check_outputs({{"--png", png}}, {{"the SID file", file}});
   const formats::Sid sid = formats::read_sid(file);
   formats::Campbell c;
   try {

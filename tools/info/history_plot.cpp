@@ -3,6 +3,7 @@
 #include "summary.hpp"
 
 #include "ffr/cli/cli.hpp"
+#include "ffr/cli/output_files.hpp"
 #include "plot_axes.hpp"
 
 #include <algorithm>
@@ -83,6 +84,7 @@ void draw_panel(Canvas& cv, const formats::Results& r, const Selection& s, int t
 
 int run_plot(const std::filesystem::path& file, const std::string& channels, const std::string& png) {
   if (png.empty()) throw cli::UsageError("--plot needs --png OUT.png");
+  cli::check_outputs({{"--png", png}}, {{"the results file", file}});
   const formats::Results r = formats::read_results(file);
   std::vector<Selection> panels;
   std::size_t start = 0;
