@@ -5,6 +5,7 @@
 #include "h5_tree.hpp"
 #include "simulation.hpp"
 
+#include "ffr/cli/output_files.hpp"
 #include "ffr/cli/process_threads.hpp"
 #include "ffr/formats/results_io.hpp"
 #include "ffr/formats/sid_io.hpp"
@@ -77,6 +78,7 @@ std::string reduce(const std::string& part_path, const std::string& output, py::
     const std::lock_guard<std::mutex> lock(one_at_a_time);
     try {
       const preproc::PartSpec part = preproc::load_part(part_path);
+      cli::check_outputs({{"output", output}}, {{"the part file", part.file}, {"the part's geometry", part.geometry}});
       const ReduceThreads threads(part.reduction.factorization);
       const formats::Sid sid = preproc::run_pipeline(part, {}, log);
       const auto report = formats::validate(sid);

@@ -126,6 +126,17 @@ class ReduceTest(Workdir):
         self.assertFalse(os.path.exists(out))
         self.assertEqual(os.listdir(self.dir), ["bad.json"])  # no temporary left either
 
+    def test_output_over_the_part_is_refused(self):
+        part = self.file("rod.json")
+        with open(ROD) as f:
+            text = f.read().replace('"rod.geo"', json.dumps(os.path.join(os.path.dirname(ROD), "rod.geo")))
+        with open(part, "w") as f:
+            f.write(text)
+        with self.assertRaisesRegex(ValueError, "output .* would overwrite the part file"):
+            ffr.reduce(part, os.path.join(self.dir, ".", "rod.json"))
+        with open(part) as f:
+            self.assertEqual(f.read(), text)
+
     def test_wrong_types(self):
         with self.assertRaisesRegex(TypeError, "ffr.reduce: part must be a path"):
             ffr.reduce(3, self.file("x.sid.h5"))
