@@ -113,6 +113,12 @@ TEST(BadInput, TolerancesAndStepsBelowWhatTheSolverResolvesAreRefused) {
   expect_error(solver(R"("step": 0.001, "tolerance": 1e-300)"), "solver.tolerance", "below what double precision can reach");
   expect_error(R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"analysis": "static", "tolerance": 1e-16}})",
                "solver.tolerance", "below what double precision can reach");
+  // A penalty whose rounding costs accuracy (kMaxPenalty, andrews_options_test.cpp); 1e20 ended in
+  // "the mass matrix with the joints' constraints is singular" at the start.
+  EXPECT_EQ(test::model_from(solver(R"("step": 0.001, "penalty": 1e9)")).settings.penalty, 1e9);
+  expect_error(solver(R"("step": 0.001, "penalty": 1e20)"), "solver.penalty", "must be at most 1e+09");
+  expect_error(R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"analysis": "static", "penalty": 1e10}})",
+               "solver.penalty", "must be at most 1e+09");
   EXPECT_EQ(test::model_from(solver(R"("step": "auto", "max_step": 1e-10)")).settings.max_step, 1e-10);
   expect_error(solver(R"("step": "auto", "max_step": 1e-300)"), "solver.max_step",
                "is below the smallest step the error control takes, 1e-10 s (1e-10 of the run)");

@@ -141,6 +141,16 @@ double constraint_tolerance(const Field& f) {
   return v;
 }
 
+// The augmented-Lagrangian penalty: any positive value converges (a small one in more
+// iterations), but above kMaxPenalty the constraint forces' rounding costs accuracy.
+double penalty(const Field& f) {
+  const double v = f.positive();
+  if (v > kMaxPenalty)
+    f.fail("must be at most " + fmt(kMaxPenalty) + ": above it the rounding of the constraint forces costs accuracy "
+           "(the default 1e4 suits most models; FORMULATION.md section 9)");
+  return v;
+}
+
 void parse_solver(const Field& root, ParseContext& ctx) {
   const Field s = root.at("solver");
   s.allow_only({"start", "end", "step", "output_every", "tolerance", "newton_tolerance", "max_iterations", "penalty", "reuse_jacobian",
@@ -170,7 +180,7 @@ void parse_solver(const Field& root, ParseContext& ctx) {
     st.end = st.start;
     if (auto f = s.find("tolerance")) st.tolerance = constraint_tolerance(*f);
     if (auto f = s.find("newton_tolerance")) st.newton_tolerance = f->positive();
-    if (auto f = s.find("penalty")) st.penalty = f->positive();
+    if (auto f = s.find("penalty")) st.penalty = penalty(*f);
     if (auto f = s.find("eliminate_driven_bodies")) st.eliminate_driven = f->boolean();
     if (auto f = s.find("max_iterations")) f->fail("is a setting of a dynamic run's steps");
     if (auto f = s.find("reuse_jacobian")) f->fail("is a setting of a dynamic run's steps");
@@ -204,7 +214,7 @@ void parse_solver(const Field& root, ParseContext& ctx) {
       f->fail("must be at most " + std::to_string(kMaxNewtonIterations) + " (found " + std::to_string(st.max_iterations) +
               "): a step that has not converged by then does not; a smaller step is the remedy");
   }
-  if (auto f = s.find("penalty")) st.penalty = f->positive();
+  if (auto f = s.find("penalty")) st.penalty = penalty(*f);
   // Refused: a tangent kept over steps converges to the same tolerance only with honest
   // (contraction-measured) acceptance, and even then it does not keep the integrator's accuracy
   // (Andrews' squeezing mechanism ends 1e-5 rad away from the default, far above its Richardson-

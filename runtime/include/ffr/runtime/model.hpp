@@ -412,6 +412,11 @@ constexpr int kMaxModelCoordinates = 5000;
 /// The largest `solver.max_iterations` a model file may set (Newton iterations a step).
 constexpr int kMaxNewtonIterations = 1000;
 
+/// The largest `solver.penalty`: the rounding of the constraint forces grows with it and beyond
+/// it costs accuracy (Andrews' mechanism at h = 1e-5 s: 1e9 ends 4e-9 rad from the default,
+/// 1e10 7e-7, 1e11 5e-5, a sixth of the step's own error; tests/runtime/andrews_options_test.cpp).
+constexpr double kMaxPenalty = 1e9;
+
 /// A tolerance in model lengths (the constraints' `tolerance`, Newton's `newton_tolerance`) below
 /// this asks for more than the coordinates' rounding, about 1e-16 of their size, resolves: only
 /// an increment or violation that happens to be zero meets it.
