@@ -100,8 +100,10 @@ TEST(AndrewsOptions, EveryOptionKeepsTheDefaultsAccuracy) {
   const Result base = run(1e-5, "");
   const double own = angle_error(base);
   EXPECT_GT(own, 1e-4);  // (the truncation error the comparison is scaled by)
-  // (The penalty's range: 1e-4 and the largest the model file takes, kMaxPenalty = 1e9.)
-  for (const char* opt : {R"(, "penalty": 1e-4)", R"(, "penalty": 1e2)", R"(, "penalty": 1e6)", R"(, "penalty": 1e9)", R"(, "tolerance": 1e-10)",
+  // (The penalty's range: 1e-4 and the largest the model file takes, kMaxPenalty = 1e9; the
+  // loosest constraint tolerance it takes, kMaxConstraintTolerance = 1e-8.)
+  for (const char* opt : {R"(, "penalty": 1e-4)", R"(, "penalty": 1e2)", R"(, "penalty": 1e6)", R"(, "penalty": 1e9)",
+                          R"(, "tolerance": 1e-8)", R"(, "tolerance": 1e-10)",
                           R"(, "newton_tolerance": 1e-12)", R"(, "max_iterations": 8)", R"(, "eliminate_driven_bodies": false)",
                           R"(, "reuse_jacobian": false)", R"(, "output_every": 7)"}) {
     const Result r = run(1e-5, opt);

@@ -111,6 +111,10 @@ TEST(BadInput, TolerancesAndStepsBelowWhatTheSolverResolvesAreRefused) {
   };
   EXPECT_EQ(test::model_from(solver(R"("step": 0.001, "tolerance": 1e-15)")).settings.tolerance, 1e-15);
   expect_error(solver(R"("step": 0.001, "tolerance": 1e-300)"), "solver.tolerance", "below what double precision can reach");
+  // A loose one left violations that cost accuracy without a word (Andrews' mechanism: 1e-3
+  // ended 1.3e-4 rad off, andrews_options_test.cpp).
+  EXPECT_EQ(test::model_from(solver(R"("step": 0.001, "tolerance": 1e-8)")).settings.tolerance, 1e-8);
+  expect_error(solver(R"("step": 0.001, "tolerance": 1e-3)"), "solver.tolerance", "must be at most 1e-08 of the model length");
   expect_error(R"({"bodies": [)" + std::string(kRigid) + R"(], "solver": {"analysis": "static", "tolerance": 1e-16}})",
                "solver.tolerance", "below what double precision can reach");
   // A penalty whose rounding costs accuracy (kMaxPenalty, andrews_options_test.cpp); 1e20 ended in

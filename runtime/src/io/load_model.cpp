@@ -133,11 +133,15 @@ void parse_scheme(const Field& s, SolverSettings& st) {
 }
 
 // The constraints' tolerance, in model lengths: below the coordinates' rounding no projection or
-// Newton step can meet it (1e-300 failed the first step asking for a smaller one).
+// Newton step can meet it (1e-300 failed the first step asking for a smaller one); above
+// kMaxConstraintTolerance the violations it leaves cost accuracy.
 double constraint_tolerance(const Field& f) {
   const double v = f.positive();
   if (v < kRoundOffTolerance)
     f.fail("is below what double precision can reach (" + fmt(kRoundOffTolerance) + " of the model length)");
+  if (v > kMaxConstraintTolerance)
+    f.fail("must be at most " + fmt(kMaxConstraintTolerance) +
+           " of the model length: a looser one costs accuracy (the default 1e-12; FORMULATION.md section 9)");
   return v;
 }
 

@@ -417,6 +417,11 @@ constexpr int kMaxNewtonIterations = 1000;
 /// 1e10 7e-7, 1e11 5e-5, a sixth of the step's own error; tests/runtime/andrews_options_test.cpp).
 constexpr double kMaxPenalty = 1e9;
 
+/// The loosest constraint `tolerance` (model lengths): a looser one costs accuracy (Andrews'
+/// mechanism at h = 1e-5 s: 1e-8 ends 7e-9 rad from the default, 1e-7 3e-7, 1e-6 9e-6, 3 % of the
+/// step's own error, 1e-3 44 %; tests/runtime/andrews_options_test.cpp).
+constexpr double kMaxConstraintTolerance = 1e-8;
+
 /// A tolerance in model lengths (the constraints' `tolerance`, Newton's `newton_tolerance`) below
 /// this asks for more than the coordinates' rounding, about 1e-16 of their size, resolves: only
 /// an increment or violation that happens to be zero meets it.
