@@ -39,7 +39,7 @@ std::string label(double v, double step, double magnitude) {
 
 // Calls draw(v, text) for the ticks of [lo, hi] at multiples of step, counted rather than
 // accumulated (a sum of steps drifts from the multiples), at most 100. Where the values need
-// more than 6 digits to tell two ticks apart (a variation small against the values' magnitude),
+// 6 digits or more to tell two ticks apart (a variation small against the values' magnitude),
 // the labels are the difference to an offset, a tick value near the middle, which is returned
 // for the axis to show ("+1000"); otherwise the labels are the values and the offset 0.
 template <class Draw>
@@ -70,9 +70,11 @@ Rgb series_colour(std::size_t k) {
 PlotArea draw_axes(Canvas& cv, PlotArea a, const std::string& title, const std::string& xlabel,
                    const std::string& ylabel) {
   const Rgb black{0, 0, 0}, grid{225, 225, 225};
-  if (!std::isfinite(a.x1 - a.x0) || !std::isfinite(a.y1 - a.y0))
-    throw std::invalid_argument("a plot's range is not a finite number: [" + std::to_string(a.x0) + ", " +
-                                std::to_string(a.x1) + "] x [" + std::to_string(a.y0) + ", " + std::to_string(a.y1) + "]");
+  if (!std::isfinite(a.x1 - a.x0) || !std::isfinite(a.y1 - a.y0)) {
+    char range[160];
+    std::snprintf(range, sizeof range, "[%g, %g] x [%g, %g]", a.x0, a.x1, a.y0, a.y1);
+    throw std::invalid_argument(std::string("a plot's range is not a finite number: ") + range);
+  }
   if (!(a.x1 > a.x0)) a.x1 = a.x0 + 1;
   if (!(a.y1 > a.y0)) {
     const double d = std::abs(a.y0) > 0 ? 0.1 * std::abs(a.y0) : 1.0;

@@ -16,9 +16,10 @@
 //     size is a guess), and no growth right after one.
 // A step whose Newton iteration fails (SolverError) is retried at half the step. Both give up
 // below min_step_fraction of the run (or below what the run's times resolve, model.hpp) with an
-// error naming the time, the step and the last Newton failure. The steps land on the output times (cut to the time left, or to half of it
-// when the step covers more than half of it, so that no sliver of a step follows); the outputs
-// are therefore the scheme's own states, not interpolated.
+// error naming the time, the step and the last Newton failure. The steps land on the output
+// times (cut to the time left, or to half of it when the step covers more than half of it, so
+// that no sliver of a step follows); the outputs are therefore the scheme's own states, not
+// interpolated.
 #include "ffr/runtime/step_control.hpp"
 
 #include "ffr/runtime/errors.hpp"
