@@ -193,3 +193,27 @@ TEST(Table, BadInterpolationRefused) {
      "solver": {"end": 1, "step": 0.01}})",
                "motions[0].table.interpolation", "");
 }
+
+// A time table whose samples all lie outside the run (here milliseconds given as seconds, and a
+// speed table of an earlier run) is read only by extrapolation: each gets a note naming it; one
+// that overlaps the run gets none.
+TEST(Table, TimeTablesOutsideTheRunAreNoted) {
+  const auto model = [](const std::string& force_t, const std::string& motion_t) {
+    return R"({"bodies": [{"name": "m", "type": "rigid", "mass": 1, "inertia": [[1,0,0],[0,1,0],[0,0,1]]}],
+     "joints": [{"name": "j", "type": "revolute", "body1": "ground", "body2": "m", "at": [0,0,0], "axis": [0,0,1]}],
+     "forces": [{"name": "push", "type": "point_force", "body": "m", "table": {"t": )" + force_t + R"(, "value": [[0,0,0],[0,0,1]]}}],
+     "motions": [{"joint": "j", "speed": {"t": )" + motion_t + R"(, "value": [0, 1]}}],
+     "solver": {"start": 1, "end": 2, "step": 0.01}})";
+  };
+  const auto notes_with = [](const Model& m, const std::string& text) {
+    int n = 0;
+    for (const auto& note : m.notes) n += note.find(text) != std::string::npos;
+    return n;
+  };
+  const Model outside = test::model_from(model("[100, 2000]", "[0, 0.5]"));
+  EXPECT_EQ(notes_with(outside, "point_force 'push': its samples, t = 100 .. 2000 s, all lie outside the run (1 .. 2 s): "
+                                "it is extrapolated over the whole run with its end slope"), 1);
+  EXPECT_EQ(notes_with(outside, "the speed of the motion of joint 'j': its samples, t = 0 .. 0.5 s, all lie outside the run"), 1);
+  const Model overlapping = test::model_from(model("[1.5, 2000]", "[0, 1]"));  // touching the start counts
+  EXPECT_EQ(notes_with(overlapping, "all lie outside the run"), 0);
+}

@@ -235,6 +235,22 @@ void parse_solver(const Field& root, ParseContext& ctx) {
 
 namespace {
 
+// A time table whose samples all lie outside the run is read only by its extrapolation with the
+// end slope (MODEL_FILE.md "Tables"): legal, but most often times in another unit (ms) or a run
+// that starts elsewhere, so it is a note.
+void note_tables_outside_the_run(Model& m) {
+  const double start = m.settings.start, end = m.settings.end;
+  const auto check = [&](const Table& table, const std::string& what) {
+    const Eigen::VectorXd& t = table.times();
+    if (t.size() < 2 || (t[t.size() - 1] >= start && t[0] <= end)) return;
+    m.notes.push_back(what + ": its samples, t = " + num(t[0]) + " .. " + num(t[t.size() - 1]) + " s, all lie outside the run (" +
+                      num(start) + " .. " + num(end) + " s): it is extrapolated over the whole run with its end slope");
+  };
+  for (const PointLoad& l : m.loads) check(l.table, (l.torque ? "point_torque '" : "point_force '") + l.name + "'");
+  for (const Motion& mo : m.motions)
+    check(mo.table, "the " + std::string(mo.speed ? "speed" : "table") + " of the motion of joint '" + m.joints[mo.joint].name + "'");
+}
+
 Model parse_document(const formats::JsonDocument& doc, const std::filesystem::path& base_dir, const std::string& name) {
   Model m;
   m.source = name;
@@ -263,6 +279,7 @@ Model parse_document(const formats::JsonDocument& doc, const std::filesystem::pa
   detail::check_beam_attachments(root, ctx);
   detail::check_plate_attachments(root, ctx);
   detail::parse_motions(root, ctx);
+  note_tables_outside_the_run(m);
   detail::parse_outputs(root, ctx);
   finalize(m);
   return m;
