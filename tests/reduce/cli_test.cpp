@@ -388,7 +388,7 @@ TEST(ReduceCli, FactorizationBackendIsChosenByThePartFile) {
 // An output node is the mesh node nearest to its point; a point farther from every node than the
 // diagonal of the part's bounding box (the bar: sqrt(0.2^2 + 0.02^2 + 0.012^2) = 0.2013 m) is
 // refused naming the field (an output node 1e6 m away was noted only in the provenance).
-TEST(ReduceCli, OutputNodeFarFromThePartIsRefused) {
+TEST(ReduceCli, OutputNodeOrPointMassFarFromThePartIsRefused) {
   const auto part = [](const std::string& at) {
     return R"({"geometry": "bar.geo", "mesh": {"size": 0.01}, "visual": false,
       "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}], "reduction": {"method": "free", "modes": 4},
@@ -407,4 +407,13 @@ TEST(ReduceCli, OutputNodeFarFromThePartIsRefused) {
     EXPECT_NE(r.output.find("bounding box (0.201"), std::string::npos) << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
   }
+  // A point mass so placed (mm read as m) was put on the nearest node: 1e3 times too far, its
+  // mass sat at the bar's end without a word.
+  test::TempDir dir("far");
+  const auto r = reduce(dir, R"({"geometry": "bar.geo", "mesh": {"size": 0.01}, "visual": false,
+      "materials": [{"group": "body", "E": 2.1e11, "nu": 0.3, "rho": 7850}], "reduction": {"method": "free", "modes": 4},
+      "point_masses": [{"name": "motor", "at": [200, 10, 6], "mass": 3}]})");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("part.json: point_masses[0].at: the nearest mesh node is"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.sid.h5"));
 }

@@ -67,6 +67,35 @@ Index nearest_used_node(const FeModel& model, const Eigen::Vector3d& p, double& 
   return best;
 }
 
+// The diagonal of the bounding box of the nodes with DOFs: a point farther than it from every
+// such node is not near the part at all (a point in the wrong units or a typo).
+double used_node_diagonal(const FeModel& model) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  const auto& x = model.mesh->x;
+  for (Index n = 0; n < x.rows(); ++n)
+    if (model.node_ndof[static_cast<std::size_t>(n)] > 0) {
+      lo = lo.cwiseMin(x.row(n).transpose());
+      hi = hi.cwiseMax(x.row(n).transpose());
+    }
+  return (hi - lo).norm();
+}
+
+// The mesh node nearest to `at` (a point mass's or an output node's), refused naming `field`
+// when it is farther than the part's diagonal.
+Index node_near_the_part(const FeModel& model, const Eigen::Vector3d& at, double diagonal, const std::string& file,
+                         const std::string& field, double& dist) {
+  const Index n = nearest_used_node(model, at, dist);
+  if (!(dist <= diagonal)) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "the nearest mesh node is %g away, more than the diagonal of the part's bounding box (%g): "
+                  "'at' is not near the part (in the part's length unit)",
+                  dist, diagonal);
+    throw FormatError(file, field, buf);
+  }
+  return n;
+}
+
 }  // namespace
 
 int FeModel::find_interface(const std::string& name) const {
@@ -168,7 +197,9 @@ FeModel build_model(const Mesh& mesh, const PartSpec& part) {
   }
   model.num_dofs = next;
 
-  // Attached masses.
+  // Attached masses, and below the output nodes: each on the mesh node nearest to its point,
+  // which must be near the part.
+  const double diagonal = used_node_diagonal(model);
   for (std::size_t i = 0; i < part.point_masses.size(); ++i) {
     const auto& pm = part.point_masses[i];
     const std::string field = "point_masses[" + std::to_string(i) + "]";
@@ -183,7 +214,7 @@ FeModel build_model(const Mesh& mesh, const PartSpec& part) {
       m.offset = centre - model.interfaces[static_cast<std::size_t>(m.interface)].x;
     } else {
       double dist = 0;
-      m.node = nearest_used_node(model, pm.at, dist);
+      m.node = node_near_the_part(model, pm.at, diagonal, part.file.string(), field + ".at", dist);
       const bool rigid_body = !pm.com_offset.isZero() || !pm.inertia.isZero();
       if (model.node_ndof[static_cast<std::size_t>(m.node)] == 3) {
         if (rigid_body)
@@ -199,32 +230,14 @@ FeModel build_model(const Mesh& mesh, const PartSpec& part) {
     model.masses.push_back(m);
   }
 
-  if (!part.output_nodes.empty()) {
-    // An output node is the mesh node nearest to `at`; one farther from it than the diagonal of
-    // the part's bounding box (of the nodes with DOFs) is not near the part at all: a point in
-    // the wrong units or a typo, refused rather than exporting an unrelated node.
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (Index n = 0; n < mesh.x.rows(); ++n)
-      if (model.node_ndof[static_cast<std::size_t>(n)] > 0) {
-        lo = lo.cwiseMin(mesh.x.row(n).transpose());
-        hi = hi.cwiseMax(mesh.x.row(n).transpose());
-      }
-    const double diagonal = (hi - lo).norm();
-    for (std::size_t i = 0; i < part.output_nodes.size(); ++i) {
-      const auto& o = part.output_nodes[i];
-      OutputNode out;
-      out.name = o.name;
-      out.node = nearest_used_node(model, o.at, out.distance);
-      if (!(out.distance <= diagonal)) {
-        char buf[200];
-        std::snprintf(buf, sizeof buf,
-                      "the nearest mesh node is %g away, more than the diagonal of the part's bounding box (%g): "
-                      "'at' is not near the part (in the part's length unit)",
-                      out.distance, diagonal);
-        throw FormatError(part.file.string(), "output_nodes[" + std::to_string(i) + "].at", buf);
-      }
-      model.outputs.push_back(out);
-    }
+  // Refused rather than exporting an unrelated node.
+  for (std::size_t i = 0; i < part.output_nodes.size(); ++i) {
+    const auto& o = part.output_nodes[i];
+    OutputNode out;
+    out.name = o.name;
+    out.node = node_near_the_part(model, o.at, diagonal, part.file.string(), "output_nodes[" + std::to_string(i) + "].at",
+                                  out.distance);
+    model.outputs.push_back(out);
   }
   return model;
 }
