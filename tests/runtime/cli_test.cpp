@@ -148,6 +148,8 @@ TEST(Cli, OutputsThatWouldOverwriteAnInputOrEachOtherAreRefused) {
       {"-o " + (dir / "out.h5").string() + " --csv " + (dir / "sub" / ".." / "m.json").string(), "would overwrite the model file"},
       {"-o " + (dir / "." / "chain.sid.h5").string(), "would overwrite the SID file " + sid},
       {"-o " + (dir / "run.pvd").string() + " --vtk " + (dir / "run.pvd").string(), "--vtk " + (dir / "run.pvd").string() + " names the same file as -o"},
+      // A folder as the results file: the run took place, then the rename into place failed.
+      {"-o " + (dir / "sub").string(), "-o " + (dir / "sub").string() + ": is a folder"},
   };
   std::filesystem::create_directory(dir / "sub");
   for (const auto& c : cases) {

@@ -32,9 +32,9 @@ inline bool same_file(const std::filesystem::path& a, const std::filesystem::pat
   return !ea && !eb && ca == cb;
 }
 
-/// Throws UsageError naming the option when an output's folder does not exist, when it names
-/// the same file as an earlier output, or when it names one of the inputs (an empty input path
-/// is none).
+/// Throws UsageError naming the option when an output's folder does not exist, when it is a
+/// folder itself, when it names the same file as an earlier output, or when it names one of
+/// the inputs (an empty input path is none).
 inline void check_outputs(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs) {
   namespace fs = std::filesystem;
   for (std::size_t i = 0; i < outputs.size(); ++i) {
@@ -43,6 +43,7 @@ inline void check_outputs(const std::vector<NamedPath>& outputs, const std::vect
     const fs::path dir = o.path.parent_path().empty() ? fs::path(".") : o.path.parent_path();
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) throw UsageError(named + ": no directory " + dir.string() + " to write it in");
+    if (fs::is_directory(o.path, ec)) throw UsageError(named + ": is a folder; give the name of the file to write");
     for (std::size_t j = 0; j < i; ++j)
       if (same_file(o.path, outputs[j].path))
         throw UsageError(named + " names the same file as " + outputs[j].what + " " + outputs[j].path.string());
