@@ -118,9 +118,9 @@ Series::Series(const fs::path& pvd, const fs::path& model_file, runtime::Model& 
   Impl& s = *impl_;
   s.pvd = pvd;
   if (pvd.extension() != ".pvd") throw std::invalid_argument("--vtk " + pvd.string() + ": the collection's name must end in .pvd");
+  // (That its folder exists, ffr-sim's check of every output has made sure: cli/output_files.hpp.)
   const fs::path dir = pvd.parent_path().empty() ? fs::path(".") : pvd.parent_path();
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw std::invalid_argument("--vtk " + pvd.string() + ": no directory " + dir.string() + " to write it in");
   s.frames = dir / (pvd.stem().string() + "_frames");
   // The folder is replaced at the end: refused now if it holds anything but frames of an earlier run.
   if (fs::exists(s.frames, ec)) {
