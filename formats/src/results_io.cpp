@@ -16,6 +16,7 @@ const Results::Output* Results::find(const std::string& name) const {
 void write_results(const Results& r, const std::filesystem::path& path) {
   const auto nt = static_cast<std::uint64_t>(r.time.size());
   if (!r.time.allFinite()) throw std::invalid_argument("results: non-finite time");
+  if (r.stopped_at && !std::isfinite(*r.stopped_at)) throw std::invalid_argument("results: non-finite stopped_at");
   for (Eigen::Index i = 1; i < r.time.size(); ++i)
     if (r.time[i] < r.time[i - 1]) throw std::invalid_argument("results: time must be non-decreasing");
   for (const auto& o : r.outputs) {
@@ -35,6 +36,10 @@ void write_results(const Results& r, const std::filesystem::path& path) {
     w.attr("/", "steps", r.steps);
     w.attr("/", "newton_iterations", r.newton_iterations);
     w.attr("/", "integration_seconds", r.integration_seconds);
+    if (r.stopped_at) {
+      w.attr("/", "stopped_at", *r.stopped_at);
+      w.attr("/", "stop_reason", r.stop_reason);
+    }
     w.write("/time", r.time.data(), {nt});
     w.ensure_group("/outputs");
     for (const auto& o : r.outputs) {
@@ -82,6 +87,10 @@ Results read_results(const std::filesystem::path& path, std::vector<std::string>
   res.steps = r.attr_int("/", "steps");
   res.newton_iterations = r.attr_int("/", "newton_iterations");
   res.integration_seconds = r.attr_double("/", "integration_seconds");
+  if (r.has_attr("/", "stopped_at")) {
+    res.stopped_at = r.attr_double("/", "stopped_at");
+    if (r.has_attr("/", "stop_reason")) res.stop_reason = r.attr_string("/", "stop_reason");
+  }
   if (!r.is_group("/outputs")) r.fail("/outputs", "missing group");
   for (const auto& name : r.members("/outputs")) {
     const std::string p = "/outputs/" + name;

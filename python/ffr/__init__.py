@@ -88,7 +88,10 @@ def read_sid(path):
 
 
 def read_results(path):
-    """A results file of ffr-sim: {"time": [nt], "outputs": {name: [nt, k]}, "steps", ...}."""
+    """A results file of ffr-sim: {"time": [nt], "outputs": {name: [nt, k]}, "steps", ...}.
+
+    A run that stopped with a solver error and was written with `ffr-sim --keep-partial` also
+    has "stopped_at" (the time of the failed step [s]) and "stop_reason" (the error)."""
     return _ffr.read_results(_path(path, "ffr.read_results", "path"))
 
 

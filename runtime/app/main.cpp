@@ -30,6 +30,9 @@ motions; flexible bodies from SID files) and writes the requested outputs to OUT
                       (the SID's /visual; point data displacement, and von_mises where the
                       SID has a /stress group) and every rigid body as the STL surface
                       of its "visual" key, else as its inertia box
+      --keep-partial  if the run stops with a solver error, still write the samples recorded
+                      before it (to -o, --csv and --vtk; the results file's root attributes
+                      stopped_at and stop_reason say where and why); the exit status stays 1
   -q, --quiet         no progress and no notes on stderr
   -h, --help          this text
       --version       the version
@@ -37,7 +40,7 @@ motions; flexible bodies from SID files) and writes the requested outputs to OUT
 Exit status: 0 ok, 2 bad input (malformed or inconsistent model, missing or bad SID file),
 1 other failure (e.g. Newton divergence, reported with the time and the residual).
 )",
-    "ffr-sim MODEL.json -o OUT.h5 [--csv OUT.csv] [--vtk RUN.pvd] [--quiet]"};
+    "ffr-sim MODEL.json -o OUT.h5 [--csv OUT.csv] [--vtk RUN.pvd] [--keep-partial] [--quiet]"};
 
 int run(ffr::cli::Args& args) {
   using namespace ffr::runtime;
@@ -46,6 +49,7 @@ int run(ffr::cli::Args& args) {
   const auto csv = args.option("--csv");
   const auto vtk = args.option("--vtk");
   const bool quiet = args.flag("-q") || args.flag("--quiet");
+  const bool keep_partial = args.flag("--keep-partial");
   const auto pos = args.positionals();
   if (pos.empty()) throw ffr::cli::UsageError("no model file given");
   if (pos.size() > 1) throw ffr::cli::UsageError("more than one model file given");
@@ -96,14 +100,39 @@ int run(ffr::cli::Args& args) {
         reported = true;
       };
     }
-    const RunInfo info = simulate(model, data, rec, opt);
-    if (reported) std::fputc('\n', stderr);
-    if (series) {
-      series->write_frames(model, rec);
-      model.outputs.resize(series->user_outputs());  // the results file holds the model file's outputs only
+    const auto write = [&](const RunInfo& info) {
+      if (series) {
+        series->write_frames(model, rec);
+        model.outputs.resize(series->user_outputs());  // the results file holds the model file's outputs only
+      }
+      write_results(*out, csv ? std::optional<std::filesystem::path>(*csv) : std::nullopt, model, rec, info);
+      if (series) series->commit();
+    };
+    RunInfo stopped;
+    opt.stopped = &stopped;
+    RunInfo info;
+    try {
+      info = simulate(model, data, rec, opt);
+    } catch (const SolverError& e) {
+      if (reported) std::fputc('\n', stderr);
+      std::fprintf(stderr, "ffr-sim: error: %s\n", e.what());
+      const double last = rec.times()[rec.rows() - 1];
+      if (keep_partial) {
+        if (!stopped.stopped_at) {  // (simulate() fills it; this keeps the file marked regardless)
+          stopped.stopped_at = e.time();
+          stopped.stop_reason = e.what();
+        }
+        write(stopped);
+        std::fprintf(stderr, "ffr-sim: the %lld samples to t = %.9g s written to %s (stopped_at %.9g s)\n",
+                     static_cast<long long>(rec.rows()), last, out->c_str(), e.time());
+      } else if (!quiet) {
+        std::fprintf(stderr, "ffr-sim: note: nothing written; --keep-partial writes the %lld samples recorded to t = %.9g s\n",
+                     static_cast<long long>(rec.rows()), last);
+      }
+      return 1;
     }
-    write_results(*out, csv ? std::optional<std::filesystem::path>(*csv) : std::nullopt, model, rec, info);
-    if (series) series->commit();
+    if (reported) std::fputc('\n', stderr);
+    write(info);
     if (!quiet)
       std::fprintf(stderr, "ffr-sim: %lld steps, %lld Newton iterations, %lld tangents, %lld solves, %.3f s integration (%.2f us per step)\n",
                    static_cast<long long>(info.steps), static_cast<long long>(info.newton_iterations),

@@ -121,6 +121,21 @@ TEST(Cli, InfoSummarisesAResultsFile) {
   // Ranges per component.
   EXPECT_DOUBLE_EQ(js["outputs"][1]["min"][0].get<double>(), r.outputs[0].values.col(0).minCoeff());
   EXPECT_DOUBLE_EQ(js["outputs"][1]["max"][1].get<double>(), r.outputs[0].values.col(1).maxCoeff());
+  EXPECT_EQ(js["complete"], true);
+  EXPECT_FALSE(js.contains("stopped_at"));
+  // The samples of a run that stopped with a solver error (ffr-sim --keep-partial).
+  r.stopped_at = 1.05;
+  r.stop_reason = "Newton did not converge at t = 1.05 s";
+  write_results(r, f);
+  const Outcome s = run("ffr-info", f.string() + " --json");
+  ASSERT_EQ(s.rc, 0) << s.err;
+  const auto stopped = nlohmann::json::parse(s.out);
+  EXPECT_EQ(stopped["complete"], false);
+  EXPECT_DOUBLE_EQ(stopped["stopped_at"].get<double>(), 1.05);
+  EXPECT_EQ(stopped["stop_reason"], r.stop_reason);
+  const Outcome text = run("ffr-info", f.string());
+  EXPECT_NE(text.out.find("stopped           at t = 1.05 s, before its end: Newton did not converge at t = 1.05 s"),
+            std::string::npos) << text.out;
 }
 
 TEST(Cli, InfoPlotsTimeHistoriesAndRefusesUnknownChannels) {
@@ -156,6 +171,34 @@ TEST(Cli, InfoPlotsTimeHistoriesAndRefusesUnknownChannels) {
   EXPECT_EQ(over.rc, 2);
   EXPECT_NE(over.err.find("would overwrite the results file " + f.string()), std::string::npos) << over.err;
   EXPECT_EQ(run("ffr-info", f.string() + " --json").rc, 0);  // still the results file
+}
+
+// A model file may name an output "x[mm]" or "a,b": --plot takes a channel's whole name before
+// reading a trailing [i] as a component ("x[mm][1]"), and the longest comma-separated run of
+// pieces that names a channel.
+TEST(Cli, InfoPlotsChannelsWhoseNamesHoldBracketsOrCommas) {
+  Results r;
+  r.time = Eigen::VectorXd::LinSpaced(11, 0.0, 1.0);
+  r.outputs.push_back({"x[mm]", "", Eigen::MatrixXd::Random(11, 2)});
+  r.outputs.push_back({"a,b", "", Eigen::MatrixXd::Random(11, 1)});
+  r.outputs.push_back({"a", "", Eigen::MatrixXd::Random(11, 1)});
+  const auto f = dir() / "bracket_run.h5";
+  write_results(r, f);
+  const auto png = dir() / "bracket.png";
+  const Outcome whole = run("ffr-info", f.string() + " --plot 'x[mm]' --png " + png.string());
+  EXPECT_EQ(whole.rc, 0) << whole.err;
+  EXPECT_TRUE(fs::exists(png));
+  const Outcome component = run("ffr-info", f.string() + " --plot 'x[mm][1]' --png " + png.string());
+  EXPECT_EQ(component.rc, 0) << component.err;
+  const Outcome commas = run("ffr-info", f.string() + " --plot 'a,b,a,x[mm][0],a,b[0]' --png " + png.string());
+  ASSERT_EQ(commas.rc, 0) << commas.err;
+  std::ifstream in(png, std::ios::binary);
+  unsigned char header[24] = {};
+  in.read(reinterpret_cast<char*>(header), sizeof header);
+  EXPECT_EQ((header[20] << 24) | (header[21] << 16) | (header[22] << 8) | header[23], 4 * 360);  // four panels
+  const Outcome other = run("ffr-info", f.string() + " --plot 'x[cm]' --png " + png.string());
+  EXPECT_EQ(other.rc, 2);
+  EXPECT_NE(other.err.find("'x[cm]' is neither NAME nor NAME[i]"), std::string::npos) << other.err;
 }
 
 // A channel flat to its last bits far from zero (a coordinate held by a joint, rounding noise

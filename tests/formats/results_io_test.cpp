@@ -6,6 +6,8 @@
 #include <hdf5.h>
 
 #include <filesystem>
+#include <limits>
+#include <vector>
 
 using namespace ffr::formats;
 namespace fs = std::filesystem;
@@ -119,5 +121,63 @@ TEST(ResultsIo, DamagedValuesAreRefusedAndVersion1IsReadWithAWarning) {
   EXPECT_EQ(r.time.size(), 5);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("format_version 1 has no content checksums"), std::string::npos) << warnings[0];
+  fs::remove(f);
+}
+
+// A file that no checksum covers (version 1, or written by the user's own tools) is still
+// refused when it holds a value the writer never writes: a NaN time or output value (the HDF5
+// layer's reading of every float dataset refuses it).
+TEST(ResultsIo, NonFiniteValuesAreRefusedNamingTheDataset) {
+  const auto write_v1_with = [](const fs::path& f, const char* dataset, hsize_t index) {
+    write_results(sample(), f);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    const hid_t h = H5Fopen(f.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    H5Adelete(h, "content_sha256");
+    const hid_t a = H5Aopen(h, "format_version", H5P_DEFAULT);
+    const std::int64_t one = 1;
+    H5Awrite(a, H5T_NATIVE_INT64, &one);
+    H5Aclose(a);
+    const hid_t ds = H5Dopen2(h, dataset, H5P_DEFAULT);
+    const hid_t space = H5Dget_space(ds);
+    std::vector<double> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+    H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    v[index] = std::numeric_limits<double>::quiet_NaN();
+    H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    H5Sclose(space);
+    H5Dclose(ds);
+    H5Fclose(h);
+  };
+  const auto expect_refused = [](const fs::path& f, const std::string& what) {
+    try {
+      read_results(f);
+      ADD_FAILURE() << "read a results file with a NaN: " << what;
+    } catch (const FormatError& e) {
+      EXPECT_NE(std::string(e.what()).find(f.string() + ": " + what), std::string::npos) << e.what();
+    }
+  };
+  const auto f = temp("nan.h5");
+  write_v1_with(f, "/time", 4);  // the last time: no decrease is seen before it
+  expect_refused(f, "/time: non-finite value nan at flat index 4");
+  write_v1_with(f, "/outputs/q", 9);  // row 2, column 1 of the 5x4 modal coordinates
+  expect_refused(f, "/outputs/q: non-finite value nan at flat index 9");
+  fs::remove(f);
+}
+
+// The file of a run that stopped with a solver error carries where and why (SPEC.md section 13);
+// a complete run's file carries neither.
+TEST(ResultsIo, AStoppedRunKeepsItsStopTimeAndReason) {
+  const auto f = temp("stopped.h5");
+  write_results(sample(), f);
+  EXPECT_FALSE(read_results(f).stopped_at.has_value());
+  Results r = sample();
+  r.stopped_at = 0.41;
+  r.stop_reason = "Newton did not converge at t = 0.41 s";
+  write_results(r, f);
+  const Results back = read_results(f);
+  ASSERT_TRUE(back.stopped_at.has_value());
+  EXPECT_EQ(*back.stopped_at, 0.41);
+  EXPECT_EQ(back.stop_reason, r.stop_reason);
+  r.stopped_at = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(write_results(r, f), std::invalid_argument);
   fs::remove(f);
 }

@@ -2,11 +2,13 @@
 // messages naming the file and field, the results file with the contract's datasets and
 // attributes, the CSV header, and no output file left behind on failure.
 #include "ffr/formats/h5.hpp"
+#include "ffr/formats/results_io.hpp"
 #include "support.hpp"
 #include "synthetic_bodies.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -70,6 +72,24 @@ TEST(Cli, RunWritesResultsAndCsv) {
   EXPECT_EQ(header, "time,angle[0],energy[0],energy[1],energy[2]");
 }
 
+// Output names may hold a comma or a quote (JSON strings); the CSV header quotes such a field
+// (RFC 4180), so that a CSV reader finds one heading per column.
+TEST(Cli, CsvHeaderQuotesNamesWithCommasAndQuotes) {
+  ffr::runtime::test::TempDir dir("cli");
+  std::string model = pendulum();
+  const std::string plain = R"("name": "angle")", odd = R"("name": "hinge, \"deg\"")";
+  model.replace(model.find(plain), plain.size(), odd);
+  ffr::runtime::test::write_text(dir / "m.json", model);
+  const Result r = run((dir / "m.json").string() + " -o " + (dir / "out.h5").string() + " --csv " + (dir / "out.csv").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream csv(dir / "out.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  EXPECT_EQ(header, R"(time,"hinge, ""deg""[0]",energy[0],energy[1],energy[2])");
+  EXPECT_EQ(std::count(row.begin(), row.end(), ','), 4) << row;  // five values under five headings
+}
+
 TEST(Cli, BadInputIsExitTwoWithFileAndField) {
   ffr::runtime::test::TempDir dir("cli");
   ffr::runtime::test::write_text(dir / "m.json", pendulum(R"(, "tolerance": -1)"));
@@ -102,6 +122,55 @@ TEST(Cli, NewtonFailureIsExitOneWithTimeAndResidual) {
   EXPECT_NE(r.output.find("scaled increment"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
   EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
+}
+
+// A run that fails halfway: by default nothing is written (the note says how to keep it); with
+// --keep-partial the samples before the failed step are written, marked as stopped, and they
+// are the samples of the same run ended before the failure, bit for bit.
+TEST(Cli, KeepPartialWritesTheSamplesBeforeAFailedStep) {
+  ffr::runtime::test::TempDir dir("cli");
+  // A vertical force rising from 0 at t = 0.0505 s to 1e29 N half a millisecond later: the step
+  // that meets it cannot converge.
+  const std::string force = R"("forces": [{"type": "point_force", "body": "bar", "at": [1, 0, 0],
+      "table": {"t": [0, 0.0505, 0.051], "value": [[0, 0, 0], [0, 0, 0], [0, 0, 1e29]]}}],
+  "solver":)";
+  std::string failing = pendulum(), until = pendulum();
+  failing.replace(failing.find("\"solver\":"), 9, force);
+  until.replace(until.find("\"solver\":"), 9, force);
+  until.replace(until.find("\"end\": 0.1"), 10, "\"end\": 0.05");
+  ffr::runtime::test::write_text(dir / "m.json", failing);
+  ffr::runtime::test::write_text(dir / "until.json", until);
+  const std::string model = (dir / "m.json").string(), h5 = (dir / "out.h5").string(), csv = (dir / "out.csv").string();
+
+  const Result plain = run(model + " -o " + h5 + " --csv " + csv);
+  ASSERT_EQ(plain.status, 1) << plain.output;
+  EXPECT_NE(plain.output.find("nothing written; --keep-partial writes the"), std::string::npos) << plain.output;
+  EXPECT_FALSE(std::filesystem::exists(h5));
+  EXPECT_FALSE(std::filesystem::exists(csv));
+
+  const Result kept = run(model + " -o " + h5 + " --csv " + csv + " --keep-partial");
+  ASSERT_EQ(kept.status, 1) << kept.output;
+  const auto partial = ffr::formats::read_results(h5);
+  ASSERT_TRUE(partial.stopped_at.has_value());
+  EXPECT_GT(*partial.stopped_at, 0.05);
+  EXPECT_LT(*partial.stopped_at, 0.1);
+  EXPECT_NE(kept.output.find(partial.stop_reason), std::string::npos) << kept.output;  // the error printed
+  EXPECT_NE(partial.stop_reason.find("t = "), std::string::npos) << partial.stop_reason;
+  // Every sample before the failed step, one a step: the last one a step before it.
+  const auto nt = partial.time.size();
+  ASSERT_GE(nt, 51);
+  EXPECT_NEAR(partial.time[nt - 1], *partial.stopped_at - 0.001, 1e-12);
+  std::ifstream in(csv);
+  const auto lines = std::count(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>(), '\n');
+  EXPECT_EQ(lines, nt + 1);  // the header and one line a sample
+
+  const Result whole = run((dir / "until.json").string() + " -o " + (dir / "until.h5").string());
+  ASSERT_EQ(whole.status, 0) << whole.output;
+  const auto reference = ffr::formats::read_results(dir / "until.h5");
+  EXPECT_FALSE(reference.stopped_at.has_value());
+  ASSERT_EQ(reference.time.size(), 51);
+  for (const char* name : {"angle", "energy"})
+    EXPECT_EQ(partial.find(name)->values.topRows(51), reference.find(name)->values) << name;
 }
 
 TEST(Cli, OutputsThatCannotBeWrittenAreRefusedBeforeTheRun) {

@@ -19,11 +19,13 @@ struct Selection {
   std::vector<Eigen::Index> columns;
 };
 
-// "name" (every component) or "name[i]" (0-based component i).
+// "name" (every component) or "name[i]" (0-based component i). A channel whose whole name is
+// the spec is taken first: names such as "x[mm]" are allowed in a model file.
 Selection select(const formats::Results& r, const std::string& spec, const std::string& file) {
   std::string name = spec;
   long column = -1;
-  if (const auto open = spec.find('['); open != std::string::npos) {
+  const bool whole = r.find(spec) != nullptr;
+  if (const auto open = spec.rfind('['); !whole && open != std::string::npos) {
     const auto close = spec.find(']', open);
     char* end = nullptr;
     const std::string idx = spec.substr(open + 1, close == std::string::npos ? std::string::npos : close - open - 1);
@@ -48,6 +50,12 @@ Selection select(const formats::Results& r, const std::string& spec, const std::
     for (Eigen::Index c = 0; c < it->values.cols(); ++c) s.columns.push_back(c);
   }
   return s;
+}
+
+// Whether select() finds a channel for the spec: a whole name, or a name followed by [i].
+bool names_a_channel(const formats::Results& r, const std::string& spec) {
+  const auto open = spec.rfind('[');
+  return r.find(spec) || (open != std::string::npos && spec.back() == ']' && r.find(spec.substr(0, open)));
 }
 
 void draw_panel(Canvas& cv, const formats::Results& r, const Selection& s, int top, int height) {
@@ -89,12 +97,22 @@ int run_plot(const std::filesystem::path& file, const std::string& channels, con
   std::vector<Selection> panels;
   std::size_t start = 0;
   while (start <= channels.size()) {
-    const auto comma = channels.find(',', start);
-    const std::string spec = channels.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    // The longest run of comma-separated pieces that names a channel (an output name may hold
+    // a comma), else the next piece alone, which select() then refuses with its message.
+    std::vector<std::size_t> ends;
+    for (auto c = channels.find(',', start); c != std::string::npos; c = channels.find(',', c + 1)) ends.push_back(c);
+    ends.push_back(channels.size());
+    std::size_t end = ends.front();
+    for (auto e = ends.rbegin(); e != ends.rend(); ++e)
+      if (names_a_channel(r, channels.substr(start, *e - start))) {
+        end = *e;
+        break;
+      }
+    const std::string spec = channels.substr(start, end - start);
     if (spec.empty()) throw cli::UsageError("--plot: empty channel name in '" + channels + "'");
     panels.push_back(select(r, spec, file.string()));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
+    if (end == channels.size()) break;
+    start = end + 1;
   }
   const int panel_height = 360;
   Canvas cv(900, panel_height * static_cast<int>(panels.size()));

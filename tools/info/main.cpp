@@ -25,7 +25,9 @@ an ffr-sim results file (time span, statistics, output channels with their final
   --plot CH1,CH2[i],...   of an ffr-sim results file: draw the time histories of these output
                           channels (all components, or component i from 0) into --png OUT.png;
                           legends name the components by the output's type (kinetic/potential/
-                          total, x/y/z, Fx..Mz, mode k), else [i]
+                          total, x/y/z, Fx..Mz, mode k), else [i]; a channel's whole name is
+                          matched first ("x[mm]"), and so is the longest list of
+                          comma-separated pieces that names a channel ("a,b" for an output so named)
   --stress BODY           of an ffr-sim results file: von Mises and principal stresses over
                           time at the nodes of BODY's SID /stress group (sigma = sum_k q_k S_k,
                           q the run's modal_coordinates output of BODY): a table of each node's

@@ -18,7 +18,7 @@ nlohmann::json summarize_results(const formats::Results& r, const std::string& f
                        {"final", last}, {"min", lo}, {"max", hi}});
   }
   const auto nt = r.time.size();
-  return {{"file", file},
+  json summary = {{"file", file},
           {"kind", "results"},
           {"generator", r.generator},
           {"time", {{"samples", nt}, {"start", nt ? json(r.time[0]) : json(nullptr)},
@@ -26,7 +26,13 @@ nlohmann::json summarize_results(const formats::Results& r, const std::string& f
           {"steps", r.steps},
           {"newton_iterations", r.newton_iterations},
           {"integration_seconds", r.integration_seconds},
-          {"outputs", outputs}};
+          {"outputs", outputs},
+          {"complete", !r.stopped_at.has_value()}};
+  if (r.stopped_at) {  // the samples before a failed step (ffr-sim --keep-partial)
+    summary["stopped_at"] = *r.stopped_at;
+    summary["stop_reason"] = r.stop_reason;
+  }
+  return summary;
 }
 
 }  // namespace ffr::info

@@ -104,6 +104,8 @@ void results_text(std::ostringstream& o, const json& r) {
   if (!r["generator"].get<std::string>().empty()) o << " (written by " << r["generator"].get<std::string>() << ")";
   o << "\n";
   line(o, "time", num(r["time"]["start"]) + " .. " + num(r["time"]["end"]) + " s, " + num(r["time"]["samples"]) + " samples");
+  if (!r["complete"].get<bool>())
+    line(o, "stopped", "at t = " + num(r["stopped_at"]) + " s, before its end: " + r["stop_reason"].get<std::string>());
   line(o, "steps", num(r["steps"]));
   line(o, "newton iterations", num(r["newton_iterations"]));
   line(o, "integration", num(r["integration_seconds"]) + " s");

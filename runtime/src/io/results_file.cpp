@@ -10,6 +10,7 @@
 #include <fstream>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 namespace ffr::runtime {
 
@@ -43,6 +44,10 @@ void write_h5(const std::filesystem::path& temp, const std::filesystem::path& pa
     w.attr("/", "factorizations", static_cast<std::int64_t>(info.factorizations));
     w.attr("/", "solves", static_cast<std::int64_t>(info.solves));
     w.attr("/", "integration_seconds", info.integration_seconds);
+    if (info.stopped_at) {  // the samples before a failed step (ffr-sim --keep-partial)
+      w.attr("/", "stopped_at", *info.stopped_at);
+      w.attr("/", "stop_reason", info.stop_reason);
+    }
     w.write("/time", rec.times().data(), {nt});
     w.ensure_group("/outputs");
     std::vector<double> buf;
@@ -60,13 +65,23 @@ void write_h5(const std::filesystem::path& temp, const std::filesystem::path& pa
   }
 }
 
+// A header field as RFC 4180 has it: quoted, its quotes doubled, when it holds a comma, a quote or
+// a line break. An output name may hold any of them, and written bare they would shift every
+// later column under the wrong heading.
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + '"';
+}
+
 void write_csv(const std::filesystem::path& temp, const std::filesystem::path& path, const Model& model, const Recorder& rec) {
   {
     std::ofstream f(temp);
     if (!f) throw std::runtime_error(path.string() + ": cannot create the CSV file");
     f << "time";
     for (const Output& o : model.outputs)
-      for (int k = 0; k < o.size; ++k) f << ',' << o.name << '[' << k << ']';
+      for (int k = 0; k < o.size; ++k) f << ',' << csv_field(o.name + '[' + std::to_string(k) + ']');
     f << '\n';
     char buf[32];
     for (std::int64_t r = 0; r < rec.rows(); ++r) {

@@ -1,5 +1,6 @@
 // The time loop: steps, recording, progress. Timing covers the loop alone (no loading, no
 // writing), which is what the results file reports as integration_seconds.
+#include "ffr/runtime/errors.hpp"
 #include "ffr/runtime/integrator.hpp"
 #include "ffr/runtime/outputs.hpp"
 #include "ffr/runtime/step_control.hpp"
@@ -36,11 +37,25 @@ class ProgressReport {
   clock::time_point last_;
 };
 
+RunInfo stopped_run(RunInfo info, const SolverError& e) {
+  info.stopped_at = e.time();
+  info.stop_reason = e.what();
+  return info;
+}
+
 // The solver's counts of a run: its stats less those at its start.
 void count_since(const Stats& start, const Stats& now, RunInfo& info) {
   info.newton_iterations = now.newton_iterations - start.newton_iterations;
   info.factorizations = now.factorizations - start.factorizations;
   info.solves = now.solves - start.solves;
+}
+
+RunInfo run_info(std::int64_t steps, const Stats& stats0, const Stats& now, clock::time_point start) {
+  RunInfo info;
+  info.steps = steps;
+  count_since(stats0, now, info);
+  info.integration_seconds = std::chrono::duration<double>(clock::now() - start).count();
+  return info;
 }
 
 // "step": "auto": adaptive steps that land on each output time (step_control.cpp).
@@ -51,16 +66,17 @@ RunInfo simulate_adaptive(const Model& model, Data& data, Recorder& rec, const R
   const auto start = clock::now();
   ProgressReport progress(opt, start);
   rec.record(model, data);
-  for (std::int64_t i = 1; i <= n; ++i) {
-    advance_to(model, data, control, output_time(model, i));
-    rec.record(model, data);
-    progress(data.state.t, model.settings.end);
+  try {
+    for (std::int64_t i = 1; i <= n; ++i) {
+      advance_to(model, data, control, output_time(model, i));
+      rec.record(model, data);
+      progress(data.state.t, model.settings.end);
+    }
+  } catch (const SolverError& e) {
+    if (opt.stopped) *opt.stopped = stopped_run(run_info(control.accepted, stats0, data.stats, start), e);
+    throw;
   }
-  RunInfo info;
-  info.steps = control.accepted;
-  count_since(stats0, data.stats, info);
-  info.integration_seconds = std::chrono::duration<double>(clock::now() - start).count();
-  return info;
+  return run_info(control.accepted, stats0, data.stats, start);
 }
 
 }  // namespace
@@ -73,16 +89,18 @@ RunInfo simulate(const Model& model, Data& data, Recorder& rec, const RunOptions
   const auto start = clock::now();
   ProgressReport progress(opt, start);
   rec.record(model, data);
-  for (std::int64_t i = 1; i <= n; ++i) {
-    step(model, data);
-    if (i % every == 0 || i == n) rec.record(model, data);
-    progress(data.state.t, model.settings.end);
+  std::int64_t i = 1;
+  try {
+    for (; i <= n; ++i) {
+      step(model, data);
+      if (i % every == 0 || i == n) rec.record(model, data);
+      progress(data.state.t, model.settings.end);
+    }
+  } catch (const SolverError& e) {
+    if (opt.stopped) *opt.stopped = stopped_run(run_info(i - 1, stats0, data.stats, start), e);
+    throw;
   }
-  RunInfo info;
-  info.steps = n;
-  count_since(stats0, data.stats, info);
-  info.integration_seconds = std::chrono::duration<double>(clock::now() - start).count();
-  return info;
+  return run_info(n, stats0, data.stats, start);
 }
 
 }  // namespace ffr::runtime

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,10 @@ struct Results {
   std::int64_t newton_iterations = 0;
   double integration_seconds = 0.0;
   std::string generator;  ///< filled on write if empty
+  /// A run that stopped with a solver error (ffr-sim --keep-partial): the time of the step that
+  /// failed and the error; the file holds the samples before it. Empty for a complete run.
+  std::optional<double> stopped_at;
+  std::string stop_reason;
 
   const Output* find(const std::string& name) const;
 };

@@ -53,12 +53,19 @@ struct RunInfo {
   std::int64_t factorizations = 0;  ///< tangents built and factorised
   std::int64_t solves = 0;          ///< solves with a factorised tangent (Newton, projections)
   double integration_seconds = 0;
+  /// A run that stopped with a SolverError: the time of the step that failed and its message
+  /// (results file attributes stopped_at and stop_reason); empty for a run that reached its end.
+  std::optional<double> stopped_at;
+  std::string stop_reason;
 };
 
 struct RunOptions {
   /// Called from the time loop (at most every `progress_seconds` of wall time) with t and end.
   std::function<void(double t, double end)> progress;
   double progress_seconds = 1.0;
+  /// If set, filled with the counts up to a SolverError, its time and message, before the
+  /// error leaves simulate(): what a results file of the samples recorded so far reports.
+  RunInfo* stopped = nullptr;
 };
 
 /// Number of steps of the run (end - start) / step, rounded; with "step": "auto", the number of
@@ -66,6 +73,7 @@ struct RunOptions {
 std::int64_t step_count(const Model& model);
 
 /// Runs from data's (initialised) state to settings.end, recording every output_every steps.
+/// A failed step throws SolverError; the recorder then holds the samples before it.
 RunInfo simulate(const Model& model, Data& data, Recorder& rec, const RunOptions& opt = {});
 
 /// Writes the results file (HDF5) and, if asked, the same outputs as CSV. Both go to temporary
