@@ -167,6 +167,29 @@ class ReadTest(Workdir):
         with self.assertRaises(ffr.InputError):  # a results file is not a SID
             ffr.read_sid(self.file("p.h5"))
 
+    def test_a_stopped_run_says_where_and_why(self):
+        # The pendulum with a vertical force that rises to 1e29 N within half a millisecond at
+        # t = 0.0505 s: the step that meets it fails; --keep-partial writes the samples before.
+        with open(PENDULUM) as f:
+            model = json.load(f)
+        model["forces"] = [{"type": "point_force", "body": "bar", "at": [1, 0, 0],
+                            "table": {"t": [0, 0.0505, 0.051], "value": [[0, 0, 0], [0, 0, 0], [0, 0, 1e29]]}}]
+        model["solver"]["end"] = 0.1
+        path = self.file("failing.json")
+        with open(path, "w") as f:
+            json.dump(model, f)
+        r = tool("ffr-sim", path, "-o", self.file("partial.h5"), "--keep-partial", "--quiet")
+        self.assertEqual(r.returncode, 1, r.stderr)
+        partial = ffr.read_results(self.file("partial.h5"))
+        self.assertGreater(partial["stopped_at"], 0.05)
+        self.assertIn(partial["stop_reason"], r.stderr)
+        self.assertEqual(len(partial["time"]), 51)  # t = 0 .. 0.05, every step
+        with self.assertRaises(ffr.SolverError):
+            ffr.Simulation(path).run()
+        r = tool("ffr-sim", PENDULUM, "-o", self.file("whole.h5"), "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertNotIn("stopped_at", ffr.read_results(self.file("whole.h5")))
+
 
 class SimulationTest(Workdir):
     """ffr.Simulation against ffr-sim on the four-bar: the same numbers, bit for bit."""
