@@ -202,7 +202,10 @@ class Simulation:
     def run(self):
         """Integrates to the model's end: {"time": [nt], "outputs": {name: [nt, k]}, "steps",
         "newton_iterations"}; the first row is the current state. From the start, the rows are
-        those ffr-sim writes."""
+        those ffr-sim writes. A step that fails raises SolverError, whose `results` holds the
+        rows before it with "stopped_at" and "stop_reason" (as `ffr-sim --keep-partial`); the
+        simulation is left at its last accepted step. Ctrl-C (KeyboardInterrupt, or any exception
+        a signal handler raises) stops it after the current step; run() again goes on from there."""
         return self._sim.run()
 
 

@@ -154,8 +154,27 @@ py::dict Simulation::run() {
   std::optional<Recorder> recorder;
   translated([&] { return recorder.emplace(model, rows), 0; });
   Recorder& rec = *recorder;
+  // The rows recorded so far as the dict run() returns.
+  const auto collect = [&] {
+    py::dict out, values;
+    const auto nt = static_cast<py::ssize_t>(rec.rows());
+    py::array_t<double> t(nt);
+    for (py::ssize_t r = 0; r < nt; ++r) t.mutable_at(r) = rec.times()[r];
+    for (std::size_t o = 0; o < model.outputs.size(); ++o) {
+      const auto& m = rec.values(o);
+      py::array_t<double> a({nt, static_cast<py::ssize_t>(m.cols())});
+      for (py::ssize_t r = 0; r < nt; ++r)
+        for (py::ssize_t c = 0; c < m.cols(); ++c) a.mutable_at(r, c) = m(r, c);
+      values[py::str(model.outputs[o].name)] = a;
+    }
+    out["time"] = t;
+    out["outputs"] = values;
+    out["steps"] = static_cast<long long>(steps_now() - steps0);
+    out["newton_iterations"] = static_cast<long long>(data.stats.newton_iterations - iterations0);
+    return out;
+  };
   // (The GIL stays held: see step(). A failed step leaves the last accepted state, as ffr_step.)
-  translated([&] {
+  try {
     rec.record(model, data);
     for (std::int64_t i = i0 + 1; i <= n; ++i) {
       save_state(data, *sim_->last);
@@ -167,25 +186,24 @@ py::dict Simulation::run() {
         throw;
       }
       if (i % every == 0 || i == n) rec.record(model, data);
+      // The GIL is held, so Python's own handlers (Ctrl-C's KeyboardInterrupt) run only here:
+      // the run stops after this step, the simulation at it (run() again goes on from there).
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
     }
-    return 0;
-  });
-  py::dict out, values;
-  const auto nt = static_cast<py::ssize_t>(rec.rows());
-  py::array_t<double> t(nt);
-  for (py::ssize_t r = 0; r < nt; ++r) t.mutable_at(r) = rec.times()[r];
-  for (std::size_t o = 0; o < model.outputs.size(); ++o) {
-    const auto& m = rec.values(o);
-    py::array_t<double> a({nt, static_cast<py::ssize_t>(m.cols())});
-    for (py::ssize_t r = 0; r < nt; ++r)
-      for (py::ssize_t c = 0; c < m.cols(); ++c) a.mutable_at(r, c) = m(r, c);
-    values[py::str(model.outputs[o].name)] = a;
+  } catch (const SolverError& e) {
+    // ffr.SolverError with the rows before the failed step as its `results` (what ffr-sim
+    // --keep-partial writes), marked with where and why it stopped.
+    py::dict partial = collect();
+    partial["stopped_at"] = e.time();
+    partial["stop_reason"] = e.what();
+    py::object error = py::reinterpret_borrow<py::object>(exceptions().solver)(py::str(e.what()));
+    error.attr("results") = partial;
+    PyErr_SetObject(exceptions().solver, error.ptr());
+    throw py::error_already_set();
+  } catch (...) {
+    raise_current();
   }
-  out["time"] = t;
-  out["outputs"] = values;
-  out["steps"] = static_cast<long long>(steps_now() - steps0);
-  out["newton_iterations"] = static_cast<long long>(data.stats.newton_iterations - iterations0);
-  return out;
+  return collect();
 }
 
 }  // namespace ffr::python

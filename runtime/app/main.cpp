@@ -3,8 +3,10 @@
 #include "ffr/cli/cli.hpp"
 #include "ffr/cli/output_files.hpp"
 #include "ffr/runtime/runtime.hpp"
+#include "stop_signals.hpp"
 #include "vtk_series.hpp"
 
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -32,7 +34,10 @@ motions; flexible bodies from SID files) and writes the requested outputs to OUT
                       of its "visual" key, else as its inertia box
       --keep-partial  if the run stops with a solver error, still write the samples recorded
                       before it (to -o, --csv and --vtk; the results file's root attributes
-                      stopped_at and stop_reason say where and why); the exit status stays 1
+                      stopped_at and stop_reason say where and why); the exit status stays 1.
+                      SIGINT (Ctrl-C) or SIGTERM then stops the run after its current step
+                      (adaptive steps: at the next output time) and writes what it has before
+                      the process ends by the signal; a second one ends it at once
   -q, --quiet         no progress and no notes on stderr
   -h, --help          this text
       --version       the version
@@ -110,6 +115,8 @@ int run(ffr::cli::Args& args) {
     };
     RunInfo stopped;
     opt.stopped = &stopped;
+    std::optional<ffr::sim::StopOnSignals> signals;
+    if (keep_partial) opt.stop = signals.emplace().flag();
     RunInfo info;
     try {
       info = simulate(model, data, rec, opt);
@@ -132,6 +139,15 @@ int run(ffr::cli::Args& args) {
       return 1;
     }
     if (reported) std::fputc('\n', stderr);
+    if (info.stopped_at) {  // a signal asked the run to stop: what it has, then the signal's own end
+      const int sig = signals->signal();
+      info.stop_reason = std::string("interrupted by ") + (sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal");
+      write(info);
+      std::fprintf(stderr, "ffr-sim: %s at t = %.9g s; the %lld samples written to %s\n", info.stop_reason.c_str(),
+                   *info.stopped_at, static_cast<long long>(rec.rows()), out->c_str());
+      signals->reraise();
+      return 1;  // (reached only if the signal no longer ends the process)
+    }
     write(info);
     if (!quiet)
       std::fprintf(stderr, "ffr-sim: %lld steps, %lld Newton iterations, %lld tangents, %lld solves, %.3f s integration (%.2f us per step)\n",

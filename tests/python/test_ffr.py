@@ -4,6 +4,7 @@ exceptions. Run by ctest (tests/python/CMakeLists.txt) with PYTHONPATH=build/pyt
 import json
 import os
 import shutil
+import signal
 import subprocess
 import tempfile
 import unittest
@@ -184,11 +185,46 @@ class ReadTest(Workdir):
         self.assertGreater(partial["stopped_at"], 0.05)
         self.assertIn(partial["stop_reason"], r.stderr)
         self.assertEqual(len(partial["time"]), 51)  # t = 0 .. 0.05, every step
-        with self.assertRaises(ffr.SolverError):
+        with self.assertRaises(ffr.SolverError) as e:
             ffr.Simulation(path).run()
+        rows = e.exception.results  # the same rows as ffr-sim --keep-partial's, bit for bit
+        self.assertEqual(rows["stopped_at"], partial["stopped_at"])
+        self.assertEqual(rows["stop_reason"], partial["stop_reason"])
+        self.assertTrue(same_bits(rows["time"], partial["time"]))
+        for name, values in partial["outputs"].items():
+            self.assertTrue(same_bits(rows["outputs"][name], values), name)
         r = tool("ffr-sim", PENDULUM, "-o", self.file("whole.h5"), "--quiet")
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertNotIn("stopped_at", ffr.read_results(self.file("whole.h5")))
+
+
+class InterruptTest(Workdir):
+    def test_a_signal_stops_run_after_a_step_and_run_goes_on(self):
+        # run() holds the GIL: Python's handlers get their turn after each step. A SIGALRM
+        # handler raising KeyboardInterrupt stands for Ctrl-C.
+        with open(PENDULUM) as f:
+            model = json.load(f)
+        model["solver"]["end"] = 1e4  # 1e7 steps: far longer than the alarm
+        model["solver"]["output_every"] = 1000
+        sim = ffr.Simulation(model)
+
+        def interrupt(signum, frame):
+            raise KeyboardInterrupt
+
+        previous = signal.signal(signal.SIGALRM, interrupt)
+        try:
+            signal.setitimer(signal.ITIMER_REAL, 0.5)
+            with self.assertRaises(KeyboardInterrupt):
+                sim.run()
+        finally:
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, previous)
+        stopped = sim.time
+        self.assertGreater(stopped, 0.0)
+        self.assertLess(stopped, 1e4)
+        # The simulation is at a step of the run: stepping on gives the run's own next state.
+        sim.step(1)
+        self.assertAlmostEqual(sim.time, stopped + 1e-3, delta=1e-9)
 
 
 class SimulationTest(Workdir):

@@ -10,12 +10,19 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
+#include <cmath>
+#include <thread>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <vector>
 #include <sys/wait.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <unistd.h>
 
 namespace {
 
@@ -171,6 +178,58 @@ TEST(Cli, KeepPartialWritesTheSamplesBeforeAFailedStep) {
   ASSERT_EQ(reference.time.size(), 51);
   for (const char* name : {"angle", "energy"})
     EXPECT_EQ(partial.find(name)->values.topRows(51), reference.find(name)->values) << name;
+}
+
+// Ctrl-C on a long run with --keep-partial: the run stops after its current step, writes the
+// samples it has with the state it reached, and the process then ends by the signal itself (the
+// shell sees 128 + SIGINT). The process is started with SIGINT at its default action (a
+// non-interactive shell's background job would ignore it, and ffr-sim leaves an ignored signal so).
+TEST(Cli, KeepPartialWritesWhatARunHasWhenInterrupted) {
+  ffr::runtime::test::TempDir dir("cli");
+  // 1e7 steps (tens of seconds): still running when the signal comes; a sample every 1000 steps.
+  std::string model = pendulum(R"(, "output_every": 1000)");
+  model.replace(model.find("\"end\": 0.1"), 10, "\"end\": 1e4");
+  ffr::runtime::test::write_text(dir / "m.json", model);
+  const std::string m = (dir / "m.json").string(), h5 = (dir / "out.h5").string(), err = (dir / "err.txt").string();
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGINT);
+  posix_spawnattr_setsigdefault(&attr, &defaults);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF);
+  const char* argv[] = {kSim.c_str(), m.c_str(), "-o", h5.c_str(), "--keep-partial", nullptr};
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, kSim.c_str(), &files, &attr, const_cast<char* const*>(argv), environ), 0);
+  posix_spawn_file_actions_destroy(&files);
+  posix_spawnattr_destroy(&attr);
+  // The first progress line (after 2 s of stepping) says the time loop is running.
+  std::string text;
+  for (int i = 0; i < 1200 && text.find("ffr-sim: t = ") == std::string::npos; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::ifstream in(err);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  ASSERT_NE(text.find("ffr-sim: t = "), std::string::npos) << text;
+  ASSERT_EQ(kill(pid, SIGINT), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  std::ifstream in(err);
+  text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  ASSERT_TRUE(WIFSIGNALED(status)) << text;
+  EXPECT_EQ(WTERMSIG(status), SIGINT);
+  EXPECT_NE(text.find("interrupted by SIGINT at t = "), std::string::npos) << text;
+  const auto r = ffr::formats::read_results(h5);
+  ASSERT_TRUE(r.stopped_at.has_value());
+  EXPECT_EQ(r.stop_reason, "interrupted by SIGINT");
+  EXPECT_GT(*r.stopped_at, 1.0);
+  EXPECT_LT(*r.stopped_at, 1e4);
+  ASSERT_GE(r.time.size(), 2);
+  EXPECT_EQ(r.time[r.time.size() - 1], *r.stopped_at);  // the state it reached is the last sample
+  EXPECT_NEAR(r.time[r.time.size() - 2], std::ceil(*r.stopped_at - 1e-9) - 1, 1e-6);  // a sample every 1 s before it
 }
 
 TEST(Cli, OutputsThatCannotBeWrittenAreRefusedBeforeTheRun) {

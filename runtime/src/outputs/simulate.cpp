@@ -43,6 +43,14 @@ RunInfo stopped_run(RunInfo info, const SolverError& e) {
   return info;
 }
 
+bool stop_requested(const RunOptions& opt) { return opt.stop && opt.stop->load(std::memory_order_relaxed) != 0; }
+
+RunInfo requested_stop(RunInfo info, const Data& data) {
+  info.stopped_at = data.state.t;
+  info.stop_reason = "stop requested";
+  return info;
+}
+
 // The solver's counts of a run: its stats less those at its start.
 void count_since(const Stats& start, const Stats& now, RunInfo& info) {
   info.newton_iterations = now.newton_iterations - start.newton_iterations;
@@ -71,6 +79,7 @@ RunInfo simulate_adaptive(const Model& model, Data& data, Recorder& rec, const R
       advance_to(model, data, control, output_time(model, i));
       rec.record(model, data);
       progress(data.state.t, model.settings.end);
+      if (i < n && stop_requested(opt)) return requested_stop(run_info(control.accepted, stats0, data.stats, start), data);
     }
   } catch (const SolverError& e) {
     if (opt.stopped) *opt.stopped = stopped_run(run_info(control.accepted, stats0, data.stats, start), e);
@@ -93,8 +102,10 @@ RunInfo simulate(const Model& model, Data& data, Recorder& rec, const RunOptions
   try {
     for (; i <= n; ++i) {
       step(model, data);
-      if (i % every == 0 || i == n) rec.record(model, data);
+      const bool stop = i < n && stop_requested(opt);
+      if (i % every == 0 || i == n || stop) rec.record(model, data);
       progress(data.state.t, model.settings.end);
+      if (stop) return requested_stop(run_info(i, stats0, data.stats, start), data);
     }
   } catch (const SolverError& e) {
     if (opt.stopped) *opt.stopped = stopped_run(run_info(i - 1, stats0, data.stats, start), e);

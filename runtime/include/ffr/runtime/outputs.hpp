@@ -6,6 +6,7 @@
 #include "ffr/runtime/data.hpp"
 #include "ffr/runtime/model.hpp"
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -53,8 +54,9 @@ struct RunInfo {
   std::int64_t factorizations = 0;  ///< tangents built and factorised
   std::int64_t solves = 0;          ///< solves with a factorised tangent (Newton, projections)
   double integration_seconds = 0;
-  /// A run that stopped with a SolverError: the time of the step that failed and its message
-  /// (results file attributes stopped_at and stop_reason); empty for a run that reached its end.
+  /// A run that did not reach its end (results file attributes stopped_at and stop_reason): the
+  /// time of the step that failed with a SolverError and its message, or the time reached when
+  /// RunOptions::stop asked it to stop; empty for a run that reached its end.
   std::optional<double> stopped_at;
   std::string stop_reason;
 };
@@ -66,6 +68,10 @@ struct RunOptions {
   /// If set, filled with the counts up to a SolverError, its time and message, before the
   /// error leaves simulate(): what a results file of the samples recorded so far reports.
   RunInfo* stopped = nullptr;
+  /// If set and nonzero (a signal handler of the caller sets it), the run stops after its current
+  /// step (with adaptive steps: at its next output time), records that state and returns with
+  /// stopped_at set and stop_reason "stop requested", for the caller to say why.
+  const std::atomic<int>* stop = nullptr;
 };
 
 /// Number of steps of the run (end - start) / step, rounded; with "step": "auto", the number of
