@@ -90,8 +90,9 @@ def read_sid(path):
 def read_results(path):
     """A results file of ffr-sim: {"time": [nt], "outputs": {name: [nt, k]}, "steps", ...}.
 
-    A run that stopped with a solver error and was written with `ffr-sim --keep-partial` also
-    has "stopped_at" (the time of the failed step [s]) and "stop_reason" (the error)."""
+    A run written with `ffr-sim --keep-partial` that stopped before its end (a solver error, a
+    signal) also has "stopped_at" (the time of the failed step, or the time reached [s]) and
+    "stop_reason"."""
     return _ffr.read_results(_path(path, "ffr.read_results", "path"))
 
 

@@ -122,7 +122,7 @@ py::dict read_results(const std::string& path) {
   out["steps"] = static_cast<long long>(r.steps);
   out["newton_iterations"] = static_cast<long long>(r.newton_iterations);
   out["integration_seconds"] = r.integration_seconds;
-  if (r.stopped_at) {  // a run that stopped with a solver error (ffr-sim --keep-partial)
+  if (r.stopped_at) {  // a run that stopped before its end (ffr-sim --keep-partial)
     out["stopped_at"] = *r.stopped_at;
     out["stop_reason"] = r.stop_reason;
   }

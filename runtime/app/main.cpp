@@ -133,7 +133,7 @@ int run(ffr::cli::Args& args) {
         std::fprintf(stderr, "ffr-sim: the %lld samples to t = %.9g s written to %s (stopped_at %.9g s)\n",
                      static_cast<long long>(rec.rows()), last, out->c_str(), e.time());
       } else if (!quiet) {
-        std::fprintf(stderr, "ffr-sim: note: nothing written; --keep-partial writes the %lld samples recorded to t = %.9g s\n",
+        std::fprintf(stderr, "ffr-sim: note: nothing written; run again with --keep-partial to keep the %lld samples recorded to t = %.9g s\n",
                      static_cast<long long>(rec.rows()), last);
       }
       return 1;

@@ -151,7 +151,7 @@ TEST(Cli, KeepPartialWritesTheSamplesBeforeAFailedStep) {
 
   const Result plain = run(model + " -o " + h5 + " --csv " + csv);
   ASSERT_EQ(plain.status, 1) << plain.output;
-  EXPECT_NE(plain.output.find("nothing written; --keep-partial writes the"), std::string::npos) << plain.output;
+  EXPECT_NE(plain.output.find("nothing written; run again with --keep-partial to keep the 51 samples recorded to t = 0.05 s"), std::string::npos) << plain.output;
   EXPECT_FALSE(std::filesystem::exists(h5));
   EXPECT_FALSE(std::filesystem::exists(csv));
 

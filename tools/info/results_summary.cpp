@@ -28,7 +28,7 @@ nlohmann::json summarize_results(const formats::Results& r, const std::string& f
           {"integration_seconds", r.integration_seconds},
           {"outputs", outputs},
           {"complete", !r.stopped_at.has_value()}};
-  if (r.stopped_at) {  // the samples before a failed step (ffr-sim --keep-partial)
+  if (r.stopped_at) {  // a run that stopped before its end (ffr-sim --keep-partial)
     summary["stopped_at"] = *r.stopped_at;
     summary["stop_reason"] = r.stop_reason;
   }

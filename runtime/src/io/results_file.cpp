@@ -44,7 +44,7 @@ void write_h5(const std::filesystem::path& temp, const std::filesystem::path& pa
     w.attr("/", "factorizations", static_cast<std::int64_t>(info.factorizations));
     w.attr("/", "solves", static_cast<std::int64_t>(info.solves));
     w.attr("/", "integration_seconds", info.integration_seconds);
-    if (info.stopped_at) {  // the samples before a failed step (ffr-sim --keep-partial)
+    if (info.stopped_at) {  // a run that stopped before its end (ffr-sim --keep-partial)
       w.attr("/", "stopped_at", *info.stopped_at);
       w.attr("/", "stop_reason", info.stop_reason);
     }

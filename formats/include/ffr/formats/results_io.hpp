@@ -31,8 +31,9 @@ struct Results {
   std::int64_t newton_iterations = 0;
   double integration_seconds = 0.0;
   std::string generator;  ///< filled on write if empty
-  /// A run that stopped with a solver error (ffr-sim --keep-partial): the time of the step that
-  /// failed and the error; the file holds the samples before it. Empty for a complete run.
+  /// A run that stopped before its end (ffr-sim --keep-partial): the time of the step that failed
+  /// and the error, the file holding the samples before it; or the time an interrupted run
+  /// reached, its last sample, and the signal. Empty for a complete run.
   std::optional<double> stopped_at;
   std::string stop_reason;
 
