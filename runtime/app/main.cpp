@@ -6,6 +6,7 @@
 #include "stop_signals.hpp"
 #include "vtk_series.hpp"
 
+#include <chrono>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
@@ -37,7 +38,8 @@ motions; flexible bodies from SID files) and writes the requested outputs to OUT
                       stopped_at and stop_reason say where and why); the exit status stays 1.
                       SIGINT (Ctrl-C) or SIGTERM then stops the run after its current step
                       (adaptive steps: at the next output time) and writes what it has before
-                      the process ends by the signal; a second one ends it at once
+                      the process ends by the signal; another one a second or more later
+                      ends it at once
   -q, --quiet         no progress and no notes on stderr
   -h, --help          this text
       --version       the version
@@ -98,9 +100,14 @@ int run(ffr::cli::Args& args) {
     bool reported = false;
     if (!quiet) {
       opt.progress_seconds = 2.0;
-      opt.progress = [&](double t, double end) {
-        const double s = model.settings.start;
-        std::fprintf(stderr, "\rffr-sim: t = %.6g of %.6g s (%.0f%%)", t, end, 100.0 * (t - s) / (end - s));
+      // The time left is the elapsed time scaled by the simulated time left: a guess that holds
+      // while the steps cost alike (an adaptive run's steps do not).
+      const auto wall0 = std::chrono::steady_clock::now();
+      opt.progress = [&, wall0](double t, double end) {
+        const double s = model.settings.start, done = (t - s) / (end - s);
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+        std::fprintf(stderr, "\rffr-sim: t = %.6g of %.6g s (%.0f%%), %.0f s elapsed, about %.0f s left  ", t, end,
+                     100.0 * done, elapsed, done > 0 ? elapsed * (1 - done) / done : 0.0);
         std::fflush(stderr);
         reported = true;
       };

@@ -1,11 +1,37 @@
 #include "stop_signals.hpp"
 
+#include <time.h>
+
 namespace ffr::sim {
 namespace {
 
-std::atomic<int> g_caught{0};  // lock-free, so storing it is async-signal-safe
+// Lock-free, so the handler's loads and stores are async-signal-safe.
+std::atomic<int> g_caught{0};
+std::atomic<long long> g_first_ns{0};
 
-extern "C" void on_stop_signal(int sig) { g_caught.store(sig, std::memory_order_relaxed); }
+long long monotonic_ns() {
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);  // async-signal-safe
+  return static_cast<long long>(now.tv_sec) * 1000000000LL + now.tv_nsec;
+}
+
+// The first signal asks the run to stop. One within a second of it is the same request arriving
+// twice (`timeout` signals the process and then its process group) and is dropped; a later one
+// takes the signal's default action at once.
+extern "C" void on_stop_signal(int sig) {
+  const long long now = monotonic_ns();
+  int none = 0;
+  if (g_caught.compare_exchange_strong(none, sig)) {
+    g_first_ns.store(now);
+    return;
+  }
+  if (now - g_first_ns.load() < 1000000000LL) return;
+  struct sigaction dfl {};
+  dfl.sa_handler = SIG_DFL;
+  sigemptyset(&dfl.sa_mask);
+  sigaction(sig, &dfl, nullptr);
+  raise(sig);  // blocked while this handler runs: delivered, with the default action, on return
+}
 
 // Installs the handler for `sig` unless the process ignores it; keeps the previous action.
 bool install(int sig, struct sigaction& old) {
@@ -13,7 +39,6 @@ bool install(int sig, struct sigaction& old) {
   struct sigaction sa {};
   sa.sa_handler = on_stop_signal;
   sigemptyset(&sa.sa_mask);
-  sa.sa_flags = SA_RESETHAND;
   return sigaction(sig, &sa, nullptr) == 0;
 }
 

@@ -7,9 +7,10 @@
 
 namespace ffr::sim {
 
-/// While alive: the first SIGINT or SIGTERM sets flag() instead of ending the process; a second
-/// one acts as it did before (SA_RESETHAND), so a run that does not stop can still be killed. A
-/// signal the process was started ignoring (nohup, a background job) stays ignored.
+/// While alive: the first SIGINT or SIGTERM sets flag() instead of ending the process; another
+/// one a second or more later ends it at once (the default action), so a run that does not stop
+/// can still be killed; one sooner is taken for the first delivered twice. A signal the process
+/// was started ignoring (nohup, a background job) stays ignored.
 class StopOnSignals {
  public:
   StopOnSignals();

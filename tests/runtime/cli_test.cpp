@@ -214,6 +214,9 @@ TEST(Cli, KeepPartialWritesWhatARunHasWhenInterrupted) {
     text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
   ASSERT_NE(text.find("ffr-sim: t = "), std::string::npos) << text;
+  // Twice within a moment, as `timeout` sends it (to the process, then to its group): one request.
+  ASSERT_EQ(kill(pid, SIGINT), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(2));
   ASSERT_EQ(kill(pid, SIGINT), 0);
   int status = 0;
   ASSERT_EQ(waitpid(pid, &status, 0), pid);
