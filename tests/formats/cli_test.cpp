@@ -136,6 +136,9 @@ TEST(Cli, InfoSummarisesAResultsFile) {
   const Outcome text = run("ffr-info", f.string());
   EXPECT_NE(text.out.find("stopped           at t = 1.05 s, before its end: Newton did not converge at t = 1.05 s"),
             std::string::npos) << text.out;
+  const Outcome plot = run("ffr-info", f.string() + " --plot tip --png " + (dir() / "stopped.png").string());
+  ASSERT_EQ(plot.rc, 0) << plot.err;
+  EXPECT_NE(plot.out.find("holds a run that stopped at t = 1.05 s, before its end"), std::string::npos) << plot.out;
 }
 
 TEST(Cli, InfoPlotsTimeHistoriesAndRefusesUnknownChannels) {

@@ -70,9 +70,14 @@ void draw_panel(Canvas& cv, const formats::Results& r, const Selection& s, int t
     }
   const double pad = 0.05 * (y1 - y0);
   const double t0 = r.time.size() ? r.time[0] : 0, t1 = r.time.size() ? r.time[r.time.size() - 1] : 1;
+  std::string title = s.output->name + (s.output->type.empty() ? "" : " (" + s.output->type + ")");
+  if (r.stopped_at) {  // the samples of a run that did not reach its end (ffr-sim --keep-partial)
+    char at[64];
+    std::snprintf(at, sizeof at, " - the run stopped at t = %.6g s", *r.stopped_at);
+    title += at;
+  }
   const PlotArea a = draw_axes(cv, PlotArea{110, top + 60, cv.width() - 30, top + height - 50, t0, t1, y0 - pad, y1 + pad},
-                               s.output->name + (s.output->type.empty() ? "" : " (" + s.output->type + ")"),
-                               "time [s]", "");
+                               title, "time [s]", "");
   int legend_x = a.left + 10;
   for (std::size_t k = 0; k < s.columns.size(); ++k) {
     const Rgb col = series_colour(k);
@@ -123,6 +128,9 @@ int run_plot(const std::filesystem::path& file, const std::string& channels, con
     }
   write_png(cv, png);
   std::cout << "plot of " << channels << " written to " << png << "\n";
+  if (r.stopped_at)
+    std::cout << "note: " << file.string() << " holds a run that stopped at t = " << *r.stopped_at
+              << " s, before its end: " << r.stop_reason << "\n";
   return 0;
 }
 
