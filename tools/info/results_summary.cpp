@@ -19,15 +19,15 @@ nlohmann::json summarize_results(const formats::Results& r, const std::string& f
   }
   const auto nt = r.time.size();
   json summary = {{"file", file},
-          {"kind", "results"},
-          {"generator", r.generator},
-          {"time", {{"samples", nt}, {"start", nt ? json(r.time[0]) : json(nullptr)},
-                    {"end", nt ? json(r.time[nt - 1]) : json(nullptr)}}},
-          {"steps", r.steps},
-          {"newton_iterations", r.newton_iterations},
-          {"integration_seconds", r.integration_seconds},
-          {"outputs", outputs},
-          {"complete", !r.stopped_at.has_value()}};
+                  {"kind", "results"},
+                  {"generator", r.generator},
+                  {"time", {{"samples", nt}, {"start", nt ? json(r.time[0]) : json(nullptr)},
+                            {"end", nt ? json(r.time[nt - 1]) : json(nullptr)}}},
+                  {"steps", r.steps},
+                  {"newton_iterations", r.newton_iterations},
+                  {"integration_seconds", r.integration_seconds},
+                  {"outputs", outputs},
+                  {"complete", !r.stopped_at.has_value()}};
   if (r.stopped_at) {  // a run that stopped before its end (ffr-sim --keep-partial)
     summary["stopped_at"] = *r.stopped_at;
     summary["stop_reason"] = r.stop_reason;
