@@ -155,7 +155,8 @@ TEST(Cli, KeepPartialWritesTheSamplesBeforeAFailedStep) {
   EXPECT_FALSE(std::filesystem::exists(h5));
   EXPECT_FALSE(std::filesystem::exists(csv));
 
-  const Result kept = run(model + " -o " + h5 + " --csv " + csv + " --keep-partial");
+  const std::string pvd = (dir / "run.pvd").string();
+  const Result kept = run(model + " -o " + h5 + " --csv " + csv + " --vtk " + pvd + " --keep-partial");
   ASSERT_EQ(kept.status, 1) << kept.output;
   const auto partial = ffr::formats::read_results(h5);
   ASSERT_TRUE(partial.stopped_at.has_value());
@@ -170,6 +171,11 @@ TEST(Cli, KeepPartialWritesTheSamplesBeforeAFailedStep) {
   std::ifstream in(csv);
   const auto lines = std::count(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>(), '\n');
   EXPECT_EQ(lines, nt + 1);  // the header and one line a sample
+  std::ifstream collection(pvd);
+  const std::string frames((std::istreambuf_iterator<char>(collection)), std::istreambuf_iterator<char>());
+  std::size_t datasets = 0;
+  for (auto at = frames.find("<DataSet"); at != std::string::npos; at = frames.find("<DataSet", at + 1)) ++datasets;
+  EXPECT_EQ(datasets, static_cast<std::size_t>(nt));  // a ParaView frame a sample
 
   const Result whole = run((dir / "until.json").string() + " -o " + (dir / "until.h5").string());
   ASSERT_EQ(whole.status, 0) << whole.output;
