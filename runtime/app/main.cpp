@@ -33,6 +33,11 @@ motions; flexible bodies from SID files) and writes the requested outputs to OUT
                       (the SID's /visual; point data displacement, and von_mises where the
                       SID has a /stress group) and every rigid body as the STL surface
                       of its "visual" key, else as its inertia box
+      --resume PART.h5
+                      go on with the run that PART.h5 holds, stopped by a signal with
+                      --keep-partial (same model and SID files, checked): -o gets the whole
+                      run, the samples of the run never stopped (bit for bit; with the relative
+                      formulation to rounding)
       --keep-partial  if the run stops with a solver error, still write the samples recorded
                       before it (to -o, --csv and --vtk; the results file's root attributes
                       stopped_at and stop_reason say where and why); the exit status stays 1.
@@ -47,7 +52,7 @@ motions; flexible bodies from SID files) and writes the requested outputs to OUT
 Exit status: 0 ok, 2 bad input (malformed or inconsistent model, missing or bad SID file),
 1 other failure (e.g. Newton divergence, reported with the time and the residual).
 )",
-    "ffr-sim MODEL.json -o OUT.h5 [--csv OUT.csv] [--vtk RUN.pvd] [--keep-partial] [--quiet]"};
+    "ffr-sim MODEL.json -o OUT.h5 [--csv OUT.csv] [--vtk RUN.pvd] [--keep-partial] [--resume PART.h5] [--quiet]"};
 
 int run(ffr::cli::Args& args) {
   using namespace ffr::runtime;
@@ -57,6 +62,7 @@ int run(ffr::cli::Args& args) {
   const auto vtk = args.option("--vtk");
   const bool quiet = args.flag("-q") || args.flag("--quiet");
   const bool keep_partial = args.flag("--keep-partial");
+  const auto resume = args.option("--resume");
   const auto pos = args.positionals();
   if (pos.empty()) throw ffr::cli::UsageError("no model file given");
   if (pos.size() > 1) throw ffr::cli::UsageError("more than one model file given");
@@ -75,6 +81,10 @@ int run(ffr::cli::Args& args) {
   if (csv) outputs.push_back({"--csv", *csv});
   if (vtk) outputs.push_back({"--vtk", *vtk});
   for (const auto& sid : model.sid_files) inputs.push_back({"the SID file", sid});
+  if (resume) inputs.push_back({"the run to resume", *resume});
+  if (resume && vtk)
+    throw ffr::cli::UsageError("--vtk with --resume: the frames before the stop are not in the results file to resume "
+                               "(resume without --vtk, or run the model again with it)");
   ffr::cli::check_outputs(outputs, inputs);
   // Checked before the run (a SID without a surface is bad input); adds its hidden outputs.
   std::optional<ffr::vtk::Series> series;
@@ -97,6 +107,13 @@ int run(ffr::cli::Args& args) {
     }
     Recorder& rec = *recorder;
     RunOptions opt;
+    RunInfo resumed;  // the counts of the run resumed from
+    if (resume) try {
+        opt.resume = resume_from(*resume, model, data, rec, resumed);
+      } catch (const ModelError& e) {
+        std::fprintf(stderr, "ffr-sim: error: --resume %s\n", e.what());
+        return 2;
+      }
     bool reported = false;
     if (!quiet) {
       opt.progress_seconds = 2.0;
@@ -125,9 +142,19 @@ int run(ffr::cli::Args& args) {
     std::optional<ffr::sim::StopOnSignals> signals;
     if (keep_partial) opt.stop = signals.emplace().flag();
     RunInfo info;
+    // The counts of the whole run: those of the run resumed from and this one's.
+    const auto with_resumed = [&](RunInfo i) {
+      i.steps += resumed.steps;
+      i.newton_iterations += resumed.newton_iterations;
+      i.factorizations += resumed.factorizations;
+      i.solves += resumed.solves;
+      i.integration_seconds += resumed.integration_seconds;
+      return i;
+    };
     try {
-      info = simulate(model, data, rec, opt);
+      info = with_resumed(simulate(model, data, rec, opt));
     } catch (const SolverError& e) {
+      stopped = with_resumed(stopped);
       if (reported) std::fputc('\n', stderr);
       std::fprintf(stderr, "ffr-sim: error: %s\n", e.what());
       const double last = rec.times()[rec.rows() - 1];

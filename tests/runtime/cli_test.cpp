@@ -177,6 +177,16 @@ TEST(Cli, KeepPartialWritesTheSamplesBeforeAFailedStep) {
   for (auto at = frames.find("<DataSet"); at != std::string::npos; at = frames.find("<DataSet", at + 1)) ++datasets;
   EXPECT_EQ(datasets, static_cast<std::size_t>(nt));  // a ParaView frame a sample
 
+  // A run that failed has no state to go on from (it needs a change to the model), and the
+  // frames before a stop are not in a results file: both refused before any work.
+  const Result again = run(model + " -o " + (dir / "again.h5").string() + " --resume " + h5);
+  EXPECT_EQ(again.status, 2) << again.output;
+  EXPECT_NE(again.output.find("--resume " + h5 + ": /restart: no state to resume from"), std::string::npos) << again.output;
+  const Result with_vtk = run(model + " -o " + (dir / "again.h5").string() + " --resume " + h5 + " --vtk " + (dir / "again.pvd").string());
+  EXPECT_EQ(with_vtk.status, 2) << with_vtk.output;
+  EXPECT_NE(with_vtk.output.find("--vtk with --resume"), std::string::npos) << with_vtk.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "again.h5"));
+
   const Result whole = run((dir / "until.json").string() + " -o " + (dir / "until.h5").string());
   ASSERT_EQ(whole.status, 0) << whole.output;
   const auto reference = ffr::formats::read_results(dir / "until.h5");
@@ -234,6 +244,7 @@ TEST(Cli, KeepPartialWritesWhatARunHasWhenInterrupted) {
   const auto r = ffr::formats::read_results(h5);
   ASSERT_TRUE(r.stopped_at.has_value());
   EXPECT_EQ(r.stop_reason, "interrupted by SIGINT");
+  EXPECT_TRUE(ffr::formats::h5::Reader(h5).exists("/restart/state"));  // ffr-sim --resume goes on from it (resume_test.cpp)
   EXPECT_GT(*r.stopped_at, 1.0);
   EXPECT_LT(*r.stopped_at, 1e4);
   ASSERT_GE(r.time.size(), 2);

@@ -48,6 +48,10 @@ void write_h5(const std::filesystem::path& temp, const std::filesystem::path& pa
       w.attr("/", "stopped_at", *info.stopped_at);
       w.attr("/", "stop_reason", info.stop_reason);
     }
+    if (!info.restart.empty()) {  // the state it reached, to resume from (resume.cpp)
+      w.write("/restart/state", info.restart.data(), {static_cast<std::uint64_t>(info.restart.size())});
+      w.attr("/restart", "inputs_sha256", input_identity(model));
+    }
     w.write("/time", rec.times().data(), {nt});
     w.ensure_group("/outputs");
     std::vector<double> buf;

@@ -5,6 +5,8 @@
 #include "ffr/runtime/kinematics.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace ffr::runtime {
 namespace {
@@ -127,6 +129,19 @@ void Recorder::record(const Model& model, Data& data) {
     write_output(model, data, model.outputs[i], row_.data());
     v_[i].row(rows_) = row_.head(model.outputs[i].size).transpose();
   }
+  ++rows_;
+}
+
+void Recorder::append(double t, const std::vector<Eigen::VectorXd>& values) {
+  if (rows_ >= t_.size()) throw std::invalid_argument("the recorder is full");
+  if (values.size() != v_.size())
+    throw std::invalid_argument(std::to_string(values.size()) + " outputs for the model's " + std::to_string(v_.size()));
+  for (std::size_t i = 0; i < v_.size(); ++i)
+    if (values[i].size() != v_[i].cols())
+      throw std::invalid_argument("output " + std::to_string(i) + " has " + std::to_string(values[i].size()) +
+                                  " components for the model's " + std::to_string(v_[i].cols()));
+  t_(rows_) = t;
+  for (std::size_t i = 0; i < v_.size(); ++i) v_[i].row(rows_) = values[i].transpose();
   ++rows_;
 }
 

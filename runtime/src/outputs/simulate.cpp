@@ -7,6 +7,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace ffr::runtime {
 
@@ -45,10 +47,29 @@ RunInfo stopped_run(RunInfo info, const SolverError& e) {
 
 bool stop_requested(const RunOptions& opt) { return opt.stop && opt.stop->load(std::memory_order_relaxed) != 0; }
 
-RunInfo requested_stop(RunInfo info, const Data& data) {
+// The run stopped by RunOptions::stop: where, and the state to resume from (allocates: once).
+RunInfo requested_stop(const Model& model, const Data& data, const StepControl* control, RunInfo info) {
   info.stopped_at = data.state.t;
   info.stop_reason = "stop requested";
+  State state(model);
+  save_state(data, state);
+  const int n = packed_state_size(model);
+  info.restart.resize(static_cast<std::size_t>(n) + 2);
+  pack_state(state, info.restart.data());
+  info.restart[static_cast<std::size_t>(n)] = control ? control->h_next : 0.0;
+  info.restart[static_cast<std::size_t>(n) + 1] = control && control->accepted_any ? 1.0 : 0.0;
   return info;
+}
+
+// The index of the run's step (or output interval) at data's time, for a resumed run; the time
+// must be on that grid.
+std::int64_t resume_index(const Model& model, const Data& data, double interval) {
+  const auto& s = model.settings;
+  const std::int64_t i = std::llround((data.state.t - s.start) / interval);
+  if (i < 0 || std::abs(data.state.t - (s.start + static_cast<double>(i) * interval)) > 1e-3 * interval)
+    throw std::invalid_argument("the state to resume from, at t = " + std::to_string(data.state.t) +
+                                " s, is not at a step (or output time) of the run");
+  return i;
 }
 
 // The solver's counts of a run: its stats less those at its start.
@@ -71,15 +92,22 @@ RunInfo simulate_adaptive(const Model& model, Data& data, Recorder& rec, const R
   const std::int64_t n = output_count(model);
   const Stats stats0 = data.stats;
   StepControl control(model, data);
+  std::int64_t i0 = 0;
+  if (opt.resume) {
+    i0 = resume_index(model, data, model.settings.output_interval);
+    control.h_next = opt.resume->h_next;
+    control.accepted_any = opt.resume->accepted_any;
+  }
   const auto start = clock::now();
   ProgressReport progress(opt, start);
-  rec.record(model, data);
+  if (!opt.resume) rec.record(model, data);
   try {
-    for (std::int64_t i = 1; i <= n; ++i) {
+    for (std::int64_t i = i0 + 1; i <= n; ++i) {
       advance_to(model, data, control, output_time(model, i));
       rec.record(model, data);
       progress(data.state.t, model.settings.end);
-      if (i < n && stop_requested(opt)) return requested_stop(run_info(control.accepted, stats0, data.stats, start), data);
+      if (i < n && stop_requested(opt))
+        return requested_stop(model, data, &control, run_info(control.accepted, stats0, data.stats, start));
     }
   } catch (const SolverError& e) {
     if (opt.stopped) *opt.stopped = stopped_run(run_info(control.accepted, stats0, data.stats, start), e);
@@ -95,23 +123,24 @@ RunInfo simulate(const Model& model, Data& data, Recorder& rec, const RunOptions
   const std::int64_t n = step_count(model);
   const int every = std::max(1, model.settings.output_every);
   const Stats stats0 = data.stats;
+  const std::int64_t i0 = opt.resume ? resume_index(model, data, model.settings.step) : 0;
   const auto start = clock::now();
   ProgressReport progress(opt, start);
-  rec.record(model, data);
-  std::int64_t i = 1;
+  if (!opt.resume) rec.record(model, data);
+  std::int64_t i = i0 + 1;
   try {
     for (; i <= n; ++i) {
       step(model, data);
       const bool stop = i < n && stop_requested(opt);
       if (i % every == 0 || i == n || stop) rec.record(model, data);
       progress(data.state.t, model.settings.end);
-      if (stop) return requested_stop(run_info(i, stats0, data.stats, start), data);
+      if (stop) return requested_stop(model, data, nullptr, run_info(i - i0, stats0, data.stats, start));
     }
   } catch (const SolverError& e) {
-    if (opt.stopped) *opt.stopped = stopped_run(run_info(i - 1, stats0, data.stats, start), e);
+    if (opt.stopped) *opt.stopped = stopped_run(run_info(i - 1 - i0, stats0, data.stats, start), e);
     throw;
   }
-  return run_info(n, stats0, data.stats, start);
+  return run_info(n - i0, stats0, data.stats, start);
 }
 
 }  // namespace ffr::runtime

@@ -37,6 +37,9 @@ class Recorder {
   Recorder(const Model& model, std::int64_t max_rows);
   /// Appends a row (no allocation while rows < max_rows).
   void record(const Model& model, Data& data);
+  /// Appends a row of known values, one vector per output (the samples of a partial run that
+  /// a resumed run goes on from). Throws std::invalid_argument on a wrong count or size.
+  void append(double t, const std::vector<Eigen::VectorXd>& values);
   std::int64_t rows() const { return rows_; }
   const VectorXd& times() const { return t_; }
   const MatrixXd& values(std::size_t output) const { return v_[output]; }
@@ -59,6 +62,17 @@ struct RunInfo {
   /// RunOptions::stop asked it to stop; empty for a run that reached its end.
   std::optional<double> stopped_at;
   std::string stop_reason;
+  /// After a stop request: the state reached, packed as the C API's ffr_save_state packs it
+  /// (state.hpp's packing, then the adaptive control's next step and whether it has accepted
+  /// one), from which RunOptions::resume goes on. Empty otherwise.
+  std::vector<double> restart;
+};
+
+/// Where a resumed run goes on: data's state restored from a RunInfo::restart (the adaptive
+/// control's two values are these).
+struct ResumePoint {
+  double h_next = 0;
+  bool accepted_any = false;
 };
 
 struct RunOptions {
@@ -72,6 +86,11 @@ struct RunOptions {
   /// step (with adaptive steps: at its next output time), records that state and returns with
   /// stopped_at set and stop_reason "stop requested", for the caller to say why.
   const std::atomic<int>* stop = nullptr;
+  /// Set: data's state is one the run reached (restored from RunInfo::restart), at one of its
+  /// steps (with adaptive steps at one of its output times); the run goes on from there to its
+  /// end, the steps and samples those of the run never stopped, the state's own sample not
+  /// recorded again.
+  std::optional<ResumePoint> resume;
 };
 
 /// Number of steps of the run (end - start) / step, rounded; with "step": "auto", the number of
@@ -81,6 +100,19 @@ std::int64_t step_count(const Model& model);
 /// Runs from data's (initialised) state to settings.end, recording every output_every steps.
 /// A failed step throws SolverError; the recorder then holds the samples before it.
 RunInfo simulate(const Model& model, Data& data, Recorder& rec, const RunOptions& opt = {});
+
+/// The identity of a run's inputs: SHA-256 over the SHA-256 digests of the model file and its SID files; ""
+/// when the model file cannot be read again (a pipe). A results file holding a restart state
+/// carries it, so that a run resumed from it is known to be of the same model.
+std::string input_identity(const Model& model);
+
+/// Prepares the resumption of the interrupted run whose results file (ffr-sim --keep-partial,
+/// stopped by a stop request: its /restart state) is `path`: appends its samples on the run's
+/// own schedule to `rec` (those the run never stopped records), restores its state into `data`
+/// (initialised), adds its counts to `counts` and returns the point for RunOptions::resume.
+/// Throws ModelError naming the file: no restart state (a run that failed, or a complete one),
+/// inputs that changed since (model or SID files), outputs that differ.
+ResumePoint resume_from(const std::filesystem::path& path, const Model& model, Data& data, Recorder& rec, RunInfo& counts);
 
 /// Writes the results file (HDF5) and, if asked, the same outputs as CSV. Both go to temporary
 /// names first and are renamed into place only when both are complete: a failure leaves neither.
