@@ -193,7 +193,8 @@ class Simulation:
         return self._sim.state()
 
     def set_state(self, state):
-        """Goes back to a state() of this model: the run continues bit for bit as from there."""
+        """Goes back to a state() of this model: the run continues bit for bit as from there
+        (with the relative formulation to rounding: its joint coordinates are taken afresh)."""
         self._sim.set_state(state)
 
     def stats(self):

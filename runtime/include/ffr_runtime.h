@@ -62,8 +62,10 @@ int ffr_step(ffr_sim* sim, int n);
 /* The integrator's state: time, coordinates, rates, accelerations, multipliers and what the
  * scheme and the step need to go on from them (runtime/include/ffr/runtime/state.hpp), as
  * ffr_state_size() doubles. After ffr_restore_state() the simulation continues bit for bit as it
- * did from the saved point (with the same loads and motions set). The values are for saving and
- * restoring with the same model only, not for editing. */
+ * did from the saved point (with the same loads and motions set); with the relative formulation
+ * to rounding only (its joint coordinates are taken afresh from the restored absolute state, its
+ * predictor's history not kept). The values are for saving and restoring with the same model
+ * only, not for editing. */
 int ffr_state_size(const ffr_sim* sim, int* size);
 int ffr_save_state(const ffr_sim* sim, double* buffer, int capacity);
 int ffr_restore_state(ffr_sim* sim, const double* buffer, int size);
