@@ -58,8 +58,8 @@ ResumePoint resume_from(const std::filesystem::path& path, const Model& model, D
     columns.push_back(c);
   }
   std::vector<Eigen::VectorXd> row(columns.size());
+  const double interval = s.adaptive ? s.output_interval : s.step;
   for (Eigen::Index k = 0; k < partial.time.size(); ++k) {
-    const double interval = s.adaptive ? s.output_interval : s.step;
     const std::int64_t i = std::llround((partial.time[k] - s.start) / interval);
     if (i % every != 0) continue;
     for (std::size_t c = 0; c < columns.size(); ++c) row[c] = columns[c]->values.row(k).transpose();
