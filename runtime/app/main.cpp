@@ -142,28 +142,16 @@ int run(ffr::cli::Args& args) {
     std::optional<ffr::sim::StopOnSignals> signals;
     if (keep_partial) opt.stop = signals.emplace().flag();
     RunInfo info;
-    // The counts of the whole run: those of the run resumed from and this one's.
-    const auto with_resumed = [&](RunInfo i) {
-      i.steps += resumed.steps;
-      i.newton_iterations += resumed.newton_iterations;
-      i.factorizations += resumed.factorizations;
-      i.solves += resumed.solves;
-      i.integration_seconds += resumed.integration_seconds;
-      return i;
-    };
     try {
-      info = with_resumed(simulate(model, data, rec, opt));
+      info = simulate(model, data, rec, opt);
+      add_counts(info, resumed);  // the whole run's: the run resumed from and this one
     } catch (const SolverError& e) {
-      stopped = with_resumed(stopped);
+      add_counts(stopped, resumed);
       if (reported) std::fputc('\n', stderr);
       std::fprintf(stderr, "ffr-sim: error: %s\n", e.what());
       const double last = rec.times()[rec.rows() - 1];
       if (keep_partial) {
-        if (!stopped.stopped_at) {  // (simulate() fills it; this keeps the file marked regardless)
-          stopped.stopped_at = e.time();
-          stopped.stop_reason = e.what();
-        }
-        write(stopped);
+        write(stopped);  // (simulate() filled it, stopped_at and stop_reason included)
         std::fprintf(stderr, "ffr-sim: the %lld samples to t = %.9g s written to %s (stopped_at %.9g s)\n",
                      static_cast<long long>(rec.rows()), last, out->c_str(), e.time());
       } else if (!quiet) {

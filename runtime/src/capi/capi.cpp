@@ -151,42 +151,35 @@ int ffr_step(ffr_sim* sim, int n) {
   });
 }
 
-// The packed State (state.hpp), then, for adaptive steps, the controller's next step and
-// whether it has accepted a step (zeros with a fixed step).
+// The run's packed state (step_control.hpp's pack_run: the State, then for adaptive steps the
+// controller's next step and whether it has accepted a step).
 int ffr_state_size(const ffr_sim* sim, int* size) {
   if (!sim || !size) return fail(FFR_ERROR_ARGUMENT, "ffr_state_size: NULL argument");
-  *size = ffr::runtime::packed_state_size(sim->model) + 2;
+  *size = ffr::runtime::packed_run_size(sim->model);
   return FFR_OK;
 }
 
 int ffr_save_state(const ffr_sim* sim, double* buffer, int capacity) {
   if (!sim || !buffer) return fail(FFR_ERROR_ARGUMENT, "ffr_save_state: NULL argument");
-  const int n = ffr::runtime::packed_state_size(sim->model);
-  if (capacity < n + 2)
-    return fail(FFR_ERROR_ARGUMENT, "ffr_save_state: the state has " + std::to_string(n + 2) + " values, capacity " + std::to_string(capacity));
-  ffr::runtime::save_state(*sim->data, *sim->scratch);
-  ffr::runtime::pack_state(*sim->scratch, buffer);
-  buffer[n] = sim->control ? sim->control->h_next : 0.0;
-  buffer[n + 1] = sim->control && sim->control->accepted_any ? 1.0 : 0.0;
+  const int n = ffr::runtime::packed_run_size(sim->model);
+  if (capacity < n)
+    return fail(FFR_ERROR_ARGUMENT, "ffr_save_state: the state has " + std::to_string(n) + " values, capacity " + std::to_string(capacity));
+  ffr::runtime::pack_run(sim->model, *sim->data, sim->control.get(), *sim->scratch, buffer);
   return FFR_OK;
 }
 
 int ffr_restore_state(ffr_sim* sim, const double* buffer, int size) {
   if (!sim || !buffer) return fail(FFR_ERROR_ARGUMENT, "ffr_restore_state: NULL argument");
-  const int n = ffr::runtime::packed_state_size(sim->model);
-  if (size != n + 2)
-    return fail(FFR_ERROR_ARGUMENT, "ffr_restore_state: the state has " + std::to_string(size) + " values, this model's has " + std::to_string(n + 2));
-  if (sim->control && !(std::isfinite(buffer[n]) && buffer[n] > 0))
-    return fail(FFR_ERROR_ARGUMENT, "ffr_restore_state: the saved next step is not a positive number");
+  ffr::runtime::ResumePoint point;
   try {
-    ffr::runtime::unpack_state(sim->model, buffer, n, *sim->scratch);
+    point = ffr::runtime::unpack_run(sim->model, buffer, size, *sim->scratch);
   } catch (const std::invalid_argument& e) {
     return fail(FFR_ERROR_ARGUMENT, std::string("ffr_restore_state: ") + e.what());
   }
   ffr::runtime::restore_state(*sim->scratch, *sim->data);
   if (sim->control) {
-    sim->control->h_next = buffer[n];
-    sim->control->accepted_any = buffer[n + 1] != 0;
+    sim->control->h_next = point.h_next;
+    sim->control->accepted_any = point.accepted_any;
   }
   return FFR_OK;
 }

@@ -29,6 +29,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 namespace ffr::runtime {
@@ -125,6 +126,26 @@ void advance_to(const Model& model, Data& data, StepControl& c, double t_target)
     if (h < wanted && !after_reject) c.h_next = std::max(c.h_next, wanted);
     after_reject = false;
   }
+}
+
+int packed_run_size(const Model& model) { return packed_state_size(model) + 2; }
+
+void pack_run(const Model& model, const Data& data, const StepControl* control, State& scratch, double* out) {
+  const int n = packed_state_size(model);
+  save_state(data, scratch);
+  pack_state(scratch, out);
+  out[n] = control ? control->h_next : 0.0;
+  out[n + 1] = control && control->accepted_any ? 1.0 : 0.0;
+}
+
+ResumePoint unpack_run(const Model& model, const double* in, int size, State& state) {
+  const int n = packed_state_size(model);
+  if (size != n + 2)
+    throw std::invalid_argument("the state has " + std::to_string(size) + " values, this model's has " + std::to_string(n + 2));
+  if (model.settings.adaptive && !(std::isfinite(in[n]) && in[n] > 0))
+    throw std::invalid_argument("the saved next step is not a positive number");
+  unpack_state(model, in, n, state);
+  return {in[n], in[n + 1] != 0};
 }
 
 }  // namespace ffr::runtime

@@ -6,6 +6,7 @@
 #include "ffr/runtime/errors.hpp"
 #include "ffr/runtime/outputs.hpp"
 #include "ffr/runtime/state.hpp"
+#include "ffr/runtime/step_control.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -41,9 +42,9 @@ ResumePoint resume_from(const std::filesystem::path& path, const Model& model, D
     throw ModelError(file, "/restart@inputs_sha256", "the model file or its SID files changed since this run was stopped; "
                                                      "resume it only with the inputs it ran with");
   const auto shape = r.shape("/restart/state");
-  const int n = packed_state_size(model);
-  if (shape.size() != 1 || shape[0] != static_cast<std::uint64_t>(n) + 2)
-    r.fail("/restart/state", "wrong shape: expected [" + std::to_string(n + 2) + "], found " + formats::h5::shape_string(shape));
+  const int n = packed_run_size(model);
+  if (shape.size() != 1 || shape[0] != static_cast<std::uint64_t>(n))
+    r.fail("/restart/state", "wrong shape: expected [" + std::to_string(n) + "], found " + formats::h5::shape_string(shape));
   const std::vector<double> restart = r.read_array("/restart/state", shape);
 
   // Its samples, on the schedule of the run never stopped: with a fixed step every
@@ -67,18 +68,20 @@ ResumePoint resume_from(const std::filesystem::path& path, const Model& model, D
   }
 
   State state(model);
+  ResumePoint point;
   try {
-    unpack_state(model, restart.data(), n, state);
+    point = unpack_run(model, restart.data(), n, state);
   } catch (const std::invalid_argument& e) {
     throw ModelError(file, "/restart/state", e.what());
   }
   restore_state(state, data);
-  counts.steps += partial.steps;
-  counts.newton_iterations += partial.newton_iterations;
-  counts.factorizations += r.attr_int("/", "factorizations");
-  counts.solves += r.attr_int("/", "solves");
-  counts.integration_seconds += partial.integration_seconds;
-  return {restart[static_cast<std::size_t>(n)], restart[static_cast<std::size_t>(n) + 1] != 0};
+  counts = RunInfo{};
+  counts.steps = partial.steps;
+  counts.newton_iterations = partial.newton_iterations;
+  counts.factorizations = r.attr_int("/", "factorizations");
+  counts.solves = r.attr_int("/", "solves");
+  counts.integration_seconds = partial.integration_seconds;
+  return point;
 }
 
 }  // namespace ffr::runtime

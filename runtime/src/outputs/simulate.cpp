@@ -51,13 +51,9 @@ bool stop_requested(const RunOptions& opt) { return opt.stop && opt.stop->load(s
 RunInfo requested_stop(const Model& model, const Data& data, const StepControl* control, RunInfo info) {
   info.stopped_at = data.state.t;
   info.stop_reason = "stop requested";
-  State state(model);
-  save_state(data, state);
-  const int n = packed_state_size(model);
-  info.restart.resize(static_cast<std::size_t>(n) + 2);
-  pack_state(state, info.restart.data());
-  info.restart[static_cast<std::size_t>(n)] = control ? control->h_next : 0.0;
-  info.restart[static_cast<std::size_t>(n) + 1] = control && control->accepted_any ? 1.0 : 0.0;
+  State scratch(model);
+  info.restart.resize(static_cast<std::size_t>(packed_run_size(model)));
+  pack_run(model, data, control, scratch, info.restart.data());
   return info;
 }
 
@@ -117,6 +113,14 @@ RunInfo simulate_adaptive(const Model& model, Data& data, Recorder& rec, const R
 }
 
 }  // namespace
+
+void add_counts(RunInfo& total, const RunInfo& part) {
+  total.steps += part.steps;
+  total.newton_iterations += part.newton_iterations;
+  total.factorizations += part.factorizations;
+  total.solves += part.solves;
+  total.integration_seconds += part.integration_seconds;
+}
 
 RunInfo simulate(const Model& model, Data& data, Recorder& rec, const RunOptions& opt) {
   if (model.settings.adaptive) return simulate_adaptive(model, data, rec, opt);

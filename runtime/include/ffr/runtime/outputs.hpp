@@ -5,6 +5,7 @@
 
 #include "ffr/runtime/data.hpp"
 #include "ffr/runtime/model.hpp"
+#include "ffr/runtime/step_control.hpp"
 
 #include <atomic>
 #include <cstdint>
@@ -62,18 +63,14 @@ struct RunInfo {
   /// RunOptions::stop asked it to stop; empty for a run that reached its end.
   std::optional<double> stopped_at;
   std::string stop_reason;
-  /// After a stop request: the state reached, packed as the C API's ffr_save_state packs it
-  /// (state.hpp's packing, then the adaptive control's next step and whether it has accepted
-  /// one), from which RunOptions::resume goes on. Empty otherwise.
+  /// After a stop request: the state reached (step_control.hpp's pack_run, as the C API's
+  /// ffr_save_state packs it), from which RunOptions::resume goes on. Empty otherwise.
   std::vector<double> restart;
 };
 
-/// Where a resumed run goes on: data's state restored from a RunInfo::restart (the adaptive
-/// control's two values are these).
-struct ResumePoint {
-  double h_next = 0;
-  bool accepted_any = false;
-};
+/// Adds `part`'s counts (steps, iterations, factorizations, solves, seconds) to `total`'s: a
+/// resumed run's and those of the run it goes on from.
+void add_counts(RunInfo& total, const RunInfo& part);
 
 struct RunOptions {
   /// Called from the time loop (at most every `progress_seconds` of wall time) with t and end.
@@ -109,7 +106,7 @@ std::string input_identity(const Model& model);
 /// Prepares the resumption of the interrupted run whose results file (ffr-sim --keep-partial,
 /// stopped by a stop request: its /restart state) is `path`: appends its samples on the run's
 /// own schedule to `rec` (those the run never stopped records), restores its state into `data`
-/// (initialised), adds its counts to `counts` and returns the point for RunOptions::resume.
+/// (initialised), sets `counts` to its counts and returns the point for RunOptions::resume.
 /// Throws ModelError naming the file: no restart state (a run that failed, or a complete one),
 /// inputs that changed since (model or SID files), outputs that differ.
 ResumePoint resume_from(const std::filesystem::path& path, const Model& model, Data& data, Recorder& rec, RunInfo& counts);

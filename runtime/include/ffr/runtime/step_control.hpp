@@ -34,6 +34,23 @@ struct StepControl {
   State saved;
 };
 
+/// The controller's part of a run's state: what a run restored from a saved state goes on with.
+struct ResumePoint {
+  double h_next = 0;
+  bool accepted_any = false;
+};
+
+/// A run's whole state as the C API (ffr_save_state) and a stopped run's restart hold it: the
+/// packed State (state.hpp), then the controller's next step and whether it has accepted a step
+/// (zeros with fixed steps, `control` null).
+int packed_run_size(const Model& model);
+/// Allocation-free: `scratch` is a State sized for the model.
+void pack_run(const Model& model, const Data& data, const StepControl* control, State& scratch, double* out);
+/// Unpacks `in` into `state` and returns the controller's part. Throws std::invalid_argument,
+/// leaving `state` unchanged, on a wrong length, a non-finite coordinate or, with adaptive
+/// steps, a next step that is not a positive number.
+ResumePoint unpack_run(const Model& model, const double* in, int size, State& state);
+
 /// The first step tried: settings.step, which the model file's "step": "auto" sets to a hundredth
 /// of the output interval (a guess the first steps correct).
 double initial_step(const Model& model);
